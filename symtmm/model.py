@@ -1,0 +1,338 @@
+"""Immutable, validated description of a multilevel beam system.
+
+A :class:`Model` holds parallel Euler–Bernoulli beams and the spring/dashpot
+systems joining them (or joining a beam to the ground). Every numeric field is
+an exact SymPy expression: a number, or an expression in parameters that may
+still lack a value (useful for closed-form characteristic equations).
+
+Examples
+--------
+>>> from symtmm.model import Beam, Spring, Model
+>>> m = Model(beams=(Beam("upper", EI=1, m=1, L=1, left="free", right="free"),
+...                  Beam("lower", EI=1, m=1, L=1, left="clamped", right="clamped")),
+...           springs=(Spring("upper", "lower", x="3/10", k=100),))
+>>> m.springs[0].x
+3/10
+>>> m.beam("lower").right
+'clamped'
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field, replace
+from typing import Iterable, Mapping
+
+import sympy as sp
+
+from .errors import ModelError
+from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
+
+__all__ = ["Beam", "Spring", "Model", "BOUNDARY_CONDITIONS", "GROUND"]
+
+#: Boundary conditions and the state variables (of Y, Theta, M, Q) they set to zero.
+BOUNDARY_CONDITIONS: Mapping[str, tuple[str, str]] = {
+    "free": ("M", "Q"),
+    "clamped": ("Y", "Theta"),
+    "pinned": ("Y", "M"),
+    "sliding": ("Theta", "Q"),
+}
+#: Name standing for the ground in :attr:`Spring.b`.
+GROUND = "ground"
+
+_IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z_0-9]*$")
+
+
+def _exact(value, field_name: str) -> sp.Expr:
+    """Turn a number, SymPy expression or restricted-expression string into SymPy."""
+    try:
+        if isinstance(value, sp.Basic):
+            expr = value
+        elif isinstance(value, str):
+            expr = parse_expression(value)
+        else:
+            expr = exact_number(value)
+    except ExpressionError as exc:
+        raise ModelError(str(exc), field=field_name) from None
+    if expr.has(sp.Float):
+        raise ModelError("inexact floating-point number in an exact expression", field=field_name)
+    if expr.is_number and not expr.is_real:
+        raise ModelError("must be a real number", field=field_name)
+    return expr
+
+
+def _check_sign(expr: sp.Expr, field_name: str, allow_zero: bool) -> None:
+    if not expr.is_number:
+        return
+    if expr.is_negative or (expr.is_zero and not allow_zero):
+        raise ModelError("must be positive" if not allow_zero else "must not be negative",
+                         field=field_name)
+
+
+@dataclass(frozen=True)
+class Beam:
+    """An Euler–Bernoulli beam (one level).
+
+    Parameters
+    ----------
+    name : str
+        Identifier, unique within a model.
+    EI : number or str
+        Bending stiffness.
+    m : number or str
+        Mass per unit length.
+    L : number or str
+        Length.
+    x0 : number or str, optional
+        Global coordinate of the left end (default 0).
+    left, right : str
+        Boundary conditions: ``free``, ``clamped``, ``pinned`` or ``sliding``.
+    """
+
+    name: str
+    EI: sp.Expr
+    m: sp.Expr
+    L: sp.Expr
+    x0: sp.Expr = sp.Integer(0)
+    left: str = "free"
+    right: str = "free"
+
+    def __post_init__(self):
+        where = f"beam '{self.name}'"
+        if not isinstance(self.name, str) or not _IDENTIFIER.match(self.name) or self.name == GROUND:
+            raise ModelError(f"invalid name {self.name!r} (an identifier other than 'ground')",
+                             field="beam.name")
+        for attr in ("EI", "m", "L", "x0"):
+            value = _exact(getattr(self, attr), f"{where}.{attr}")
+            object.__setattr__(self, attr, value)
+            if attr != "x0":
+                _check_sign(value, f"{where}.{attr}", allow_zero=False)
+        for attr in ("left", "right"):
+            bc = getattr(self, attr)
+            if bc not in BOUNDARY_CONDITIONS:
+                raise ModelError(f"unknown boundary condition {bc!r} "
+                                 f"(use one of {', '.join(BOUNDARY_CONDITIONS)})",
+                                 field=f"{where}.{attr}")
+
+    @property
+    def x1(self) -> sp.Expr:
+        """Global coordinate of the right end."""
+        return self.x0 + self.L
+
+
+@dataclass(frozen=True)
+class Spring:
+    """A spring/dashpot between two beams, or between a beam and the ground.
+
+    The force ``F = (k + c λ)(Y_b − Y_a)`` acts on beam ``a`` and ``−F`` on
+    beam ``b`` at the global coordinate ``x``.
+
+    Parameters
+    ----------
+    a : str
+        Name of the first beam.
+    b : str
+        Name of the second beam, or ``"ground"``.
+    x : number or str
+        Global coordinate; must lie inside both beams (ends included).
+    k : number or str
+        Stiffness (not negative).
+    c : number or str, optional
+        Dashpot coefficient (not negative), default 0.
+    """
+
+    a: str
+    b: str
+    x: sp.Expr
+    k: sp.Expr
+    c: sp.Expr = sp.Integer(0)
+
+    def __post_init__(self):
+        if self.a == GROUND and self.b != GROUND:
+            a, b = self.b, self.a
+            object.__setattr__(self, "a", a)
+            object.__setattr__(self, "b", b)
+        where = f"spring {self.a}-{self.b}"
+        if self.a == self.b:
+            raise ModelError("a spring must join two different beams", field=f"{where}.between")
+        for attr in ("x", "k", "c"):
+            value = _exact(getattr(self, attr), f"{where}.{attr}")
+            object.__setattr__(self, attr, value)
+            if attr != "x":
+                _check_sign(value, f"{where}.{attr}", allow_zero=True)
+
+    @property
+    def grounded(self) -> bool:
+        """True for a spring from beam ``a`` to the ground."""
+        return self.b == GROUND
+
+
+@dataclass(frozen=True)
+class Model:
+    """A multilevel beam system.
+
+    Parameters
+    ----------
+    beams : tuple of Beam
+    springs : tuple of Spring
+    parameters : mapping of str to value or None, optional
+        Named values usable in any numeric field; ``None`` leaves the name a
+        symbol. Fields refer to parameters through symbols of the same name
+        (see :func:`symtmm.expr.parameter_symbol`).
+    title : str, optional
+    source : str, optional
+        Where the model came from (a file path), used in messages.
+    """
+
+    beams: tuple
+    springs: tuple = ()
+    parameters: Mapping[str, object] = field(default_factory=dict)
+    title: str = ""
+    source: str | None = None
+
+    def __post_init__(self):
+        beams = tuple(self.beams)
+        springs = tuple(self.springs)
+        object.__setattr__(self, "beams", beams)
+        object.__setattr__(self, "springs", springs)
+        params = {}
+        for name, value in dict(self.parameters).items():
+            if not isinstance(name, str) or not _IDENTIFIER.match(name):
+                raise ModelError(f"invalid parameter name {name!r}", field="parameters",
+                                 source=self.source)
+            params[name] = None if value is None else _exact(value, f"parameters.{name}")
+        # A read-only view keeps the model immutable.
+        object.__setattr__(self, "parameters", _FrozenDict(params))
+        try:
+            self._validate()
+        except ModelError as exc:
+            raise exc.with_source(self.source) if self.source else exc from None
+
+    def _validate(self):
+        if not self.beams:
+            raise ModelError("a model needs at least one beam", field="beam")
+        names = set()
+        for beam in self.beams:
+            if not isinstance(beam, Beam):
+                raise ModelError("expected a Beam", field="beam")
+            if beam.name in names:
+                raise ModelError(f"duplicate beam name '{beam.name}'", field="beam.name")
+            names.add(beam.name)
+        resolved = {b.name: self._resolved_beam(b) for b in self.beams}
+        for beam in resolved.values():
+            for attr in ("EI", "m", "L"):
+                _check_sign(getattr(beam, attr), f"beam '{beam.name}'.{attr}", allow_zero=False)
+        for spring in self.springs:
+            where = f"spring {spring.a}-{spring.b}"
+            for end in (spring.a, spring.b):
+                if end != GROUND and end not in names:
+                    raise ModelError(f"unknown beam '{end}'", field=f"{where}.between")
+            x = self.value(spring.x)
+            for end in (spring.a, spring.b):
+                if end == GROUND:
+                    continue
+                beam = resolved[end]
+                inside = [(x - beam.x0), (beam.x1 - x)]
+                if all(d.is_number for d in inside) and any(d.is_negative for d in inside):
+                    raise ModelError(f"x = {x} lies outside beam '{end}' "
+                                     f"[{beam.x0}, {beam.x1}]", field=f"{where}.x")
+            for attr in ("k", "c"):
+                _check_sign(self.value(getattr(spring, attr)), f"{where}.{attr}", allow_zero=True)
+
+    # -- parameters -----------------------------------------------------------------
+    def value(self, expr: sp.Expr) -> sp.Expr:
+        """Substitute the parameters that have values into ``expr``."""
+        subs = {parameter_symbol(n): v for n, v in self.parameters.items() if v is not None}
+        return sp.sympify(expr).xreplace(subs) if subs else sp.sympify(expr)
+
+    def _resolved_beam(self, beam: Beam) -> Beam:
+        return replace(beam, EI=self.value(beam.EI), m=self.value(beam.m),
+                       L=self.value(beam.L), x0=self.value(beam.x0))
+
+    def resolved(self) -> "Model":
+        """The same model with every parameter value substituted into the fields.
+
+        Parameters without value stay symbols (see :attr:`free_symbols`).
+        """
+        beams = tuple(self._resolved_beam(b) for b in self.beams)
+        springs = tuple(replace(s, x=self.value(s.x), k=self.value(s.k), c=self.value(s.c))
+                        for s in self.springs)
+        keep = {n: v for n, v in self.parameters.items() if v is None}
+        return Model(beams, springs, keep, self.title, self.source)
+
+    def with_parameters(self, **values) -> "Model":
+        """A copy with some parameter values set or replaced.
+
+        Examples
+        --------
+        >>> m = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),
+        ...            Beam("c", EI=1, m=1, L=1, left="pinned", right="pinned")),
+        ...           (Spring("b", "c", x="1/2", k="K"),), {"K": None})
+        >>> m.free_symbols
+        ('K',)
+        >>> m.with_parameters(K=5).resolved().springs[0].k
+        5
+        """
+        params = dict(self.parameters)
+        for name, value in values.items():
+            params[name] = value
+        return replace(self, parameters=params)
+
+    @property
+    def free_symbols(self) -> tuple:
+        """Names of the symbols left in the resolved fields, sorted."""
+        syms = set()
+        for beam in self.resolved().beams:
+            for attr in ("EI", "m", "L", "x0"):
+                syms |= getattr(beam, attr).free_symbols
+        for spring in self.resolved().springs:
+            for attr in ("x", "k", "c"):
+                syms |= getattr(spring, attr).free_symbols
+        return tuple(sorted(s.name for s in syms))
+
+    @property
+    def damped(self) -> bool:
+        """True when some dashpot coefficient is not identically zero."""
+        return any(not self.value(s.c).is_zero for s in self.springs)
+
+    def beam(self, name: str) -> Beam:
+        """The beam called ``name``."""
+        for beam in self.beams:
+            if beam.name == name:
+                return beam
+        raise KeyError(name)
+
+    def beam_index(self, name: str) -> int:
+        """Position of the beam called ``name`` in :attr:`beams`."""
+        return [b.name for b in self.beams].index(name)
+
+    def require_numeric(self) -> "Model":
+        """The resolved model, or a :class:`ModelError` naming a parameter without value."""
+        free = self.free_symbols
+        if free:
+            raise ModelError(f"'{free[0]}' has no value; give it one in [parameters] "
+                             f"or with --set {free[0]}=VALUE", field="parameters",
+                             source=self.source)
+        return self.resolved()
+
+
+class _FrozenDict(dict):
+    """A dict that refuses to change, so that a Model stays immutable."""
+
+    def _immutable(self, *args, **kwargs):
+        raise TypeError("model parameters are immutable; use Model.with_parameters")
+
+    __setitem__ = __delitem__ = clear = pop = popitem = setdefault = update = _immutable
+
+    def __hash__(self):
+        return hash(tuple(sorted(self.items(), key=lambda kv: kv[0])))
+
+
+def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
+    """All numeric fields of ``model`` as (field name, expression) pairs."""
+    for beam in model.beams:
+        for attr in ("EI", "m", "L", "x0"):
+            yield f"beam '{beam.name}'.{attr}", getattr(beam, attr)
+    for spring in model.springs:
+        for attr in ("x", "k", "c"):
+            yield f"spring {spring.a}-{spring.b}.{attr}", getattr(spring, attr)

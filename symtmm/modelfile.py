@@ -1,0 +1,256 @@
+"""Reading models from TOML files (the format of ``shared/design.md``).
+
+Numbers are exact: decimal literals are read as written (``0.3`` is 3/10), and
+strings are restricted arithmetic expressions (:mod:`symtmm.expr`) over
+numbers, parameters, ``pi`` and ``sqrt``. Nothing in a file is executed.
+
+Examples
+--------
+>>> text = '''
+... [parameters]
+... K = 100
+... [[beam]]
+... name = "a"
+... EI = 1
+... m = 1
+... L = 1
+... left = "clamped"
+... right = "free"
+... [[beam]]
+... name = "b"
+... EI = 1
+... m = 1
+... L = 1
+... left = "clamped"
+... right = "free"
+... [[spring]]
+... between = ["a", "b"]
+... x = 0.5
+... k = "K/2"
+... '''
+>>> model = loads(text)
+>>> model.resolved().springs[0].k
+50
+"""
+
+from __future__ import annotations
+
+import sys
+from decimal import Decimal
+from pathlib import Path
+
+import sympy as sp
+
+from .errors import ModelError
+from .expr import ExpressionError, exact_number, parse_expression
+from .model import GROUND, Beam, Model, Spring
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+__all__ = ["load", "loads", "parse_assignment"]
+
+_TOP = {"title", "parameters", "beam", "spring"}
+_BEAM_REQUIRED = ("name", "EI", "m", "L", "left", "right")
+_BEAM_OPTIONAL = ("x0",)
+_SPRING_REQUIRED = ("between", "x", "k")
+_SPRING_OPTIONAL = ("c",)
+
+
+def load(path, overrides: dict | None = None) -> Model:
+    """Read a model file.
+
+    Parameters
+    ----------
+    path : str or Path
+    overrides : dict, optional
+        Parameter values replacing the file's (``--set NAME=VALUE``): numbers
+        or expression strings.
+
+    Raises
+    ------
+    ModelError
+        With the file, the field and the problem.
+    """
+    source = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise ModelError(f"cannot read the file: {reason}", source=source) from None
+    return loads(text, overrides, source=source)
+
+
+def loads(text: str, overrides: dict | None = None, source: str = "<string>") -> Model:
+    """Read a model from TOML text (see :func:`load`)."""
+    try:
+        data = tomllib.loads(text, parse_float=Decimal)
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelError(f"not valid TOML: {exc}", source=source) from None
+    try:
+        return _build(data, overrides or {}, source)
+    except ModelError as exc:
+        raise exc.with_source(source) from None
+
+
+def parse_assignment(text: str) -> tuple[str, str]:
+    """Split ``NAME=VALUE`` (the argument of ``--set``).
+
+    Examples
+    --------
+    >>> parse_assignment("K=1e3")
+    ('K', '1e3')
+    """
+    name, sep, value = text.partition("=")
+    name, value = name.strip(), value.strip()
+    if not sep or not name or not value:
+        raise ModelError(f"--set expects NAME=VALUE, got {text!r}", field="--set")
+    return name, value
+
+
+def _number(value, field: str, resolve=None) -> sp.Expr:
+    try:
+        if isinstance(value, str):
+            return parse_expression(value, resolve)
+        if isinstance(value, (int, Decimal, float)) and not isinstance(value, bool):
+            return exact_number(value)
+    except ExpressionError as exc:
+        raise ModelError(str(exc), field=field) from None
+    raise ModelError(f"expected a number or an expression string, got {_kind(value)}", field=field)
+
+
+def _kind(value) -> str:
+    return {bool: "a boolean", list: "a list", dict: "a table"}.get(type(value),
+                                                                     type(value).__name__)
+
+
+def _check_keys(table, required, optional, where):
+    if not isinstance(table, dict):
+        raise ModelError(f"expected a table, got {_kind(table)}", field=where)
+    for key in required:
+        if key not in table:
+            raise ModelError(f"missing field '{key}'", field=where)
+    for key in table:
+        if key not in required and key not in optional:
+            raise ModelError(f"unknown field '{key}'", field=f"{where}.{key}")
+
+
+def _parameters(raw: dict, overrides: dict) -> dict:
+    if not isinstance(raw, dict):
+        raise ModelError(f"expected a table, got {_kind(raw)}", field="parameters")
+    texts = dict(raw)
+    texts.update(overrides)
+    values: dict = {}
+    active: list = []
+
+    def resolve(name):
+        if name in values:
+            return values[name]
+        if name not in texts:
+            return None
+        if name in active:
+            raise ModelError("parameters refer to each other in a circle: "
+                             + " -> ".join(active + [name]), field=f"parameters.{name}")
+        active.append(name)
+        field = "--set " + name if name in overrides else f"parameters.{name}"
+        values[name] = _number(texts[name], field, resolve)
+        active.pop()
+        return values[name]
+
+    for name in texts:
+        resolve(name)
+    return values
+
+
+def _build(data: dict, overrides: dict, source: str) -> Model:
+    for key in data:
+        if key not in _TOP:
+            raise ModelError(f"unknown field '{key}'", field=key)
+    title = data.get("title", "")
+    if not isinstance(title, str):
+        raise ModelError("expected a string", field="title")
+    beams_raw = data.get("beam")
+    if beams_raw is None:
+        raise ModelError("missing field (at least one [[beam]] table)", field="beam")
+    if not isinstance(beams_raw, list):
+        raise ModelError("expected an array of tables: write [[beam]]", field="beam")
+    springs_raw = data.get("spring", [])
+    if not isinstance(springs_raw, list):
+        raise ModelError("expected an array of tables: write [[spring]]", field="spring")
+
+    params = _parameters(data.get("parameters", {}), overrides)
+    known_names = set(params)
+
+    beams = []
+    for i, raw in enumerate(beams_raw, 1):
+        where = f"beam[{i}]"
+        _check_keys(raw, _BEAM_REQUIRED, _BEAM_OPTIONAL, where)
+        name = raw["name"]
+        if not isinstance(name, str):
+            raise ModelError(f"expected a string, got {_kind(name)}", field=f"{where}.name")
+        where = f"beam[{i}] ({name})"
+        fields = {k: _number(raw[k], f"{where}.{k}") for k in ("EI", "m", "L")}
+        fields["x0"] = _number(raw.get("x0", 0), f"{where}.x0")
+        for k in ("left", "right"):
+            if not isinstance(raw[k], str):
+                raise ModelError(f"expected a string, got {_kind(raw[k])}", field=f"{where}.{k}")
+        try:
+            beams.append(Beam(name, left=raw["left"], right=raw["right"], **fields))
+        except ModelError as exc:
+            raise ModelError(exc.message, field=_rename(exc.field, where)) from None
+        for value in fields.values():
+            known_names |= {s.name for s in value.free_symbols}
+
+    springs = []
+    for i, raw in enumerate(springs_raw, 1):
+        where = f"spring[{i}]"
+        _check_keys(raw, _SPRING_REQUIRED, _SPRING_OPTIONAL, where)
+        between = raw["between"]
+        if (not isinstance(between, list) or len(between) != 2
+                or not all(isinstance(b, str) for b in between)):
+            raise ModelError('expected two names, e.g. ["upper", "lower"] or ["upper", "ground"]',
+                             field=f"{where}.between")
+        fields = {k: _number(raw[k], f"{where}.{k}") for k in ("x", "k")}
+        fields["c"] = _number(raw.get("c", 0), f"{where}.c")
+        try:
+            springs.append(Spring(between[0], between[1], **fields))
+        except ModelError as exc:
+            raise ModelError(exc.message, field=_rename(exc.field, where)) from None
+        for value in fields.values():
+            known_names |= {s.name for s in value.free_symbols}
+
+    names = {b.name for b in beams}
+    for i, spring in enumerate(springs, 1):
+        for end in (spring.a, spring.b):
+            if end != GROUND and end not in names:
+                raise ModelError(f"unknown beam '{end}'", field=f"spring[{i}].between")
+    for name in overrides:
+        if name not in known_names:
+            raise ModelError(f"'{name}' is not a parameter of this model", field="--set " + name)
+    try:
+        return Model(tuple(beams), tuple(springs), params, title, source)
+    except ModelError as exc:
+        raise ModelError(exc.message, field=_spring_field(exc.field, springs, beams)) from None
+
+
+def _rename(field: str | None, where: str) -> str:
+    """Replace the model's own field prefix by the file's (``beam[2] (lower).EI``)."""
+    if not field:
+        return where
+    attr = field.rsplit(".", 1)[-1]
+    return f"{where}.{attr}"
+
+
+def _spring_field(field: str | None, springs, beams) -> str | None:
+    """Name fields by their position in the file, as the user wrote them."""
+    if not field:
+        return field
+    for i, s in enumerate(springs, 1):
+        if field.startswith(f"spring {s.a}-{s.b}."):
+            return f"spring[{i}]." + field.rsplit(".", 1)[-1]
+    for i, b in enumerate(beams, 1):
+        if field.startswith(f"beam '{b.name}'."):
+            return f"beam[{i}] ({b.name})." + field.rsplit(".", 1)[-1]
+    return field
