@@ -1,0 +1,13 @@
+"""Elements of MS-TMM: field elements (beam segments) and point elements (springs, ...).
+
+Every element exposes the same interface (:class:`~symtmm.elements.base.Element`):
+the state variables it acts on, its parameters, and ``transfer_matrix(lam)``
+as an exact SymPy matrix.
+"""
+
+from .base import STATE, Element, FieldElement, PointElement
+from .beam import EulerBernoulliSegment
+from .spring import Coupling, GroundSpring
+
+__all__ = ["STATE", "Element", "FieldElement", "PointElement", "EulerBernoulliSegment",
+           "Coupling", "GroundSpring"]
