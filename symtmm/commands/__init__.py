@@ -1,0 +1,1 @@
+"""One module per ``symtmm`` subcommand (discovered by :mod:`symtmm.cli`)."""

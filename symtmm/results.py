@@ -1,0 +1,176 @@
+"""Result objects: eigenvalues and spectra."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field, replace
+
+import mpmath
+
+__all__ = ["Eigenvalue", "Spectrum", "decimal_string"]
+
+
+def decimal_string(value, digits: int) -> str:
+    """``value`` as a plain decimal string with ``digits`` significant digits.
+
+    Examples
+    --------
+    >>> decimal_string(mpmath.mpf("123.456789"), 5)
+    '123.46'
+    >>> decimal_string(mpmath.mpf(0), 5)
+    '0'
+    >>> decimal_string(mpmath.mpf("1.5e-7"), 3)
+    '0.000000150'
+    """
+    if value == 0:
+        return "0"
+    with mpmath.workdps(digits + 10):
+        return mpmath.nstr(mpmath.mpf(value), digits, strip_zeros=False,
+                           min_fixed=-mpmath.inf, max_fixed=mpmath.inf)
+
+
+@dataclass(frozen=True)
+class Eigenvalue:
+    """One eigenvalue ``lam = -sigma + i omega`` with ``Im lam >= 0``.
+
+    Attributes
+    ----------
+    lam : mpmath.mpc
+        The value, accurate to :attr:`digits` significant digits.
+    multiplicity : int
+    digits : int
+        Significant digits guaranteed correct in both parts.
+    bracket : tuple or None
+        For undamped roots, ``(lo, hi)`` with the root(s) inside, proved by
+        the eigenvalue count or by a sign change of Delta.
+    """
+
+    lam: mpmath.mpc
+    multiplicity: int = 1
+    digits: int = 15
+    bracket: tuple | None = None
+
+    @property
+    def omega(self):
+        """Circular frequency ``Im lam`` (rad/s), at the precision it was computed in."""
+        return self.lam.imag
+
+    @property
+    def sigma(self):
+        """Decay rate ``-Re lam`` (1/s)."""
+        # negation rounds to the working precision: do it at the value's own precision
+        with mpmath.workprec(max(self.lam.real._mpf_[3], 53)):  # [3]: mantissa bits
+            return -self.lam.real
+
+    def to_dict(self) -> dict:
+        """JSON-ready ``{"real", "imag", "multiplicity"}`` with :attr:`digits` digits."""
+        return {"real": decimal_string(self.lam.real, self.digits),
+                "imag": decimal_string(self.lam.imag, self.digits),
+                "multiplicity": self.multiplicity}
+
+    def __str__(self) -> str:
+        d = self.to_dict()
+        if d["real"] == "0":
+            return f"{d['imag']}i" + (f" (x{self.multiplicity})" if self.multiplicity > 1 else "")
+        sign = "" if d["imag"].startswith("-") else "+"
+        return f"{d['real']}{sign}{d['imag']}i" + (
+            f" (x{self.multiplicity})" if self.multiplicity > 1 else "")
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """Eigenvalues of a model, ascending by ``Im lam``, with how they were found.
+
+    Iterating gives the :class:`Eigenvalue` objects; ``len`` counts them
+    without multiplicity, :attr:`total` with it.
+    """
+
+    eigenvalues: tuple
+    digits: int
+    method: str
+    evaluations: int
+    seconds: float
+    model_name: str = ""
+    omega_scale: tuple | None = None  # (beam name, sqrt(EI/(m L^4))) for Omega = beta L
+    notes: tuple = field(default_factory=tuple)
+
+    def __iter__(self):
+        return iter(self.eigenvalues)
+
+    def __len__(self):
+        return len(self.eigenvalues)
+
+    def __getitem__(self, i):
+        return self.eigenvalues[i]
+
+    @property
+    def total(self) -> int:
+        """Number of eigenvalues counted with multiplicity."""
+        return sum(e.multiplicity for e in self.eigenvalues)
+
+    def omegas(self, expand: bool = False) -> list:
+        """Circular frequencies (mpmath numbers); with ``expand``, repeated by multiplicity."""
+        out = []
+        for e in self.eigenvalues:
+            out += [e.omega] * (e.multiplicity if expand else 1)
+        return out
+
+    def Omegas(self, expand: bool = False) -> list:
+        """Frequency parameters ``Omega = (omega^2 m L^4/EI)^(1/4)`` of the reference beam."""
+        if not self.omega_scale:
+            raise ValueError("no reference beam")
+        scale = self.omega_scale[1]
+        with mpmath.workdps(self.digits + 10):
+            return [mpmath.sqrt(w / scale) for w in self.omegas(expand)]
+
+    def with_model_name(self, name: str) -> "Spectrum":
+        """The same spectrum labelled with ``name`` (the model file, in JSON)."""
+        return replace(self, model_name=name)
+
+    def to_dict(self) -> dict:
+        """The JSON object of ``symtmm solve --json``."""
+        return {
+            "model": self.model_name,
+            "digits": self.digits,
+            "eigenvalues": [e.to_dict() for e in self.eigenvalues],
+            "stats": {"evaluations": self.evaluations, "seconds": round(self.seconds, 6),
+                      "method": self.method},
+        }
+
+    def to_json(self) -> str:
+        """:meth:`to_dict` as a JSON string."""
+        return json.dumps(self.to_dict(), indent=2)
+
+    def table(self) -> str:
+        """A readable table (the ``symtmm solve`` output)."""
+        damped = any(e.lam.real != 0 for e in self.eigenvalues)
+        head = ["#", "Re lam [1/s]", "Im lam = omega [rad/s]"] if damped else \
+            ["#", "omega [rad/s]"]
+        ref = None
+        if self.omega_scale and not damped:
+            ref = self.omega_scale[0]
+            head.append(f"Omega (beam {ref})")
+        head.append("mult.")
+        rows = []
+        with mpmath.workdps(self.digits + 10):
+            for i, e in enumerate(self.eigenvalues, 1):
+                d = e.to_dict()
+                row = [str(i)] + ([d["real"]] if damped else []) + [d["imag"]]
+                if ref:
+                    row.append(decimal_string(mpmath.sqrt(e.omega / self.omega_scale[1]),
+                                              self.digits))
+                row.append(str(e.multiplicity))
+                rows.append(row)
+        widths = [max(len(h), *(len(r[k]) for r in rows)) if rows else len(h)
+                  for k, h in enumerate(head)]
+        lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths))]
+        lines.append("  ".join("-" * w for w in widths))
+        lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
+        lines.append(f"{self.total} eigenvalue(s) with multiplicity, {self.digits} significant "
+                     f"digits; method {self.method}, {self.evaluations} evaluations, "
+                     f"{self.seconds:.3f} s")
+        lines += list(self.notes)
+        return "\n".join(lines)
+
+    def __str__(self) -> str:
+        return self.table()

@@ -1,0 +1,292 @@
+"""Natural frequencies of undamped models, none missed, to any number of digits.
+
+1. **Count.** The Wittrick–Williams count ``J(omega)`` (:mod:`symtmm.stiffness`)
+   gives the number of natural frequencies below any ``omega``, with
+   multiplicity, rigid-body modes included. Rigid-body modes are the null
+   space of the exact static ``R(0)``.
+2. **Isolate.** Bisection on ``J`` splits ``(0, omega_max]`` into brackets
+   holding one root each; brackets that still hold several roots when they
+   are narrower than double precision can resolve go to step 4.
+3. **Refine** each simple root on ``Delta(i omega) = det R`` (the transfer
+   formulation, real on the frequency axis) with the Anderson–Björck
+   bracketing method, in mpmath at ``D + loss + 10`` digits, where ``loss``
+   estimates the cancellation in ``Delta`` (``sum beta L / ln 10``). The
+   final bracket, of relative width ``10**-(D+2)``, is then checked at 15
+   more digits: ``Delta`` must still change sign across it, or the precision
+   is raised and the refinement repeated.
+4. **Clusters.** Brackets holding several roots are bisected with the count
+   in mpmath at ``D + 15`` digits until each holds one root (then step 3) or
+   is narrower than ``10**-(D+2)`` relative: the roots it holds agree to
+   ``D`` digits and are reported once with their multiplicity.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import mpmath
+import sympy as sp
+
+from ..assembly import boundary_matrix
+from ..compile import Evaluator
+from ..errors import ComputationError
+from ..model import Model
+from ..results import Eigenvalue, Spectrum
+from ..stiffness import StiffnessModel
+
+__all__ = ["solve_undamped", "rigid_body_modes", "omega_scale"]
+
+#: Relative width below which a double-precision count is not asked to split a bracket.
+_DOUBLE_WIDTH = 1e-11
+#: Largest precision (decimal digits) the refinement may climb to.
+MAX_DPS = 3000
+
+
+def rigid_body_modes(model: Model) -> int:
+    """Number of rigid-body (zero-frequency) modes: the nullity of the exact ``R(0)``.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> rigid_body_modes(Model((Beam("b", 1, 1, 1, left="free", right="free"),)))
+    2
+    >>> rigid_body_modes(Model((Beam("b", 1, 1, 1, left="pinned", right="free"),)))
+    1
+    """
+    R = boundary_matrix(model.require_numeric(), lam=sp.Integer(0))
+    return R.shape[1] - R.rank(simplify=True)
+
+
+def omega_scale(model: Model):
+    """``(name, sqrt(EI/(m L^4)))`` of the first beam: ``omega = Omega**2 * scale``."""
+    b = model.resolved().beams[0]
+    return b.name, sp.sqrt(b.EI / (b.m * b.L**4))
+
+
+def _first_guess(model: Model) -> float:
+    """A frequency of the order of the lowest natural frequency."""
+    best = math.inf
+    for b in model.resolved().beams:
+        best = min(best, math.pi**2 * math.sqrt(float(b.EI) / float(b.m)) / float(b.L) ** 2)
+    return best
+
+
+class _Search:
+    def __init__(self, model: Model, digits: int, omega_hi: float):
+        self.model = model
+        self.digits = digits
+        self.ev = Evaluator(model)
+        self.sm = StiffnessModel(model, omega_hi)
+
+    @property
+    def evaluations(self) -> int:
+        return self.ev.evaluations + self.sm.evaluations
+
+    def count(self, omega, dps=None) -> int:
+        return self.sm.count(omega, dps=dps)
+
+    # -- isolation ------------------------------------------------------------------
+    def isolate(self, lo, c_lo, hi, c_hi, needed=None):
+        """Brackets ``(a, b, k)`` with ``k`` roots in ``(a, b]``, ascending.
+
+        Stops once ``needed`` roots (with multiplicity) are bracketed.
+        """
+        out, found = [], 0
+        stack = [(lo, c_lo, hi, c_hi)]
+        while stack:
+            a, ca, b, cb = stack.pop()
+            k = cb - ca
+            if k <= 0:
+                continue
+            if needed is not None and found >= needed:
+                break
+            if k == 1 or (b - a) <= _DOUBLE_WIDTH * b:
+                out.append((a, b, k))
+                found += k
+                continue
+            mid = 0.5 * (a + b)
+            cm = self.count(mid)
+            # left half first: push it last
+            stack.append((mid, cm, b, cb))
+            stack.append((a, ca, mid, cm))
+        return out
+
+    # -- clusters ---------------------------------------------------------------------
+    def split_cluster(self, a, b, k):
+        """Resolve ``k`` roots in ``(a, b]`` with high-precision counts."""
+        dps = self.digits + 15
+        with mpmath.workdps(dps):
+            a, b = mpmath.mpf(a), mpmath.mpf(b)
+            ca = self.count(a, dps=dps)
+            cb = ca + k
+            tol = mpmath.mpf(10) ** (-(self.digits + 2))
+            out, stack = [], [(a, ca, b, cb)]
+            while stack:
+                a, ca, b, cb = stack.pop()
+                m = cb - ca
+                if m <= 0:
+                    continue
+                if m == 1 or (b - a) <= tol * b:
+                    out.append((a, b, m))
+                    continue
+                mid = (a + b) / 2
+                cm = self.count(mid, dps=dps)
+                stack.append((mid, cm, b, cb))
+                stack.append((a, ca, mid, cm))
+            return out
+
+    # -- refinement --------------------------------------------------------------------
+    def refine(self, a, b) -> Eigenvalue:
+        """One simple root in ``(a, b]`` to ``digits`` significant digits."""
+        extra = 0
+        while True:
+            dps = self.digits + int(math.ceil(self.ev.digits_lost(float(b)))) + 10 + extra
+            if dps > MAX_DPS:
+                raise ComputationError(
+                    f"cannot reach {self.digits} digits for the root near {float(b):.6g} rad/s "
+                    f"within {MAX_DPS} working digits")
+            with mpmath.workdps(dps):
+                lo, hi = self._bracket_refine(mpmath.mpf(a), mpmath.mpf(b))
+            if lo is not None and self._verify(lo, hi, dps + 15):
+                # build the result inside the context: mpc() rounds to the working precision
+                with mpmath.workdps(dps):
+                    return Eigenvalue(mpmath.mpc(0, (lo + hi) / 2), 1, self.digits, (lo, hi))
+            extra += max(10, dps // 2)
+
+    def _f(self, omega):
+        return self.ev.delta_omega_mp(omega)
+
+    def _bracket_refine(self, a, b):
+        """Anderson–Björck on Delta; None if Delta shows no sign change (precision)."""
+        fa, fb = self._f(a), self._f(b)
+        if fa == 0:
+            return a, a
+        if fb == 0:
+            return b, b
+        if (fa > 0) == (fb > 0):
+            return None, None
+        tol = mpmath.mpf(10) ** (-(self.digits + 2)) * abs(b)
+        while b - a > tol:
+            width = b - a
+            c = b - fb * (b - a) / (fb - fa)
+            # keep the step inside, at least tol/4 from either end, so the bracket shrinks
+            c = min(max(c, a + tol / 4), b - tol / 4)
+            fc = self._f(c)
+            if fc == 0:
+                return c, c
+            # Anderson–Björck: the end that stays has its value scaled down, which stops
+            # regula falsi from creeping towards the root from one side only.
+            if (fc > 0) == (fb > 0):
+                m = 1 - fc / fb
+                fa = fa * (m if m > 0 else mpmath.mpf(0.5))
+                b, fb = c, fc
+            else:
+                m = 1 - fc / fa
+                fb = fb * (m if m > 0 else mpmath.mpf(0.5))
+                a, fa = c, fc
+            if b - a > 0.5 * width:
+                mid = (a + b) / 2
+                fm = self._f(mid)
+                if fm == 0:
+                    return mid, mid
+                if (fm > 0) == (fb > 0):
+                    b, fb = mid, fm
+                else:
+                    a, fa = mid, fm
+        return a, b
+
+    def _verify(self, lo, hi, dps) -> bool:
+        """Delta changes sign across [lo, hi] at a higher precision too."""
+        if lo == hi:
+            with mpmath.workdps(dps):
+                eps = mpmath.mpf(10) ** (-(self.digits + 3)) * abs(lo)
+                lo, hi = lo - eps, hi + eps
+        with mpmath.workdps(dps):
+            f_lo, f_hi = self._f(mpmath.mpf(lo)), self._f(mpmath.mpf(hi))
+        return (f_lo > 0) != (f_hi > 0) or f_lo == 0 or f_hi == 0
+
+
+def solve_undamped(model: Model, count: int | None = None, omega_max=None,
+                   digits: int = 15) -> Spectrum:
+    """Natural frequencies of an undamped model.
+
+    Parameters
+    ----------
+    model : Model
+        Numeric and undamped.
+    count : int, optional
+        The first ``count`` eigenvalues with multiplicity (rigid-body modes
+        included; a multiple root that straddles ``count`` is reported whole).
+    omega_max : float, optional
+        All eigenvalues with ``0 <= omega <= omega_max``.
+    digits : int
+        Significant digits, all correct (default 15).
+
+    Returns
+    -------
+    Spectrum
+        Eigenvalues ``lam = i omega``, ascending.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> pp = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
+    >>> spec = solve_undamped(pp, count=3, digits=20)
+    >>> [str(e) for e in spec]            # (n pi)^2
+    ['9.8696044010893586188i', '39.478417604357434475i', '88.826439609804227570i']
+    """
+    if count is None and omega_max is None:
+        raise ValueError("give count or omega_max")
+    if digits < 1:
+        raise ValueError("digits must be positive")
+    model = model.require_numeric()
+    if model.damped:
+        raise ValueError("model is damped: use the damped solver")
+    start = time.perf_counter()
+    rigid = rigid_body_modes(model)
+
+    if omega_max is not None:
+        hi = float(omega_max)
+        if hi < 0:
+            raise ValueError("omega_max must not be negative")
+        search = _Search(model, digits, max(hi, 1e-300))
+    else:
+        hi = _first_guess(model)
+        search = _Search(model, digits, hi)
+        while rigid < count and search.count(hi) < count:
+            hi *= 2.0
+    eigen = []
+    if rigid:
+        eigen.append(Eigenvalue(mpmath.mpc(0, 0), rigid, digits, (0.0, 0.0)))
+    wanted = None if count is None else count - rigid
+    if hi > 0 and (wanted is None or wanted > 0):
+        # include a root sitting exactly on omega_max
+        top = hi * (1 + 4e-16)
+        c_top = search.count(top)
+        for a, b, k in search.isolate(0.0, rigid, top, c_top, wanted):
+            parts = [(a, b, k)] if k == 1 else search.split_cluster(a, b, k)
+            for pa, pb, pk in parts:
+                if pk == 1:
+                    eigen.append(search.refine(pa, pb))
+                else:
+                    with mpmath.workdps(digits + 15):
+                        mid = (mpmath.mpf(pa) + mpmath.mpf(pb)) / 2
+                        eigen.append(Eigenvalue(mpmath.mpc(0, mid), pk, digits, (pa, pb)))
+    eigen.sort(key=lambda e: e.omega)
+    if count is not None:
+        kept, total = [], 0
+        for e in eigen:
+            if total >= count:
+                break
+            kept.append(e)
+            total += e.multiplicity
+        eigen = kept
+    elif omega_max is not None:
+        eigen = [e for e in eigen if e.omega <= mpmath.mpf(omega_max) * (1 + mpmath.mpf(4e-16))]
+    name, scale = omega_scale(model)
+    with mpmath.workdps(digits + 20):
+        scale_mp = mpmath.mpf(sp.N(scale, digits + 20)._to_mpmath(mpmath.mp.prec))
+    return Spectrum(tuple(eigen), digits, "default", search.evaluations,
+                    time.perf_counter() - start, model.title or (model.source or ""),
+                    (name, scale_mp))

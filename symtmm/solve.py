@@ -1,0 +1,64 @@
+"""``solve``: eigenvalues of a model by a named method.
+
+Methods are registered in :data:`METHODS`; each takes
+``(model, count, omega_max, sigma_max, digits)`` and returns a
+:class:`~symtmm.results.Spectrum`.
+"""
+
+from __future__ import annotations
+
+from .errors import ComputationError, ModelError
+from .model import Model
+from .results import Spectrum
+from .roots.undamped import solve_undamped
+
+__all__ = ["solve", "METHODS"]
+
+
+def _default(model, count, omega_max, sigma_max, digits):
+    if model.damped:
+        raise ComputationError("damped models (a dashpot with c > 0) are not supported yet")
+    return solve_undamped(model, count=count, omega_max=omega_max, digits=digits)
+
+
+#: Root-search methods by name.
+METHODS = {"default": _default}
+
+
+def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
+          digits: int = 15, method: str = "default") -> Spectrum:
+    """Eigenvalues ``lam`` with ``Im lam >= 0``, ascending by ``Im lam``.
+
+    Parameters
+    ----------
+    model : Model
+        Every parameter must have a value.
+    count : int, optional
+        The first ``count`` eigenvalues, counted with multiplicity.
+    omega_max : float, optional
+        All eigenvalues with ``0 <= Im lam <= omega_max`` (instead of ``count``).
+    sigma_max : float, optional
+        Damped models: the search region ``-sigma_max <= Re lam <= 0``.
+    digits : int
+        Significant digits, all correct.
+    method : str
+        A key of :data:`METHODS`.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> cc = Model((Beam("b", EI=1, m=1, L=1, left="clamped", right="clamped"),))
+    >>> print(solve(cc, count=2, digits=12).table())   # doctest: +ELLIPSIS
+    #  omega [rad/s]  Omega (beam b)  mult.
+    -  -------------  --------------  -----
+    1  22.3732854481   4.73004074486      1
+    2  61.6728228679   7.85320462410      1
+    2 eigenvalue(s) with multiplicity, 12 significant digits; method default, ...
+    """
+    if method not in METHODS:
+        raise ModelError(f"unknown method {method!r} (use one of {', '.join(METHODS)})",
+                         field="--method")
+    if count is None and omega_max is None:
+        count = 10
+    model = model.require_numeric()
+    return METHODS[method](model, count, omega_max, sigma_max, digits)
