@@ -49,17 +49,24 @@ class Station:
     elements: tuple
 
 
-def _before(a: sp.Expr, b: sp.Expr) -> bool | None:
-    """True if a < b, False if a >= b, None if it cannot be decided."""
+def _before(a: sp.Expr, b: sp.Expr, sample: dict | None = None) -> bool | None:
+    """True if a < b, False if a >= b, None if it cannot be decided.
+
+    ``sample`` (symbol -> number) decides what the symbols alone cannot.
+    """
     diff = sp.simplify(b - a)
     if diff.is_positive:
         return True
     if diff.is_nonpositive:
         return False
+    if sample:
+        value = diff.xreplace(sample)
+        if value.is_number:
+            return bool(value > 0)
     return None
 
 
-def _sorted_unique(points: list) -> list:
+def _sorted_unique(points: list, sample: dict | None = None) -> list:
     """Sort exact coordinates; undecidable pairs keep the order they were given in."""
     result: list = []
     for p in points:
@@ -67,7 +74,7 @@ def _sorted_unique(points: list) -> list:
             continue
         pos = len(result)
         for i, q in enumerate(result):
-            if _before(p, q) is True:
+            if _before(p, q, sample) is True:
                 pos = i
                 break
         result.insert(pos, p)
@@ -82,6 +89,9 @@ class Layout:
     model : Model
         Parameters are substituted (``model.resolved()``); fields may still be
         symbolic.
+    sample : dict, optional
+        Values (symbol -> number) used only to order coordinates that stay
+        symbolic, e.g. ``x1`` and ``1 - x1``.
 
     Examples
     --------
@@ -96,7 +106,7 @@ class Layout:
     (((0, 'M'), (0, 'Q'), (1, 'Theta'), (1, 'Q')), ((0, 'M'), (0, 'Q'), (1, 'Y'), (1, 'M')))
     """
 
-    def __init__(self, model: Model):
+    def __init__(self, model: Model, sample: dict | None = None):
         self.model = model.resolved()
         beams = self.model.beams
         self.levels = len(beams)
@@ -104,7 +114,7 @@ class Layout:
         for beam in beams:
             points += [beam.x0, beam.x1]
         points += [s.x for s in self.model.springs]
-        xs = _sorted_unique(points)
+        xs = _sorted_unique(points, sample)
         stations, steps = [], []
         for i, x in enumerate(xs):
             elements = tuple(self._point_elements_at(x))
@@ -117,7 +127,8 @@ class Layout:
                 segs = tuple(
                     (lvl, EulerBernoulliSegment(b.EI, b.m, x_end - x))
                     for lvl, b in enumerate(beams)
-                    if _before(x, b.x0) is not True and _before(b.x1, x_end) is not True
+                    if _before(x, b.x0, sample) is not True
+                    and _before(b.x1, x_end, sample) is not True
                 )
                 steps.append(Interval(x, x_end, segs))
         self.stations = tuple(stations)
