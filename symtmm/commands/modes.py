@@ -1,0 +1,67 @@
+"""Mode shapes: Y, Theta, M and Q along every beam for the first N modes.
+
+Undamped shapes are real and mass-normalised (sum over the beams of the
+integral of m Y^2 dx = 1); damped shapes are complex, scaled so that the
+largest |Y| is 1. An eigenvalue of multiplicity m gives m independent shapes
+(mass-orthonormal when undamped). In JSON, complex arrays are written as
+{"real": [...], "imag": [...]}.
+"""
+
+from __future__ import annotations
+
+from ..cli import add_model_arguments, load_model_arg
+from ..errors import ModelError
+from .solve import _nonnegative, _positive_int
+
+HELP = "mode shapes (Y, Theta, M, Q along every beam)"
+
+
+def _points(text):
+    import argparse
+    value = _positive_int(text)
+    if value < 2:
+        raise argparse.ArgumentTypeError(f"need at least 2 points (both ends), got {value}")
+    return value
+
+
+def add_arguments(parser):
+    add_model_arguments(parser)
+    parser.add_argument("--count", type=_positive_int, default=None, metavar="N",
+                        help="the first N modes, counted with multiplicity (default 6)")
+    parser.add_argument("--points", type=_points, default=101, metavar="P",
+                        help="points per beam, both ends included (default 101)")
+    parser.add_argument("--sigma-max", type=_nonnegative, metavar="S",
+                        help="damped models: search -S <= Re lam <= 0")
+    parser.add_argument("--digits", type=_positive_int, default=15, metavar="D",
+                        help="significant digits of the eigenvalues (default 15)")
+    parser.add_argument("--method", default="default", metavar="NAME",
+                        help="root search (see symtmm solve)")
+    parser.add_argument("--json", action="store_true", help="JSON output")
+    parser.add_argument("--plot", metavar="FILE",
+                        help="save a figure (one panel per beam) to FILE (.png, .pdf, .svg)")
+    parser.add_argument("--variable", choices=("Y", "Theta", "M", "Q"), default="Y",
+                        help="state variable to plot (default Y)")
+
+
+def run(args) -> int:
+    from ..modes import mode_shapes
+
+    model = load_model_arg(args)
+    count = args.count if args.count is not None else 6
+    try:
+        modes = mode_shapes(model, count=count, sigma_max=args.sigma_max, points=args.points,
+                            digits=args.digits, method=args.method)
+    except ModelError as exc:
+        raise exc.with_source(args.model) from None
+    if args.plot:
+        from ..plot import save_figure
+        save_figure(modes.plot(variable=args.variable), args.plot)
+    if args.json:
+        print(modes.to_json())
+    else:
+        if model.title:
+            print(model.title)
+        print(modes.table())
+        if args.plot:
+            print(f"figure written to {args.plot}")
+    return 0

@@ -1,0 +1,298 @@
+"""Plots of mode shapes, parameter sweeps and ``log10|Delta|`` scans.
+
+Every function returns a :class:`matplotlib.figure.Figure` drawn with the Agg
+backend: nothing global is touched (no ``pyplot``), nothing is shown. Save
+with ``fig.savefig("file.png")``; in Jupyter a returned figure displays
+itself (it renders a PNG on request).
+
+Frequencies are plotted as the paper does, as the frequency parameter
+``Omega = (omega**2 m L**4 / EI)**(1/4)`` of the model's first beam, when the
+result knows that beam's scale; otherwise as ``omega`` in rad/s.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+
+import numpy as np
+
+__all__ = ["Figure", "new_figure", "plot_modes", "plot_scan", "plot_scan_map", "plot_sweep",
+           "save_figure"]
+
+try:
+    from matplotlib.figure import Figure as _MplFigure
+except ImportError:  # pragma: no cover - matplotlib is an optional extra
+    _MplFigure = object
+
+#: Axis label of the frequency parameter.
+OMEGA_LABEL = r"$\Omega = (\omega^2 m L^4/EI)^{1/4}$"
+
+
+class Figure(_MplFigure):
+    """A matplotlib figure that displays itself in Jupyter as a PNG."""
+
+    def _repr_png_(self):
+        buf = io.BytesIO()
+        self.savefig(buf, format="png")
+        return buf.getvalue()
+
+
+def new_figure(figsize=(7.0, 4.5)) -> Figure:
+    """An empty :class:`Figure` with an Agg canvas and constrained layout."""
+    try:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+    except ImportError:  # pragma: no cover
+        raise ImportError("plots need matplotlib: pip install 'symtmm[plot]'") from None
+    fig = Figure(figsize=figsize, layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def _scale(omega_scale):
+    """``(beam name, float scale)`` or None."""
+    if not omega_scale:
+        return None
+    return omega_scale[0], float(omega_scale[1])
+
+
+def _to_Omega(omega, scale):
+    return np.sqrt(np.asarray(omega, dtype=float) / scale)
+
+
+# -----------------------------------------------------------------------------------
+# mode shapes
+# -----------------------------------------------------------------------------------
+
+_UNITS = {"Y": "Y", "Theta": r"$\Theta = Y'$", "M": r"$M = EI\,Y''$", "Q": r"$Q = EI\,Y'''$"}
+
+
+def plot_modes(modes, variable: str = "Y", which=None, x_label: str = "x [m]",
+               figsize=None) -> Figure:
+    """One panel per beam with the chosen state variable of each mode along it.
+
+    Parameters
+    ----------
+    modes : ModeSet
+        From :func:`symtmm.modes.mode_shapes`.
+    variable : {"Y", "Theta", "M", "Q"}
+        The state variable to draw.
+    which : sequence of int, optional
+        Mode numbers (1-based) to draw; default all.
+    x_label : str
+        Label of the horizontal axis (global coordinate).
+
+    Returns
+    -------
+    Figure
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> from symtmm.modes import mode_shapes
+    >>> cf = Model((Beam("b", EI=1, m=1, L=1, left="clamped", right="free"),))
+    >>> fig = plot_modes(mode_shapes(cf, count=3, points=41, digits=10))
+    >>> [ax.get_title() for ax in fig.axes]
+    ['beam b (clamped-free)']
+    """
+    if variable not in _UNITS:
+        raise ValueError(f"variable must be one of {', '.join(_UNITS)}")
+    chosen = [m for m in modes if which is None or m.number in which]
+    beams = modes.model.beams
+    fig = new_figure(figsize or (7.5, 2.4 * len(beams) + 0.8))
+    axes = fig.subplots(len(beams), 1, sharex=True, squeeze=False)[:, 0]
+    scale = _scale(modes.spectrum.omega_scale)
+    damped = any(m.damped for m in chosen)
+    for ax, beam in zip(axes, beams):
+        for i, mode in enumerate(chosen):
+            shape = mode.beams[beam.name]
+            color = f"C{i % 10}"
+            label = _mode_label(mode, scale)
+            values = shape[variable]
+            if damped:
+                ax.plot(shape.x, values.real, color=color, label=label + " (Re)")
+                ax.plot(shape.x, values.imag, color=color, ls="--", label=label + " (Im)")
+            else:
+                ax.plot(shape.x, values, color=color, label=label)
+        ax.axhline(0, color="0.6", lw=0.6)
+        for spring in modes.model.springs:
+            if beam.name in (spring.a, spring.b):
+                ax.axvline(float(spring.x), color="0.75", lw=0.8, ls=":")
+        ax.set_title(f"beam {beam.name} ({beam.left}-{beam.right})")
+        ax.set_ylabel(_UNITS[variable] + (" (mass-normalised)" if not damped else " (max |Y| = 1)"))
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel(x_label + "   (dotted: springs)" if modes.model.springs else x_label)
+    if chosen:
+        axes[0].legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig
+
+
+def _mode_label(mode, scale):
+    w = mode.omega
+    if scale and not mode.damped:
+        return f"{mode.number}: $\\Omega$ = {math.sqrt(w / scale[1]):.4f}"
+    if mode.damped:
+        lam = complex(mode.lam)
+        return f"{mode.number}: $\\lambda$ = {lam.real:.4g}{lam.imag:+.6g}i"
+    return f"{mode.number}: $\\omega$ = {w:.6g} rad/s"
+
+
+# -----------------------------------------------------------------------------------
+# sweeps
+# -----------------------------------------------------------------------------------
+
+def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
+               title: str | None = None, figsize=(7.0, 5.0), legend: bool | None = None) -> Figure:
+    """Eigenvalue branches against the swept parameter, one line per tracked branch.
+
+    Parameters
+    ----------
+    sweep : Sweep
+        From :func:`symtmm.sweep.sweep`.
+    frequency : {"Omega", "omega", "sigma"}, optional
+        What to plot: the frequency parameter of the first beam (default when
+        known and the model is undamped), ``omega = Im lam`` in rad/s, or the
+        decay rate ``sigma = -Re lam``.
+    x_label, title : str, optional
+    legend : bool, optional
+        Label the branches (default: when there are at most 12).
+
+    Returns
+    -------
+    Figure
+    """
+    scale = _scale(sweep.omega_scale)
+    damped = sweep.damped
+    if frequency is None:
+        frequency = "Omega" if scale and not damped else "omega"
+    if frequency == "Omega" and not scale:
+        raise ValueError("no reference beam to define Omega")
+    fig = new_figure(figsize)
+    ax = fig.add_subplot()
+    ids = sweep.branch_ids()
+    show_legend = legend if legend is not None else len(ids) <= 12
+    for n, bid in enumerate(ids):
+        x, lam = sweep.branch(bid)
+        if frequency == "Omega":
+            y = _to_Omega(lam.imag, scale[1])
+        elif frequency == "sigma":
+            y = -lam.real
+        else:
+            y = lam.imag
+        ax.plot(x, y, "-", marker="o", ms=2.5, lw=1.2, color=f"C{n % 10}",
+                label=f"branch {bid}")
+    ax.set_xlabel(x_label or f"{sweep.parameter}")
+    ax.set_ylabel({"Omega": OMEGA_LABEL + f" of beam {scale[0] if scale else ''}",
+                   "omega": r"$\omega = \mathrm{Im}\,\lambda$ [rad/s]",
+                   "sigma": r"$\sigma = -\mathrm{Re}\,\lambda$ [1/s]"}[frequency])
+    if title:
+        ax.set_title(title)
+    ax.grid(alpha=0.3)
+    if show_legend and ids:
+        ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig
+
+
+# -----------------------------------------------------------------------------------
+# scans
+# -----------------------------------------------------------------------------------
+
+def plot_scan(scan, frequency: str | None = None, title: str | None = None,
+              figsize=(7.5, 4.5), mark: bool = True) -> Figure:
+    """``log10|Delta(i omega)|`` along the frequency axis, eigenvalues marked.
+
+    Parameters
+    ----------
+    scan : Scan
+        From :func:`symtmm.scan.scan`.
+    frequency : {"Omega", "omega"}, optional
+        Horizontal axis: the first beam's frequency parameter (default when
+        known) or ``omega`` in rad/s.
+    mark : bool
+        Mark the eigenvalues (``Im lam`` of each, with its multiplicity).
+
+    Returns
+    -------
+    Figure
+    """
+    scale = _scale(scan.omega_scale)
+    if frequency is None:
+        frequency = "Omega" if scale else "omega"
+    x = _to_Omega(scan.omega, scale[1]) if frequency == "Omega" else scan.omega
+    fig = new_figure(figsize)
+    ax = fig.add_subplot()
+    y = np.where(np.isfinite(scan.log10_delta), scan.log10_delta, np.nan)
+    ax.plot(x, y, color="C0", lw=1.0, label=r"$\log_{10}|\Delta(i\omega)|$")
+    if mark and scan.spectrum is not None:
+        marks = [e for e in scan.spectrum if e.omega > 0 and float(e.omega) <= scan.omega[-1]]
+        if marks:
+            xs = np.array([float(e.omega) for e in marks])
+            if frequency == "Omega":
+                xs = _to_Omega(xs, scale[1])
+            bottom = np.nanmin(y) if np.isfinite(np.nanmin(y)) else 0.0
+            ax.plot(xs, np.full(xs.shape, bottom), "v", color="C3", ms=6,
+                    label="eigenvalues (symtmm solve)")
+            for xv, e in zip(xs, marks):
+                ax.axvline(xv, color="C3", lw=0.6, alpha=0.5)
+                if e.multiplicity > 1:
+                    ax.annotate(f"×{e.multiplicity}", (xv, bottom), textcoords="offset points",
+                                xytext=(3, 6), fontsize="small", color="C3")
+    ax.set_xlabel(OMEGA_LABEL + f" of beam {scale[0]}" if frequency == "Omega"
+                  else r"$\omega$ [rad/s]")
+    ax.set_ylabel(r"$\log_{10}|\Delta(i\omega)|$")
+    ax.set_title(title or (scan.model_name or "characteristic function along the frequency axis"))
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize="small", loc="upper left")
+    return fig
+
+
+def plot_scan_map(scan, title: str | None = None, figsize=(7.0, 5.5), mark: bool = True) -> Figure:
+    """``log10|Delta(lam)|`` over the complex plane (damped models), eigenvalues marked.
+
+    Horizontal axis ``Re lam = -sigma`` [1/s], vertical ``Im lam = omega`` [rad/s].
+
+    Parameters
+    ----------
+    scan : Scan
+        With a complex-plane map (:attr:`Scan.map_log10` not None).
+
+    Returns
+    -------
+    Figure
+    """
+    if scan.map_log10 is None:
+        raise ValueError("this scan has no complex-plane map (undamped model)")
+    fig = new_figure(figsize)
+    ax = fig.add_subplot()
+    re = -scan.map_sigma
+    Z = np.where(np.isfinite(scan.map_log10), scan.map_log10, np.nan)
+    mesh = ax.pcolormesh(re, scan.map_omega, Z, shading="auto", cmap="viridis")
+    ax.contour(re, scan.map_omega, Z, levels=12, colors="white", linewidths=0.4, alpha=0.6)
+    fig.colorbar(mesh, ax=ax, label=r"$\log_{10}|\Delta(\lambda)|$")
+    if mark and scan.spectrum is not None and len(scan.spectrum):
+        lam = np.array([complex(e.lam) for e in scan.spectrum])
+        ax.plot(lam.real, lam.imag, "x", color="red", ms=8, mew=2,
+                label="eigenvalues (symtmm solve)")
+        ax.legend(fontsize="small", loc="lower left")
+    ax.set_xlabel(r"$\mathrm{Re}\,\lambda = -\sigma$ [1/s]")
+    ax.set_ylabel(r"$\mathrm{Im}\,\lambda = \omega$ [rad/s]")
+    ax.set_title(title or (scan.model_name or "characteristic function in the complex plane"))
+    return fig
+
+
+def save_figure(fig, path) -> None:
+    """Write ``fig`` to ``path``; the format follows the extension (png, pdf, svg, ...).
+
+    Raises
+    ------
+    ModelError
+        When the file cannot be written or the extension is unknown (bad input).
+    """
+    from .errors import ModelError
+
+    try:
+        fig.savefig(path, dpi=150)
+    except (OSError, ValueError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise ModelError(f"cannot write the figure: {reason}", field="--plot",
+                         source=str(path)) from None

@@ -1,0 +1,259 @@
+"""Mode shapes: closed forms, boundary conditions, jumps, orthogonality, FE eigenvectors."""
+
+import itertools
+import json
+import math
+
+import mpmath
+import numpy as np
+import pytest
+import scipy.linalg
+
+from symtmm.cli import main
+from symtmm.compile import Evaluator
+from symtmm.fe import fe_matrices
+from symtmm.model import BOUNDARY_CONDITIONS, Beam, Model, Spring
+from symtmm.modelfile import load
+from symtmm.modes import evaluate_mode, mode_shapes, shapes_at
+from symtmm.results import Eigenvalue
+from symtmm.solve import solve
+
+STATE = ("Y", "Theta", "M", "Q")
+
+
+def mixed_model():
+    """Different beams, an offset beam, springs at beam ends and a grounded spring."""
+    return Model(
+        (Beam("a", EI=2, m=1, L=1, left="clamped", right="free"),
+         Beam("b", EI=1, m="3/2", L="3/4", x0="1/4", left="sliding", right="pinned")),
+        (Spring("a", "b", x="1/2", k=40),
+         Spring("b", "ground", x="9/10", k=15),
+         Spring("a", "ground", x=1, k=20),        # at the free end of a
+         Spring("a", "b", x="1/4", k=30)),        # at the left end of b
+    )
+
+
+def gauss_gram(model, modes):
+    """Mass Gram matrix sum_beams int m Y_i Y_j dx by Gauss-Legendre on evaluate_mode.
+
+    Independent of the closed-form integral the library normalises with.
+    """
+    t, w = np.polynomial.legendre.leggauss(40)
+    G = np.zeros((len(modes), len(modes)))
+    for beam in model.resolved().beams:
+        cuts = sorted({float(beam.x0), float(beam.x1)}
+                      | {float(s.x) for s in model.resolved().springs
+                         if beam.name in (s.a, s.b)})
+        for xa, xb in itertools.pairwise(cuts):
+            x = (xa + xb) / 2 + (xb - xa) / 2 * t
+            Ys = np.array([evaluate_mode(model, mode, beam.name, x)[0] for mode in modes])
+            G += float(beam.m) * (xb - xa) / 2 * (Ys * w) @ Ys.T
+    return G
+
+
+# -- closed form -------------------------------------------------------------------------
+
+def test_single_pinned_pinned_beam_is_a_sine():
+    EI, m, L = 2.0, 3.0, 1.5
+    model = Model((Beam("b", EI=2, m=3, L="3/2", left="pinned", right="pinned"),))
+    modes = mode_shapes(model, count=4, points=33)
+    assert len(modes) == 4
+    for n, mode in enumerate(modes, 1):
+        s = mode.beams["b"]
+        k = n * math.pi / L
+        amp = math.sqrt(2 / (m * L))
+        expected = {"Y": amp * np.sin(k * s.x), "Theta": amp * k * np.cos(k * s.x),
+                    "M": -EI * amp * k**2 * np.sin(k * s.x),
+                    "Q": -EI * amp * k**3 * np.cos(k * s.x)}
+        sign = np.sign(np.dot(s.Y, expected["Y"]))
+        for var in STATE:
+            scale = np.max(np.abs(expected[var]))
+            assert np.max(np.abs(sign * s[var] - expected[var])) < 1e-12 * scale, (n, var)
+
+
+def test_high_mode_keeps_its_accuracy_at_the_far_end():
+    # beta L = 12 pi: the transfer product loses about 16 digits, the shape must not
+    model = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
+    ev = Evaluator(model)
+    assert ev.digits_lost(1j * (12 * math.pi) ** 2) > 15
+    (shape,) = shapes_at(model, solve(model, count=12)[11], points=97)
+    s = shape.beams["b"]
+    expected = math.sqrt(2) * np.sin(12 * math.pi * s.x)
+    sign = np.sign(np.dot(s.Y, expected))
+    assert np.max(np.abs(sign * s.Y - expected)) < 1e-11
+
+
+# -- boundary conditions and jumps ---------------------------------------------------------
+
+MODELS = {
+    "paper_ex1": lambda d: load(d / "paper_ex1_ff_cc.toml"),
+    "paper_ex3": lambda d: load(d / "paper_ex3_three_pp_coupled.toml"),
+    "mixed": lambda d: mixed_model(),
+}
+
+
+@pytest.fixture(scope="module")
+def solved():
+    cache = {}
+
+    def get(name, examples_dir):
+        if name not in cache:
+            model = MODELS[name](examples_dir).require_numeric()
+            cache[name] = (model, mode_shapes(model, count=6, points=41))
+        return cache[name]
+    return get
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_boundary_conditions_hold(name, solved, examples_dir):
+    model, modes = solved(name, examples_dir)
+    assert sum(1 for _ in modes) >= 6
+    for mode in modes:
+        for beam in model.beams:
+            s = mode.beams[beam.name]
+            assert s.x[0] == pytest.approx(float(beam.x0)) and \
+                s.x[-1] == pytest.approx(float(beam.x1))
+            for end, idx in ((beam.left, 0), (beam.right, -1)):
+                for var in BOUNDARY_CONDITIONS[end]:
+                    # the scale of the whole mode: a beam may stand still
+                    scale = max(np.max(np.abs(t[var])) for t in mode.beams.values())
+                    assert abs(s[var][idx]) < 1e-10 * scale, (mode.number, beam.name, end, var)
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_jumps_at_springs(name, solved, examples_dir):
+    model, modes = solved(name, examples_dir)
+    for mode in list(modes)[:4]:
+        for beam in model.beams:
+            for x in sorted({s.x for s in model.springs if beam.name in (s.a, s.b)}):
+                before = evaluate_mode(model, mode, beam.name, [x], side="-")[:, 0]
+                after = evaluate_mode(model, mode, beam.name, [x], side="+")[:, 0]
+                expected = 0.0
+                for s in model.springs:
+                    if s.x != x or beam.name not in (s.a, s.b):
+                        continue
+                    ya = evaluate_mode(model, mode, s.a, [x])[0, 0]
+                    yb = 0.0 if s.grounded else evaluate_mode(model, mode, s.b, [x])[0, 0]
+                    force = float(s.k) * (yb - ya)          # on beam a
+                    expected += force if beam.name == s.a else -force
+                scale = max(np.max(np.abs(t.Q)) for t in mode.beams.values())
+                assert after[3] - before[3] == pytest.approx(expected, abs=1e-10 * scale)
+                # Y, Theta and M are continuous across a spring
+                for v in range(3):
+                    assert after[v] == pytest.approx(before[v], abs=1e-12 * (1 + abs(before[v])))
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_mass_orthonormal(name, solved, examples_dir):
+    model, modes = solved(name, examples_dir)
+    G = gauss_gram(model, list(modes))
+    assert np.max(np.abs(G - np.eye(len(modes)))) < 1e-9
+
+
+# -- multiple and rigid-body eigenvalues ------------------------------------------------------
+
+def test_multiple_eigenvalue_gives_independent_orthonormal_shapes(examples_dir):
+    model = load(examples_dir / "paper_ex2_three_pp.toml")
+    modes = mode_shapes(model, count=6, points=21, digits=12)
+    assert [m.eigenvalue.multiplicity for m in modes] == [3] * 6
+    G = gauss_gram(model, list(modes))
+    assert np.max(np.abs(G - np.eye(6))) < 1e-9
+    for mode in modes:
+        n = 1 if mode.number <= 3 else 2
+        for s in mode.beams.values():
+            # on every beam a multiple of sqrt(2) sin(n pi x)
+            basis = math.sqrt(2) * np.sin(n * math.pi * s.x)
+            c = np.dot(s.Y, basis) / np.dot(basis, basis)
+            assert np.max(np.abs(s.Y - c * basis)) < 1e-10
+
+
+def test_rigid_body_modes():
+    ff = Model((Beam("b", EI=1, m=2, L=1, left="free", right="free"),))
+    modes = mode_shapes(ff, count=3, points=11)
+    assert modes[0].eigenvalue.multiplicity == 2 and modes[0].lam == 0
+    for mode in list(modes)[:2]:
+        s = mode.beams["b"]
+        assert np.max(np.abs(s.M)) < 1e-12 and np.max(np.abs(s.Q)) < 1e-12
+        assert np.max(np.abs(np.diff(s.Theta))) < 1e-12          # straight lines
+    assert np.max(np.abs(gauss_gram(ff, list(modes)) - np.eye(3))) < 1e-10
+
+
+# -- finite elements ---------------------------------------------------------------------------
+
+def test_agrees_with_finite_element_eigenvectors(examples_dir):
+    model = load(examples_dir / "paper_ex1_ff_cc.toml").require_numeric()
+    beams = [{"name": b.name, "EI": float(b.EI), "m": float(b.m), "L": float(b.L),
+              "x0": float(b.x0), "left": b.left, "right": b.right} for b in model.beams]
+    springs = [{"between": [s.a, s.b], "x": float(s.x), "k": float(s.k)} for s in model.springs]
+    K, M, info = fe_matrices(beams, springs, 80)
+    w2, vecs = scipy.linalg.eigh(K, M, subset_by_index=(0, 5))   # v^T M v = 1
+    modes = mode_shapes(model, count=6, points=5)
+    for j, mode in enumerate(modes):
+        assert mode.omega == pytest.approx(math.sqrt(w2[j]), rel=1e-6)
+        fe, exact = [], []
+        for b in beams:
+            nodes, dofs = info["nodes"][b["name"]], info["dofs"][b["name"]][:, 0]
+            fe.append(np.where(dofs >= 0, vecs[np.maximum(dofs, 0), j], 0.0))
+            exact.append(evaluate_mode(model, mode, b["name"], np.asarray(nodes))[0])
+        fe, exact = np.concatenate(fe), np.concatenate(exact)
+        fe *= np.sign(np.dot(fe, exact))
+        assert np.max(np.abs(fe - exact)) < 1e-5 * np.max(np.abs(exact)), mode.number
+
+
+# -- damped ---------------------------------------------------------------------------------------
+
+def test_damped_shape_satisfies_boundary_conditions_and_jumps():
+    k, c = 50, 2
+    model = Model((Beam("a", 1, 1, 1, left="pinned", right="pinned"),
+                   Beam("b", 1, 1, 1, left="clamped", right="pinned")),
+                  (Spring("a", "b", x="3/10", k=k, c=c),))
+    undamped = solve(Model(model.beams, (Spring("a", "b", x="3/10", k=k),)), count=1, digits=10)
+    ev = Evaluator(model)
+    with mpmath.workdps(40):
+        lam = mpmath.findroot(ev.delta_mp, mpmath.mpc(-0.5, float(undamped[0].omega)))
+        assert lam.real < 0
+        eig = Eigenvalue(mpmath.mpc(lam), 1, 25)
+    (mode,) = shapes_at(model, eig, points=21)
+    assert mode.damped
+    assert max(np.max(np.abs(s.Y)) for s in mode.beams.values()) == pytest.approx(1.0)
+    for beam in model.beams:
+        s = mode.beams[beam.name]
+        for end, idx in ((beam.left, 0), (beam.right, -1)):
+            for var in BOUNDARY_CONDITIONS[end]:
+                assert abs(s[var][idx]) < 1e-12 * (np.max(np.abs(s[var])) + 1)
+    lam_c = complex(lam)
+    ya = evaluate_mode(model, mode, "a", [0.3])[0, 0]
+    yb = evaluate_mode(model, mode, "b", [0.3])[0, 0]
+    jump = (evaluate_mode(model, mode, "a", [0.3], "+")[3, 0]
+            - evaluate_mode(model, mode, "a", [0.3], "-")[3, 0])
+    assert jump == pytest.approx((k + c * lam_c) * (yb - ya), rel=1e-10)
+
+
+# -- command line -------------------------------------------------------------------------------
+
+def test_cli_json_and_plot(examples_dir, tmp_path, capsys):
+    png = tmp_path / "modes.png"
+    code = main(["modes", str(examples_dir / "paper_ex1_ff_cc.toml"), "--count", "2",
+                 "--points", "5", "--json", "--digits", "10", "--plot", str(png)])
+    assert code == 0
+    data = json.loads(capsys.readouterr().out)
+    assert list(data) == ["modes"] and len(data["modes"]) == 2
+    mode = data["modes"][0]
+    assert set(mode["eigenvalue"]) == {"real", "imag"}
+    assert mode["eigenvalue"]["real"] == "0"
+    assert float(mode["eigenvalue"]["imag"]) == pytest.approx(2.9769035948**2, rel=1e-9)
+    assert list(mode["beams"]) == ["upper", "lower"]
+    for beam in mode["beams"].values():
+        assert set(beam) == {"x", "Y", "Theta", "M", "Q"}
+        assert beam["x"] == [0.0, 0.25, 0.5, 0.75, 1.0]
+        assert all(len(beam[v]) == 5 for v in STATE)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_cli_bad_input(examples_dir, tmp_path, capsys):
+    assert main(["modes", str(tmp_path / "missing.toml")]) == 2
+    with pytest.raises(SystemExit) as exc:
+        main(["modes", str(examples_dir / "paper_ex1_ff_cc.toml"), "--points", "1"])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
