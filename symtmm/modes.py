@@ -36,6 +36,7 @@ right of it (after the jumps). :func:`evaluate_mode` gives either side.
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import time
@@ -292,7 +293,12 @@ class _Walker:
         """Propagate; return (recorded states, mass Gram matrix or None).
 
         ``E0``: numpy object array ``(4n, k)``; ``samples``: list per level.
-        Recorded states: dict ``(level, i) -> (4, k)`` object array.
+        Recorded states: dict ``(level, i) -> (4, k)`` complex array.
+
+        The state is carried in mpmath from cut to cut and, inside a segment,
+        to anchors ``h`` apart with ``|beta| h <= 1``; from an anchor to the
+        sample points the double-precision transfer matrix suffices (it loses
+        at most ``e**1`` in relative accuracy), which makes dense sampling cheap.
         """
         lam = mpmath.mpmathify(lam)
         lam2 = mpmath.mpf(-(lam.imag ** 2)) if real else lam * lam
@@ -302,31 +308,39 @@ class _Walker:
         recorded: dict = {}
         G = np.full((k, k), mpmath.mpf(0) if real else mpmath.mpc(0), dtype=object) \
             if gram else None
+        approx = [[float(x) for x, _ in level] for level in samples]
 
-        def at(x, where):
-            return abs(x - where) <= tol * max(1, abs(where))
+        def at(lvl, i, where, wf):
+            if abs(approx[lvl][i] - wf) > 1e-9 * max(1.0, abs(wf)):
+                return False
+            return abs(samples[lvl][i][0] - where) <= tol * max(1, abs(where))
 
         def record(lvl, where, sides, only_new=True):
-            for i, (x, side) in enumerate(samples[lvl]):
-                if side in sides and at(x, where) and not (only_new and (lvl, i) in recorded):
-                    recorded[(lvl, i)] = E[4 * lvl:4 * lvl + 4, :].copy()
+            wf = float(where)
+            for i, (_x, side) in enumerate(samples[lvl]):
+                if side in sides and at(lvl, i, where, wf) and \
+                        not (only_new and (lvl, i) in recorded):
+                    recorded[(lvl, i)] = _to_complex(E[4 * lvl:4 * lvl + 4, :])
 
         for step in self.layout.steps:
             if isinstance(step, Interval):
                 xs = to_mp(step.x_start, mpmath.mp.dps)
                 xe = to_mp(step.x_end, mpmath.mp.dps)
+                xsf, xef = float(xs), float(xe)
                 for lvl, seg in step.segments:
-                    EI, m, length = self._consts(seg)
+                    consts = self._consts(seg)
                     blk = slice(4 * lvl, 4 * lvl + 4)
                     record(lvl, xs, "-+")          # a beam's left end without a station
-                    for i, (x, side) in enumerate(samples[lvl]):
-                        if x > xs + tol * max(1, abs(xs)) and not at(x, xe) and x < xe:
-                            U = seg.evaluate_mp(lam2, (EI, m, x - xs))
-                            recorded[(lvl, i)] = U.dot(E[blk, :])
-                    U = seg.evaluate_mp(lam2, (EI, m, length))
+                    inside = [(i, x) for i, (x, _s) in enumerate(samples[lvl])
+                              if xsf - 1e-9 <= approx[lvl][i] <= xef + 1e-9
+                              and x > xs + tol * max(1, abs(xs)) and not at(lvl, i, xe, xef)
+                              and x < xe]
+                    if inside:
+                        self._inside(lam2, seg, consts, E[blk, :], xs, inside, lvl, recorded)
+                    U = seg.evaluate_mp(lam2, consts)
                     E1 = U.dot(E[blk, :])
                     if gram:
-                        G += _segment_gram(seg, lam2, (EI, m, length), E[blk, :], E1, real)
+                        G += _segment_gram(seg, lam2, consts, E[blk, :], E1, real)
                     E[blk, :] = E1
                     record(lvl, xe, "-+", only_new=False)
             else:
@@ -358,6 +372,47 @@ class _Walker:
             raise ValueError(f"x = {mpmath.nstr(x, 8)} is not on beam "
                              f"'{self.model.beams[lvl].name}'")
         return recorded, G
+
+    @staticmethod
+    def _inside(lam2, seg, consts, Z0, xs, inside, lvl, recorded):
+        """States at sample points strictly inside a segment, from nearby mpmath anchors."""
+        EI, m, length = consts
+        kappa = abs(lam2 * m / EI)
+        reach = float(kappa) ** 0.25 * float(length)       # |beta| l
+        n_anchor = max(1, math.ceil(reach))
+        h = length / n_anchor
+        Uh = seg.evaluate_mp(lam2, (EI, m, h)) if n_anchor > 1 else None
+        anchors = [Z0]
+        groups: dict = {}
+        for i, x in inside:
+            j = min(int(mpmath.floor((x - xs) / h)), n_anchor - 1)
+            groups.setdefault(j, []).append((i, float(x - xs - j * h)))
+        while len(anchors) < max(groups) + 1:
+            anchors.append(Uh.dot(anchors[-1]))
+        consts_f = (float(EI), float(m))
+        lam2_c = complex(lam2)
+        for j, items in groups.items():
+            Zc = _to_complex(anchors[j])
+            ts = np.array([t for _i, t in items])
+            nonzero = ts > 0
+            U = np.empty((len(ts), 4, 4), dtype=complex)
+            if nonzero.any():
+                U[nonzero] = seg.evaluate_numpy(lam2_c, consts_f + (ts[nonzero],))
+            U[~nonzero] = np.eye(4)
+            states = U @ Zc
+            for (i, _t), z in zip(items, states):
+                recorded[(lvl, i)] = z
+
+
+def _to_complex(block):
+    """An object array of mpmath numbers as a complex numpy array."""
+    return np.array([[complex(v) for v in row] for row in block], dtype=complex)
+
+
+@functools.lru_cache(maxsize=16)
+def _walker(model: Model) -> _Walker:
+    """A walker per model, kept for repeated :func:`evaluate_mode` calls."""
+    return _Walker(model)
 
 
 def _bilinear_F(x, kappa, EI, a, b):
@@ -506,22 +561,25 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
         else:
             T = _complex_scaler(rec, mult)
         E0 = E0.dot(T)
+        Tc = _to_complex(T)
+        xs = [np.array([float(x) for x, _ in samples[lvl]]) for lvl in range(walker.n)]
+        # states per level: (points, 4, mult)
+        states = [np.array([rec[(lvl, i)] @ Tc for i in range(points)])
+                  for lvl in range(walker.n)]
+        if real:
+            states = [z.real for z in states]
         shapes = []
         for c in range(mult):
-            beams = {}
             sign = 1
             if real:
                 # make the largest displacement positive
-                best = max(((abs(rec[key].dot(T)[0, c]), key) for key in rec), key=lambda t: t[0])
-                sign = -1 if rec[best[1]].dot(T)[0, c] < 0 else 1
+                Ys = np.concatenate([z[:, 0, c] for z in states])
+                sign = -1 if Ys[np.argmax(np.abs(Ys))] < 0 else 1
+            beams = {}
             for lvl, beam in enumerate(model.beams):
-                states = np.array([[rec[(lvl, i)].dot(T)[v, c] * sign for v in range(4)]
-                                   for i in range(points)], dtype=object)
-                conv = (lambda z: float(z)) if real else (lambda z: complex(z))
-                arr = np.vectorize(conv, otypes=[float if real else complex])(states)
-                xs = np.array([float(x) for x, _ in samples[lvl]])
-                beams[beam.name] = BeamShape(beam.name, xs, arr[:, 0], arr[:, 1], arr[:, 2],
-                                             arr[:, 3])
+                z = states[lvl][:, :, c] * sign
+                beams[beam.name] = BeamShape(beam.name, xs[lvl], z[:, 0], z[:, 1], z[:, 2],
+                                             z[:, 3])
             left = tuple(E0[r, c] * sign for r in range(E0.shape[0]))
             shapes.append(ModeShape(eigenvalue, beams, left, dps, number + c))
     return shapes
@@ -547,7 +605,7 @@ def _complex_scaler(rec, mult):
         best = max((rec[key][0, c] for key in rec), key=abs)
         if best == 0:
             raise ComputationError("mode shape vanishes (null vector lost)")
-        T[c, c] = 1 / best
+        T[c, c] = 1 / mpmath.mpc(best)
     return T
 
 
@@ -586,7 +644,7 @@ def evaluate_mode(model: Model, mode: ModeShape, beam: str, x, side: str = "+") 
     if side not in ("+", "-"):
         raise ValueError("side must be '+' or '-'")
     lvl = model.beam_index(beam)
-    walker = _Walker(model)
+    walker = _walker(model)
     xs = [x] if np.ndim(x) == 0 else list(x)
     real = not any(isinstance(v, mpmath.mpc) for v in mode.left_state)
     with mpmath.workdps(mode.dps):
@@ -595,9 +653,8 @@ def evaluate_mode(model: Model, mode: ModeShape, beam: str, x, side: str = "+") 
         E0 = np.array([[v] for v in mode.left_state], dtype=object)
         lam = mode.lam if not real else mpmath.mpc(0, mode.lam.imag)
         rec, _ = walker.run(lam, E0, samples, real, gram=False)
-        conv = float if real else complex
-        return np.array([[conv(rec[(lvl, i)][v, 0]) for i in range(len(xs))]
-                         for v in range(4)])
+        out = np.array([rec[(lvl, i)][:, 0] for i in range(len(xs))]).T
+        return out.real if real else out
 
 
 def _coordinate(value, dps):

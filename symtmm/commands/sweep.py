@@ -1,0 +1,79 @@
+"""Eigenvalues as one parameter varies: N exact, equally spaced values from A to B.
+
+Every value is an independent solve (default 12 significant digits, fewer than
+solve's 15 because a sweep solves many models); the values run in parallel in
+local processes (--jobs) or on a Dask cluster (--scheduler). Branches are
+tracked across the values by their mode shapes (modal assurance criterion),
+through crossings and veerings; JSON carries their ids under "branches".
+"""
+
+from __future__ import annotations
+
+import sys
+
+from ..cli import add_model_arguments, load_model_arg
+from ..errors import ModelError
+from .solve import _nonnegative, _positive_int
+
+HELP = "eigenvalues for equally spaced values of one parameter, branches tracked"
+
+
+def _steps(text):
+    import argparse
+    value = _positive_int(text)
+    if value < 2:
+        raise argparse.ArgumentTypeError(f"need at least 2 steps (both ends), got {value}")
+    return value
+
+
+def add_arguments(parser):
+    add_model_arguments(parser)
+    parser.add_argument("--param", required=True, metavar="NAME", help="the parameter to vary")
+    parser.add_argument("--from", dest="start", required=True, metavar="A",
+                        help="first value (exact: 0.3 means 3/10; expressions allowed)")
+    parser.add_argument("--to", dest="stop", required=True, metavar="B", help="last value")
+    parser.add_argument("--steps", type=_steps, required=True, metavar="N",
+                        help="number of values, both ends included")
+    parser.add_argument("--count", type=_positive_int, default=10, metavar="K",
+                        help="eigenvalues per value, counted with multiplicity (default 10)")
+    parser.add_argument("--digits", type=_positive_int, default=12, metavar="D",
+                        help="significant digits, all correct (default 12 for sweeps)")
+    parser.add_argument("--sigma-max", type=_nonnegative, metavar="S",
+                        help="damped models: search -S <= Re lam <= 0")
+    parser.add_argument("--method", default="default", metavar="NAME",
+                        help="root search (see symtmm solve)")
+    parser.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
+                        help="local worker processes (default: number of CPUs)")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="run on a Dask cluster, e.g. tcp://host:8786 (needs symtmm[dask])")
+    parser.add_argument("--progress", action="store_const", const=True, default=None,
+                        help="progress bar (default: when stderr is a terminal; needs tqdm)")
+    parser.add_argument("--no-progress", dest="progress", action="store_false",
+                        help="no progress bar")
+    parser.add_argument("--json", action="store_true", help="JSON output")
+    parser.add_argument("--plot", metavar="FILE", help="save the branches plot to FILE")
+
+
+def run(args) -> int:
+    from ..sweep import sweep
+
+    model = load_model_arg(args)
+    progress = sys.stderr.isatty() if args.progress is None else args.progress
+    try:
+        result = sweep(model, args.param, args.start, args.stop, args.steps, count=args.count,
+                       digits=args.digits, method=args.method, sigma_max=args.sigma_max,
+                       jobs=args.jobs, scheduler=args.scheduler, progress=progress)
+    except ModelError as exc:
+        raise exc.with_source(args.model) from None
+    if args.plot:
+        from ..plot import save_figure
+        save_figure(result.plot(title=model.title or None), args.plot)
+    if args.json:
+        print(result.to_json())
+    else:
+        if model.title:
+            print(model.title)
+        print(result.table())
+        if args.plot:
+            print(f"figure written to {args.plot}")
+    return 0

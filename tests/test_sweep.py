@@ -1,0 +1,216 @@
+"""Parameter sweeps against decoupled identical-beam families; parallel runs; tracking."""
+
+import json
+
+import mpmath
+import numpy as np
+import pytest
+import sympy as sp
+
+from symtmm.cli import main
+from symtmm.errors import ModelError
+from symtmm.model import Beam, Model, Spring
+from symtmm.modelfile import load, loads
+from symtmm.solve import solve
+from symtmm.sweep import sweep, sweep_values, track_branches, value_string
+
+TWO_BEAMS = """
+title = "two identical pinned-pinned beams, springs at x1 and 1 - x1"
+[parameters]
+K = 40
+x1 = 0.2
+[[beam]]
+name = "a"
+EI = 1
+m = 1
+L = 1
+left = "pinned"
+right = "pinned"
+[[beam]]
+name = "b"
+EI = 1
+m = 1
+L = 1
+left = "pinned"
+right = "pinned"
+[[spring]]
+between = ["a", "b"]
+x = "x1"
+k = "K"
+[[spring]]
+between = ["a", "b"]
+x = "1 - x1"
+k = "K"
+"""
+
+
+def grounded_beam(k, x1):
+    """One pinned-pinned beam on grounded springs k at x1 and 1 - x1."""
+    springs = () if k == 0 else (Spring("b", "ground", x1, k), Spring("b", "ground", 1 - x1, k))
+    return Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),), springs)
+
+
+def family_values(factors, K, x1, count, digits):
+    """Eigenvalues of the decoupled single-beam problems: {factor: [omega, ...]}."""
+    return {f: [float(w) for w in solve(grounded_beam(f * K, x1), count=count,
+                                        digits=digits).omegas(expand=True)][:count]
+            for f in factors}
+
+
+def expanded(spectrum):
+    return [float(w) for w in spectrum.omegas(expand=True)]
+
+
+@pytest.fixture(scope="module")
+def two_beams():
+    return loads(TWO_BEAMS)
+
+
+@pytest.fixture(scope="module")
+def serial(two_beams):
+    return sweep(two_beams, "x1", "0.1", "0.3", 3, count=4, digits=10, jobs=1)
+
+
+# -- values ---------------------------------------------------------------------------------
+
+def test_values_are_exact_and_include_both_ends():
+    assert sweep_values("0", "0.5", 11) == tuple(sp.Rational(i, 20) for i in range(11))
+    assert sweep_values("1/3", 1, 3) == (sp.Rational(1, 3), sp.Rational(2, 3), 1)
+    assert [value_string(v) for v in sweep_values("0.1", "0.3", 3)] == ["0.1", "0.2", "0.3"]
+    assert value_string(sp.Rational(-7, 8)) == "-0.875"
+    with pytest.raises(ModelError, match="--steps"):
+        sweep_values(0, 1, 1)
+    with pytest.raises(ModelError, match="--to"):
+        sweep_values(0, "1 +", 3)
+
+
+# -- decoupled families -----------------------------------------------------------------------
+
+def test_two_identical_beams_decouple_into_0_and_2K(serial):
+    assert [value_string(v) for v in serial.values] == ["0.1", "0.2", "0.3"]
+    for value, spectrum in zip(serial.values, serial.spectra):
+        fam = family_values((0, 2), 40, value, 4, 10)
+        reference = sorted(fam[0] + fam[2])[:4]
+        assert expanded(spectrum)[:4] == pytest.approx(reference, rel=1e-9)
+
+
+def half_beam(k, x1, middle):
+    """Half of a grounded beam: symmetric modes (sliding middle) or antisymmetric (pinned)."""
+    springs = () if k == 0 else (Spring("h", "ground", x1, k),)
+    return Model((Beam("h", 1, 1, sp.Rational(1, 2), left="pinned", right=middle),), springs)
+
+
+def test_three_beams_decouple_and_branches_follow_crossings(examples_dir):
+    # K = 300: the 3K family's first mode rises through the uncoupled 2 pi mode
+    model = load(examples_dir / "paper_ex3_three_pp_coupled.toml", {"K": "300"})
+    result = sweep(model, "x1", "0.1", "0.4", 4, count=6, digits=10, jobs=1)
+    identity = {}
+    rank_changes = 0
+    previous_rank = {}
+    for value, spectrum, ids in zip(result.values, result.spectra, result.branches):
+        # graph Laplacian of the path P3: single beams on springs 0, K and 3K ...
+        fam = family_values((0, 1, 3), 300, value, 6, 10)
+        reference = sorted(w for ws in fam.values() for w in ws)[:6]
+        assert expanded(spectrum)[:6] == pytest.approx(reference, rel=1e-9)
+        # ... each of them symmetric about the middle: halves with a sliding or pinned middle,
+        # within which (one symmetry class of one family) branches cannot cross
+        classes = {(f, mid): [float(w) for w in solve(half_beam(300 * f, value, mid), count=6,
+                                                      digits=10).omegas(expand=True)]
+                   for f in (0, 1, 3) for mid in ("sliding", "pinned")}
+        slot = 0
+        for e, group in zip(spectrum, ids):
+            for bid in group:
+                w = float(e.omega)
+                matches = [(c, n) for c, ws in classes.items() for n, v in enumerate(ws)
+                           if abs(v - w) < 1e-8 * w]
+                assert len(matches) == 1
+                # a branch stays in its class and keeps its place there
+                assert identity.setdefault(bid, matches[0]) == matches[0]
+                if bid in previous_rank and previous_rank[bid] != slot:
+                    rank_changes += 1
+                previous_rank[bid] = slot
+                slot += 1
+    assert rank_changes >= 2          # crossings happened and were followed
+
+
+def test_tracking_through_a_multiple_eigenvalue():
+    e1, e2 = np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
+    mix = np.array([[1.0, 1.0, 0.0], [1.0, -1.0, 0.0]]) / np.sqrt(2)   # arbitrary basis
+    steps = [[e1[None], e2[None]], [mix], [e2[None], e1[None]]]
+    ids = track_branches(steps)
+    assert ids[0] == [(0,), (1,)]
+    assert sorted(ids[1][0]) == [0, 1]
+    assert ids[2] == [(1,), (0,)]          # the branches crossed at the double root
+    # starting at a fully degenerate step: identities come from the simple ones
+    assert track_branches([[mix], [e2[None], e1[None]]])[1] == [(0,), (1,)]
+
+
+# -- parallel runs ------------------------------------------------------------------------------
+
+def _comparable(result):
+    data = result.to_dict()
+    return data
+
+
+def test_local_processes_give_the_serial_result(two_beams, serial):
+    parallel = sweep(two_beams, "x1", "0.1", "0.3", 3, count=4, digits=10, jobs=2)
+    assert _comparable(parallel) == _comparable(serial)
+
+
+def test_dask_cluster_gives_the_serial_result(two_beams, serial):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(processes=False, n_workers=1, threads_per_worker=1,
+                                  dashboard_address=None) as cluster:
+        result = sweep(two_beams, "x1", "0.1", "0.3", 3, count=4, digits=10,
+                       scheduler=cluster.scheduler_address)
+    assert _comparable(result) == _comparable(serial)
+
+
+# -- command line --------------------------------------------------------------------------------
+
+def test_cli_json(tmp_path, capsys, serial):
+    path = tmp_path / "two.toml"
+    path.write_text(TWO_BEAMS)
+    png = tmp_path / "sweep.png"
+    code = main(["sweep", str(path), "--param", "x1", "--from", "0.1", "--to", "0.3",
+                 "--steps", "3", "--count", "4", "--digits", "10", "--jobs", "1", "--json",
+                 "--plot", str(png)])
+    assert code == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["parameter"] == "x1"
+    assert data["values"] == ["0.1", "0.2", "0.3"]
+    assert len(data["eigenvalues"]) == 3
+    for step, ref in zip(data["eigenvalues"], serial.spectra):
+        assert [set(e) for e in step] == [{"real", "imag", "multiplicity"}] * len(step)
+        assert [e["imag"] for e in step] == [e.to_dict()["imag"] for e in ref]
+    assert [len(g) for g in data["branches"][0]] == [e["multiplicity"]
+                                                     for e in data["eigenvalues"][0]]
+    assert png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_cli_bad_input(tmp_path, capsys):
+    path = tmp_path / "two.toml"
+    path.write_text(TWO_BEAMS)
+    assert main(["sweep", str(path), "--param", "nope", "--from", "0", "--to", "1",
+                 "--steps", "3", "--count", "2"]) == 2
+    err = capsys.readouterr().err
+    assert "--param" in err and "nope" in err and "Traceback" not in err
+    # a value moving a spring off the beams names the value
+    assert main(["sweep", str(path), "--param", "x1", "--from", "0", "--to", "2",
+                 "--steps", "3", "--count", "2"]) == 2
+    assert "x1 = 2" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as exc:
+        main(["sweep", str(path), "--param", "x1", "--from", "0", "--to", "1",
+              "--steps", "1", "--count", "2"])
+    assert exc.value.code == 2
+
+
+def test_result_api(serial):
+    x, lam = serial.branch(0)
+    assert list(x) == [0.1, 0.2, 0.3]
+    assert np.all(lam.real == 0)
+    _, Om = serial.branch(0, "Omega")
+    assert Om == pytest.approx(np.sqrt(lam.imag))     # EI = m = L = 1
+    assert "x1" in serial.table() and "<table>" in serial._repr_html_()
+    with mpmath.workdps(15):
+        assert serial.omega_scale[0] == "a"
