@@ -243,6 +243,15 @@ class ModeSet:
         out.append("</table>")
         return "".join(out)
 
+    def _repr_latex_(self) -> str:
+        head, rows = self._head(), self._rows()
+        cols = [r"\#", r"\lambda\ [1/\mathrm{s}]", r"\Omega"] + [
+            r"\max|Y|\ \mathrm{" + n.replace("_", r"\_") + "}" for n in self.beam_names]
+        lines = [r"\begin{array}{" + "r" * len(head) + "}", " & ".join(cols) + r" \\ \hline"]
+        lines += [" & ".join(r) + r" \\" for r in rows]
+        lines.append(r"\end{array}")
+        return "$" + "\n".join(lines) + "$"
+
     def plot(self, **kwargs):
         """The shapes as a matplotlib figure (see :func:`symtmm.plot.plot_modes`)."""
         from .plot import plot_modes

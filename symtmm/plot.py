@@ -56,6 +56,11 @@ def _scale(omega_scale):
     return omega_scale[0], float(omega_scale[1])
 
 
+def _wrap(text: str, width: int = 70) -> str:
+    import textwrap
+    return "\n".join(textwrap.wrap(text, width)) if text else text
+
+
 def _to_Omega(omega, scale):
     return np.sqrt(np.asarray(omega, dtype=float) / scale)
 
@@ -186,7 +191,7 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
                    "omega": r"$\omega = \mathrm{Im}\,\lambda$ [rad/s]",
                    "sigma": r"$\sigma = -\mathrm{Re}\,\lambda$ [1/s]"}[frequency])
     if title:
-        ax.set_title(title)
+        ax.set_title(_wrap(title))
     ax.grid(alpha=0.3)
     if show_legend and ids:
         ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
@@ -224,23 +229,33 @@ def plot_scan(scan, frequency: str | None = None, title: str | None = None,
     y = np.where(np.isfinite(scan.log10_delta), scan.log10_delta, np.nan)
     ax.plot(x, y, color="C0", lw=1.0, label=r"$\log_{10}|\Delta(i\omega)|$")
     if mark and scan.spectrum is not None:
-        marks = [e for e in scan.spectrum if e.omega > 0 and float(e.omega) <= scan.omega[-1]]
-        if marks:
-            xs = np.array([float(e.omega) for e in marks])
-            if frequency == "Omega":
-                xs = _to_Omega(xs, scale[1])
-            bottom = np.nanmin(y) if np.isfinite(np.nanmin(y)) else 0.0
+        finite = y[np.isfinite(y)]
+        bottom = float(finite.min()) if finite.size else 0.0
+        lo, hi = scan.omega[0], scan.omega[-1]
+        marks = [e for e in scan.spectrum if lo <= float(e.omega) <= hi]
+        undamped = [e for e in marks if e.lam.real == 0]
+        damped = [e for e in marks if e.lam.real != 0]
+
+        def where(es):
+            xs = np.array([float(e.omega) for e in es])
+            return _to_Omega(xs, scale[1]) if frequency == "Omega" else xs
+        if undamped:
+            xs = where(undamped)
             ax.plot(xs, np.full(xs.shape, bottom), "v", color="C3", ms=6,
                     label="eigenvalues (symtmm solve)")
-            for xv, e in zip(xs, marks):
+            for xv, e in zip(xs, undamped):
                 ax.axvline(xv, color="C3", lw=0.6, alpha=0.5)
                 if e.multiplicity > 1:
                     ax.annotate(f"×{e.multiplicity}", (xv, bottom), textcoords="offset points",
-                                xytext=(3, 6), fontsize="small", color="C3")
+                                xytext=(4, 4), fontsize="small", color="C3")
+        if damped:
+            xs = where(damped)
+            ax.plot(xs, np.full(xs.shape, bottom), "o", mfc="none", color="C1", ms=7, mew=1.5,
+                    label=r"Im $\lambda$ of damped eigenvalues (off this axis: see the map)")
     ax.set_xlabel(OMEGA_LABEL + f" of beam {scale[0]}" if frequency == "Omega"
                   else r"$\omega$ [rad/s]")
     ax.set_ylabel(r"$\log_{10}|\Delta(i\omega)|$")
-    ax.set_title(title or (scan.model_name or "characteristic function along the frequency axis"))
+    ax.set_title(_wrap(title or scan.model_name or "characteristic function along the frequency axis"))
     ax.grid(alpha=0.3)
     ax.legend(fontsize="small", loc="upper left")
     return fig
@@ -267,7 +282,12 @@ def plot_scan_map(scan, title: str | None = None, figsize=(7.0, 5.5), mark: bool
     re = -scan.map_sigma
     Z = np.where(np.isfinite(scan.map_log10), scan.map_log10, np.nan)
     mesh = ax.pcolormesh(re, scan.map_omega, Z, shading="auto", cmap="viridis")
-    ax.contour(re, scan.map_omega, Z, levels=12, colors="white", linewidths=0.4, alpha=0.6)
+    finite = Z[np.isfinite(Z)]
+    if finite.size:
+        # a contour every half decade: the rings close around the roots
+        levels = np.arange(math.floor(finite.min()), math.ceil(finite.max()) + 0.5, 0.5)
+        ax.contour(re, scan.map_omega, Z, levels=levels, colors="white", linewidths=0.4,
+                   alpha=0.6)
     fig.colorbar(mesh, ax=ax, label=r"$\log_{10}|\Delta(\lambda)|$")
     if mark and scan.spectrum is not None and len(scan.spectrum):
         lam = np.array([complex(e.lam) for e in scan.spectrum])
@@ -276,7 +296,7 @@ def plot_scan_map(scan, title: str | None = None, figsize=(7.0, 5.5), mark: bool
         ax.legend(fontsize="small", loc="lower left")
     ax.set_xlabel(r"$\mathrm{Re}\,\lambda = -\sigma$ [1/s]")
     ax.set_ylabel(r"$\mathrm{Im}\,\lambda = \omega$ [rad/s]")
-    ax.set_title(title or (scan.model_name or "characteristic function in the complex plane"))
+    ax.set_title(_wrap(title or scan.model_name or "characteristic function in the complex plane"))
     return fig
 
 

@@ -174,3 +174,49 @@ class Spectrum:
 
     def __str__(self) -> str:
         return self.table()
+
+    # -- Jupyter --------------------------------------------------------------------
+    def _display_rows(self):
+        """Header and rows shared by the HTML and LaTeX forms."""
+        damped = any(e.lam.real != 0 for e in self.eigenvalues)
+        ref = self.omega_scale[0] if self.omega_scale and not damped else None
+        head = ["#", "Re λ [1/s]", "Im λ = ω [rad/s]"] if damped else ["#", "ω [rad/s]"]
+        if ref:
+            head.append(f"Ω (beam {ref})")
+        head.append("mult.")
+        rows = []
+        with mpmath.workdps(self.digits + 10):
+            for i, e in enumerate(self.eigenvalues, 1):
+                d = e.to_dict()
+                row = [str(i)] + ([d["real"]] if damped else []) + [d["imag"]]
+                if ref:
+                    row.append(decimal_string(mpmath.sqrt(e.omega / self.omega_scale[1]),
+                                              self.digits))
+                rows.append(row + [str(e.multiplicity)])
+        return head, rows
+
+    def _repr_html_(self) -> str:
+        """An HTML table (Jupyter)."""
+        from html import escape
+        head, rows = self._display_rows()
+        out = ["<table>", "<tr>" + "".join(f"<th>{escape(h)}</th>" for h in head) + "</tr>"]
+        out += ["<tr>" + "".join(f"<td>{escape(c)}</td>" for c in r) + "</tr>" for r in rows]
+        out.append("</table>")
+        out.append(f"<small>{self.total} eigenvalue(s) with multiplicity, {self.digits} "
+                   f"significant digits; method {escape(self.method)}, {self.evaluations} "
+                   f"evaluations, {self.seconds:.3f} s</small>")
+        return "".join(out)
+
+    def _repr_latex_(self) -> str:
+        """A LaTeX array (Jupyter, documents)."""
+        head, rows = self._display_rows()
+        tex = {"#": r"\#", "ω [rad/s]": r"\omega\ [\mathrm{rad/s}]",
+               "Re λ [1/s]": r"\mathrm{Re}\,\lambda\ [1/\mathrm{s}]",
+               "Im λ = ω [rad/s]": r"\mathrm{Im}\,\lambda = \omega\ [\mathrm{rad/s}]",
+               "mult.": r"\mathrm{mult.}"}
+        cols = [tex.get(h, r"\Omega\ (\mathrm{beam\ " + h[8:-1].replace("_", r"\_") + "})")
+                for h in head]
+        lines = [r"\begin{array}{" + "r" * len(cols) + "}", " & ".join(cols) + r" \\ \hline"]
+        lines += [" & ".join(r) + r" \\" for r in rows]
+        lines.append(r"\end{array}")
+        return "$" + "\n".join(lines) + "$"

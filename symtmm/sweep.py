@@ -464,6 +464,16 @@ class Sweep:
         out.append("</table>")
         return "".join(out)
 
+    def _repr_latex_(self) -> str:
+        head, rows = self._rows(min(8, self.digits))
+        cols = [r"\mathrm{" + head[0].replace("_", r"\_") + "}"] + [
+            h.replace("Omega", r"\Omega").replace("omega", r"\omega").replace("lam", r"\lambda")
+            .replace("_", "_{", 1) + "}" for h in head[1:]]
+        lines = [r"\begin{array}{" + "r" * len(head) + "}", " & ".join(cols) + r" \\ \hline"]
+        lines += [" & ".join(r) + r" \\" for r in rows]
+        lines.append(r"\end{array}")
+        return "$" + "\n".join(lines) + "$"
+
     def plot(self, **kwargs):
         """The branches as a matplotlib figure (see :func:`symtmm.plot.plot_sweep`)."""
         from .plot import plot_sweep

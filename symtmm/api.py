@@ -1,0 +1,95 @@
+"""Everything the command line does, as one import for notebooks and scripts::
+
+    from symtmm import api
+    model = api.load("examples/paper_ex1_ff_cc.toml", K=1000)
+    api.solve(model, count=5)                  # a table; in Jupyter an HTML table
+    api.modes(model, count=4).plot()           # a matplotlib figure
+    api.sweep(model, "x1", 0, 0.5, 26, count=10).plot()
+    api.scan(model, omega_max=200).plot()
+
+Models come from files (:func:`load`), from TOML text (:func:`loads`) or are
+built in code from :class:`Beam` and :class:`Spring`. Results print as tables,
+render as HTML/LaTeX in Jupyter, and have ``to_dict()``/``to_json()`` (the
+command line's JSON) and ``plot()`` (a :class:`matplotlib.figure.Figure`).
+
+==============================  =========================================
+command line                    Python
+==============================  =========================================
+``symtmm solve M --count N``    ``solve(model, count=N)``
+``symtmm modes M --count N``    ``modes(model, count=N)``
+``symtmm sweep M --param P …``  ``sweep(model, "P", A, B, steps, count=K)``
+``symtmm scan M --omega-max W`` ``scan(model, omega_max=W)``
+``--set NAME=VALUE``            ``load(path, NAME=VALUE)`` or
+                                ``model.with_parameters(NAME=VALUE)``
+``--plot FILE``                 ``result.plot().savefig(FILE)``
+``--json``                      ``result.to_json()``
+==============================  =========================================
+
+Examples
+--------
+A model built in code:
+
+>>> from symtmm.api import Beam, Model, Spring, solve
+>>> model = Model((Beam("a", EI=1, m=1, L=1, left="clamped", right="free"),
+...                Beam("b", EI=1, m=1, L=1, left="clamped", right="free")),
+...               (Spring("a", "b", x=1, k="K"),), parameters={"K": 10})
+>>> [str(e) for e in solve(model, count=2, digits=10)]     # in phase, then out of phase
+['3.516015269i', '8.806312361i']
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .model import Beam, Model, Spring
+from .modelfile import load as _load_file
+from .modelfile import loads as _loads_text
+from .modes import evaluate_mode
+from .modes import mode_shapes as modes
+from .plot import plot_modes, plot_scan, plot_scan_map, plot_sweep
+from .scan import scan
+from .solve import METHODS, solve
+from .sweep import sweep
+
+__all__ = ["METHODS", "Beam", "Model", "Spring", "evaluate_mode", "load", "loads", "modes",
+           "plot_modes", "plot_scan", "plot_scan_map", "plot_sweep", "scan", "solve", "sweep"]
+
+
+def load(path, **parameters) -> Model:
+    """A model file, with parameters overridden by keyword (like ``--set``).
+
+    Parameters
+    ----------
+    path : str or Path
+    **parameters
+        New parameter values: numbers (``0.3`` is exactly 3/10) or expression
+        strings (``"K/2"``).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> path = Path(__file__).parent.parent / "examples" / "paper_ex1_ff_cc.toml"
+    >>> load(path, K=1000, x1="0.25").resolved().springs[1].x
+    3/4
+    """
+    return _load_file(Path(path), parameters or None)
+
+
+def loads(text: str, **parameters) -> Model:
+    """A model from TOML text, with parameters overridden by keyword.
+
+    Examples
+    --------
+    >>> m = loads('''
+    ... [[beam]]
+    ... name = "b"
+    ... EI = 1
+    ... m = 1
+    ... L = "Lb"
+    ... left = "pinned"
+    ... right = "pinned"
+    ... ''', Lb=2)
+    >>> m.resolved().beams[0].L
+    2
+    """
+    return _loads_text(text, parameters or None)

@@ -1,0 +1,89 @@
+"""log10|Delta| along the frequency axis (the paper's figs. 9 and 12), eigenvalues marked.
+
+Damped models also get log10|Delta(lam)| over the complex plane (fig. 14):
+with --plot FILE it is written to FILE with "-map" added before the suffix.
+The curve is computed in double precision: near roots at high frequency it
+shows rounding noise, which is fine for a picture; the marked eigenvalues come
+from the exact solver.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..cli import add_model_arguments, load_model_arg
+from ..errors import ModelError
+from .solve import _nonnegative, _positive_int
+
+HELP = "log10|Delta| along omega (and over the complex plane when damped), for plots"
+
+
+def _positive(text):
+    import argparse
+    value = _nonnegative(text)
+    if value == 0:
+        raise argparse.ArgumentTypeError("must be positive")
+    return value
+
+
+def add_arguments(parser):
+    add_model_arguments(parser)
+    parser.add_argument("--omega-max", type=_positive, required=True, metavar="W",
+                        help="highest circular frequency (rad/s)")
+    parser.add_argument("--omega-min", type=_nonnegative, default=0.0, metavar="W0",
+                        help="lowest circular frequency (default 0)")
+    parser.add_argument("--points", type=_positive_int, default=2000, metavar="N",
+                        help="grid points along omega (default 2000)")
+    parser.add_argument("--spacing", choices=("Omega", "omega"), default="Omega",
+                        help="grid equally spaced in Omega = beta L of the first beam "
+                             "(default) or in omega")
+    parser.add_argument("--sigma-max", type=_positive, metavar="S",
+                        help="damped models: the map covers -S <= Re lam <= 0")
+    parser.add_argument("--no-eigenvalues", action="store_true",
+                        help="do not solve for the eigenvalues to mark")
+    parser.add_argument("--digits", type=_positive_int, default=10, metavar="D",
+                        help="digits of the marked eigenvalues (default 10)")
+    parser.add_argument("--method", default="default", metavar="NAME",
+                        help="root search for the marks (see symtmm solve)")
+    parser.add_argument("--json", action="store_true", help="JSON output")
+    parser.add_argument("--plot", metavar="FILE",
+                        help="save the curve to FILE (damped: the map to FILE-map too)")
+
+
+def map_path(path: str) -> str:
+    """Where the complex-plane map goes when the curve goes to ``path``.
+
+    >>> map_path("out/scan.png")
+    'out/scan-map.png'
+    """
+    p = Path(path)
+    return str(p.with_name(p.stem + "-map" + p.suffix))
+
+
+def run(args) -> int:
+    from ..scan import scan
+
+    model = load_model_arg(args)
+    try:
+        result = scan(model, args.omega_max, points=args.points, omega_min=args.omega_min,
+                      sigma_max=args.sigma_max, eigenvalues=not args.no_eigenvalues,
+                      digits=args.digits, method=args.method, spacing=args.spacing)
+    except ModelError as exc:
+        raise exc.with_source(args.model) from None
+    written = []
+    if args.plot:
+        from ..plot import save_figure
+        save_figure(result.plot(), args.plot)
+        written.append(args.plot)
+        if result.damped:
+            save_figure(result.plot_map(), map_path(args.plot))
+            written.append(map_path(args.plot))
+    if args.json:
+        print(result.to_json())
+    else:
+        if model.title:
+            print(model.title)
+        print(result.table())
+        for path in written:
+            print(f"figure written to {path}")
+    return 0

@@ -1,0 +1,246 @@
+"""``log10|Delta|`` along the frequency axis and over the complex plane.
+
+The paper locates eigenvalues by scanning ``log10|Delta|`` for minima
+(figs. 9 and 12 along ``omega``, fig. 14 over ``(Re lam, Im lam)`` for damped
+systems). :func:`scan` computes the same pictures, with the eigenvalues of
+:func:`symtmm.solve.solve` to mark the true roots.
+
+The curve uses the vectorised double-precision evaluator
+(:meth:`symtmm.compile.Evaluator.delta`). ``|Delta|`` grows like
+``exp(sum |beta| L)`` and near a root cancels from that size down to zero, so
+in double precision the depth of each dip is limited by rounding (about
+``1e-16`` times the size of the terms) and, at high frequency, the whole
+curve near a root is rounding noise. That is fine for a picture — the dips
+stand where the roots are — but the values are not accurate there; the
+eigenvalues themselves come from the exact solver.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .compile import Evaluator
+from .errors import ComputationError, ModelError
+from .model import Model
+from .results import Spectrum
+
+__all__ = ["Scan", "scan"]
+
+
+def _finite_list(values):
+    """Floats for JSON, with ``-inf`` (an exact zero of Delta) as null."""
+    return [float(v) if np.isfinite(v) else None for v in values]
+
+
+@dataclass(frozen=True)
+class Scan:
+    """``log10|Delta|`` of a model on a frequency grid (and a complex-plane grid).
+
+    Attributes
+    ----------
+    omega : numpy.ndarray
+        Circular frequencies [rad/s], ``lam = i omega``.
+    log10_delta : numpy.ndarray
+        ``log10|Delta(i omega)|`` (``-inf`` where Delta is exactly zero).
+    spectrum : Spectrum or None
+        The eigenvalues marked (None when they could not be computed; see notes).
+    omega_scale : tuple or None
+        ``(beam name, sqrt(EI/(m L^4)))`` of the first beam: ``omega = Omega**2 * scale``.
+    map_sigma, map_omega : numpy.ndarray or None
+        Damped models: decay rates ``sigma = -Re lam`` [1/s] (from slightly
+        below 0) and frequencies of the map grid.
+    map_log10 : numpy.ndarray or None
+        ``log10|Delta(-sigma + i omega)|``, shape ``(len(map_omega), len(map_sigma))``.
+    """
+
+    omega: np.ndarray
+    log10_delta: np.ndarray
+    spectrum: Spectrum | None = None
+    omega_scale: tuple | None = None
+    model_name: str = ""
+    map_sigma: np.ndarray | None = None
+    map_omega: np.ndarray | None = None
+    map_log10: np.ndarray | None = None
+    notes: tuple = field(default_factory=tuple)
+
+    @property
+    def damped(self) -> bool:
+        """True when the scan carries a complex-plane map."""
+        return self.map_log10 is not None
+
+    def local_minima(self) -> np.ndarray:
+        """Frequencies of the local minima of the curve (the paper's fMin1D candidates)."""
+        y = np.where(np.isfinite(self.log10_delta), self.log10_delta, -np.inf)
+        inner = (y[1:-1] < y[:-2]) & (y[1:-1] <= y[2:])
+        return self.omega[1:-1][inner]
+
+    def to_dict(self) -> dict:
+        """The JSON object of ``symtmm scan --json``."""
+        out = {
+            "model": self.model_name,
+            "omega": [float(w) for w in self.omega],
+            "log10_abs_delta": _finite_list(self.log10_delta),
+            "eigenvalues": None if self.spectrum is None else
+            [e.to_dict() for e in self.spectrum],
+        }
+        if self.omega_scale:
+            out["omega_scale"] = {"beam": self.omega_scale[0], "scale": self.omega_scale[1]}
+        if self.damped:
+            out["map"] = {"sigma": [float(s) for s in self.map_sigma],
+                          "omega": [float(w) for w in self.map_omega],
+                          "log10_abs_delta": [_finite_list(row) for row in self.map_log10]}
+        if self.notes:
+            out["notes"] = list(self.notes)
+        return out
+
+    def to_json(self) -> str:
+        """:meth:`to_dict` as a JSON string (compact: the grids are large)."""
+        return json.dumps(self.to_dict(), separators=(",", ":"))
+
+    def table(self) -> str:
+        """A summary: the grid, the minima of the curve, the eigenvalues."""
+        lines = [(f"log10|Delta(i omega)| at {len(self.omega)} points, omega from "
+                  f"{self.omega[0]:.6g} to {self.omega[-1]:.6g} rad/s")]
+        finite = self.log10_delta[np.isfinite(self.log10_delta)]
+        if finite.size:
+            lines.append(f"range {finite.min():.3f} .. {finite.max():.3f}")
+        minima = self.local_minima()
+        lines.append(f"{len(minima)} local minima at omega [rad/s]: "
+                     + ", ".join(f"{w:.6g}" for w in minima[:30])
+                     + (" ..." if len(minima) > 30 else ""))
+        if self.spectrum is not None:
+            lines.append(f"{self.spectrum.total} eigenvalue(s) with multiplicity, from solve: "
+                         + ", ".join(str(e) for e in self.spectrum))
+        if self.damped:
+            lines.append(f"complex-plane map: {len(self.map_sigma)} x {len(self.map_omega)} "
+                         f"points, -Re lam from {self.map_sigma[0]:.4g} to "
+                         f"{self.map_sigma[-1]:.6g} 1/s")
+        lines += list(self.notes)
+        return "\n".join(lines)
+
+    def __str__(self) -> str:
+        return self.table()
+
+    def _repr_html_(self) -> str:
+        from html import escape
+        return "<pre>" + escape(self.table()) + "</pre>"
+
+    def plot(self, **kwargs):
+        """The curve as a matplotlib figure (see :func:`symtmm.plot.plot_scan`)."""
+        from .plot import plot_scan
+        return plot_scan(self, **kwargs)
+
+    def plot_map(self, **kwargs):
+        """The complex-plane map (damped models; see :func:`symtmm.plot.plot_scan_map`)."""
+        from .plot import plot_scan_map
+        return plot_scan_map(self, **kwargs)
+
+
+def _log10_abs(values):
+    with np.errstate(divide="ignore"):
+        return np.log10(np.abs(values))
+
+
+def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=None,
+         map_points: tuple = (241, 361), eigenvalues: bool = True, digits: int = 10,
+         method: str = "default", spacing: str = "Omega") -> Scan:
+    """``log10|Delta|`` on ``points`` frequencies in ``[omega_min, omega_max]``.
+
+    Parameters
+    ----------
+    model : Model
+        Every parameter must have a value.
+    omega_max : float
+        Highest circular frequency [rad/s].
+    points : int
+        Grid points along the frequency axis.
+    omega_min : float
+        Lowest frequency (default 0).
+    sigma_max : float, optional
+        Damped models: the map covers ``-sigma_max <= Re lam <= 0``; by default
+        a quarter more than the largest decay rate found, or ``omega_max / 5``.
+    map_points : (int, int)
+        Damped models: grid points along ``Re lam`` and ``Im lam``.
+    eigenvalues : bool
+        Find the eigenvalues (with :func:`symtmm.solve.solve`) to mark them.
+    digits, method
+        Passed to :func:`symtmm.solve.solve`.
+    spacing : {"Omega", "omega"}
+        Grid equally spaced in the first beam's frequency parameter
+        ``Omega ~ sqrt(omega)`` (default: roots are about evenly spaced in it, so
+        every dip gets the same resolution) or in ``omega``.
+
+    Returns
+    -------
+    Scan
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> pp = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
+    >>> s = scan(pp, omega_max=100, points=1001, spacing="omega")
+    >>> np.round(s.local_minima(), 1)                 # (n pi)^2 = 9.87, 39.48, 88.83
+    array([ 9.9, 39.5, 88.8])
+    >>> [str(e) for e in s.spectrum]
+    ['9.869604401i', '39.47841760i', '88.82643961i']
+    """
+    from .roots.undamped import omega_scale
+    from .solve import solve
+
+    model = model.require_numeric()
+    try:
+        omega_max = float(omega_max)
+        omega_min = float(omega_min)
+    except (TypeError, ValueError):
+        raise ModelError("must be a number", field="--omega-max") from None
+    if not (math.isfinite(omega_max) and omega_max > 0):
+        raise ModelError("must be a positive number", field="--omega-max")
+    if not 0 <= omega_min < omega_max:
+        raise ModelError("must lie in [0, omega_max)", field="--omega-min")
+    if int(points) < 3:
+        raise ModelError("need at least 3 points", field="--points")
+    if spacing not in ("Omega", "omega"):
+        raise ValueError("spacing must be 'Omega' or 'omega'")
+    ev = Evaluator(model)
+    name, scale = omega_scale(model)
+    if spacing == "Omega":
+        omega = np.linspace(math.sqrt(omega_min), math.sqrt(omega_max), int(points)) ** 2
+        omega[[0, -1]] = omega_min, omega_max
+    else:
+        omega = np.linspace(omega_min, omega_max, int(points))
+    curve = _log10_abs(ev.delta(1j * omega))
+    notes = []
+    spectrum = None
+    if eigenvalues:
+        try:
+            spectrum = solve(model, omega_max=omega_max, sigma_max=sigma_max, digits=digits,
+                             method=method)
+            if omega_min > 0:
+                kept = tuple(e for e in spectrum if float(e.omega) >= omega_min)
+                spectrum = Spectrum(kept, spectrum.digits, spectrum.method,
+                                    spectrum.evaluations, spectrum.seconds,
+                                    spectrum.model_name, spectrum.omega_scale, spectrum.notes)
+        except ComputationError as exc:
+            notes.append(f"eigenvalues not marked: {exc}")
+    map_sigma = map_omega = map_log10 = None
+    if model.damped:
+        if sigma_max is None:
+            found = [float(e.sigma) for e in spectrum] if spectrum is not None else []
+            top = max(found, default=0.0)
+            sigma_max = 1.25 * top if top > 0 else omega_max / 5
+        sigma_max = float(sigma_max)
+        if not (math.isfinite(sigma_max) and sigma_max > 0):
+            raise ModelError("must be a positive number", field="--sigma-max")
+        n_re, n_im = (int(p) for p in map_points)
+        # a little of the right half-plane too, so that undamped roots show whole dips
+        map_sigma = np.linspace(-0.04 * sigma_max, sigma_max, n_re)
+        map_omega = np.linspace(omega_min, omega_max, n_im)
+        lam = -map_sigma[None, :] + 1j * map_omega[:, None]
+        map_log10 = _log10_abs(ev.delta(lam))
+    return Scan(omega, curve, spectrum, (name, float(scale)),
+                model.title or (model.source or ""), map_sigma, map_omega, map_log10,
+                tuple(notes))
