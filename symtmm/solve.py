@@ -7,9 +7,10 @@ Methods are registered in :data:`METHODS`; each takes
 
 from __future__ import annotations
 
-from .errors import ComputationError, ModelError
+from .errors import ModelError
 from .model import Model
 from .results import Spectrum
+from .roots.damped import solve_damped
 from .roots.undamped import solve_undamped
 
 __all__ = ["solve", "METHODS"]
@@ -17,12 +18,21 @@ __all__ = ["solve", "METHODS"]
 
 def _default(model, count, omega_max, sigma_max, digits):
     if model.damped:
-        raise ComputationError("damped models (a dashpot with c > 0) are not supported yet")
+        return solve_damped(model, count=count, omega_max=omega_max, sigma_max=sigma_max,
+                            digits=digits)
     return solve_undamped(model, count=count, omega_max=omega_max, digits=digits)
 
 
+def _contour(model, count, omega_max, sigma_max, digits):
+    # the complex-plane search for any model (for undamped ones: a second, independent method)
+    from dataclasses import replace
+    spectrum = solve_damped(model, count=count, omega_max=omega_max, sigma_max=sigma_max,
+                            digits=digits)
+    return replace(spectrum, method="contour")
+
+
 #: Root-search methods by name.
-METHODS = {"default": _default}
+METHODS = {"default": _default, "contour": _contour}
 
 
 def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None,

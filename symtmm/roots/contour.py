@@ -1,0 +1,289 @@
+"""Counting zeros of an analytic function in rectangles (argument principle).
+
+The number of zeros of ``f`` inside a closed contour, with multiplicity, is
+the change of ``arg f`` along the contour divided by ``2 pi``. Here contours
+are boundaries of axis-parallel rectangles, and ``f`` is given by
+``log f = log|f| + i arg f`` on arrays of points (see :class:`LogFunction`).
+
+Sampling. Each side of a rectangle lies on a horizontal or vertical line;
+samples are cached per line, so that neighbouring rectangles and the halves
+of a split rectangle share their common sides. A side starts from a grid
+whose spacing a callback chooses (where ``f`` varies fast, it is dense), and
+every step is then halved until, between consecutive samples, ``arg f``
+changes by less than ``pi/4`` and ``log|f|`` by less than 1 (the thresholds
+halve with each ``strictness`` level), and a step is accepted only if it is
+half of a step that passed as well (a cluster of ``m`` zeros seen from a
+step under the angle ``2 pi/m`` turns ``arg f`` by a full turn, invisible at
+the ends of the step but not at its midpoint). The change of ``arg f`` over a
+step is then its principal value. A sample the function flags as untrustworthy (too
+close to a zero for the precision used), or steps that keep failing below a
+minimum length, raise :class:`NearZero`: the caller moves the side.
+
+Symmetric rectangles. For a function with ``f(conj z) = conj f(z)`` (real
+coefficients), a rectangle symmetric about the real axis holds
+``(change of arg f along its upper half boundary) / pi`` zeros; only the
+upper half is sampled. A symmetric rectangle holding exactly one zero holds
+a real zero: a non-real one would come with its conjugate.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["ArgumentPrinciple", "CountError", "NearZero", "Rectangle"]
+
+#: Largest change of ``arg f`` accepted between consecutive samples (strictness 0).
+MAX_PHASE_STEP = math.pi / 4
+#: Largest change of ``log|f|`` accepted between consecutive samples (strictness 0).
+MAX_LOG_STEP = 1.0
+
+
+class NearZero(Exception):
+    """A side of a rectangle passes too close to a zero; move it.
+
+    Attributes
+    ----------
+    z : complex
+        Where the trouble was found.
+    """
+
+    def __init__(self, z):
+        self.z = complex(z)
+        super().__init__(f"a zero lies too close to the contour near {self.z:.6g}")
+
+
+class CountError(Exception):
+    """Counts of a rectangle and of its parts disagree."""
+
+
+@dataclass(frozen=True)
+class Rectangle:
+    """``[x0, x1] x [y0, y1]`` in the complex plane (``x`` real, ``y`` imaginary part).
+
+    With ``symmetric=True`` the rectangle is ``[x0, x1] x [-y1, y1]`` (``y0 = -y1``).
+
+    Examples
+    --------
+    >>> r = Rectangle(-2.0, 0.0, 0.0, 1.0)
+    >>> r.contains(-1 + 0.5j), r.contains(1j * 2)
+    (True, False)
+    >>> Rectangle(-2.0, 0.0, -1.0, 1.0, symmetric=True).center
+    (-1+0j)
+    """
+
+    x0: float
+    x1: float
+    y0: float
+    y1: float
+    symmetric: bool = False
+
+    def __post_init__(self):
+        if not (self.x0 < self.x1 and self.y0 < self.y1):
+            raise ValueError(f"empty rectangle {self}")
+        if self.symmetric and self.y0 != -self.y1:
+            raise ValueError("a symmetric rectangle needs y0 = -y1")
+
+    @property
+    def center(self) -> complex:
+        return complex(0.5 * (self.x0 + self.x1), 0.5 * (self.y0 + self.y1))
+
+    @property
+    def width(self) -> float:
+        return self.x1 - self.x0
+
+    @property
+    def height(self) -> float:
+        return self.y1 - self.y0
+
+    @property
+    def size(self) -> float:
+        """The longer side."""
+        return max(self.width, self.height)
+
+    def contains(self, z, margin: float = 0.0) -> bool:
+        """``z`` inside (or within ``margin`` of) the rectangle."""
+        z = complex(z)
+        return (self.x0 - margin <= z.real <= self.x1 + margin
+                and self.y0 - margin <= z.imag <= self.y1 + margin)
+
+
+#: ``f`` on an array of points: ``(log|f|, arg f, trusted)`` (arrays of the same shape).
+LogFunction = Callable[[np.ndarray], tuple]
+
+
+class _Line:
+    """Cached samples of ``log f`` on the line ``y = c`` (horizontal) or ``x = c``."""
+
+    def __init__(self, horizontal: bool, c: float):
+        self.horizontal = horizontal
+        self.c = c
+        self.t: list = []          # sorted positions along the line
+        self.values: dict = {}     # t -> (log|f|, arg f) or None when untrustworthy
+        self.verified: set = set()  # steps (t0, t1) made by halving a step that passed
+
+    def point(self, t):
+        return complex(t, self.c) if self.horizontal else complex(self.c, t)
+
+    def between(self, a: float, b: float) -> list:
+        i, j = bisect.bisect_left(self.t, a), bisect.bisect_right(self.t, b)
+        return self.t[i:j]
+
+
+class ArgumentPrinciple:
+    """Zero counts of one analytic function in rectangles, with shared samples.
+
+    Parameters
+    ----------
+    f : LogFunction
+        ``f(z_array) -> (log|f|, arg f, trusted)``.
+    spacing : callable
+        ``spacing(z) -> float``: the initial distance between samples near
+        ``z`` (a step over which ``arg f`` changes little).
+    min_step : callable, optional
+        ``min_step(z) -> float``: steps shorter than this that still fail the
+        test raise :class:`NearZero` (default ``1e-9 * (|z| + 1)``).
+
+    Examples
+    --------
+    The zeros of ``(z - 1)(z**2 + 4)(z + 2)`` are ``1, 2i, -2i, -2``:
+
+    >>> def f(z):
+    ...     v = (z - 1) * (z**2 + 4) * (z + 2)
+    ...     return np.log(np.abs(v)), np.angle(v), np.ones(z.shape, dtype=bool)
+    >>> ap = ArgumentPrinciple(f, spacing=lambda z: 0.25)
+    >>> ap.count(Rectangle(-0.5, 3.5, -0.5, 2.5))       # 1 and 2i
+    2
+    >>> ap.count(Rectangle(-3.0, -1.0, -1.0, 1.0, symmetric=True))   # -2
+    1
+    """
+
+    def __init__(self, f: LogFunction, spacing: Callable, min_step: Callable | None = None):
+        self.f = f
+        self.spacing = spacing
+        self.min_step = min_step or (lambda z: 1e-9 * (abs(z) + 1.0))
+        self._lines: dict = {}
+
+    # -- sampling ---------------------------------------------------------------------
+    def _line(self, horizontal: bool, c: float) -> _Line:
+        key = (horizontal, float(c))
+        line = self._lines.get(key)
+        if line is None:
+            line = self._lines[key] = _Line(horizontal, float(c))
+        return line
+
+    def _evaluate(self, line: _Line, ts) -> None:
+        ts = [t for t in ts if t not in line.values]
+        if not ts:
+            return
+        z = np.array([line.point(t) for t in ts])
+        logabs, phase, ok = self.f(z)
+        for t, la, ph, good in zip(ts, np.atleast_1d(logabs), np.atleast_1d(phase),
+                                   np.atleast_1d(ok)):
+            line.values[t] = (float(la), float(ph)) if good and np.isfinite(la) else None
+            bisect.insort(line.t, t)
+
+    def _initial_grid(self, line: _Line, a: float, b: float) -> list:
+        ts = [a]
+        t = a
+        while True:
+            h = self.spacing(line.point(t))
+            if not h > 0:
+                raise ValueError("spacing must be positive")
+            t = t + h
+            if t >= b - 0.25 * h:
+                break
+            ts.append(t)
+        ts.append(b)
+        return ts
+
+    def side(self, horizontal: bool, c: float, t0: float, t1: float,
+             strictness: int = 0) -> tuple:
+        """Change of ``log f`` along a side from ``t0`` to ``t1``.
+
+        Returns ``(d_arg, moment)``: the change of ``arg f`` and the sum of
+        ``z_mid * (change of log f)`` over the steps (for the centre of zeros).
+        """
+        line = self._line(horizontal, c)
+        a, b = (t0, t1) if t0 <= t1 else (t1, t0)
+        self._evaluate(line, self._initial_grid(line, a, b))
+        max_phase = MAX_PHASE_STEP / 2 ** strictness
+        max_log = MAX_LOG_STEP / 2 ** strictness
+        while True:
+            ts = line.between(a, b)
+            vals = [line.values[t] for t in ts]
+            for t, v in zip(ts, vals):
+                if v is None:
+                    raise NearZero(line.point(t))
+            la = np.array([v[0] for v in vals])
+            ph = np.array([v[1] for v in vals])
+            dph = np.angle(np.exp(1j * np.diff(ph)))
+            dla = np.diff(la)
+            passed = (np.abs(dph) <= max_phase) & (np.abs(dla) <= max_log)
+            mids = []
+            for k in range(len(ts) - 1):
+                lo, hi = ts[k], ts[k + 1]
+                if passed[k] and (lo, hi) in line.verified:
+                    continue
+                mid = 0.5 * (lo + hi)
+                if not passed[k] and (hi - lo < self.min_step(line.point(mid))
+                                      or not lo < mid < hi):
+                    raise NearZero(line.point(mid))
+                if passed[k]:
+                    # a step that passes is accepted only once its halves pass too: a
+                    # cluster of m zeros seen under an angle 2 pi/m would otherwise hide
+                    line.verified.add((lo, mid))
+                    line.verified.add((mid, hi))
+                mids.append(mid)
+            if not mids:
+                break
+            self._evaluate(line, mids)
+        tz = np.array(ts)
+        zmid = np.array([line.point(t) for t in 0.5 * (tz[1:] + tz[:-1])])
+        dlog = dla + 1j * dph
+        d_arg = float(np.sum(dph))
+        moment = complex(np.sum(zmid * dlog))
+        if t0 > t1:
+            return -d_arg, -moment
+        return d_arg, moment
+
+    # -- counting ---------------------------------------------------------------------
+    def winding(self, rect: Rectangle, strictness: int = 0) -> tuple:
+        """``(change of arg f, moment)`` around ``rect`` (upper half if symmetric)."""
+        sides = []
+        if not rect.symmetric:
+            sides.append((True, rect.y0, rect.x0, rect.x1))      # bottom, left to right
+        y_low = 0.0 if rect.symmetric else rect.y0
+        sides += [(False, rect.x1, y_low, rect.y1),               # right, upwards
+                  (True, rect.y1, rect.x1, rect.x0),              # top, right to left
+                  (False, rect.x0, rect.y1, y_low)]               # left, downwards
+        d_arg, moment = 0.0, 0j
+        for horizontal, c, t0, t1 in sides:
+            d, mom = self.side(horizontal, c, t0, t1, strictness)
+            d_arg += d
+            moment += mom
+        return d_arg, moment
+
+    def count(self, rect: Rectangle, strictness: int = 0) -> int:
+        """Number of zeros inside ``rect`` with multiplicity."""
+        return self.count_and_center(rect, strictness)[0]
+
+    def count_and_center(self, rect: Rectangle, strictness: int = 0) -> tuple:
+        """``(count, mean of the zeros)``; the mean is a rough estimate (None if none)."""
+        d_arg, moment = self.winding(rect, strictness)
+        turns = d_arg / (math.pi if rect.symmetric else 2 * math.pi)
+        n = round(turns)
+        if abs(turns - n) > 0.05 or n < 0:
+            raise CountError(f"winding number {turns:.3f} around {rect} is not a count")
+        if n == 0 or rect.symmetric:
+            return n, (None if n == 0 else rect.center)
+        return n, moment / (2j * math.pi) / n
+
+    @property
+    def lines(self) -> int:
+        """Number of lines sampled so far."""
+        return len(self._lines)
