@@ -490,11 +490,14 @@ def _emit_fortran(plan: _Plan) -> str:
                                                                       + plan.params),
             "    real(c_double), intent(out) :: delta_re, delta_im",
             "    complex(dp) :: lam, lam2, e(ns, nc), r(nc, nc), dlt",
-            f"    complex(dp) :: u(4, 4, {max(len(plan.segments), 1)})",
-            f"    complex(dp) :: s({max(len(plan.stiff), 1)})"]
+            f"    complex(dp) :: u(4, 4, {max(len(plan.segments), 1)})"]
+    if plan.stiff:
+        out.append(f"    complex(dp) :: s({len(plan.stiff)})")
     if plan.temps:
         out.append("    real(dp) :: " + ", ".join(str(nm) for nm, _ in plan.temps))
-    out += ["    integer :: j", "    lam = cmplx(lam_re, lam_im, kind=dp)", "    lam2 = lam * lam"]
+    if any(step[0] == "point" for step in plan.steps):
+        out.append("    integer :: j")
+    out += ["    lam = cmplx(lam_re, lam_im, kind=dp)", "    lam2 = lam * lam"]
     for name, expr in plan.temps:
         out.append(f"    {name} = {f(expr)}")
     out.append("    e = (0.0_dp, 0.0_dp)")
