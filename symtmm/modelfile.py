@@ -181,7 +181,8 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         raise ModelError("expected an array of tables: write [[spring]]", field="spring")
 
     params = _parameters(data.get("parameters", {}), overrides)
-    known_names = set(params)
+    declared = data.get("parameters", {})
+    known_names = set(declared) if isinstance(declared, dict) else set()
 
     beams = []
     for i, raw in enumerate(beams_raw, 1):

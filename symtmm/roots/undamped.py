@@ -73,9 +73,10 @@ def _first_guess(model: Model) -> float:
 
 
 class _Search:
-    def __init__(self, model: Model, digits: int, omega_hi: float):
+    def __init__(self, model: Model, digits: int, omega_hi: float, rigid: int = 0):
         self.model = model
         self.digits = digits
+        self.rigid = rigid
         self.ev = Evaluator(model)
         self.sm = StiffnessModel(model, omega_hi)
 
@@ -101,7 +102,10 @@ class _Search:
                 continue
             if needed is not None and found >= needed:
                 break
-            if k == 1 or (b - a) <= _DOUBLE_WIDTH * b:
+            # Delta vanishes at 0 when there are rigid-body modes, so a bracket to be
+            # refined on Delta must not start there
+            at_rigid_zero = a == 0 and self.rigid > 0
+            if (k == 1 and not at_rigid_zero) or (b - a) <= _DOUBLE_WIDTH * b:
                 out.append((a, b, k))
                 found += k
                 continue
@@ -250,10 +254,10 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         hi = float(omega_max)
         if hi < 0:
             raise ValueError("omega_max must not be negative")
-        search = _Search(model, digits, max(hi, 1e-300))
+        search = _Search(model, digits, max(hi, 1e-300), rigid)
     else:
         hi = _first_guess(model)
-        search = _Search(model, digits, hi)
+        search = _Search(model, digits, hi, rigid)
         while rigid < count and search.count(hi) < count:
             hi *= 2.0
     eigen = []

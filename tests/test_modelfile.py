@@ -1,0 +1,179 @@
+"""Model files: exact numbers, expressions, parameters, and every kind of bad input."""
+
+import subprocess
+import sys
+
+import pytest
+import sympy as sp
+
+from symtmm.cli import main
+from symtmm.errors import ModelError
+from symtmm.expr import ExpressionError, parse_expression
+from symtmm.modelfile import load, loads
+
+GOOD = """
+title = "two beams"
+[parameters]
+K = 100
+x1 = 0.3
+half = "K/2"
+[[beam]]
+name = "upper"
+EI = 1
+m = 1
+L = 1
+left = "free"
+right = "free"
+[[beam]]
+name = "lower"
+EI = "2*sqrt(2)"
+m = 1.5
+L = 1
+x0 = 0
+left = "clamped"
+right = "clamped"
+[[spring]]
+between = ["upper", "lower"]
+x = "x1"
+k = "half"
+[[spring]]
+between = ["lower", "ground"]
+x = "1 - x1"
+k = "1e-8"
+c = 0
+"""
+
+
+def test_good_file_is_exact():
+    model = loads(GOOD).resolved()
+    assert model.springs[0].x == sp.Rational(3, 10)
+    assert model.springs[0].k == 50
+    assert model.springs[1].x == sp.Rational(7, 10)
+    assert model.springs[1].k == sp.Rational(1, 10**8)
+    assert model.beams[1].EI == 2 * sp.sqrt(2)
+    assert model.beams[1].m == sp.Rational(3, 2)
+    assert model.title == "two beams"
+
+
+def test_set_overrides_and_chains_through_parameters():
+    model = loads(GOOD, {"K": "3/7"}).resolved()
+    assert model.springs[0].k == sp.Rational(3, 14)
+
+
+def test_name_without_value_stays_a_symbol():
+    model = loads(GOOD.replace("K = 100\n", ""))
+    assert model.free_symbols == ("K",)
+    with pytest.raises(ModelError, match="'K' has no value"):
+        model.require_numeric()
+
+
+def test_expression_parser_never_evaluates_code():
+    for text in ["__import__(os)", "exec(1)", "lambda: 1", "a.b", "[1]", "1;2", "x if y else z",
+                 "open(f)", "2**10**10"]:
+        with pytest.raises(ExpressionError):
+            parse_expression(text)
+
+
+def test_expression_arithmetic():
+    assert parse_expression("2**-2 * (1 + 0.5)") == sp.Rational(3, 8)
+    assert parse_expression("-x**2", {"x": 3}.get) == -9
+    assert parse_expression("146.2698/pi**2") == sp.Rational(1462698, 10000) / sp.pi**2
+
+
+BEAM = '[[beam]]\nname = "b"\nEI = 1\nm = 1\nL = 1\nleft = "pinned"\nright = "pinned"\n'
+BAD = {
+    "missing_field": ('[[beam]]\nname = "b"\nEI = 1\nm = 1\nleft = "free"\nright = "free"\n',
+                      "beam[1]: missing field 'L'"),
+    "unknown_field": (BEAM.replace("EI = 1", "EI = 1\nE = 2"), "beam[1].E: unknown field"),
+    "unknown_top": ("foo = 1\n" + BEAM, "foo: unknown field"),
+    "unknown_beam": (BEAM + '[[spring]]\nbetween = ["b", "c"]\nx = 0.5\nk = 1\n',
+                     "spring[1].between: unknown beam 'c'"),
+    "outside": (BEAM + '[[spring]]\nbetween = ["b", "ground"]\nx = 1.5\nk = 1\n',
+                "spring[1].x: x = 3/2 lies outside beam 'b'"),
+    "zero_EI": (BEAM.replace("EI = 1", "EI = 0"), "beam[1] (b).EI: must be positive"),
+    "negative_m": (BEAM.replace("m = 1", "m = -2"), "beam[1] (b).m: must be positive"),
+    "negative_L": (BEAM.replace("L = 1", 'L = "1 - 2"'), "beam[1] (b).L: must be positive"),
+    "bad_bc": (BEAM.replace('left = "pinned"', 'left = "hinged"'),
+               "beam[1] (b).left: unknown boundary condition 'hinged'"),
+    "bad_expr": (BEAM.replace("EI = 1", 'EI = "2 *"'), "beam[1] (b).EI: unexpected end"),
+    "bad_char": (BEAM.replace("EI = 1", 'EI = "os.system(1)"'), "beam[1] (b).EI: unexpected"),
+    "bool": (BEAM.replace("EI = 1", "EI = true"), "beam[1] (b).EI: expected a number"),
+    "not_toml": ("[[beam]\nname=", "not valid TOML"),
+    "duplicate": (BEAM + BEAM, "duplicate beam name 'b'"),
+    "self_spring": (BEAM + '[[spring]]\nbetween = ["b", "b"]\nx = 0.5\nk = 1\n',
+                    "spring[1].between: a spring must join two different beams"),
+    "negative_k": (BEAM + '[[spring]]\nbetween = ["b", "ground"]\nx = 0.5\nk = -1\n',
+                   "spring[1].k: must not be negative"),
+    "between_shape": (BEAM + '[[spring]]\nbetween = "b"\nx = 0.5\nk = 1\n',
+                      "spring[1].between: expected two names"),
+    "no_beam": ('title = "x"\n', "beam: missing field"),
+    "cycle": ("[parameters]\na = \"b\"\nb = \"a\"\n" + BEAM, "in a circle"),
+    "unbound": (BEAM.replace("EI = 1", 'EI = "E0"'), "'E0' has no value"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, case):
+    text, expected = BAD[case]
+    path = tmp_path / f"{case}.toml"
+    path.write_text(text)
+    code = main(["solve", str(path), "--count", "1"])
+    out, err = capsys.readouterr()
+    assert code == 2
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert str(path) in lines[0]
+    assert expected in lines[0], lines[0]
+    assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("argv,expected", [
+    (["solve", "{dir}/missing.toml"], "cannot read the file"),
+    (["solve", "{good}", "--set", "K"], "--set expects NAME=VALUE"),
+    (["solve", "{good}", "--set", "Q=1"], "'Q' is not a parameter"),
+    (["solve", "{good}", "--set", "K=1/0"], "division by zero"),
+    (["solve", "{good}", "--count", "0"], "must be at least 1"),
+    (["solve", "{good}", "--count", "x"], "expected a whole number"),
+    (["solve", "{good}", "--method", "nope"], "unknown method 'nope'"),
+    (["solve", "{good}", "--count", "2", "--omega-max", "3"], "not allowed with"),
+])
+def test_bad_command_lines(tmp_path, capsys, argv, expected):
+    good = tmp_path / "good.toml"
+    good.write_text(GOOD)
+    argv = [a.format(dir=tmp_path, good=good) for a in argv]
+    try:
+        code = main(argv)
+    except SystemExit as exc:  # argparse's own errors
+        code = exc.code
+    out, err = capsys.readouterr()
+    assert code == 2
+    assert len(err.strip().splitlines()) == 1, err
+    assert expected in err
+    assert "Traceback" not in err
+
+
+def test_directory_and_binary_files(tmp_path, capsys):
+    assert main(["solve", str(tmp_path)]) == 2
+    binary = tmp_path / "b.toml"
+    binary.write_bytes(b"\xff\xfe\x00")
+    assert main(["solve", str(binary)]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 2 and "Traceback" not in err
+
+
+def test_load_reports_the_file(tmp_path):
+    path = tmp_path / "m.toml"
+    path.write_text(BAD["zero_EI"][0])
+    with pytest.raises(ModelError) as info:
+        load(path)
+    assert str(info.value).startswith(str(path))
+
+
+def test_python_m_symtmm_is_the_same_command(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text(BAD["bad_bc"][0])
+    proc = subprocess.run([sys.executable, "-m", "symtmm", "solve", str(path)],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2
+    assert proc.stderr.count("\n") == 1 and "unknown boundary condition" in proc.stderr
