@@ -60,10 +60,10 @@ import sympy as sp
 from ..compile import Evaluator
 from ..errors import ComputationError
 from ..model import Model
-from ..results import Eigenvalue, Spectrum
+from ..results import Eigenvalue, Spectrum, decimal_string
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
 from .dynamic_stiffness import DynamicStiffness
-from .undamped import omega_scale
+from .undamped import omega_scale, rigid_body_modes
 
 __all__ = ["SIGMA_FACTOR", "count_in_rectangle", "default_sigma_max", "solve_damped"]
 
@@ -101,6 +101,13 @@ def _scaled_dashpots(model: Model, factor) -> Model:
     """The same model with every dashpot coefficient multiplied by ``factor``."""
     springs = tuple(replace(s, c=s.c * factor) for s in model.springs)
     return replace(model, springs=springs)
+
+
+def _rounds_alike(x, err, digits) -> bool:
+    """``x - err`` and ``x + err`` print alike with ``digits`` digits (0 always does)."""
+    if x == 0:
+        return True
+    return decimal_string(x - err, digits) == decimal_string(x + err, digits)
 
 
 def _mpc(z) -> mpmath.mpc:
@@ -209,6 +216,7 @@ class _Search:
         self.origin = origin
         self.notes: list = []
         self.idle = 0
+        self.zero_order = 0   # > 0: lam = 0 is known to be a multiple zero (rigid-body modes)
 
     def _global(self, u) -> mpmath.mpc:
         """The point ``origin + u`` at the working precision."""
@@ -282,7 +290,11 @@ class _Search:
             if n == 1:
                 singles.append((rect, center))
                 continue
-            if rect.size < tiny * self._scale(rect.center):
+            if rect.size < tiny * self._scale(rect.center) or (
+                    self.zero_order and rect.symmetric and rect.size < 1e-3 * self.p.lam_ref
+                    and rect.contains(self._local(mpmath.mpf(0)))):
+                # (lam = 0 is a known multiple zero when there are rigid-body modes: double
+                # precision is not asked to approach it closely)
                 clusters.append((rect, n, center))
                 continue
             for kid, k, c, _ in self._split(rect, n):
@@ -307,13 +319,26 @@ class _Search:
             with mpmath.workdps(dps):
                 a, b = self._global(rect.x0).real, self._global(rect.x1).real
                 lo, hi = self._illinois(a, b)
-            if lo is not None and self._sign_change(lo, hi, dps + 15):
+            bracket = None if lo is None else self._sign_change(lo, hi, dps + 15)
+            if bracket is not None:
                 with mpmath.workdps(dps):
                     lam = mpmath.mpc((lo + hi) / 2, 0)
-                return Eigenvalue(lam, 1, self.digits, (lo, hi))
+                return Eigenvalue(lam, 1, self.digits, bracket)
             dps += max(10, dps // 2)
         raise ComputationError(f"cannot reach {self.digits} digits for the real eigenvalue "
                                f"near {scale:.6g}")
+
+    def _bracket_done(self, a, b) -> bool:
+        """``[a, b]`` is narrow enough: relative width below ``10**-(D+2)`` and both ends
+        round to the same ``D`` digits (so the midpoint prints correctly rounded), or
+        narrower than the working precision can resolve."""
+        limit = mpmath.mpf(10) ** -(mpmath.mp.dps - 5)
+        if a <= 0 <= b:
+            return b - a <= limit * self.p.lam_ref
+        width = (b - a) / min(abs(a), abs(b))
+        if width > mpmath.mpf(10) ** (-(self.digits + 2)):
+            return False
+        return width <= limit or decimal_string(a, self.digits) == decimal_string(b, self.digits)
 
     def _re_delta(self, x):
         return mpmath.re(self.p.delta_mp(mpmath.mpc(x, 0)))
@@ -326,11 +351,11 @@ class _Search:
             return b, b
         if (fa > 0) == (fb > 0):
             return None, None
-        tol = mpmath.mpf(10) ** (-(self.digits + 2)) * max(abs(a), abs(b))
-        while b - a > tol:
+        while not self._bracket_done(a, b):
             width = b - a
             c = b - fb * (b - a) / (fb - fa)
-            c = min(max(c, a + tol / 4), b - tol / 4)
+            if not a < c < b:
+                c = (a + b) / 2
             fc = self._re_delta(c)
             if fc == 0:
                 return c, c
@@ -354,23 +379,30 @@ class _Search:
                     a, fa = mid, fm
         return a, b
 
-    def _sign_change(self, lo, hi, dps) -> bool:
+    def _sign_change(self, lo, hi, dps):
+        """``(lo, hi)`` if ``Re Delta`` changes sign across it at ``dps`` digits, else None.
+
+        A zero-width bracket (``Delta`` vanished to the working precision) is widened by
+        ``10**-(D+3)`` relative first.
+        """
         with mpmath.workdps(dps):
             if lo == hi:
                 eps = mpmath.mpf(10) ** (-(self.digits + 3)) * abs(lo)
                 lo, hi = lo - eps, hi + eps
             f_lo, f_hi = self._re_delta(mpmath.mpf(lo)), self._re_delta(mpmath.mpf(hi))
-        return (f_lo > 0) != (f_hi > 0) or f_lo == 0 or f_hi == 0
+        if (f_lo > 0) != (f_hi > 0) or f_lo == 0 or f_hi == 0:
+            return lo, hi
+        return None
 
-    # -- complex zeros ---------------------------------------------------------------------
     def _secant(self, f, z0, tol, maxsteps=80, multiplicity=1):
-        """Secant (``multiplicity`` 1) or modified Newton iteration from ``z0``.
+        """Secant iteration (``multiplicity`` 1) or modified Newton from ``z0``.
 
         Returns ``(z, last_step)`` or ``(None, None)`` when it does not converge.
         """
+        if multiplicity > 1:
+            return self._newton_multiple(f, z0, tol, multiplicity, maxsteps)
         z0 = mpmath.mpc(z0)
         h = max(abs(z0), mpmath.mpf(1)) * mpmath.mpf(10) ** (-(self.digits // 2 + 4))
-        h = min(h, 1000 * tol) if multiplicity > 1 else h
         z1 = z0 + h * mpmath.mpc(1, 1)
         f0, f1 = f(z0), f(z1)
         for _ in range(maxsteps):
@@ -378,12 +410,7 @@ class _Search:
                 return z1, mpmath.mpf(0)
             if f1 == f0:
                 return None, None
-            if multiplicity == 1:
-                z2 = z1 - f1 * (z1 - z0) / (f1 - f0)
-            else:
-                # Newton on f**(1/m), derivative by a difference quotient: fast at an m-fold zero
-                deriv = (f1 - f0) / (z1 - z0)
-                z2 = z1 - multiplicity * f1 / deriv
+            z2 = z1 - f1 * (z1 - z0) / (f1 - f0)
             step = abs(z2 - z1)
             if not mpmath.isfinite(step):
                 return None, None
@@ -391,6 +418,28 @@ class _Search:
                 return z2, step
             z0, f0 = z1, f1
             z1, f1 = z2, f(z2)
+        return None, None
+
+    def _newton_multiple(self, f, z, tol, m, maxsteps):
+        """Newton on ``f**(1/m)``: ``z - m f/f'``, quadratic at an ``m``-fold zero.
+
+        ``f'`` is a forward difference with a step of half the working digits.
+        """
+        z = mpmath.mpc(z)
+        for _ in range(maxsteps):
+            h = max(abs(z), mpmath.mpf(self.p.lam_ref)) * mpmath.mpf(10) ** (-(mpmath.mp.dps // 2))
+            f0 = f(z)
+            if f0 == 0:
+                return z, mpmath.mpf(0)
+            deriv = (f(z + h) - f0) / h
+            if deriv == 0:
+                return None, None
+            step = m * f0 / deriv
+            z = z - step
+            if not mpmath.isfinite(abs(step)):
+                return None, None
+            if abs(step) <= tol:
+                return z, abs(step)
         return None, None
 
     def refine_complex(self, rect: Rectangle, center) -> Eigenvalue | None:
@@ -401,15 +450,19 @@ class _Search:
         zf = complex(z_est)
         small = min(abs(zf.real), abs(zf.imag)) or None
         margin = 1e-9 * rect.size
-        extra = 0
+        extra = 0      # digits added when a part needs more
+        tighter = 0    # digits added when a part sits near a rounding boundary
+        conservative = not self.p.model.damped
         while True:
-            dps = self._dps(zf, small) + extra
+            dps = self._dps(zf, small) + extra + tighter
             if dps > MAX_DPS:
                 raise ComputationError(f"cannot reach {self.digits} digits for the eigenvalue "
                                        f"near {zf:.6g} within {MAX_DPS} working digits")
             with mpmath.workdps(dps):
                 target = min(abs(zf.real) or abs(zf), abs(zf.imag) or abs(zf))
-                tol = mpmath.mpf(10) ** (-(self.digits + 4)) * mpmath.mpf(target)
+                if conservative:
+                    target = abs(zf.imag) or abs(zf)
+                tol = mpmath.mpf(10) ** (-(self.digits + 4 + tighter)) * mpmath.mpf(target)
                 za, _ = self._secant(self.p.delta_mp, +z_est, tol)
                 if za is None or not rect.contains(self._local(za), margin):
                     return None
@@ -419,11 +472,20 @@ class _Search:
                     return None
                 size = abs(zb)
                 re_b, im_b = abs(zb.real), abs(zb.imag)
-                err = abs(za - zb)
+                err = abs(za - zb)     # bounds the error of za; zb is far better
                 rel = mpmath.mpf(10) ** (-(self.digits + 2))
                 ok_re, ok_im = err <= rel * re_b, err <= rel * im_b
+                if conservative:
+                    # no dashpot: a conservative model, every eigenvalue is imaginary
+                    zb = mpmath.mpc(0, zb.imag)
+                    ok_re = True
                 if ok_re and ok_im:
-                    return Eigenvalue(+zb, 1, self.digits, None)
+                    if tighter >= 30 or all(_rounds_alike(part, err, self.digits)
+                                            for part in (zb.real, zb.imag)):
+                        return Eigenvalue(+zb, 1, self.digits, None)
+                    tighter += 10    # too close to a rounding boundary to tell yet
+                    z_est, zf = zb, complex(zb)
+                    continue
                 floor = mpmath.mpf(10) ** (-(self.digits + 25)) * size
                 if ok_im and re_b < floor and self._idle(zb, dps + 15, 1):
                     # the real part is rounding noise and the dashpots stay idle
@@ -459,15 +521,16 @@ class _Search:
         extra = (m + 1) * (self.digits + 2) + 10
         with mpmath.workdps(dps):
             z0 = self._global(u)
-            tol = mpmath.mpf(10) ** (-(self.digits + 6)) * abs(z0)
+            tol = mpmath.mpf(10) ** (-(self.digits + 6)) * max(abs(z0), self.p.lam_ref)
             z, _ = self._secant(self.p.delta_mp, z0, tol, multiplicity=m)
             if rect.symmetric and z is not None:
                 z = mpmath.mpc(z.real, 0)   # the cluster is closed under conjugation
         if z is not None and rect.contains(self._local(z), 1e-9 * rect.size):
-            r = 10.0 ** (-(self.digits + 2)) * abs(zf)
+            scale = max(abs(zf), self.p.lam_ref)
+            r = 10.0 ** (-(self.digits + 2)) * scale
             zc = complex(z)
             for part in (zc.real, zc.imag):
-                if abs(part) > 10.0 ** (-(self.digits + 2)) * abs(zf):
+                if abs(part) > 10.0 ** (-(self.digits + 2)) * scale:
                     r = min(r, 10.0 ** (-(self.digits + 2)) * abs(part))
             box = (Rectangle(-r, r, -r, r, True) if rect.symmetric
                    else Rectangle(-r, r, -r, r))
@@ -506,6 +569,8 @@ class _Search:
     def _cluster_eigenvalue(self, z, m, symmetric, dps) -> Eigenvalue:
         size = abs(z)
         with mpmath.workdps(dps):
+            if not self.p.model.damped:
+                return Eigenvalue(mpmath.mpc(0, abs(z.imag)), m, self.digits, None)
             if symmetric and abs(z.imag) <= 10.0 ** -(self.digits + 2) * size:
                 return Eigenvalue(mpmath.mpc(z.real, 0), m, self.digits, None)
             if abs(z.real) <= 10.0 ** -(self.digits + 2) * size and self._idle(z, dps, m):
@@ -661,12 +726,24 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
             W *= 2.0
             if W > 1e12:
                 raise ComputationError(f"fewer than {count} eigenvalues below |lam| = 1e12")
+    rigid = rigid_body_modes(model)
+    search.zero_order = rigid
     singles, clusters = search.isolate(cells, _TINY)
     eigen = [search.single(rect, center) for rect, center in singles]
     for rect, m, center in clusters:
         eigen += search.resolve_cluster(rect, m, center)
     eigen = [e for e in eigen if e.lam.imag >= 0]
     total = sum(e.multiplicity for e in eigen)
+    notes = []
+    if rigid:
+        # Delta(0) = 0 exactly; the zeros found within the accuracy of 0 are that zero
+        near = [e for e in eigen if abs(e.lam) <= 10.0 ** -(digits + 1) * search.p.lam_ref]
+        if not near:
+            raise ComputationError("the rigid-body eigenvalue lam = 0 was not found")
+        order = sum(e.multiplicity for e in near)
+        eigen = [e for e in eigen if e not in near]
+        eigen.append(Eigenvalue(mpmath.mpc(0, 0), rigid, digits, (0.0, 0.0)))
+        notes.append(f"lam = 0: {rigid} rigid-body mode(s), a zero of order {order} of Delta")
     for e in eigen:
         if e.lam.real > 0:
             raise ComputationError(f"eigenvalue {e} has a positive real part: the model is "
@@ -684,8 +761,8 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
             kept.append(e)
             n += e.multiplicity
         eigen = kept
-    notes = [(f"search region: {-S:.6g} <= Re lam <= 0, 0 <= Im lam <= {W:.6g} "
-             f"({total} eigenvalue(s) with Im lam >= 0 counted in the enlarged region)")]
+    notes.insert(0, f"search region: {-S:.6g} <= Re lam <= 0, 0 <= Im lam <= {W:.6g} "
+                    f"({total} eigenvalue(s) with Im lam >= 0 counted in the enlarged region)")
     if search.idle:
         notes.append(f"Re lam = 0 for {search.idle} eigenvalue(s): also eigenvalues of the "
                      f"model without dashpots and with doubled dashpots to "

@@ -34,6 +34,8 @@ import math
 
 import numpy as np
 import sympy as sp
+from scipy.linalg.lapack import zgbcon as _zgbcon
+from scipy.linalg.lapack import zgbtrf as _zgbtrf
 
 from ..elements import EulerBernoulliSegment
 from ..model import Model
@@ -159,6 +161,27 @@ class DynamicStiffness:
                     scale.append(1.0 if k == 0 else 1.0 / (node_len[node] or 1.0))
         self.size = n = len(scale)
         self._scale = np.array(scale)
+        pairs = []
+        for seg, ia, ib in segments:
+            d = [dof.get((ia, 0)), dof.get((ia, 1)), dof.get((ib, 0)), dof.get((ib, 1))]
+            pairs += [abs(a - b) for a in d for b in d if a is not None and b is not None]
+        index = {b.name: i for i, b in enumerate(beams)}
+        for spring in springs:
+            x = sp.nsimplify(spring.x)
+            if not spring.grounded:
+                a = dof.get((beam_nodes[index[spring.a]][x], 0))
+                b = dof.get((beam_nodes[index[spring.b]][x], 0))
+                if a is not None and b is not None:
+                    pairs.append(abs(a - b))
+        #: half-bandwidth of K (dofs are numbered along x, so K is banded)
+        self.band = band = max(pairs, default=0)
+        # LAPACK band storage with room for the fill-in of row interchanges:
+        # K[i, j] lives at row 2 band + i - j of column j; stored per point as (n, rows)
+        self._rows = rows = 3 * band + 1
+
+        def at(i, j):
+            return j * rows + (2 * band + i - j)
+
         # log det of the scaling S in K_scaled = S K S
         self._log_scale = 2.0 * float(np.sum(np.log(self._scale)))
         # segments grouped by their constants: identical segments are evaluated once
@@ -167,7 +190,7 @@ class DynamicStiffness:
             key = (seg.EI, seg.m, seg.l)
             dofs = [dof.get((ia, 0)), dof.get((ia, 1)), dof.get((ib, 0)), dof.get((ib, 1))]
             local = [i for i, d in enumerate(dofs) if d is not None]
-            flat_k = [dofs[i] * n + dofs[j] for i in local for j in local]
+            flat_k = [at(dofs[i], dofs[j]) for i in local for j in local]
             flat_l = [4 * i + j for i in local for j in local]
             sc = np.array([scale[dofs[i]] * scale[dofs[j]] for i in local for j in local])
             g = groups.setdefault(key, {"seg": seg, "places": []})
@@ -178,9 +201,8 @@ class DynamicStiffness:
             self._groups.append((g["seg"], consts, g["places"]))
         self.segment_count = len(segments)
         # springs and dashpots: (k + c lam) times a fixed pattern on the displacement freedoms
-        index = {b.name: i for i, b in enumerate(beams)}
-        pattern_k = np.zeros(n * n)
-        pattern_c = np.zeros(n * n)
+        pattern_k = np.zeros(n * rows)
+        pattern_c = np.zeros(n * rows)
         for spring in springs:
             x = sp.nsimplify(spring.x)
             ids = [beam_nodes[index[spring.a]][x]]
@@ -193,8 +215,8 @@ class DynamicStiffness:
                 for dj, sj in zip(ds, signs):
                     if di is None or dj is None:
                         continue
-                    pattern_k[di * n + dj] += si * sj * k
-                    pattern_c[di * n + dj] += si * sj * c
+                    pattern_k[at(di, dj)] += si * sj * k
+                    pattern_c[at(di, dj)] += si * sj * c
         self._pattern_k = pattern_k
         self._pattern_c = pattern_c
         self._rng = np.random.default_rng(12345)
@@ -204,16 +226,17 @@ class DynamicStiffness:
         if lam.size and np.max(np.abs(lam)) > self.lam_max * (1 + 1e-12):
             raise ValueError(f"|lam| = {np.max(np.abs(lam)):.6g} beyond lam_max = {self.lam_max:.6g}")
 
-    def matrix(self, lam) -> tuple:
-        """``(K_scaled, log prod det U12)`` for an array of ``lam`` (flattened).
+    def band_matrix(self, lam) -> tuple:
+        """``(K in band storage, log prod det U12)`` for an array of ``lam`` (flattened).
 
-        ``K_scaled = S K S`` with ``S`` scaling rotations by a segment length.
+        ``K`` is the scaled matrix ``S K S`` (rotations as ``l Theta``), shape
+        ``(N, n, 3 band + 1)``: ``[p].T`` is LAPACK's ``ab`` for ``zgbtrf``.
         """
         lam = np.asarray(lam, dtype=complex).reshape(-1)
         self._check(lam)
         N, n = lam.size, self.size
-        # assembled entry-major (n*n, N): adding rows is fast, columns would not be
-        KT = np.empty((n * n, N), dtype=complex)
+        # assembled entry-major (entries, N): adding rows is fast, columns would not be
+        KT = np.empty((n * self._rows, N), dtype=complex)
         KT[:] = self._pattern_k[:, None]
         KT += self._pattern_c[:, None] * lam[None, :]
         log_u12 = np.zeros(N, dtype=complex)
@@ -225,9 +248,18 @@ class DynamicStiffness:
             DT = segment_stiffness_batch(U).reshape(N, 16).T
             for flat_k, flat_l, sc in places:
                 KT[flat_k] += DT[flat_l] * sc[:, None]
-        # the springs were added unscaled: they act on displacements (scale 1) only
-        K = np.ascontiguousarray(KT.T)
-        return K.reshape(N, n, n), log_u12
+        # (springs act on displacements, whose scale is 1)
+        return np.ascontiguousarray(KT.T).reshape(N, n, self._rows), log_u12
+
+    def matrix(self, lam) -> np.ndarray:
+        """The scaled ``K`` as dense matrices ``(N, n, n)`` (for checks)."""
+        AB, _ = self.band_matrix(lam)
+        n, b = self.size, self.band
+        K = np.zeros((AB.shape[0], n, n), dtype=complex)
+        for j in range(n):
+            for i in range(max(0, j - b), min(n, j + b + 1)):
+                K[:, i, j] = AB[:, j, 2 * b + i - j]
+        return K
 
     def log_delta(self, lam) -> tuple:
         """``(log|Delta|, arg Delta, trusted)`` for an array of ``lam``.
@@ -244,28 +276,35 @@ class DynamicStiffness:
         phase = np.zeros(flat.size)
         trusted = np.ones(flat.size, dtype=bool)
         if self.size:
-            # chunks keep the dense matrices in cache
-            chunk = max(16, 2 ** 17 // (self.size * self.size))
-            for start in range(0, flat.size, chunk):
-                part = slice(start, start + chunk)
+            for start in range(0, flat.size, 256):
+                part = slice(start, start + 256)
                 logabs[part], phase[part], trusted[part] = self._log_delta(flat[part])
         return logabs.reshape(shape), phase.reshape(shape), trusted.reshape(shape)
 
     def _log_delta(self, lam):
-        K, log_u12 = self.matrix(lam)
-        sign, logabs = np.linalg.slogdet(K)
-        # condition estimate ||K|| ||K^-1 b|| / ||b|| from one solve with a random b
-        b = self._rng.standard_normal((lam.size, self.size)) + 0j
-        with np.errstate(all="ignore"):
-            try:
-                x = np.linalg.solve(K, b[..., None])[..., 0]
-                growth = np.linalg.norm(x, axis=1) / np.linalg.norm(b, axis=1)
-            except np.linalg.LinAlgError:
-                growth = np.full(lam.size, np.inf)
-            cond = np.linalg.norm(K, axis=(1, 2)) * growth
-        trusted = np.isfinite(logabs) & (self.size * np.finfo(float).eps * cond < _TRUST)
+        AB, log_u12 = self.band_matrix(lam)
+        b, n = self.band, self.size
+        eps = np.finfo(float).eps
+        logabs = np.empty(lam.size)
+        phase = np.empty(lam.size)
+        trusted = np.empty(lam.size, dtype=bool)
+        # 1-norm of each K: largest column sum
+        anorm = np.abs(AB).sum(axis=2).max(axis=1)
+        for p in range(lam.size):
+            # banded LU with partial pivoting (LAPACK), then the 1-norm condition estimate
+            lu, ipiv, info = _zgbtrf(AB[p].T, b, b)
+            diag = lu[2 * b]
+            swaps = int(np.count_nonzero(ipiv != np.arange(n)))   # (0-based pivots)
+            if info > 0 or not np.all(np.isfinite(diag)):
+                logabs[p], phase[p], trusted[p] = -np.inf, 0.0, False
+                continue
+            logabs[p] = float(np.sum(np.log(np.abs(diag))))
+            phase[p] = float(np.sum(np.angle(diag))) + np.pi * swaps
+            rcond, _ = _zgbcon(b, b, lu, ipiv, anorm[p])
+            # the relative error of det(K) is about n eps cond(K)
+            trusted[p] = rcond > 0 and n * eps / rcond < _TRUST
         logabs = logabs - self._log_scale + log_u12.real
-        phase = np.angle(np.exp(1j * (np.angle(sign) + log_u12.imag)))   # in (-pi, pi]
+        phase = np.angle(np.exp(1j * (phase + log_u12.imag)))   # in (-pi, pi]
         return logabs, phase, trusted
 
     def delta(self, lam) -> np.ndarray:

@@ -1,0 +1,427 @@
+"""Damped models: eigenvalues in the complex plane, none missed, every digit correct.
+
+Reference values come from outside the solver:
+
+* identical-beam decoupling: the three-beam chain of the paper's example 4
+  splits (eigenvalues 0, 1, 3 of the graph Laplacian of the path P3) into
+  single pinned-pinned beams with grounded spring/dashpots ``mu (k + c lam)``
+  at ``x1`` and ``L - x1``. Each is solved here from its own closed form: the
+  Green's function of the pinned-pinned beam gives the characteristic
+  function ``det(I + mu (k + c lam)/EI G(x_i, x_j))``; its undamped roots
+  are bracketed on the frequency axis, then followed with mpmath.findroot
+  as the dashpots grow from 0 to ``c`` (every damped root starts as an
+  undamped one). The ``mu = 0`` family is the bare pinned-pinned beam:
+  ``lam = i (n pi)**2 sqrt(EI/m) / L**2``, exactly imaginary.
+* the cubic-Hermite finite-element model (:mod:`symtmm.fe`) with a damping
+  matrix added here, solved as a linearised quadratic eigenproblem;
+* the transfer-matrix ``Delta`` in mpmath (a second formulation of the
+  double-precision function the count uses);
+* the undamped solver (Wittrick–Williams count on the frequency axis) for
+  models without dashpots.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from decimal import Decimal
+from fractions import Fraction
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+import scipy.linalg
+
+from symtmm.cli import main
+from symtmm.compile import Evaluator
+from symtmm.fe import fe_matrices
+from symtmm.model import Beam, Model, Spring
+from symtmm.modelfile import load
+from symtmm.roots.damped import count_in_rectangle, default_sigma_max, solve_damped
+from symtmm.roots.dynamic_stiffness import DynamicStiffness
+from symtmm.roots.undamped import solve_undamped
+from symtmm.solve import METHODS, solve
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EX4 = EXAMPLES / "paper_ex4_damped.toml"
+
+
+# -- independent reference: pinned-pinned beam with grounded spring/dashpots ----------------
+def pp_green(beta, a, b, L):
+    """Green's function of ``w'''' - beta**4 w = delta(x - b)`` with w = w'' = 0 at 0, L.
+
+    ``1/(D^4 - beta^4) = (1/(D^2 - beta^2) - 1/(D^2 + beta^2)) / (2 beta^2)`` with the
+    Dirichlet Green's functions of both factors; even in beta -> i beta.
+    """
+    lo, hi = min(a, b), max(a, b)
+    t1 = -mpmath.sinh(beta * lo) * mpmath.sinh(beta * (L - hi)) / mpmath.sinh(beta * L)
+    t2 = mpmath.sin(beta * lo) * mpmath.sin(beta * (L - hi)) / mpmath.sin(beta * L)
+    return (t1 + t2) / (2 * beta**3)
+
+
+def pp_char(lam, EI, m, L, supports):
+    """``det(I + diag(k_i + c_i lam) G / EI)`` for grounded supports ``(x, k, c)``."""
+    beta = mpmath.root(-m * lam**2 / EI, 4)
+    n = len(supports)
+    A = mpmath.matrix(n, n)
+    for i, (xi, ki, ci) in enumerate(supports):
+        for j, (xj, _, _) in enumerate(supports):
+            A[i, j] = (1 if i == j else 0) + (ki + ci * lam) / EI * pp_green(beta, xi, xj, L)
+    return mpmath.det(A)
+
+
+def _pp_axis_function(EI, m, L, supports):
+    """The undamped characteristic function on lam = i omega in floats, without poles."""
+    EI, m, L = float(EI), float(m), float(L)
+    sup = [(float(x), float(k)) for x, k, _ in supports]
+
+    def green(beta, a, b):
+        lo, hi = min(a, b), max(a, b)
+        t1 = -math.sinh(beta * lo) * math.sinh(beta * (L - hi)) / math.sinh(beta * L)
+        t2 = math.sin(beta * lo) * math.sin(beta * (L - hi))      # / sin(beta L)
+        return t1, t2
+
+    def f(w):
+        beta = math.sqrt(w) * (m / EI) ** 0.25
+        s = math.sin(beta * L)
+        A = np.empty((len(sup), len(sup)))
+        for i, (xi, ki) in enumerate(sup):
+            for j, (xj, _) in enumerate(sup):
+                t1, t2 = green(beta, xi, xj)
+                # times sin(beta L): the poles of G at sin(beta L) = 0 are gone
+                A[i, j] = (s if i == j else 0.0) + ki / EI * (t1 * s + t2) / (2 * beta**3)
+        return np.linalg.det(A) / s ** (len(sup) - 1)
+
+    return f
+
+
+def _mp(value):
+    """An exact Fraction (or a number) as mpmath at the working precision."""
+    if isinstance(value, Fraction):
+        return mpmath.mpf(value.numerator) / value.denominator
+    return mpmath.mpf(value)
+
+
+def pp_damped_roots(EI, m, L, supports, omega_scan, steps=8, dps=30):
+    """Roots (Im >= 0) of a pinned-pinned beam with grounded spring/dashpots ``(x, k, c)``.
+
+    The undamped roots below ``omega_scan`` are bracketed by sign changes on the
+    frequency axis (a grid finer than their spacing), then followed with
+    mpmath.findroot while the dashpots grow from 0 to their values.
+    """
+    f = _pp_axis_function(EI, m, L, [(float(x), float(k), 0) for x, k, _ in supports])
+    grid = np.linspace(1e-3, omega_scan, 3000)
+    values = [f(w) for w in grid]
+    starts = [0.5 * (a + b) for a, b, fa, fb in zip(grid, grid[1:], values, values[1:])
+              if fa * fb < 0]
+    roots = []
+    with mpmath.workdps(dps):
+        EI, m, L = _mp(EI), _mp(m), _mp(L)
+        supports = [(_mp(x), _mp(k), _mp(c)) for x, k, c in supports]
+        for w0 in starts:
+            z = mpmath.mpc(0, w0)
+            n = round(float(mpmath.sqrt(w0 / mpmath.sqrt(EI / m)) * L / mpmath.pi))
+            if n and all(abs(mpmath.sin(n * mpmath.pi * x / L)) < 1e-12 for x, _, _ in supports):
+                continue    # a pinned-pinned mode with a node at every support (G has a pole)
+            for s in range(steps + 1):
+                sup = [(x, k, c * mpmath.mpf(s) / steps) for x, k, c in supports]
+                z = mpmath.findroot(lambda q, sup=sup: pp_char(q, EI, m, L, sup),
+                                    (z, z + mpmath.mpc(1e-3, 1e-3)))
+            roots.append(z)
+    return roots
+
+
+def assert_digits_correct(printed: str, exact, digits: int):
+    """Every printed significant digit of ``printed`` is correct for ``exact``."""
+    if printed == "0":
+        assert exact == 0, f"printed 0 for {exact}"
+        return
+    value = Decimal(printed)
+    exponent = value.adjusted()       # position of the leading digit
+    ulp = Decimal(10) ** (exponent - digits + 1)
+    error = abs(value - Decimal(mpmath.nstr(exact, digits + 15, strip_zeros=False)))
+    assert error <= ulp / 2 * Decimal("1.0001"), (printed, mpmath.nstr(exact, digits + 5), digits)
+
+
+def ex4_numbers():
+    with mpmath.workdps(40):
+        sq = mpmath.mpf("146.2698") / mpmath.pi**2    # sqrt(EI/m)
+        EI = sq**2
+        return EI, 25 * EI, 5 * sq, sq                  # EI, k, c, sqrt(EI/m)
+
+
+@pytest.fixture(scope="module")
+def ex4_reference():
+    """Example 4 from the decoupled families: [(lam, family)] with Im lam <= 1500."""
+    EI, k, c, sq = ex4_numbers()
+    with mpmath.workdps(40):
+        x1 = mpmath.mpf(1) / 4
+        out = []
+        for n in range(1, 4):     # mu = 0: (n pi)^2 sqrt(EI/m), within 1500 for n <= 3
+            out.append((mpmath.mpc(0, (n * mpmath.pi) ** 2 * sq), 0))
+        for mu in (1, 3):
+            sup = [(x1, mu * k, mu * c), (1 - x1, mu * k, mu * c)]
+            for z in pp_damped_roots(EI, 1, 1, sup, 3000):
+                if z.imag <= 1500 and -3000 <= z.real <= 0:
+                    out.append((z, mu))
+    return sorted(out, key=lambda t: t[0].imag)
+
+
+@pytest.fixture(scope="module")
+def ex4_spectrum():
+    return solve(load(EX4), omega_max=1500, digits=15)
+
+
+# -- the double-precision Delta ---------------------------------------------------------------
+def _mixed_model():
+    return Model((Beam("a", EI=2, m="3/2", L=1, left="clamped", right="free"),
+                  Beam("b", EI=1, m=1, L="3/2", x0="-1/4", left="sliding", right="pinned"),
+                  Beam("c", EI="1/2", m=1, L="1/2", x0="1/4", left="free", right="free")),
+                 (Spring("a", "b", x="1/2", k=40, c=3),
+                  Spring("b", "c", x="1/4", k=5, c="1/2"),
+                  Spring("c", "ground", x="3/4", k=7, c=1),
+                  Spring("a", "ground", x="1", k=0, c=2)))
+
+
+@pytest.mark.parametrize("model", [load(EX4), load(EXAMPLES / "paper_ex1_ff_cc.toml"),
+                                   _mixed_model()], ids=["ex4", "ex1", "mixed"])
+def test_dynamic_stiffness_delta_equals_transfer_delta(model):
+    """det K * prod det U12 is the transfer-matrix Delta, to double precision, anywhere."""
+    ds = DynamicStiffness(model, 4000.0)
+    ev = Evaluator(model)
+    rng = np.random.default_rng(7)
+    lam = np.concatenate([rng.uniform(-2800, 100, 6) + 1j * rng.uniform(-1400, 2800, 6),
+                          [-37.5 + 0j, 3j, 0.5 - 0.25j]])
+    logabs, phase, ok = ds.log_delta(lam)
+    assert ok.all()
+    with mpmath.workdps(60):
+        for z, la, ph in zip(lam, logabs, phase):
+            exact = ev.delta_mp(mpmath.mpc(z.real, z.imag))
+            ratio = mpmath.exp(mpmath.mpf(la) + 1j * mpmath.mpf(ph)) / exact
+            assert abs(ratio - 1) < 1e-9, (z, ratio)
+    assert ds.evaluations == lam.size
+
+
+def test_dynamic_stiffness_refuses_points_beyond_its_design():
+    ds = DynamicStiffness(load(EX4), 100.0)
+    with pytest.raises(ValueError, match="lam_max"):
+        ds.log_delta(np.array([500j]))
+
+
+# -- example 4 (paper table 2) ------------------------------------------------------------------
+def test_example4_against_decoupled_families(ex4_spectrum, ex4_reference):
+    """Table 2: all eigenvalues in the region, each to 15 correct digits."""
+    spec = ex4_spectrum
+    assert spec.total == len(ex4_reference) == 9
+    for e, (ref, family) in zip(spec, ex4_reference):
+        d = e.to_dict()
+        assert e.multiplicity == 1
+        assert_digits_correct(d["imag"], ref.imag, 15)
+        if family == 0:
+            assert d["real"] == "0"          # in-phase modes: exactly imaginary
+        else:
+            assert_digits_correct(d["real"], ref.real, 15)
+
+
+def test_example4_in_phase_modes_are_exact(ex4_spectrum):
+    """Beams moving together leave the dashpots idle: lam = i (n pi)^2 sqrt(EI/m)."""
+    idle = [e for e in ex4_spectrum if e.lam.real == 0]
+    assert [e.to_dict()["imag"] for e in idle] == [
+        "146.269800000000", "585.079200000000", "1316.42820000000"]
+    assert any("Re lam = 0 for 3" in n for n in ex4_spectrum.notes)
+
+
+def test_example4_region_and_stats(ex4_spectrum):
+    spec = ex4_spectrum
+    assert all(-3000 <= e.lam.real <= 0 and 0 < e.lam.imag <= 1500 for e in spec)
+    assert [e.lam.imag for e in spec] == sorted(e.lam.imag for e in spec)
+    assert spec.evaluations > 100 and spec.method == "default"
+    assert default_sigma_max(1500) == 3000
+
+
+def test_example4_count_mode(ex4_reference):
+    spec = solve(load(EX4), count=4, digits=10)
+    assert spec.total == 4
+    for e, (ref, _) in zip(spec, ex4_reference[:4]):
+        assert_digits_correct(e.to_dict()["imag"], ref.imag, 10)
+
+
+def test_example4_cli_json(capsys):
+    assert main(["solve", str(EX4), "--omega-max", "600", "--digits", "8", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    eig = out["eigenvalues"]
+    assert out["digits"] == 8 and out["stats"]["method"] == "default"
+    assert [e["real"] for e in eig if e["real"] == "0"] == ["0", "0"]
+    assert len(eig) == 6      # 40.1, 146.3, 165.2, 461.6, 585.1, 586.2
+    assert eig[0] == {"real": "-246.35132", "imag": "40.102275", "multiplicity": 1}
+
+
+# -- digits -----------------------------------------------------------------------------------
+@pytest.mark.parametrize("digits", [6, 15, 30])
+def test_every_printed_digit_correct(digits):
+    """A pinned-pinned beam with a spring and a dashpot to the ground at 3/10."""
+    model = Model((Beam("a", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                  (Spring("a", "ground", x="3/10", k=20, c=4),))
+    spec = solve_damped(model, omega_max=100, digits=digits)
+    refs = pp_damped_roots(1, 1, 1, [(Fraction(3, 10), 20, 4)], 200, dps=60)
+    refs = sorted((z for z in refs if z.imag <= 100), key=lambda z: z.imag)
+    assert len(spec) == len(refs) == 3
+    for e, ref in zip(spec, refs):
+        d = e.to_dict()
+        assert_digits_correct(d["real"], ref.real, digits)
+        assert_digits_correct(d["imag"], ref.imag, digits)
+
+
+# -- finite elements with a damping matrix -----------------------------------------------------
+def _fe_damped(elements, x, c):
+    beam = {"name": "a", "EI": 1.0, "m": 1.0, "L": 1.0, "x0": 0.0, "left": "pinned", "right": "pinned"}
+    K, M, info = fe_matrices([beam], [{"between": ["a", "ground"], "x": x, "k": 0.0}], elements)
+    n = K.shape[0]
+    node = int(np.argmin(np.abs(np.asarray(info["nodes"]["a"]) - x)))
+    C = np.zeros_like(K)
+    dof = info["dofs"]["a"][node][0]
+    C[dof, dof] = c
+    # lam^2 M + lam C + K = 0 as a 2n linear pencil
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -C]])
+    B = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), M]])
+    lam = scipy.linalg.eig(A, B, right=False)
+    lam = lam[lam.imag > 1e-9]
+    return lam[np.argsort(lam.imag)]
+
+
+def test_single_dashpot_against_finite_elements():
+    model = Model((Beam("a", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                  (Spring("a", "ground", x="3/10", k=0, c=4),))
+    spec = solve_damped(model, count=4, digits=12)
+    exact = np.array([complex(e.lam) for e in spec])
+    coarse, fine = _fe_damped(30, 0.3, 4.0)[:4], _fe_damped(60, 0.3, 4.0)[:4]
+    err_c, err_f = np.abs(coarse - exact) / np.abs(exact), np.abs(fine - exact) / np.abs(exact)
+    assert np.all(err_f < 2e-6)
+    assert np.all(err_f < err_c / 8)     # converging to it at the FE rate h^4
+
+
+def test_midspan_dashpot_leaves_even_modes_undamped():
+    """Even pinned-pinned modes have a node at midspan: lam = i (2 pi)^2 exactly."""
+    model = Model((Beam("a", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                  (Spring("a", "ground", x="1/2", k=0, c=3),))
+    spec = solve_damped(model, omega_max=170, digits=15)
+    even = [e for e in spec if e.lam.real == 0]
+    assert [e.to_dict()["imag"] for e in even] == [
+        mpmath.nstr((2 * mpmath.pi) ** 2, 15, strip_zeros=False),
+        mpmath.nstr((4 * mpmath.pi) ** 2, 15, strip_zeros=False)]
+    fe = _fe_damped(60, 0.5, 3.0)[:4]
+    odd = [complex(e.lam) for e in spec if e.lam.real != 0]
+    assert np.allclose(odd, fe[[0, 2]], rtol=2e-6)
+
+
+# -- real (overdamped) eigenvalues ----------------------------------------------------------------
+def test_overdamped_real_eigenvalue():
+    """A strong dashpot at midspan: a real eigenvalue, found with Im lam = 0 exactly."""
+    model = Model((Beam("a", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                  (Spring("a", "ground", x="1/2", k=0, c=50),))
+    spec = solve_damped(model, omega_max=100, digits=15)
+    real = [e for e in spec if e.lam.imag == 0]
+    assert len(real) == 1
+    with mpmath.workdps(40):
+        sup = [(mpmath.mpf(1) / 2, 0, 50)]
+
+        def f(s):
+            return mpmath.re(pp_char(mpmath.mpc(s, 0), 1, 1, 1, sup))
+
+        ref = mpmath.findroot(f, (-1.2, -0.8), solver="anderson")
+    assert_digits_correct(real[0].to_dict()["real"], ref, 15)
+    lo, hi = real[0].bracket
+    assert lo <= ref <= hi
+    assert real[0].to_dict()["imag"] == "0"
+
+
+# -- multiple eigenvalues and rigid-body modes ----------------------------------------------------
+def test_double_eigenvalues_of_identical_undamped_beams():
+    """Beams a and c are identical and free of springs: every (n pi)^2 i is double."""
+    beams = tuple(Beam(n, EI=1, m=1, L=1, left="pinned", right="pinned") for n in "abc")
+    model = Model(beams, (Spring("b", "ground", x="1/3", k=10, c=2),))
+    spec = solve_damped(model, omega_max=45, digits=15)
+    double = [e for e in spec if e.multiplicity == 2]
+    assert [e.to_dict()["imag"] for e in double] == [
+        mpmath.nstr((n * mpmath.pi) ** 2, 15, strip_zeros=False) for n in (1, 2)]
+    assert all(e.to_dict()["real"] == "0" for e in double)
+    assert spec.total == 6      # plus one damped root of beam b per mode
+
+
+@pytest.mark.slow
+def test_triple_eigenvalues_of_example3_by_both_methods():
+    """At 16 pi^2 the pinned-pinned mode has nodes at both springs: triple in example 3."""
+    model = load(EXAMPLES / "paper_ex3_three_pp_coupled.toml")
+    a = METHODS["contour"](model.require_numeric(), None, 200.0, None, 15)
+    b = solve_undamped(model, omega_max=200.0, digits=15)
+    assert [e.to_dict() for e in a] == [e.to_dict() for e in b]
+    assert a[-1].to_dict() == {"real": "0", "imag": mpmath.nstr(16 * mpmath.pi**2, 15,
+                                                                strip_zeros=False),
+                               "multiplicity": 3}
+
+
+@pytest.mark.slow
+def test_triple_eigenvalue():
+    """At 9 pi^2 beam b's mode has a node at its dashpot (x = 1/3): a triple eigenvalue."""
+    beams = tuple(Beam(n, EI=1, m=1, L=1, left="pinned", right="pinned") for n in "abc")
+    model = Model(beams, (Spring("b", "ground", x="1/3", k=10, c=2),))
+    spec = solve_damped(model, omega_max=100, digits=15)
+    triple = [e for e in spec if e.multiplicity == 3]
+    assert len(triple) == 1
+    assert triple[0].to_dict() == {"real": "0", "imag": mpmath.nstr(
+        9 * mpmath.pi**2, 15, strip_zeros=False), "multiplicity": 3}
+
+
+def test_rigid_body_modes_of_free_beams():
+    """Two free-free beams joined by springs and dashpots: lam = 0 twice (rigid modes),
+    in-phase modes undamped at the free-free frequencies."""
+    beams = tuple(Beam(n, EI=1, m=1, L=1, left="free", right="free") for n in "ab")
+    model = Model(beams, (Spring("a", "b", x="1/4", k=30, c=3),
+                          Spring("a", "b", x="3/4", k=30, c=3)))
+    spec = solve_damped(model, omega_max=60, digits=15)
+    assert spec[0].to_dict() == {"real": "0", "imag": "0", "multiplicity": 2}
+    with mpmath.workdps(30):
+        Omega1 = mpmath.findroot(lambda x: mpmath.cos(x) - mpmath.sech(x), 4.73)
+    in_phase = [e for e in spec if e.lam.real == 0 and e.lam.imag > 0]
+    assert [e.to_dict()["imag"] for e in in_phase] == [mpmath.nstr(Omega1**2, 15,
+                                                                    strip_zeros=False)]
+    # the out-of-phase family: one free-free beam with grounded 2 (k + c lam) at 1/4, 3/4
+    single = Evaluator(Model((Beam("s", EI=1, m=1, L=1, left="free", right="free"),),
+                             (Spring("s", "ground", x="1/4", k=60, c=6),
+                              Spring("s", "ground", x="3/4", k=60, c=6))))
+    damped = [e for e in spec if e.lam.real != 0]
+    assert len(damped) == 3
+    with mpmath.workdps(40):
+        for e in damped:
+            lam = mpmath.mpc(e.lam)
+            h = abs(lam) * mpmath.mpf(10) ** -20
+            f0 = single.delta_mp(lam)
+            newton_step = f0 * h / (single.delta_mp(lam + h) - f0)
+            assert abs(newton_step) < abs(lam) * 1e-14
+
+
+# -- undamped models: the contour search agrees with the Wittrick-Williams search ---------------
+def test_contour_method_on_undamped_model_matches_undamped_solver():
+    model = load(EXAMPLES / "paper_ex3_three_pp_coupled.toml")
+    a = METHODS["contour"](model.require_numeric(), None, 100.0, None, 15)
+    b = solve_undamped(model, omega_max=100.0, digits=15)
+    assert a.total == b.total == 9
+    assert a.method == "contour"
+    assert [e.to_dict() for e in a] == [e.to_dict() for e in b]
+
+
+def test_count_in_rectangle():
+    model = Model((Beam("a", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                  (Spring("a", "ground", x="3/10", k=0, c=4),))
+    assert count_in_rectangle(model, -10.0, 1.0, 0.0, 100.0) == 3
+    assert count_in_rectangle(model, -10.0, 1.0, -100.0, 100.0) == 6
+    assert count_in_rectangle(model, -10.0, -3.0, 0.0, 100.0) == 1   # -3.58 + 38.9i
+
+
+def test_default_method_routes_damped_models():
+    model = Model((Beam("a", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                  (Spring("a", "ground", x="3/10", k=0, c=4),))
+    spec = solve(model, count=1, digits=8)
+    assert spec[0].to_dict()["real"] == "-2.6916884"
+    assert math.isclose(float(spec[0].lam.imag), 9.644173516, rel_tol=1e-9)
