@@ -56,7 +56,7 @@ def _scale(omega_scale):
     return omega_scale[0], float(omega_scale[1])
 
 
-def _wrap(text: str, width: int = 70) -> str:
+def _wrap(text: str, width: int = 76) -> str:
     import textwrap
     return "\n".join(textwrap.wrap(text, width)) if text else text
 
@@ -73,7 +73,7 @@ _UNITS = {"Y": "Y", "Theta": r"$\Theta = Y'$", "M": r"$M = EI\,Y''$", "Q": r"$Q 
 
 
 def plot_modes(modes, variable: str = "Y", which=None, x_label: str = "x [m]",
-               figsize=None) -> Figure:
+               figsize=None, title: str | None = None) -> Figure:
     """One panel per beam with the chosen state variable of each mode along it.
 
     Parameters
@@ -86,6 +86,8 @@ def plot_modes(modes, variable: str = "Y", which=None, x_label: str = "x [m]",
         Mode numbers (1-based) to draw; default all.
     x_label : str
         Label of the horizontal axis (global coordinate).
+    title : str, optional
+        A title over the panels.
 
     Returns
     -------
@@ -129,6 +131,8 @@ def plot_modes(modes, variable: str = "Y", which=None, x_label: str = "x [m]",
     axes[-1].set_xlabel(x_label + "   (dotted: springs)" if modes.model.springs else x_label)
     if chosen:
         axes[0].legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    if title:
+        fig.suptitle(_wrap(title))
     return fig
 
 
@@ -147,7 +151,8 @@ def _mode_label(mode, scale):
 # -----------------------------------------------------------------------------------
 
 def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
-               title: str | None = None, figsize=(7.0, 5.0), legend: bool | None = None) -> Figure:
+               title: str | None = None, figsize=None, legend: bool | None = None,
+               panels: bool = False) -> Figure:
     """Eigenvalue branches against the swept parameter, one line per tracked branch.
 
     Parameters
@@ -160,7 +165,11 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
         decay rate ``sigma = -Re lam``.
     x_label, title : str, optional
     legend : bool, optional
-        Label the branches (default: when there are at most 12).
+        Label the branches (default: when there are at most 20).
+    panels : bool
+        One panel, with its own vertical scale, for every group of branches
+        whose ranges overlap: close families (weakly coupled identical beams)
+        become readable.
 
     Returns
     -------
@@ -172,10 +181,8 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
         frequency = "Omega" if scale and not damped else "omega"
     if frequency == "Omega" and not scale:
         raise ValueError("no reference beam to define Omega")
-    fig = new_figure(figsize)
-    ax = fig.add_subplot()
     ids = sweep.branch_ids()
-    show_legend = legend if legend is not None else len(ids) <= 12
+    curves = []
     for n, bid in enumerate(ids):
         x, lam = sweep.branch(bid)
         if frequency == "Omega":
@@ -184,18 +191,62 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
             y = -lam.real
         else:
             y = lam.imag
-        ax.plot(x, y, "-", marker="o", ms=2.5, lw=1.2, color=f"C{n % 10}",
-                label=f"branch {bid}")
-    ax.set_xlabel(x_label or f"{sweep.parameter}")
-    ax.set_ylabel({"Omega": OMEGA_LABEL + f" of beam {scale[0] if scale else ''}",
-                   "omega": r"$\omega = \mathrm{Im}\,\lambda$ [rad/s]",
-                   "sigma": r"$\sigma = -\mathrm{Re}\,\lambda$ [1/s]"}[frequency])
+        curves.append((n, bid, x, y))
+    groups = _groups(curves) if panels else [curves]
+    if figsize is None:
+        figsize = (7.5, 5.0) if len(groups) <= 2 else (7.5, 1.6 * len(groups) + 1.2)
+    fig = new_figure(figsize)
+    axes = fig.subplots(len(groups), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, group in zip(axes, reversed(groups)):      # the highest group on top
+        for n, bid, x, y in group:
+            ax.plot(x, y, "-", marker="o", ms=2.5, lw=1.2, color=_branch_color(n, len(ids)),
+                    label=f"branch {bid}")
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel(x_label or f"{sweep.parameter}")
+    ylabel = {"Omega": OMEGA_LABEL + f" of beam {scale[0] if scale else ''}",
+              "omega": r"$\omega = \mathrm{Im}\,\lambda$ [rad/s]",
+              "sigma": r"$\sigma = -\mathrm{Re}\,\lambda$ [1/s]"}[frequency]
+    if len(axes) == 1:
+        axes[0].set_ylabel(ylabel)
+    else:
+        fig.supylabel(ylabel)
     if title:
-        ax.set_title(_wrap(title))
-    ax.grid(alpha=0.3)
+        fig.suptitle(_wrap(title))            # over the legend too: the axes are narrower
+    show_legend = legend if legend is not None else len(ids) <= 20
     if show_legend and ids:
-        ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
+        handles = [h for ax in axes for h in ax.get_lines()]
+        handles.sort(key=lambda h: int(h.get_label().split()[-1]))
+        fig.legend(handles=handles, fontsize="small", loc="outside right center",
+                   title="tracked\nbranches", title_fontsize="small")
     return fig
+
+
+def _groups(curves):
+    """Curves whose value ranges overlap (or nearly), ascending."""
+    if not curves:
+        return [[]]
+    lo = min(float(np.min(c[3])) for c in curves if len(c[3]))
+    hi = max(float(np.max(c[3])) for c in curves if len(c[3]))
+    gap = 0.04 * (hi - lo if hi > lo else 1.0)
+    ordered = sorted(curves, key=lambda c: float(np.min(c[3])) if len(c[3]) else np.inf)
+    groups, top = [], -np.inf
+    for c in ordered:
+        if not len(c[3]):
+            continue
+        if not groups or float(np.min(c[3])) > top + gap:
+            groups.append([])
+            top = -np.inf
+        groups[-1].append(c)
+        top = max(top, float(np.max(c[3])))
+    return groups
+
+
+def _branch_color(n: int, total: int):
+    """Distinct colours: the default cycle up to 10 branches, tab20 up to 20."""
+    if total <= 10:
+        return f"C{n % 10}"
+    from matplotlib import colormaps
+    return colormaps["tab20"](n % 20)
 
 
 # -----------------------------------------------------------------------------------

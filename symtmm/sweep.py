@@ -36,7 +36,7 @@ import mpmath
 import numpy as np
 import sympy as sp
 
-from .errors import ModelError
+from .errors import ComputationError, ModelError
 from .expr import ExpressionError, exact_number, parse_expression
 from .model import Model
 from .results import decimal_string
@@ -174,6 +174,23 @@ def _dask_client(scheduler):
                          source=str(scheduler)) from None
 
 
+def _process_context():
+    """Start method of the worker processes.
+
+    ``spawn`` (fresh interpreters) is safe when the caller runs threads (Jupyter,
+    Dask), but it re-imports the main script by its path; a main program read
+    from standard input has none, and then only ``fork`` can work.
+    """
+    import multiprocessing
+    import sys
+
+    main_file = getattr(sys.modules.get("__main__"), "__file__", None)
+    if main_file is not None and not os.path.exists(main_file) and \
+            "fork" in multiprocessing.get_all_start_methods():
+        return multiprocessing.get_context("fork")
+    return multiprocessing.get_context("spawn")
+
+
 def _run(payloads, jobs, scheduler, progress):
     n = len(payloads)
     results = [None] * n
@@ -196,16 +213,20 @@ def _run(payloads, jobs, scheduler, progress):
                 results[i] = _solve_step(p)
                 bar.update()
         else:
-            import multiprocessing
             from concurrent.futures import ProcessPoolExecutor, as_completed
+            from concurrent.futures.process import BrokenProcessPool
 
-            # spawn, not fork: the caller may run threads (Jupyter, Dask) that fork would copy
-            ctx = multiprocessing.get_context("spawn")
-            with ProcessPoolExecutor(max_workers=min(jobs, n), mp_context=ctx) as pool:
-                futures = {pool.submit(_solve_step, p): i for i, p in enumerate(payloads)}
-                for fut in as_completed(futures):
-                    results[futures[fut]] = fut.result()
-                    bar.update()
+            try:
+                with ProcessPoolExecutor(max_workers=min(jobs, n),
+                                         mp_context=_process_context()) as pool:
+                    futures = {pool.submit(_solve_step, p): i for i, p in enumerate(payloads)}
+                    for fut in as_completed(futures):
+                        results[futures[fut]] = fut.result()
+                        bar.update()
+            except BrokenProcessPool:
+                raise ComputationError(
+                    "a worker process died; in a script, call sweep() under "
+                    "'if __name__ == \"__main__\":', or use jobs=1 (--jobs 1)") from None
     finally:
         bar.close()
     return results

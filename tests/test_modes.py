@@ -3,6 +3,7 @@
 import itertools
 import json
 import math
+from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -19,6 +20,12 @@ from symtmm.results import Eigenvalue
 from symtmm.solve import solve
 
 STATE = ("Y", "Theta", "M", "Q")
+
+
+@pytest.fixture
+def examples_dir():
+    """The model files of the paper's examples."""
+    return Path(__file__).resolve().parent.parent / "examples"
 
 
 def mixed_model():

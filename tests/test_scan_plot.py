@@ -2,6 +2,7 @@
 
 import json
 import math
+from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -18,6 +19,12 @@ from symtmm.scan import scan
 from symtmm.solve import solve
 
 PP = Model((Beam("b", EI=2, m=3, L=1, left="pinned", right="pinned"),))
+
+
+@pytest.fixture
+def examples_dir():
+    """The model files of the paper's examples."""
+    return Path(__file__).resolve().parent.parent / "examples"
 
 
 def damped_pair():
@@ -150,6 +157,10 @@ def test_plots_are_agg_figures_with_labelled_axes(tmp_path):
     assert len(lines) == len(sw.branch_ids()) == 2
     assert fig.axes[0].get_xlabel() == "k" and "Omega" in fig.axes[0].get_ylabel()
     assert list(lines[0].get_xdata()) == [0.0, 100.0, 200.0]
+    # separate ranges (Omega_1 in [pi, 4.2], Omega_2 = 2 pi): one panel each, highest on top
+    fig = plot_sweep(sw, panels=True, title="t")
+    assert len(fig.axes) == 2
+    assert fig.axes[0].get_lines()[0].get_ydata()[0] == pytest.approx(2 * math.pi)
 
     with pytest.raises(ModelError, match="--plot"):
         save_figure(fig, tmp_path / "no" / "such" / "dir.png")

@@ -1,6 +1,8 @@
 """Parameter sweeps against decoupled identical-beam families; parallel runs; tracking."""
 
 import json
+import math
+from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -8,7 +10,7 @@ import pytest
 import sympy as sp
 
 from symtmm.cli import main
-from symtmm.errors import ModelError
+from symtmm.errors import ComputationError, ModelError
 from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load, loads
 from symtmm.solve import solve
@@ -42,6 +44,12 @@ between = ["a", "b"]
 x = "1 - x1"
 k = "K"
 """
+
+
+@pytest.fixture
+def examples_dir():
+    """The model files of the paper's examples."""
+    return Path(__file__).resolve().parent.parent / "examples"
 
 
 def grounded_beam(k, x1):
@@ -164,6 +172,33 @@ def test_dask_cluster_gives_the_serial_result(two_beams, serial):
         result = sweep(two_beams, "x1", "0.1", "0.3", 3, count=4, digits=10,
                        scheduler=cluster.scheduler_address)
     assert _comparable(result) == _comparable(serial)
+
+
+@pytest.mark.slow
+def test_dask_worker_processes_give_the_serial_result(two_beams, serial):
+    # worker processes: the steps really travel pickled to other interpreters
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(processes=True, n_workers=2, threads_per_worker=1,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        result = sweep(two_beams, "x1", "0.1", "0.3", 3, count=4, digits=10, scheduler=client)
+    assert _comparable(result) == _comparable(serial)
+
+
+def test_damped_sweep_tracks_complex_branches():
+    model = Model((Beam("a", 1, 1, 1, left="pinned", right="pinned"),
+                   Beam("b", 1, 1, 1, left="pinned", right="pinned")),
+                  (Spring("a", "b", x="3/10", k=200, c="c"),), parameters={"c": 1})
+    try:
+        result = sweep(model, "c", 1, 2, 2, count=2, digits=8, jobs=1, sigma_max=20)
+    except ComputationError as exc:          # the damped search may decline a region
+        pytest.skip(f"damped solver: {exc}")
+    assert result.damped
+    assert all(len(step) >= 1 for step in result.branches)
+    # the undamped in-phase mode (springs idle) stays at pi^2 on one branch
+    _, lam = result.branch(0)
+    assert np.allclose(lam, 1j * math.pi**2, rtol=1e-7)
+    assert "lam_1" in result.table()
 
 
 # -- command line --------------------------------------------------------------------------------

@@ -37,6 +37,8 @@ def add_arguments(parser):
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search (see symtmm solve)")
     parser.add_argument("--json", action="store_true", help="JSON output")
+    parser.add_argument("--title", metavar="TEXT",
+                        help="title of the figure (default: the model's title)")
     parser.add_argument("--plot", metavar="FILE",
                         help="save a figure (one panel per beam) to FILE (.png, .pdf, .svg)")
     parser.add_argument("--variable", choices=("Y", "Theta", "M", "Q"), default="Y",
@@ -55,7 +57,8 @@ def run(args) -> int:
         raise exc.with_source(args.model) from None
     if args.plot:
         from ..plot import save_figure
-        save_figure(modes.plot(variable=args.variable), args.plot)
+        save_figure(modes.plot(variable=args.variable, title=args.title or model.title or None),
+                    args.plot)
     if args.json:
         print(modes.to_json())
     else:

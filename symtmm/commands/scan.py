@@ -46,6 +46,8 @@ def add_arguments(parser):
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search for the marks (see symtmm solve)")
     parser.add_argument("--json", action="store_true", help="JSON output")
+    parser.add_argument("--title", metavar="TEXT",
+                        help="title of the figure (default: the model's title)")
     parser.add_argument("--plot", metavar="FILE",
                         help="save the curve to FILE (damped: the map to FILE-map too)")
 
@@ -73,10 +75,10 @@ def run(args) -> int:
     written = []
     if args.plot:
         from ..plot import save_figure
-        save_figure(result.plot(), args.plot)
+        save_figure(result.plot(title=args.title), args.plot)
         written.append(args.plot)
         if result.damped:
-            save_figure(result.plot_map(), map_path(args.plot))
+            save_figure(result.plot_map(title=args.title), map_path(args.plot))
             written.append(map_path(args.plot))
     if args.json:
         print(result.to_json())

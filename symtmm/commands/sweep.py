@@ -51,7 +51,13 @@ def add_arguments(parser):
     parser.add_argument("--no-progress", dest="progress", action="store_false",
                         help="no progress bar")
     parser.add_argument("--json", action="store_true", help="JSON output")
+    parser.add_argument("--title", metavar="TEXT",
+                        help="title of the figure (default: the model's title)")
     parser.add_argument("--plot", metavar="FILE", help="save the branches plot to FILE")
+    parser.add_argument("--panels", action="store_true",
+                        help="one panel per group of overlapping branches (close families)")
+    parser.add_argument("--x-label", metavar="TEXT",
+                        help="label of the parameter axis, with its unit (default: NAME)")
 
 
 def run(args) -> int:
@@ -67,7 +73,8 @@ def run(args) -> int:
         raise exc.with_source(args.model) from None
     if args.plot:
         from ..plot import save_figure
-        save_figure(result.plot(title=model.title or None), args.plot)
+        save_figure(result.plot(title=args.title or model.title or None,
+                                x_label=args.x_label, panels=args.panels), args.plot)
     if args.json:
         print(result.to_json())
     else:
