@@ -11,6 +11,7 @@ from .errors import ModelError
 from .model import Model
 from .results import Spectrum
 from .roots.damped import solve_damped
+from .roots.fmin import fmin1d, fmin2d
 from .roots.undamped import solve_undamped
 
 __all__ = ["solve", "METHODS"]
@@ -32,7 +33,7 @@ def _contour(model, count, omega_max, sigma_max, digits):
 
 
 #: Root-search methods by name.
-METHODS = {"default": _default, "contour": _contour}
+METHODS = {"default": _default, "contour": _contour, "fmin1d": fmin1d, "fmin2d": fmin2d}
 
 
 def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
