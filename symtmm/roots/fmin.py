@@ -180,7 +180,7 @@ def fmin1d(model: Model, count: int | None = None, omega_max=None, sigma_max=Non
     >>> pp = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
     >>> spec = fmin1d(pp, omega_max=100)
     >>> [e.to_dict()["imag"] for e in spec]     # (n pi)^2 = 9.86960440, 39.4784176, 88.8264396
-    ['9.8696044', '39.4784176', '88.8264396']
+    ['9.8696044', '39.478418', '88.826440']
     """
     model = model.require_numeric()
     if model.damped:
