@@ -38,8 +38,8 @@ __all__ = ["StiffnessModel", "NU_MAX"]
 
 #: Largest ``beta l`` of a segment at the design frequency.
 NU_MAX = 2.0
-# Zero-pivot guard: relative size below which an eigenvalue's sign is not trusted.
-_DOUBLE_TRUST = 1e-11
+# Zero-pivot guard: relative size below which a pivot's sign is not trusted in double.
+_DOUBLE_TRUST = 1e-10
 
 _BC_DOFS_REMOVED = {"free": (), "clamped": (0, 1), "pinned": (0,), "sliding": (1,)}
 
@@ -154,6 +154,7 @@ class StiffnessModel:
                            self.dof.get((ib, 0)), self.dof.get((ib, 1))]
                           for _, _, ia, ib in self.segments]
         self._seg_consts = [(float(s.EI), float(s.m), float(s.l)) for _, s, _, _ in self.segments]
+        self._segment_kind = {c: seg for c, (_, seg, _, _) in zip(self._seg_consts, self.segments)}
         self._mp_consts: dict = {}
         self.bandwidth = 0
         for dofs in self._seg_dofs + [p[0] for p in self.points]:
@@ -172,8 +173,13 @@ class StiffnessModel:
         self._ensure(omega)
         K = np.zeros((self.size, self.size))
         lam2 = np.array(-omega * omega)
-        for (_, seg, _, _), dofs, consts in zip(self.segments, self._seg_dofs, self._seg_consts):
-            D = segment_stiffness(seg.evaluate_numpy(lam2, consts).real)
+        # segments of equal properties share their matrix: evaluate each kind once
+        cache: dict = {}
+        for dofs, consts in zip(self._seg_dofs, self._seg_consts):
+            D = cache.get(consts)
+            if D is None:
+                D = segment_stiffness(self._segment_kind[consts].evaluate_numpy(lam2, consts).real)
+                cache[consts] = D
             _scatter(K, D, dofs)
         for dofs, f_np, _ in self.points:
             S = np.real(np.asarray(f_np(1j * omega), dtype=complex))
@@ -190,10 +196,9 @@ class StiffnessModel:
         """
         self.evaluations += 1
         if dps is None:
-            eig = np.linalg.eigvalsh(self.matrix(omega))
-            scale = np.max(np.abs(eig)) if eig.size else 1.0
-            if eig.size == 0 or np.min(np.abs(eig)) > _DOUBLE_TRUST * scale:
-                return int(np.sum(eig < 0))
+            negative = _banded_inertia(self.matrix(omega), self.bandwidth)
+            if negative is not None:
+                return negative
             dps = 30
         while True:
             with mpmath.workdps(dps):
@@ -211,13 +216,17 @@ class StiffnessModel:
         n = self.size
         K = [[mpmath.mpf(0)] * n for _ in range(n)]
         lam2 = -omega * omega
-        for (_, seg, _, _), dofs in zip(self.segments, self._seg_dofs):
-            key = (id(seg), mpmath.mp.prec)
-            consts = self._mp_consts.get(key)
-            if consts is None:
-                consts = tuple(to_mp(v, mpmath.mp.dps) for v in (seg.EI, seg.m, seg.l))
-                self._mp_consts[key] = consts
-            D = segment_stiffness(seg.evaluate_mp(lam2, consts))
+        cache: dict = {}
+        for dofs, kind in zip(self._seg_dofs, self._seg_consts):
+            D = cache.get(kind)
+            if D is None:
+                seg = self._segment_kind[kind]
+                key = (kind, mpmath.mp.prec)
+                consts = self._mp_consts.get(key)
+                if consts is None:
+                    consts = tuple(to_mp(v, mpmath.mp.dps) for v in (seg.EI, seg.m, seg.l))
+                    self._mp_consts[key] = consts
+                D = cache[kind] = segment_stiffness(seg.evaluate_mp(lam2, consts))
             _scatter(K, D, dofs)
         for dofs, _, f_mp in self.points:
             S = f_mp(mpmath.mpc(0, omega))
@@ -229,7 +238,9 @@ class StiffnessModel:
         """Negative pivots of banded LDL^T; None if a pivot is too small to trust."""
         K = self.matrix_mp(omega)
         n, b = self.size, self.bandwidth
-        scale = max((abs(v) for row in K for v in row), default=mpmath.mpf(1))
+        # the largest entry lies on the band: scan only that
+        scale = max((abs(K[i][j]) for i in range(n) for j in range(i, min(n, i + b + 1))),
+                    default=mpmath.mpf(1))
         tiny = scale * mpmath.mpf(10) ** (-(mpmath.mp.dps - 10))
         negative = 0
         for k in range(n):
@@ -250,6 +261,33 @@ class StiffnessModel:
                     if row_k[j] != 0:
                         row_i[j] -= f * row_k[j]
         return negative
+
+
+def _banded_inertia(K: np.ndarray, band: int) -> int | None:
+    """Number of negative pivots of LDL^T of a symmetric banded matrix (double).
+
+    By Sylvester's law of inertia this is the number of negative eigenvalues.
+    Returns None when a pivot is too small, relative to the matrix, for its sign
+    to be trusted (the caller then counts again in higher precision).
+    """
+    n = K.shape[0]
+    if n == 0:
+        return 0
+    K = K.copy()
+    tiny = _DOUBLE_TRUST * np.max(np.abs(K))
+    negative = 0
+    for k in range(n):
+        pivot = K[k, k]
+        if abs(pivot) <= tiny:
+            return None
+        if pivot < 0:
+            negative += 1
+        top = min(n, k + band + 1)
+        if top > k + 1:
+            row = K[k, k + 1:top]
+            # rank-one update of the trailing band block (upper and lower alike)
+            K[k + 1:top, k + 1:top] -= np.outer(row, row) / pivot
+    return negative
 
 
 def _scatter(K, local, dofs):
