@@ -63,6 +63,7 @@ from __future__ import annotations
 
 import json
 import math
+import random
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -205,7 +206,46 @@ def _prepare(model: Model, symbolic) -> tuple[Model, dict]:
         values[name] = None
     if values:
         model = model.with_parameters(**values)
-    return model.resolved(), sample
+    model = model.resolved()
+    return model, _complete_sample(model, sample)
+
+
+def _complete_sample(model: Model, sample: dict) -> dict:
+    """Order positions whose symbols have no value, when the model allows only one order.
+
+    Random values of the remaining symbols are tried; those that put every
+    spring inside its beams are kept. If they all order the cuts alike, one of
+    them orders the cuts (it does not enter the result); if they disagree the
+    order is left open and :func:`_check_order` asks for a value.
+    """
+    positions = [p for b in model.beams for p in (b.x0, b.x1)] + [s.x for s in model.springs]
+    free = set().union(*(sp.sympify(p).free_symbols for p in positions)) - set(sample)
+    if not free:
+        return sample
+    free = sorted(free, key=lambda v: v.name)
+    rng = random.Random(0)
+    lengths = [b.L.xreplace(sample) for b in model.beams]
+    scale = max([v for v in lengths if v.is_number] or [sp.Integer(1)])
+    beams = {b.name: b for b in model.beams}
+    found: dict = {}
+    for _ in range(200):
+        trial = dict(sample)
+        trial.update({v: scale * sp.Rational(rng.randint(1, 999), 1000) for v in free})
+        values = [sp.sympify(p).xreplace(trial) for p in positions]
+        if not all(v.is_number for v in values):
+            return sample
+        if any(b.L.xreplace(trial) <= 0 for b in model.beams):
+            continue
+        inside = all(beams[n].x0.xreplace(trial) <= s.x.xreplace(trial)
+                     <= beams[n].x1.xreplace(trial)
+                     for s in model.springs for n in (s.a, s.b) if n in beams)
+        if not inside:
+            continue
+        ranks = tuple(sorted(set(values)).index(v) for v in values)
+        found.setdefault(ranks, trial)
+        if len(found) > 1:
+            return sample
+    return next(iter(found.values())) if len(found) == 1 else sample
 
 
 def _check_order(layout: Layout, sample: dict, source):
@@ -219,9 +259,9 @@ def _check_order(layout: Layout, sample: dict, source):
         names = sorted(s.name for s in d.free_symbols)
         if not (value.is_number and value > 0):
             hint = ", ".join(names) if names else "the parameters"
-            raise ModelError(f"cannot tell whether {a} < {b}: give {hint} a value, used only to "
-                             "order the cuts (it stays symbolic)", field="parameters",
-                             source=source)
+            raise ModelError(f"the order of the cuts along the beams depends on {hint}: give it a "
+                             "value in [parameters] and keep it symbolic with --symbolic "
+                             f"{hint.replace(', ', ',')}", field="parameters", source=source)
 
 
 def _build_problem(model: Model, sample: dict) -> _Problem:

@@ -261,3 +261,21 @@ def test_cli_bad_symbolic_is_one_line():
                            str(EXAMPLES / "paper_ex1_ff_cc.toml"), "--symbolic", "Q"],
                           check=False, capture_output=True, text=True)
     assert proc.returncode == 2 and proc.stderr.count("\n") == 1
+
+
+def test_symbolic_example_needs_no_values():
+    """One spring inside identical beams: the order is fixed without values; in-phase family
+    sin * sinh splits off, the other is one beam on a ground spring of stiffness 2K."""
+    model = load(EXAMPLES / "two_beams_symbolic.toml")
+    eq = characteristic_equation(model)
+    assert set(eq.symbols) == {"EI", "K", "L", "m", "x1"}
+    assert [e for f, e in eq.factors if f in (sp.sin(Om), sp.sinh(Om))] == [1, 1]
+    numeric = model.with_parameters(EI=2, m=3, L="1.5", K=40, x1="0.4")
+    assert _check_numeric(eq, numeric)
+    ground = Model((Beam("b", "EI", "m", "L", left="pinned", right="pinned"),),
+                   (Spring("b", "ground", "x1", "2*K"),))
+    assert _check_numeric(characteristic_equation(ground),
+                          ground.with_parameters(EI=2, m=3, L="1.5", K=40, x1="0.4"))
+    other = [f for f in (f for f, _ in eq.factors) if f.has(parameter_symbol("K"))]
+    mine = characteristic_equation(ground).equation
+    assert len(other) == 1 and _proportional(other[0], mine)
