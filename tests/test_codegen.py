@@ -109,7 +109,8 @@ def _build(lang, source, tmp_path):
         compiler = shutil.which("gfortran")
         if compiler is None:
             pytest.skip("no Fortran compiler")
-        src, cmd = tmp_path / "delta.f90", [compiler, "-std=f2008", "-O2", "-Wall", "-Werror"]
+        src, cmd = tmp_path / "delta.f90", [compiler, "-std=f2008", "-O2", "-Wall", "-Werror",
+                                            "-J", str(tmp_path)]
     src.write_text(source)
     lib = tmp_path / f"libdelta_{lang}.so"
     proc = subprocess.run(cmd + ["-shared", "-fPIC", "-o", str(lib), str(src)],
