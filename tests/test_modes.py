@@ -154,7 +154,7 @@ def test_jumps_at_springs(name, solved, examples_dir):
 def test_mass_orthonormal(name, solved, examples_dir):
     model, modes = solved(name, examples_dir)
     G = gauss_gram(model, list(modes))
-    assert np.max(np.abs(G - np.eye(len(modes)))) < 1e-9
+    assert np.max(np.abs(G - np.eye(len(modes)))) < 1e-12
 
 
 # -- multiple and rigid-body eigenvalues ------------------------------------------------------
@@ -204,7 +204,8 @@ def test_agrees_with_finite_element_eigenvectors(examples_dir):
             exact.append(evaluate_mode(model, mode, b["name"], np.asarray(nodes))[0])
         fe, exact = np.concatenate(fe), np.concatenate(exact)
         fe *= np.sign(np.dot(fe, exact))
-        assert np.max(np.abs(fe - exact)) < 1e-5 * np.max(np.abs(exact)), mode.number
+        # 80 cubic elements per beam: the eigenvectors agree to about 1e-7
+        assert np.max(np.abs(fe - exact)) < 1e-6 * np.max(np.abs(exact)), mode.number
 
 
 # -- damped ---------------------------------------------------------------------------------------
