@@ -327,6 +327,10 @@ class _FrozenDict(dict):
     def __hash__(self):
         return hash(tuple(sorted(self.items(), key=lambda kv: kv[0])))
 
+    def __reduce__(self):
+        # unpickling a dict subclass assigns items one by one; rebuild from a plain dict
+        return (_FrozenDict, (dict(self),))
+
 
 def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
     """All numeric fields of ``model`` as (field name, expression) pairs."""

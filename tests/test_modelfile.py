@@ -177,3 +177,12 @@ def test_python_m_symtmm_is_the_same_command(tmp_path):
                           capture_output=True, text=True)
     assert proc.returncode == 2
     assert proc.stderr.count("\n") == 1 and "unknown boundary condition" in proc.stderr
+
+
+def test_models_with_parameters_pickle(examples_dir):
+    """Sweeps send models to other processes."""
+    import pickle
+
+    model = load(examples_dir / "paper_ex1_ff_cc.toml")
+    again = pickle.loads(pickle.dumps(model))
+    assert again == model and again.resolved().springs[0].k == 100
