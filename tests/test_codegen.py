@@ -328,7 +328,7 @@ def test_octave_runs_when_installed(tmp_path):
     model, _ = MODELS["ex1"]
     (tmp_path / "symtmm_delta.m").write_text(generate(model, "octave"))
     lams = np.array([2j, 35j, -3 + 20j])
-    expr = "[" + ", ".join(f"complex({z.real!r}, {z.imag!r})" for z in lams) + "]"
+    expr = "[" + ", ".join(f"complex({float(z.real)!r}, {float(z.imag)!r})" for z in lams) + "]"
     proc = subprocess.run([octave, "--no-gui", "--quiet", "--eval",
                            (f"d = symtmm_delta({expr}); printf('%.17g %.17g\\n', "
                             "[real(d); imag(d)])")],
