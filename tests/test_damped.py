@@ -5,8 +5,9 @@ Reference values come from outside the solver:
 * identical-beam decoupling: the three-beam chain of the paper's example 4
   splits (eigenvalues 0, 1, 3 of the graph Laplacian of the path P3) into
   single pinned-pinned beams with grounded spring/dashpots ``mu (k + c lam)``
-  at ``x1`` and ``L - x1``. Each is solved here from its own closed form: the
-  Green's function of the pinned-pinned beam gives the characteristic
+  at ``x1`` and ``L - x1``. Each is solved from its own closed form
+  (``damped_reference.py``): the Green's function of the pinned-pinned beam
+  gives the characteristic
   function ``det(I + mu (k + c lam)/EI G(x_i, x_j))``; its undamped roots
   are bracketed on the frequency axis, then followed with mpmath.findroot
   as the dashpots grow from 0 to ``c`` (every damped root starts as an
@@ -28,10 +29,12 @@ from decimal import Decimal
 from fractions import Fraction
 from pathlib import Path
 
+import damped_reference
 import mpmath
 import numpy as np
 import pytest
 import scipy.linalg
+from damped_reference import pp_char, pp_damped_roots
 
 from symtmm.cli import main
 from symtmm.compile import Evaluator
@@ -47,91 +50,6 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 EX4 = EXAMPLES / "paper_ex4_damped.toml"
 
 
-# -- independent reference: pinned-pinned beam with grounded spring/dashpots ----------------
-def pp_green(beta, a, b, L):
-    """Green's function of ``w'''' - beta**4 w = delta(x - b)`` with w = w'' = 0 at 0, L.
-
-    ``1/(D^4 - beta^4) = (1/(D^2 - beta^2) - 1/(D^2 + beta^2)) / (2 beta^2)`` with the
-    Dirichlet Green's functions of both factors; even in beta -> i beta.
-    """
-    lo, hi = min(a, b), max(a, b)
-    t1 = -mpmath.sinh(beta * lo) * mpmath.sinh(beta * (L - hi)) / mpmath.sinh(beta * L)
-    t2 = mpmath.sin(beta * lo) * mpmath.sin(beta * (L - hi)) / mpmath.sin(beta * L)
-    return (t1 + t2) / (2 * beta**3)
-
-
-def pp_char(lam, EI, m, L, supports):
-    """``det(I + diag(k_i + c_i lam) G / EI)`` for grounded supports ``(x, k, c)``."""
-    beta = mpmath.root(-m * lam**2 / EI, 4)
-    n = len(supports)
-    A = mpmath.matrix(n, n)
-    for i, (xi, ki, ci) in enumerate(supports):
-        for j, (xj, _, _) in enumerate(supports):
-            A[i, j] = (1 if i == j else 0) + (ki + ci * lam) / EI * pp_green(beta, xi, xj, L)
-    return mpmath.det(A)
-
-
-def _pp_axis_function(EI, m, L, supports):
-    """The undamped characteristic function on lam = i omega in floats, without poles."""
-    EI, m, L = float(EI), float(m), float(L)
-    sup = [(float(x), float(k)) for x, k, _ in supports]
-
-    def green(beta, a, b):
-        lo, hi = min(a, b), max(a, b)
-        t1 = -math.sinh(beta * lo) * math.sinh(beta * (L - hi)) / math.sinh(beta * L)
-        t2 = math.sin(beta * lo) * math.sin(beta * (L - hi))      # / sin(beta L)
-        return t1, t2
-
-    def f(w):
-        beta = math.sqrt(w) * (m / EI) ** 0.25
-        s = math.sin(beta * L)
-        A = np.empty((len(sup), len(sup)))
-        for i, (xi, ki) in enumerate(sup):
-            for j, (xj, _) in enumerate(sup):
-                t1, t2 = green(beta, xi, xj)
-                # times sin(beta L): the poles of G at sin(beta L) = 0 are gone
-                A[i, j] = (s if i == j else 0.0) + ki / EI * (t1 * s + t2) / (2 * beta**3)
-        return np.linalg.det(A) / s ** (len(sup) - 1)
-
-    return f
-
-
-def _mp(value):
-    """An exact Fraction (or a number) as mpmath at the working precision."""
-    if isinstance(value, Fraction):
-        return mpmath.mpf(value.numerator) / value.denominator
-    return mpmath.mpf(value)
-
-
-def pp_damped_roots(EI, m, L, supports, omega_scan, steps=8, dps=30):
-    """Roots (Im >= 0) of a pinned-pinned beam with grounded spring/dashpots ``(x, k, c)``.
-
-    The undamped roots below ``omega_scan`` are bracketed by sign changes on the
-    frequency axis (a grid finer than their spacing), then followed with
-    mpmath.findroot while the dashpots grow from 0 to their values.
-    """
-    f = _pp_axis_function(EI, m, L, [(float(x), float(k), 0) for x, k, _ in supports])
-    grid = np.linspace(1e-3, omega_scan, 3000)
-    values = [f(w) for w in grid]
-    starts = [0.5 * (a + b) for a, b, fa, fb in zip(grid, grid[1:], values, values[1:])
-              if fa * fb < 0]
-    roots = []
-    with mpmath.workdps(dps):
-        EI, m, L = _mp(EI), _mp(m), _mp(L)
-        supports = [(_mp(x), _mp(k), _mp(c)) for x, k, c in supports]
-        for w0 in starts:
-            z = mpmath.mpc(0, w0)
-            n = round(float(mpmath.sqrt(w0 / mpmath.sqrt(EI / m)) * L / mpmath.pi))
-            if n and all(abs(mpmath.sin(n * mpmath.pi * x / L)) < 1e-12 for x, _, _ in supports):
-                continue    # a pinned-pinned mode with a node at every support (G has a pole)
-            for s in range(steps + 1):
-                sup = [(x, k, c * mpmath.mpf(s) / steps) for x, k, c in supports]
-                z = mpmath.findroot(lambda q, sup=sup: pp_char(q, EI, m, L, sup),
-                                    (z, z + mpmath.mpc(1e-3, 1e-3)))
-            roots.append(z)
-    return roots
-
-
 def assert_digits_correct(printed: str, exact, digits: int):
     """Every printed significant digit of ``printed`` is correct for ``exact``."""
     if printed == "0":
@@ -144,28 +62,9 @@ def assert_digits_correct(printed: str, exact, digits: int):
     assert error <= ulp / 2 * Decimal("1.0001"), (printed, mpmath.nstr(exact, digits + 5), digits)
 
 
-def ex4_numbers():
-    with mpmath.workdps(40):
-        sq = mpmath.mpf("146.2698") / mpmath.pi**2    # sqrt(EI/m)
-        EI = sq**2
-        return EI, 25 * EI, 5 * sq, sq                  # EI, k, c, sqrt(EI/m)
-
-
 @pytest.fixture(scope="module")
 def ex4_reference():
-    """Example 4 from the decoupled families: [(lam, family)] with Im lam <= 1500."""
-    EI, k, c, sq = ex4_numbers()
-    with mpmath.workdps(40):
-        x1 = mpmath.mpf(1) / 4
-        out = []
-        for n in range(1, 4):     # mu = 0: (n pi)^2 sqrt(EI/m), within 1500 for n <= 3
-            out.append((mpmath.mpc(0, (n * mpmath.pi) ** 2 * sq), 0))
-        for mu in (1, 3):
-            sup = [(x1, mu * k, mu * c), (1 - x1, mu * k, mu * c)]
-            for z in pp_damped_roots(EI, 1, 1, sup, 3000):
-                if z.imag <= 1500 and -3000 <= z.real <= 0:
-                    out.append((z, mu))
-    return sorted(out, key=lambda t: t[0].imag)
+    return damped_reference.ex4_reference()
 
 
 @pytest.fixture(scope="module")

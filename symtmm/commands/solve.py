@@ -44,11 +44,16 @@ def add_arguments(parser):
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search: default")
     parser.add_argument("--json", action="store_true", help="JSON output")
+    parser.add_argument("--certified", action="store_true",
+                        help="add rigorous enclosures from ball arithmetic (needs python-flint)")
 
 
 def run(args) -> int:
     from ..solve import solve
 
+    if args.certified:
+        from ..roots.certified import require_flint
+        require_flint()     # fail before the search, with a one-line message
     model = load_model_arg(args)
     count = args.count if args.count is not None or args.omega_max is not None else 10
     try:
@@ -57,10 +62,39 @@ def run(args) -> int:
     except ModelError as exc:
         raise exc.with_source(args.model) from None
     spectrum = spectrum.with_model_name(args.model)
+    if args.certified:
+        return _print_certified(model, spectrum, args.json)
     if args.json:
         print(spectrum.to_json())
     else:
         if model.title:
             print(model.title)
         print(spectrum.table())
+    return 0
+
+
+def _print_certified(model, spectrum, as_json: bool) -> int:
+    """The spectrum with an "enclosure" per eigenvalue (see symtmm.roots.certified)."""
+    import json
+
+    from ..roots.certified import certify
+
+    enclosures = certify(model, spectrum)
+    if as_json:
+        data = spectrum.to_dict()
+        for item, enc in zip(data["eigenvalues"], enclosures):
+            item["enclosure"] = enc.to_dict(spectrum.digits)
+        print(json.dumps(data, indent=2))
+        return 0
+    if model.title:
+        print(model.title)
+    print(spectrum.table())
+    print("certified enclosures (Arb ball arithmetic):")
+    for i, enc in enumerate(enclosures, 1):
+        d = enc.to_dict(spectrum.digits)
+        if not d["certified"]:
+            print(f"{i:3d}  not certified (multiple eigenvalue)")
+            continue
+        print(f"{i:3d}  {d['proof']:<11}  Re in [{d['real'][0]}, {d['real'][1]}]  "
+              f"Im in [{d['imag'][0]}, {d['imag'][1]}]")
     return 0

@@ -1,0 +1,542 @@
+"""Certified eigenvalue enclosures in ball arithmetic (needs python-flint).
+
+``Delta(lam)`` and its derivative are evaluated in Arb ball arithmetic
+(``flint.acb``): every operation returns a ball guaranteed to contain the
+exact result, and the model's exact parameters (rationals, ``pi``, square
+roots) are enclosed exactly as well. The transfer matrices use the entire
+functions ``c_j(x)`` of ``x = (beta l)**4``: for ``|x| <= 1`` their series
+with a bound on the tail, otherwise the closed forms in ``nu = x**(1/4)``
+on a branch away from the ball.
+
+Proofs, per eigenvalue:
+
+* ``exact``: ``lam = 0`` for rigid-body modes (the exact rank of ``R(0)``).
+* ``sign change``: a real function that changes sign has a zero between.
+  ``Delta(i omega)`` of an undamped model and ``Delta(x)`` on the real axis
+  are real; balls of opposite sign at the two ends of a bracket prove a root
+  inside it (an odd number of them, counting multiplicity).
+* ``Krawczyk``: for a box ``B`` around an approximation ``z``,
+  ``K = z - Y Delta(z) + (1 - Y Delta'(B)) (B - z)`` with ``Y ~ 1/Delta'(z)``;
+  ``K`` inside ``B`` proves exactly one simple zero in ``B``, and it lies in
+  ``K``. ``z`` is first polished in mpmath, and ``B`` is taken small enough
+  (about ``10**-(digits lost + 8) |lam|``) for the enclosure of ``Delta'(B)``
+  to be tight.
+* ``none``: multiple eigenvalues (``Delta'`` vanishes there) are not
+  certified; they are reported with ``"certified": false``.
+
+A certified eigenvalue whose real part is printed as ``0`` (an undamped mode
+of a damped model) gets an enclosure of its real part around 0: ball
+arithmetic proves that the real part is tiny, never that it is exactly zero.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import mpmath
+import sympy as sp
+
+from ..assembly import Interval, Layout
+from ..compile import Evaluator
+from ..elements import STATE
+from ..elements.base import CONJUGATE, LAM
+from ..errors import ComputationError
+from ..model import Model
+from ..results import Eigenvalue, Spectrum
+
+__all__ = ["ArbDelta", "Enclosure", "certify", "require_flint"]
+
+
+def require_flint():
+    """The ``flint`` module, or a one-line :class:`ComputationError` saying how to get it."""
+    try:
+        import flint
+    except ImportError:
+        raise ComputationError("certified enclosures need python-flint: "
+                               "pip install 'symtmm[certified]'") from None
+    return flint
+
+
+# -- exact values as balls --------------------------------------------------------------
+def to_arb(expr, flint):
+    """An exact real SymPy number as an arb ball (at the working precision).
+
+    Examples
+    --------
+    >>> import flint
+    >>> with flint.ctx.workprec(100):
+    ...     b = to_arb(sp.sqrt(2) * sp.pi / 3, flint)
+    >>> b.contains(flint.arb("1.48096098"))
+    False
+    >>> abs(float(b.mid()) - 1.4809609793861218) < 1e-15
+    True
+    """
+    arb = flint.arb
+    expr = sp.sympify(expr)
+    if expr.is_Integer:
+        return arb(flint.fmpz(int(expr)))
+    if expr.is_Rational:
+        return arb(flint.fmpq(int(expr.p), int(expr.q)))
+    if expr is sp.pi:
+        return arb.pi()
+    if expr.is_Add:
+        total = arb(0)
+        for term in expr.args:
+            total += to_arb(term, flint)
+        return total
+    if expr.is_Mul:
+        prod = arb(1)
+        for factor in expr.args:
+            prod *= to_arb(factor, flint)
+        return prod
+    if expr.is_Pow:
+        base, exp = expr.args
+        b = to_arb(base, flint)
+        if exp.is_Integer:
+            return b ** int(exp)
+        if exp.is_Rational:
+            root = b.sqrt() if exp.q == 2 else b ** arb(flint.fmpq(1, int(exp.q)))
+            return root ** int(exp.p)
+    raise ComputationError(f"cannot enclose {expr} in ball arithmetic")
+
+
+def _arb_exact(x, flint):
+    """An mpmath ``mpf`` (or int/float) as an exact arb (no rounding on the way)."""
+    if not isinstance(x, mpmath.mpf):
+        with mpmath.workprec(1100):     # ints and floats are exact at this precision
+            x = mpmath.mpf(x)
+    sign, man, exp, _ = x._mpf_
+    if man == 0:
+        return flint.arb(0)
+    value = flint.arb(flint.fmpz(int(man))) * flint.arb(2) ** int(exp)
+    return -value if sign else value
+
+
+def _acb_exact(z, flint):
+    """An mpmath ``mpc`` (or complex) as an exact acb (``mpc()`` would round it)."""
+    if isinstance(z, mpmath.mpc):
+        return flint.acb(_arb_exact(z.real, flint), _arb_exact(z.imag, flint))
+    z = complex(z)
+    return flint.acb(_arb_exact(z.real, flint), _arb_exact(z.imag, flint))
+
+
+# -- Delta and Delta' in ball arithmetic --------------------------------------------------
+_FACTORIAL = [math.factorial(n) for n in range(200)]
+
+
+class ArbDelta:
+    """``Delta(lam)`` and ``Delta'(lam)`` of a numeric model for ``acb`` balls ``lam``.
+
+    Works at flint's working precision (``flint.ctx.workprec``).
+
+    Examples
+    --------
+    >>> import flint
+    >>> from symtmm.model import Beam, Model
+    >>> f = ArbDelta(Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),)))
+    >>> with flint.ctx.workprec(200):
+    ...     d = f.value(flint.acb(0, flint.arb.pi() ** 2))     # the first root, pi^2 i
+    >>> d.contains(0)
+    True
+    """
+
+    def __init__(self, model: Model):
+        self.flint = require_flint()
+        self.model = model.require_numeric()
+        self.layout = Layout(self.model)
+        self.n = self.layout.levels
+        self.evaluations = 0
+        self._cache: dict = {}
+
+    def _consts(self, key, exprs):
+        prec = self.flint.ctx.prec
+        hit = self._cache.get((key, prec))
+        if hit is None:
+            hit = tuple(to_arb(e, self.flint) for e in exprs)
+            self._cache[(key, prec)] = hit
+        return hit
+
+    def _c_functions(self, x):
+        """``c_0..c_3`` at the ball ``x`` and their derivatives ``dc_j/dx``."""
+        acb, arb = self.flint.acb, self.flint.arb
+        if x.abs_upper() <= 1:
+            bits = self.flint.ctx.prec
+            K = 4
+            while (K < 190 // 4 - 1
+                   and arb(1) / _FACTORIAL[4 * K] > arb(2) ** (-bits - 10)):
+                K += 1
+            xm = x.abs_upper()
+            cs, ds = [], []
+            for j in range(4):
+                c, d, p = acb(0), acb(0), acb(1)          # p = x**k
+                for k in range(K):
+                    c += p / _FACTORIAL[4 * k + j]
+                    if k + 1 < K:
+                        d += (k + 1) * p / _FACTORIAL[4 * (k + 1) + j]
+                    p *= x
+                # tails: consecutive terms shrink by at least 1/2 for |x| <= 1
+                tail = 2 * xm ** K / _FACTORIAL[4 * K + j]
+                dtail = 2 * K * xm ** (K - 1) / _FACTORIAL[4 * K + j]
+                cs.append(c + acb(arb(0, tail), arb(0, tail)))
+                ds.append(d + acb(arb(0, dtail), arb(0, dtail)))
+            return cs, ds
+        # nu = x**(1/4) on a branch whose cut is away from x: every c_j depends on nu**4 only
+        mid = x.mid()
+        if mid.real >= 0:
+            nu = x.root(4)
+        else:
+            nu = (-x).root(4) * acb(arb(2).sqrt() / 2, arb(2).sqrt() / 2)
+        ch, sh = nu.cosh(), nu.sinh()
+        co, si = nu.cos(), nu.sin()
+        c0 = (ch + co) / 2
+        c1 = (sh + si) / (2 * nu)
+        c2 = (ch - co) / (2 * nu ** 2)
+        c3 = (sh - si) / (2 * nu ** 3)
+        # d/dx [nu^j c_j] = nu^(j-1) c_(j-1) (d/dnu) / (4 nu^3) gives these:
+        d0 = c3 / 4
+        d1 = (c0 - c1) / (4 * x)
+        d2 = (c1 - 2 * c2) / (4 * x)
+        d3 = (c2 - 3 * c3) / (4 * x)
+        return [c0, c1, c2, c3], [d0, d1, d2, d3]
+
+    def _segment(self, seg, lam):
+        """Transfer matrix of a segment and its derivative in ``lam`` (4x4 lists of acb)."""
+        EI, m, l = self._consts(("seg", id(seg)), (seg.EI, seg.m, seg.l))
+        a = m * l ** 4 / EI
+        x = -(lam * lam) * a
+        dx = -2 * lam * a
+        (c0, c1, c2, c3), (d0, d1, d2, d3) = self._c_functions(x)
+        U = [[c0, l * c1, l ** 2 * c2 / EI, l ** 3 * c3 / EI],
+             [x * c3 / l, c0, l * c1 / EI, l ** 2 * c2 / EI],
+             [EI * x * c2 / l ** 2, EI * x * c3 / l, c0, l * c1],
+             [EI * x * c1 / l ** 3, EI * x * c2 / l ** 2, x * c3 / l, c0]]
+        # derivatives in x, then times dx/dlam
+        xc1, xc2, xc3 = c1 + x * d1, c2 + x * d2, c3 + x * d3
+        dU = [[d0, l * d1, l ** 2 * d2 / EI, l ** 3 * d3 / EI],
+              [xc3 / l, d0, l * d1 / EI, l ** 2 * d2 / EI],
+              [EI * xc2 / l ** 2, EI * xc3 / l, d0, l * d1],
+              [EI * xc1 / l ** 3, EI * xc2 / l ** 2, xc3 / l, d0]]
+        dU = [[v * dx for v in row] for row in dU]
+        return U, dU
+
+    def _point(self, element, levels, lam):
+        """``(I + G, G')`` of a point element on the stacked state, as dicts of entries."""
+        key = ("pt", id(element))
+        k, c = self._consts(key, (element.k, element.c))
+        kc = k + c * lam
+        G, dG = {}, {}
+        kc_exact = element.k + element.c * LAM
+        if kc_exact == 0:
+            return G, dG
+        # spring/dashpot stiffness matrices are (k + c lam) times a constant pattern
+        S = (element.stiffness(LAM) / kc_exact).applyfunc(sp.simplify)
+        pattern = [[int(S[i, j]) for j in range(S.cols)] for i in range(S.rows)]
+        for row, (lvl_r, var_r) in enumerate(element.dofs):
+            force, sign = CONJUGATE[var_r]
+            r = 4 * levels[lvl_r] + STATE.index(force)
+            for col, (lvl_c, var_c) in enumerate(element.dofs):
+                s = sign * pattern[row][col]
+                if s:
+                    cidx = 4 * levels[lvl_c] + STATE.index(var_c)
+                    G[(r, cidx)] = G.get((r, cidx), 0) + s * kc
+                    dG[(r, cidx)] = dG.get((r, cidx), 0) + s * c
+        return G, dG
+
+    def matrices(self, lam):
+        """``(R, R')`` at the ball ``lam`` as ``acb_mat``."""
+        self.evaluations += 1
+        acb, acb_mat = self.flint.acb, self.flint.acb_mat
+        N = 4 * self.n
+        cols = self.layout.columns
+        E = [[acb(1) if i == c else acb(0) for c in cols] for i in range(N)]
+        dE = [[acb(0) for _ in cols] for _ in range(N)]
+        for step in self.layout.steps:
+            if isinstance(step, Interval):
+                for lvl, seg in step.segments:
+                    U, dU = self._segment(seg, lam)
+                    blk = range(4 * lvl, 4 * lvl + 4)
+                    old = [E[i] for i in blk]
+                    dold = [dE[i] for i in blk]
+                    for a, i in enumerate(blk):
+                        E[i] = [sum((U[a][b] * old[b][j] for b in range(4)), acb(0))
+                                for j in range(len(cols))]
+                        dE[i] = [sum((dU[a][b] * old[b][j] + U[a][b] * dold[b][j]
+                                      for b in range(4)), acb(0)) for j in range(len(cols))]
+            else:
+                # point matrices are I + G with G G' = 0 on a station: they add up
+                jump, djump = {}, {}
+                for element, levels in step.elements:
+                    G, dG = self._point(element, levels, lam)
+                    for key, v in G.items():
+                        jump[key] = jump.get(key, 0) + v
+                    for key, v in dG.items():
+                        djump[key] = djump.get(key, 0) + v
+                newE = [row[:] for row in E]
+                newdE = [row[:] for row in dE]
+                for (r, cidx), v in jump.items():
+                    dv = djump.get((r, cidx), 0)
+                    for j in range(len(cols)):
+                        newE[r][j] += v * E[cidx][j]
+                        newdE[r][j] += v * dE[cidx][j] + dv * E[cidx][j]
+                E, dE = newE, newdE
+        rows = self.layout.rows
+        R = acb_mat([E[r] for r in rows])
+        dR = acb_mat([dE[r] for r in rows])
+        return R, dR
+
+    def value(self, lam):
+        """``Delta(lam)``."""
+        R, _ = self.matrices(lam)
+        return R.det() if R.nrows() else self.flint.acb(1)
+
+    def value_and_derivative(self, lam):
+        """``(Delta(lam), Delta'(lam))``; Jacobi's formula column by column."""
+        R, dR = self.matrices(lam)
+        n = R.nrows()
+        if n == 0:
+            return self.flint.acb(1), self.flint.acb(0)
+        delta = R.det()
+        deriv = self.flint.acb(0)
+        for j in range(n):
+            M = self.flint.acb_mat(R)
+            for i in range(n):
+                M[i, j] = dR[i, j]
+            deriv += M.det()
+        return delta, deriv
+
+
+# -- enclosures ------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Enclosure:
+    """A rigorous enclosure of one eigenvalue (or the reason there is none).
+
+    Attributes
+    ----------
+    eigenvalue : Eigenvalue
+        The reported value.
+    real, imag : tuple of mpmath.mpf or None
+        ``(lower, upper)`` bounds of the real and imaginary part.
+    proof : str
+        ``"exact"``, ``"sign change"``, ``"Krawczyk"`` or ``"none"``.
+    """
+
+    eigenvalue: Eigenvalue
+    real: tuple | None
+    imag: tuple | None
+    proof: str
+
+    @property
+    def certified(self) -> bool:
+        return self.proof != "none"
+
+    @property
+    def radius(self):
+        """Half the larger side of the enclosing box (None when not certified)."""
+        if not self.certified:
+            return None
+        with mpmath.workdps(60):
+            return max((hi - lo) / 2 for lo, hi in (self.real, self.imag))
+
+    def contains(self, z) -> bool:
+        """``z`` lies in the enclosure."""
+        if not self.certified:
+            return False
+        if not isinstance(z, mpmath.mpc):
+            with mpmath.workprec(1100):      # exact for ints, floats and complex
+                z = mpmath.mpc(z)
+        return (self.real[0] <= z.real <= self.real[1]
+                and self.imag[0] <= z.imag <= self.imag[1])
+
+    def to_dict(self, digits: int) -> dict:
+        """JSON-ready: outward-rounded decimal bounds with ``digits + 3`` digits."""
+        if not self.certified:
+            return {"certified": False, "proof": "none"}
+        d = digits + 3
+        return {"certified": True, "proof": self.proof,
+                "real": [_decimal(self.real[0], d, -1), _decimal(self.real[1], d, +1)],
+                "imag": [_decimal(self.imag[0], d, -1), _decimal(self.imag[1], d, +1)],
+                "radius": _decimal(self.radius, 3, +1)}
+
+
+def _decimal(x, digits: int, direction: int) -> str:
+    """``x`` rounded down (-1) or up (+1) to ``digits`` significant digits, as a string.
+
+    Examples
+    --------
+    >>> _decimal(mpmath.mpf(2) / 3, 4, -1), _decimal(mpmath.mpf(2) / 3, 4, +1)
+    ('0.6666', '0.6667')
+    >>> _decimal(mpmath.mpf(0), 4, 1)
+    '0'
+    """
+    if x == 0:
+        return "0"
+    with mpmath.workdps(digits + 40):
+        x = mpmath.mpf(x)
+        e = int(mpmath.floor(mpmath.log10(abs(x))))
+        scale = mpmath.mpf(10) ** (digits - 1 - e)
+        q = mpmath.floor(x * scale) if direction < 0 else mpmath.ceil(x * scale)
+        places = digits - 1 - e
+    if places < 0:
+        return str(int(q) * 10 ** (-places))
+    return _fixed(int(q), places)
+
+
+def _fixed(q: int, places: int) -> str:
+    """The integer ``q`` scaled by ``10**-places`` as a plain decimal string."""
+    sign = "-" if q < 0 else ""
+    digits = str(abs(q)).rjust(places + 1, "0")
+    if places == 0:
+        return sign + digits
+    return f"{sign}{digits[:-places]}.{digits[-places:]}"
+
+
+class _Certifier:
+    def __init__(self, model: Model, digits: int):
+        self.flint = require_flint()
+        self.model = model.require_numeric()
+        self.digits = digits
+        self.f = ArbDelta(self.model)
+        self.ev = Evaluator(self.model)
+
+    def _bits(self, lam, extra_digits) -> int:
+        lost = self.ev.digits_lost(complex(lam))
+        return int(3.33 * (lost + extra_digits + 20)) + 32
+
+    # -- sign changes ------------------------------------------------------------------
+    def sign_change(self, lo, hi, axis: str):
+        """Opposite signs of the real function Delta at the two ends (``axis`` "imag"/"real")."""
+        acb = self.flint.acb
+        for extra in (self.digits + 10, 2 * self.digits + 30, 4 * self.digits + 60):
+            with self.flint.ctx.workprec(self._bits(hi if axis == "real" else 1j * hi, extra)):
+                values = []
+                for t in (lo, hi):
+                    a = _arb_exact(t, self.flint)
+                    lam = acb(0, a) if axis == "imag" else acb(a, 0)
+                    values.append(self.f.value(lam).real)
+                if (values[0] > 0 and values[1] < 0) or (values[0] < 0 and values[1] > 0):
+                    return True
+        return False
+
+    # -- Krawczyk ------------------------------------------------------------------------
+    def krawczyk(self, lam):
+        """``(real bounds, imag bounds)`` of a proved simple zero near ``lam``, or None."""
+        acb, arb = self.flint.acb, self.flint.arb
+        size = float(abs(lam)) or 1.0
+        lost = self.ev.digits_lost(complex(lam))
+        parts = [abs(float(p)) for p in (lam.real, lam.imag) if p != 0]
+        small = math.log10(size / min(parts)) if parts else 0.0
+        k = max(math.ceil(lost) + 8, self.digits + 3 + math.ceil(small))
+        for attempt in range(3):
+            z = self._polish(lam, k + 10 + 10 * attempt)
+            if z is None:
+                return None
+            r = mpmath.mpf(10) ** (-k) * size
+            bits = int(3.33 * (lost + k + 25 + 10 * attempt)) + 32
+            with self.flint.ctx.workprec(bits):
+                zc = _acb_exact(z, self.flint)
+                rad = _arb_exact(r, self.flint)
+                box = acb(arb(zc.real, rad), arb(zc.imag, rad))
+                fz, dfz = self.f.value_and_derivative(zc)
+                _, dfB = self.f.value_and_derivative(box)
+                Y = 1 / acb(dfz.mid())
+                Y = acb(Y.mid())
+                K = zc - Y * fz + (1 - Y * dfB) * (box - zc)
+                inside = (K.real.lower() > box.real.lower() and K.real.upper() < box.real.upper()
+                          and K.imag.lower() > box.imag.lower()
+                          and K.imag.upper() < box.imag.upper())
+                if inside:
+                    return ((_to_mpf(K.real.lower()), _to_mpf(K.real.upper())),
+                            (_to_mpf(K.imag.lower()), _to_mpf(K.imag.upper())))
+            k += 4
+        return None
+
+    def _polish(self, lam, extra):
+        """Newton in mpmath to ``10**-(extra)`` relative, at enough digits."""
+        lost = math.ceil(self.ev.digits_lost(complex(lam)))
+        dps = lost + extra + 20
+        with mpmath.workdps(dps):
+            z = lam + 0      # (a copy at this precision; mpc(lam) would round an mpc)
+            h = abs(z) * mpmath.mpf(10) ** -(dps // 2)
+            tol = abs(z) * mpmath.mpf(10) ** -(extra + 5)
+            for _ in range(40):
+                f0 = self.ev.delta_mp(z)
+                if f0 == 0:
+                    return z
+                d = (self.ev.delta_mp(z + h) - f0) / h
+                if d == 0:
+                    return None
+                step = f0 / d
+                z -= step
+                if abs(step) < tol:
+                    return z
+        return None
+
+    # -- one eigenvalue ----------------------------------------------------------------------
+    def enclose(self, e: Eigenvalue) -> Enclosure:
+        lam = e.lam
+        zero = mpmath.mpf(0)
+        if e.multiplicity > 1:
+            if lam == 0 and e.bracket == (0.0, 0.0):
+                return Enclosure(e, (zero, zero), (zero, zero), "exact")
+            return Enclosure(e, None, None, "none")
+        bracket = e.bracket if isinstance(e.bracket, tuple) and len(e.bracket) == 2 \
+            and not isinstance(e.bracket[0], tuple) else None
+        if lam == 0 and bracket == (0.0, 0.0):
+            return Enclosure(e, (zero, zero), (zero, zero), "exact")
+        if bracket is not None and lam.imag == 0 and lam.real != 0:
+            lo, hi = sorted(bracket)
+            if self.sign_change(lo, hi, "real"):
+                return Enclosure(e, (_exact_mpf(lo), _exact_mpf(hi)), (zero, zero), "sign change")
+        if bracket is not None and lam.real == 0 and not self.model.damped and lam.imag != 0:
+            lo, hi = sorted(bracket)
+            if lo < hi and self.sign_change(lo, hi, "imag"):
+                return Enclosure(e, (zero, zero), (_exact_mpf(lo), _exact_mpf(hi)), "sign change")
+        box = self.krawczyk(lam)
+        if box is None:
+            return Enclosure(e, None, None, "none")
+        return Enclosure(e, box[0], box[1], "Krawczyk")
+
+
+def _exact_mpf(x):
+    """``x`` as an mpmath number without rounding (``mpf()`` rounds to the working precision)."""
+    if isinstance(x, mpmath.mpf):
+        return x
+    with mpmath.workprec(1100):
+        return mpmath.mpf(x)
+
+
+def _to_mpf(ball):
+    """An exact arb (a bound, radius 0) as an exact mpmath number."""
+    man, exp = ball.man_exp()
+    with mpmath.workprec(max(int(man).bit_length(), 53) + 10):
+        return mpmath.ldexp(mpmath.mpf(int(man)), int(exp))
+
+
+def certify(model: Model, spectrum: Spectrum) -> list:
+    """Rigorous enclosures of the eigenvalues of ``spectrum`` (one :class:`Enclosure` each).
+
+    Parameters
+    ----------
+    model : Model
+        The model the spectrum belongs to.
+    spectrum : Spectrum
+
+    Raises
+    ------
+    ComputationError
+        Without python-flint.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> from symtmm.solve import solve
+    >>> pp = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
+    >>> enc = certify(pp, solve(pp, count=2, digits=12))
+    >>> with mpmath.workdps(40):                   # the roots (n pi)^2 i, to 40 digits
+    ...     inside = [e.contains(mpmath.mpc(0, (n * mpmath.pi) ** 2)) for e, n in zip(enc, (1, 2))]
+    >>> [e.proof for e in enc], inside
+    (['sign change', 'sign change'], [True, True])
+    """
+    certifier = _Certifier(model, spectrum.digits)
+    return [certifier.enclose(e) for e in spectrum]

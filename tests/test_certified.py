@@ -1,0 +1,135 @@
+"""Certified enclosures (python-flint ball arithmetic) contain independent references."""
+
+from __future__ import annotations
+
+import builtins
+import json
+from pathlib import Path
+
+import mpmath
+import pytest
+from damped_reference import ex4_reference, pp_char
+
+from symtmm.cli import main
+from symtmm.errors import ComputationError
+from symtmm.model import Beam, Model, Spring
+from symtmm.modelfile import load
+from symtmm.solve import solve
+
+flint = pytest.importorskip("flint")
+from symtmm.roots.certified import ArbDelta, certify, require_flint, to_arb
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EX4 = EXAMPLES / "paper_ex4_damped.toml"
+PP = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
+
+
+def test_arb_delta_encloses_the_mpmath_value():
+    """The ball for Delta contains the 60-digit transfer-matrix value (second formulation)."""
+    from symtmm.compile import Evaluator
+    model = load(EX4)
+    f, ev = ArbDelta(model), Evaluator(model)
+    for z in (mpmath.mpc(-1000, 700), mpmath.mpc(-0.25, 3), mpmath.mpc(-30, 0)):
+        with flint.ctx.workprec(300):
+            ball = f.value(flint.acb(z.real, z.imag))
+        with mpmath.workdps(60):
+            exact = ev.delta_mp(z)
+            assert ball.contains(flint.acb(exact.real, exact.imag)) or \
+                abs(complex(ball.mid()) - complex(exact)) < 1e-40 * abs(exact)
+        assert ball.rad() < 1e-50 * abs(complex(ball.mid()))
+
+
+def test_arb_derivative_matches_a_difference_quotient():
+    model = load(EX4)
+    f = ArbDelta(model)
+    with flint.ctx.workprec(300):
+        _, d = f.value_and_derivative(flint.acb(-200, 300))
+        h = flint.acb(flint.arb(10) ** -30)
+        q = (f.value(flint.acb(-200, 300) + h) - f.value(flint.acb(-200, 300) - h)) / (2 * h)
+    assert abs(complex(d.mid()) - complex(q.mid())) < 1e-20 * abs(complex(d.mid()))
+
+
+def test_exact_parameters_as_balls():
+    import sympy as sp
+    with flint.ctx.workprec(200):
+        b = to_arb((sp.Rational(1462698, 10000) / sp.pi**2) ** 2, flint)
+    with mpmath.workdps(50):
+        exact = (mpmath.mpf("146.2698") / mpmath.pi**2) ** 2
+    assert abs(float(b.mid()) - float(exact)) < 1e-12 and b.rad() < 1e-50
+
+
+def test_example4_enclosures_contain_decoupled_references():
+    spec = solve(load(EX4), omega_max=1500, digits=15)
+    enclosures = certify(load(EX4), spec)
+    refs = ex4_reference(dps=50)      # the enclosures are about 1e-29 wide
+    assert len(enclosures) == len(refs) == 9
+    for enc, (ref, family) in zip(enclosures, refs):
+        assert enc.proof == "Krawczyk"
+        assert enc.contains(ref), (enc, ref)
+        assert enc.radius < mpmath.mpf(10) ** -17 * abs(ref)
+        if family == 0:         # in-phase: Re = 0 lies inside, not proved to be exact
+            assert enc.real[0] < 0 < enc.real[1]
+
+
+def test_undamped_sign_change_enclosures():
+    spec = solve(PP, count=4, digits=20)
+    enclosures = certify(PP, spec)
+    for n, enc in enumerate(enclosures, 1):
+        assert enc.proof == "sign change"
+        with mpmath.workdps(50):
+            assert enc.contains(mpmath.mpc(0, (n * mpmath.pi) ** 2))
+        assert enc.real == (0, 0)
+
+
+def test_real_eigenvalue_sign_change_enclosure():
+    model = Model(PP.beams, (Spring("b", "ground", x="1/2", k=0, c=50),))
+    spec = solve(model, omega_max=100, digits=15)
+    enclosures = certify(model, spec)
+    real = [enc for enc in enclosures if enc.eigenvalue.lam.imag == 0]
+    assert len(real) == 1 and real[0].proof == "sign change"
+    with mpmath.workdps(40):
+        sup = [(mpmath.mpf(1) / 2, 0, 50)]
+        ref = mpmath.findroot(lambda s: mpmath.re(pp_char(mpmath.mpc(s, 0), 1, 1, 1, sup)),
+                              (-1.2, -0.8), solver="anderson")
+    assert real[0].contains(ref)
+    assert all(enc.certified for enc in enclosures)
+
+
+def test_rigid_modes_exact_and_multiple_roots_not_certified():
+    beams = tuple(Beam(n, EI=1, m=1, L=1, left="free", right="free") for n in "ab")
+    model = Model(beams, (Spring("a", "b", x="1/2", k=30, c=0),))
+    spec = solve(model, count=4, digits=12)
+    enclosures = certify(model, spec)
+    assert enclosures[0].proof == "exact" and enclosures[0].contains(0)
+    triple = Model(tuple(Beam(n, EI=1, m=1, L=1, left="pinned", right="pinned") for n in "abc"))
+    enc = certify(triple, solve(triple, count=3, digits=12))
+    assert [e.certified for e in enc] == [False]
+    assert enc[0].to_dict(12) == {"certified": False, "proof": "none"}
+
+
+def test_cli_certified_json(capsys):
+    assert main(["solve", str(EX4), "--omega-max", "200", "--digits", "12", "--json",
+                 "--certified"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    first = out["eigenvalues"][0]
+    lo, _ = (mpmath.mpf(v) for v in first["enclosure"]["imag"])
+    assert first["enclosure"]["certified"] and first["enclosure"]["proof"] == "Krawczyk"
+    # the printed 12 digits are the enclosure rounded
+    assert abs(mpmath.mpf(first["imag"]) - lo) < mpmath.mpf(10) ** -10
+    assert mpmath.mpf(first["enclosure"]["radius"]) < mpmath.mpf(10) ** -12
+
+
+def test_without_flint_one_line_error(monkeypatch, capsys):
+    real_import = builtins.__import__
+
+    def no_flint(name, *args, **kwargs):
+        if name == "flint" or name.startswith("flint."):
+            raise ImportError("No module named 'flint'")
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_flint)
+    with pytest.raises(ComputationError, match="python-flint"):
+        require_flint()
+    assert main(["solve", str(EX4), "--count", "2", "--certified"]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "python-flint" in err
