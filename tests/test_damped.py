@@ -35,12 +35,15 @@ import numpy as np
 import pytest
 import scipy.linalg
 from damped_reference import pp_char, pp_damped_roots
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from symtmm.cli import main
 from symtmm.compile import Evaluator
 from symtmm.fe import fe_matrices
 from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load
+from symtmm.results import decimal_string
 from symtmm.roots.damped import count_in_rectangle, default_sigma_max, solve_damped
 from symtmm.roots.dynamic_stiffness import DynamicStiffness
 from symtmm.roots.undamped import solve_undamped
@@ -324,3 +327,62 @@ def test_default_method_routes_damped_models():
     spec = solve(model, count=1, digits=8)
     assert spec[0].to_dict()["real"] == "-2.6916884"
     assert math.isclose(float(spec[0].lam.imag), 9.644173516, rel_tol=1e-9)
+
+
+# -- properties on random damped two-beam models ---------------------------------------------
+_ENDS = [("pinned", "pinned"), ("clamped", "clamped"), ("clamped", "free"),
+         ("pinned", "clamped"), ("clamped", "sliding"), ("pinned", "sliding")]
+
+
+@st.composite
+def damped_two_beam_models(draw):
+    """Two beams (no rigid-body mode), one or two spring/dashpots between them, maybe one
+    to the ground; exact rational data."""
+    beams = []
+    for name in ("a", "b"):
+        left, right = draw(st.sampled_from(_ENDS))
+        EI = Fraction(draw(st.integers(2, 8)), 4)
+        m = Fraction(draw(st.integers(2, 8)), 4)
+        beams.append(Beam(name, EI=str(EI), m=str(m), L=1, left=left, right=right))
+    springs = []
+    for _ in range(draw(st.integers(1, 2))):
+        x = Fraction(draw(st.integers(1, 15)), 16)
+        springs.append(Spring("a", "b", x=str(x), k=draw(st.integers(0, 40)),
+                              c=str(Fraction(draw(st.integers(1, 40)), 4))))
+    if draw(st.booleans()):
+        x = Fraction(draw(st.integers(1, 15)), 16)
+        springs.append(Spring(draw(st.sampled_from("ab")), "ground", x=str(x),
+                              k=draw(st.integers(0, 20)),
+                              c=str(Fraction(draw(st.integers(0, 20)), 4))))
+    return Model(tuple(beams), tuple(springs))
+
+
+@settings(max_examples=5, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.too_slow])
+@given(damped_two_beam_models())
+def test_random_models_count_matches_roots_and_digits_are_stable(model):
+    W = 40.0
+    low = solve_damped(model, omega_max=W, digits=8)
+    high = solve_damped(model, omega_max=W, digits=16)
+    # the same eigenvalues at both precisions: the 16-digit ones round to the 8-digit ones
+    assert [e.multiplicity for e in low] == [e.multiplicity for e in high]
+    for a, b in zip(low, high):
+        with mpmath.workdps(40):
+            for part_a, part_b in ((a.lam.real, b.lam.real), (a.lam.imag, b.lam.imag)):
+                assert decimal_string(part_b, 8) == decimal_string(part_a, 8)
+    # an independent count over the reported region, mirrored below the real axis
+    S = default_sigma_max(W)
+    counted = count_in_rectangle(model, -S, 0.37, -W, W)
+    found = sum(e.multiplicity * (1 if e.lam.imag == 0 else 2) for e in high)
+    assert counted == found
+    # every eigenvalue is a zero of the transfer-matrix Delta at 40 digits
+    ev = Evaluator(model)
+    with mpmath.workdps(40):
+        for e in high:
+            if e.multiplicity > 1:
+                continue
+            lam = mpmath.mpc(e.lam)
+            h = max(abs(lam), 1) * mpmath.mpf(10) ** -20
+            f0 = ev.delta_mp(lam)
+            step = f0 * h / (ev.delta_mp(lam + h) - f0) if f0 != 0 else 0
+            assert abs(step) <= mpmath.mpf(10) ** -15 * abs(lam)
