@@ -38,7 +38,7 @@ def add_arguments(parser):
     group.add_argument("--omega-max", type=_nonnegative, metavar="W",
                        help="all eigenvalues with 0 <= Im lam <= W (rad/s)")
     parser.add_argument("--sigma-max", type=_nonnegative, metavar="S",
-                        help="damped models: search -S <= Re lam <= 0")
+                        help="damped models: search -S <= Re lam <= 0 (default 2 W)")
     parser.add_argument("--digits", type=_positive_int, default=15, metavar="D",
                         help="significant digits, all correct (default 15)")
     parser.add_argument("--method", default="default", metavar="NAME",
