@@ -386,3 +386,18 @@ def test_random_models_count_matches_roots_and_digits_are_stable(model):
             f0 = ev.delta_mp(lam)
             step = f0 * h / (ev.delta_mp(lam + h) - f0) if f0 != 0 else 0
             assert abs(step) <= mpmath.mpf(10) ** -15 * abs(lam)
+
+
+@pytest.mark.slow
+def test_example4_thirty_digits():
+    """Table 2 at 30 digits against the decoupled families computed at 50."""
+    spec = solve(load(EX4), omega_max=1500, digits=30)
+    refs = damped_reference.ex4_reference(dps=50)
+    assert spec.total == len(refs) == 9
+    for e, (ref, family) in zip(spec, refs):
+        d = e.to_dict()
+        assert_digits_correct(d["imag"], ref.imag, 30)
+        if family == 0:
+            assert d["real"] == "0"
+        else:
+            assert_digits_correct(d["real"], ref.real, 30)
