@@ -221,26 +221,41 @@ class ArbDelta:
         return U, dU
 
     def _point(self, element, levels, lam):
-        """``(I + G, G')`` of a point element on the stacked state, as dicts of entries."""
-        key = ("pt", id(element))
-        k, c = self._consts(key, (element.k, element.c))
-        kc = k + c * lam
-        G, dG = {}, {}
-        kc_exact = element.k + element.c * LAM
-        if kc_exact == 0:
-            return G, dG
-        # spring/dashpot stiffness matrices are (k + c lam) times a constant pattern
-        S = (element.stiffness(LAM) / kc_exact).applyfunc(sp.simplify)
-        pattern = [[int(S[i, j]) for j in range(S.cols)] for i in range(S.rows)]
-        for row, (lvl_r, var_r) in enumerate(element.dofs):
-            force, sign = CONJUGATE[var_r]
-            r = 4 * levels[lvl_r] + STATE.index(force)
-            for col, (lvl_c, var_c) in enumerate(element.dofs):
-                s = sign * pattern[row][col]
-                if s:
+        """``(G, G')`` of a point element on the stacked state, as dicts of entries.
+
+        The transfer matrix across the point is ``I + G``; the element's nodal stiffness
+        ``S(lam) = K0 + lam C + lam**2 M`` (springs, dashpots, masses) enters ``G`` on
+        the force rows conjugate to its displacement freedoms.
+        """
+        prec = self.flint.ctx.prec
+        key = ("pt", id(element), prec)
+        terms = self._cache.get(key)
+        if terms is None:
+            terms = []
+            S = element.stiffness(LAM)
+            for row, (lvl_r, var_r) in enumerate(element.dofs):
+                force, sign = CONJUGATE[var_r]
+                r = 4 * levels[lvl_r] + STATE.index(force)
+                for col, (lvl_c, var_c) in enumerate(element.dofs):
+                    entry = sp.expand(S[row, col])
+                    if entry == 0:
+                        continue
+                    coeffs = sp.Poly(entry, LAM).all_coeffs()[::-1]
                     cidx = 4 * levels[lvl_c] + STATE.index(var_c)
-                    G[(r, cidx)] = G.get((r, cidx), 0) + s * kc
-                    dG[(r, cidx)] = dG.get((r, cidx), 0) + s * c
+                    terms.append((r, cidx, [sign * to_arb(cf, self.flint) for cf in coeffs]))
+            self._cache[key] = terms
+        G, dG = {}, {}
+        for r, cidx, coeffs in terms:
+            value = self.flint.acb(0)
+            deriv = self.flint.acb(0)
+            power = self.flint.acb(1)
+            for degree, cf in enumerate(coeffs):
+                value += cf * power
+                if degree + 1 < len(coeffs):
+                    deriv += (degree + 1) * coeffs[degree + 1] * power
+                power *= lam
+            G[(r, cidx)] = G.get((r, cidx), 0) + value
+            dG[(r, cidx)] = dG.get((r, cidx), 0) + deriv
         return G, dG
 
     def matrices(self, lam):
