@@ -49,7 +49,8 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
     omega_max : float, optional
         All eigenvalues with ``0 <= Im lam <= omega_max`` (instead of ``count``).
     sigma_max : float, optional
-        Damped models: the search region ``-sigma_max <= Re lam <= 0``.
+        Damped models: the search region ``-sigma_max <= Re lam <= 0``
+        (default ``2 omega_max``, see :func:`symtmm.roots.damped.default_sigma_max`).
     digits : int
         Significant digits, all correct.
     method : str

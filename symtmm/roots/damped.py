@@ -30,7 +30,11 @@ Eigenvalues ``lam = -sigma + i omega`` are the zeros of the entire function
    the secant method from the centre of the zero estimated from the contour
    samples, at ``D + digits_lost + 10`` digits plus what a small real or
    imaginary part needs. The zero must stay in its rectangle, and a second
-   refinement 15 digits higher must agree to ``D + 2`` digits in each part.
+   refinement 15 digits higher must agree to ``D + 2`` digits in each part;
+   if a part lies so close to a rounding boundary that the two ends of its
+   error bound print differently at ``D`` digits, more digits are computed
+   (up to 30 more), so the printed digits are correctly rounded. A real
+   zero's bracket is narrowed the same way.
 4. **Undamped modes of damped models** (e.g. beams moving in phase, their
    dashpots idle) have ``Re lam = 0`` exactly; numerically the real part
    comes out as rounding noise. When it is below ``10**-(D+25) |lam|`` and
