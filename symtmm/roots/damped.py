@@ -384,7 +384,7 @@ class _Search:
         return a, b
 
     def _sign_change(self, lo, hi, dps):
-        """``(lo, hi)`` if ``Re Delta`` changes sign across it at ``dps`` digits, else None.
+        """``(lo, hi)`` if ``Re Delta`` changes sign strictly across it at ``dps`` digits.
 
         A zero-width bracket (``Delta`` vanished to the working precision) is widened by
         ``10**-(D+3)`` relative first.
@@ -394,7 +394,9 @@ class _Search:
                 eps = mpmath.mpf(10) ** (-(self.digits + 3)) * abs(lo)
                 lo, hi = lo - eps, hi + eps
             f_lo, f_hi = self._re_delta(mpmath.mpf(lo)), self._re_delta(mpmath.mpf(hi))
-        if (f_lo > 0) != (f_hi > 0) or f_lo == 0 or f_hi == 0:
+        # strict: mpmath.det returns an exact 0 for a matrix singular to the working
+        # precision, which proves nothing (the caller then raises the precision)
+        if (f_lo > 0 and f_hi < 0) or (f_lo < 0 and f_hi > 0):
             return lo, hi
         return None
 
