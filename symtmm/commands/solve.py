@@ -42,7 +42,9 @@ def add_arguments(parser):
     parser.add_argument("--digits", type=_positive_int, default=15, metavar="D",
                         help="significant digits, all correct (default 15)")
     parser.add_argument("--method", default="default", metavar="NAME",
-                        help="root search: default")
+                        help="root search: default (count, isolate, refine), contour "
+                             "(argument principle, any model), fmin1d or fmin2d (the paper's "
+                             "grid searches, for comparison)")
     parser.add_argument("--json", action="store_true", help="JSON output")
     parser.add_argument("--certified", action="store_true",
                         help="add rigorous enclosures from ball arithmetic (needs python-flint)")

@@ -159,7 +159,13 @@ class _Search:
             extra += max(10, dps // 2)
 
     def _f(self, omega):
-        return self.ev.delta_omega_mp(omega)
+        value = self.ev.delta_omega_mp(omega)
+        if value == 0:
+            # mpmath.det returns an exact 0 for a matrix singular at the working
+            # precision: that is no sign, so look again with more digits
+            with mpmath.workdps(2 * mpmath.mp.dps):
+                value = self.ev.delta_omega_mp(omega)
+        return value
 
     def _bracket_refine(self, a, b):
         """Anderson–Björck on Delta; None if Delta shows no sign change (precision)."""
@@ -201,14 +207,14 @@ class _Search:
         return a, b
 
     def _verify(self, lo, hi, dps) -> bool:
-        """Delta changes sign across [lo, hi] at a higher precision too."""
+        """Delta changes sign strictly across [lo, hi] at a higher precision too."""
         if lo == hi:
             with mpmath.workdps(dps):
                 eps = mpmath.mpf(10) ** (-(self.digits + 3)) * abs(lo)
                 lo, hi = lo - eps, hi + eps
         with mpmath.workdps(dps):
             f_lo, f_hi = self._f(mpmath.mpf(lo)), self._f(mpmath.mpf(hi))
-        return (f_lo > 0) != (f_hi > 0) or f_lo == 0 or f_hi == 0
+        return f_lo != 0 and f_hi != 0 and (f_lo > 0) != (f_hi > 0)
 
 
 def solve_undamped(model: Model, count: int | None = None, omega_max=None,
