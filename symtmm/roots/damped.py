@@ -65,6 +65,7 @@ from ..compile import Evaluator
 from ..errors import ComputationError
 from ..model import Model
 from ..results import Eigenvalue, Spectrum, decimal_string
+from .bracket import anderson_bjorck, bracket_done
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
 from .dynamic_stiffness import DynamicStiffness
 from .undamped import omega_scale, rigid_body_modes
@@ -322,7 +323,7 @@ class _Search:
         while dps <= MAX_DPS:
             with mpmath.workdps(dps):
                 a, b = self._global(rect.x0).real, self._global(rect.x1).real
-                lo, hi = self._illinois(a, b)
+                lo, hi = self._shrink(a, b)
             bracket = None if lo is None else self._sign_change(lo, hi, dps + 15)
             if bracket is not None:
                 with mpmath.workdps(dps):
@@ -332,22 +333,10 @@ class _Search:
         raise ComputationError(f"cannot reach {self.digits} digits for the real eigenvalue "
                                f"near {scale:.6g}")
 
-    def _bracket_done(self, a, b) -> bool:
-        """``[a, b]`` is narrow enough: relative width below ``10**-(D+2)`` and both ends
-        round to the same ``D`` digits (so the midpoint prints correctly rounded), or
-        narrower than the working precision can resolve."""
-        limit = mpmath.mpf(10) ** -(mpmath.mp.dps - 5)
-        if a <= 0 <= b:
-            return b - a <= limit * self.p.lam_ref
-        width = (b - a) / min(abs(a), abs(b))
-        if width > mpmath.mpf(10) ** (-(self.digits + 2)):
-            return False
-        return width <= limit or decimal_string(a, self.digits) == decimal_string(b, self.digits)
-
     def _re_delta(self, x):
         return mpmath.re(self.p.delta_mp(mpmath.mpc(x, 0)))
 
-    def _illinois(self, a, b):
+    def _shrink(self, a, b):
         fa, fb = self._re_delta(a), self._re_delta(b)
         if fa == 0:
             return a, a
@@ -355,33 +344,8 @@ class _Search:
             return b, b
         if (fa > 0) == (fb > 0):
             return None, None
-        while not self._bracket_done(a, b):
-            width = b - a
-            c = b - fb * (b - a) / (fb - fa)
-            if not a < c < b:
-                c = (a + b) / 2
-            fc = self._re_delta(c)
-            if fc == 0:
-                return c, c
-            # Anderson-Bjorck: scale the end that stays, so that neither end sticks
-            if (fc > 0) == (fb > 0):
-                m = 1 - fc / fb
-                fa = fa * (m if m > 0 else mpmath.mpf(0.5))
-                b, fb = c, fc
-            else:
-                m = 1 - fc / fa
-                fb = fb * (m if m > 0 else mpmath.mpf(0.5))
-                a, fa = c, fc
-            if b - a > 0.5 * width:
-                mid = (a + b) / 2
-                fm = self._re_delta(mid)
-                if fm == 0:
-                    return mid, mid
-                if (fm > 0) == (fb > 0):
-                    b, fb = mid, fm
-                else:
-                    a, fa = mid, fm
-        return a, b
+        return anderson_bjorck(self._re_delta, a, b, fa, fb,
+                               lambda lo, hi: bracket_done(lo, hi, self.digits, self.p.lam_ref))
 
     def _sign_change(self, lo, hi, dps):
         """``(lo, hi)`` if ``Re Delta`` changes sign strictly across it at ``dps`` digits.

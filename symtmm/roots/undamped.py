@@ -11,9 +11,10 @@
    formulation, real on the frequency axis) with the Anderson–Björck
    bracketing method, in mpmath at ``D + loss + 10`` digits, where ``loss``
    estimates the cancellation in ``Delta`` (``sum beta L / ln 10``). The
-   final bracket, of relative width ``10**-(D+2)``, is then checked at 15
-   more digits: ``Delta`` must still change sign across it, or the precision
-   is raised and the refinement repeated.
+   final bracket, of relative width below ``10**-(D+2)`` and with both ends
+   rounding to the same ``D`` digits, is then checked at 15 more digits:
+   ``Delta`` must still change sign strictly across it, or the precision is
+   raised and the refinement repeated.
 4. **Clusters.** Brackets holding several roots are bisected with the count
    in mpmath at ``D + 15`` digits until each holds one root (then step 3) or
    is narrower than ``10**-(D+2)`` relative: the roots it holds agree to
@@ -33,6 +34,7 @@ from ..compile import Evaluator
 from ..errors import ComputationError
 from ..model import Model
 from ..results import Eigenvalue, Spectrum
+from .bracket import anderson_bjorck, bracket_done
 from ..stiffness import StiffnessModel
 
 __all__ = ["solve_undamped", "rigid_body_modes", "omega_scale"]
@@ -176,35 +178,8 @@ class _Search:
             return b, b
         if (fa > 0) == (fb > 0):
             return None, None
-        tol = mpmath.mpf(10) ** (-(self.digits + 2)) * abs(b)
-        while b - a > tol:
-            width = b - a
-            c = b - fb * (b - a) / (fb - fa)
-            # keep the step inside, at least tol/4 from either end, so the bracket shrinks
-            c = min(max(c, a + tol / 4), b - tol / 4)
-            fc = self._f(c)
-            if fc == 0:
-                return c, c
-            # Anderson–Björck: the end that stays has its value scaled down, which stops
-            # regula falsi from creeping towards the root from one side only.
-            if (fc > 0) == (fb > 0):
-                m = 1 - fc / fb
-                fa = fa * (m if m > 0 else mpmath.mpf(0.5))
-                b, fb = c, fc
-            else:
-                m = 1 - fc / fa
-                fb = fb * (m if m > 0 else mpmath.mpf(0.5))
-                a, fa = c, fc
-            if b - a > 0.5 * width:
-                mid = (a + b) / 2
-                fm = self._f(mid)
-                if fm == 0:
-                    return mid, mid
-                if (fm > 0) == (fb > 0):
-                    b, fb = mid, fm
-                else:
-                    a, fa = mid, fm
-        return a, b
+        return anderson_bjorck(self._f, a, b, fa, fb,
+                               lambda lo, hi: bracket_done(lo, hi, self.digits))
 
     def _verify(self, lo, hi, dps) -> bool:
         """Delta changes sign strictly across [lo, hi] at a higher precision too."""
