@@ -16,7 +16,7 @@ import sys
 from . import __version__, commands
 from .errors import ComputationError, ModelError
 
-__all__ = ["main", "load_model_arg"]
+__all__ = ["main", "load_model_arg", "add_model_arguments", "positive_int", "nonnegative"]
 
 
 class _Parser(argparse.ArgumentParser):
@@ -32,6 +32,28 @@ def load_model_arg(args):
 
     overrides = dict(parse_assignment(s) for s in (args.set or []))
     return load(args.model, overrides)
+
+
+def positive_int(text: str) -> int:
+    """Argument type: a whole number >= 1, with a one-line message otherwise."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
+    return value
+
+
+def nonnegative(text: str) -> float:
+    """Argument type: a finite number >= 0, with a one-line message otherwise."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not value >= 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
+    return value
 
 
 def add_model_arguments(parser):

@@ -9,16 +9,15 @@ largest |Y| is 1. An eigenvalue of multiplicity m gives m independent shapes
 
 from __future__ import annotations
 
-from ..cli import add_model_arguments, load_model_arg
+from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int
 from ..errors import ModelError
-from .solve import _nonnegative, _positive_int
 
 HELP = "mode shapes (Y, Theta, M, Q along every beam)"
 
 
 def _points(text):
     import argparse
-    value = _positive_int(text)
+    value = positive_int(text)
     if value < 2:
         raise argparse.ArgumentTypeError(f"need at least 2 points (both ends), got {value}")
     return value
@@ -26,13 +25,13 @@ def _points(text):
 
 def add_arguments(parser):
     add_model_arguments(parser)
-    parser.add_argument("--count", type=_positive_int, default=None, metavar="N",
+    parser.add_argument("--count", type=positive_int, default=None, metavar="N",
                         help="the first N modes, counted with multiplicity (default 6)")
     parser.add_argument("--points", type=_points, default=101, metavar="P",
                         help="points per beam, both ends included (default 101)")
-    parser.add_argument("--sigma-max", type=_nonnegative, metavar="S",
+    parser.add_argument("--sigma-max", type=nonnegative, metavar="S",
                         help="damped models: search -S <= Re lam <= 0")
-    parser.add_argument("--digits", type=_positive_int, default=15, metavar="D",
+    parser.add_argument("--digits", type=positive_int, default=15, metavar="D",
                         help="significant digits of the eigenvalues (default 15)")
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search (see symtmm solve)")

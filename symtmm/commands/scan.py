@@ -11,16 +11,15 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..cli import add_model_arguments, load_model_arg
+from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int
 from ..errors import ModelError
-from .solve import _nonnegative, _positive_int
 
 HELP = "log10|Delta| along omega (and over the complex plane when damped), for plots"
 
 
 def _positive(text):
     import argparse
-    value = _nonnegative(text)
+    value = nonnegative(text)
     if value == 0:
         raise argparse.ArgumentTypeError("must be positive")
     return value
@@ -30,9 +29,9 @@ def add_arguments(parser):
     add_model_arguments(parser)
     parser.add_argument("--omega-max", type=_positive, required=True, metavar="W",
                         help="highest circular frequency (rad/s)")
-    parser.add_argument("--omega-min", type=_nonnegative, default=0.0, metavar="W0",
+    parser.add_argument("--omega-min", type=nonnegative, default=0.0, metavar="W0",
                         help="lowest circular frequency (default 0)")
-    parser.add_argument("--points", type=_positive_int, default=2000, metavar="N",
+    parser.add_argument("--points", type=positive_int, default=2000, metavar="N",
                         help="grid points along omega (default 2000)")
     parser.add_argument("--spacing", choices=("Omega", "omega"), default="Omega",
                         help="grid equally spaced in Omega = beta L of the first beam "
@@ -41,7 +40,7 @@ def add_arguments(parser):
                         help="damped models: the map covers -S <= Re lam <= 0")
     parser.add_argument("--no-eigenvalues", action="store_true",
                         help="do not solve for the eigenvalues to mark")
-    parser.add_argument("--digits", type=_positive_int, default=10, metavar="D",
+    parser.add_argument("--digits", type=positive_int, default=10, metavar="D",
                         help="digits of the marked eigenvalues (default 10)")
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search for the marks (see symtmm solve)")

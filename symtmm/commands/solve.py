@@ -2,44 +2,22 @@
 
 from __future__ import annotations
 
-from ..cli import add_model_arguments, load_model_arg
+from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int
 from ..errors import ModelError
 
 HELP = "eigenvalues (natural frequencies), every printed digit correct"
 
 
-def _positive_int(text):
-    import argparse
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
-    return value
-
-
-def _nonnegative(text):
-    import argparse
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not value >= 0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
-    return value
-
-
 def add_arguments(parser):
     add_model_arguments(parser)
     group = parser.add_mutually_exclusive_group()
-    group.add_argument("--count", type=_positive_int, metavar="N",
+    group.add_argument("--count", type=positive_int, metavar="N",
                        help="the first N eigenvalues, counted with multiplicity (default 10)")
-    group.add_argument("--omega-max", type=_nonnegative, metavar="W",
+    group.add_argument("--omega-max", type=nonnegative, metavar="W",
                        help="all eigenvalues with 0 <= Im lam <= W (rad/s)")
-    parser.add_argument("--sigma-max", type=_nonnegative, metavar="S",
+    parser.add_argument("--sigma-max", type=nonnegative, metavar="S",
                         help="damped models: search -S <= Re lam <= 0 (default 2 W)")
-    parser.add_argument("--digits", type=_positive_int, default=15, metavar="D",
+    parser.add_argument("--digits", type=positive_int, default=15, metavar="D",
                         help="significant digits, all correct (default 15)")
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search: default (count, isolate, refine), contour "

@@ -11,16 +11,15 @@ from __future__ import annotations
 
 import sys
 
-from ..cli import add_model_arguments, load_model_arg
+from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int
 from ..errors import ModelError
-from .solve import _nonnegative, _positive_int
 
 HELP = "eigenvalues for equally spaced values of one parameter, branches tracked"
 
 
 def _steps(text):
     import argparse
-    value = _positive_int(text)
+    value = positive_int(text)
     if value < 2:
         raise argparse.ArgumentTypeError(f"need at least 2 steps (both ends), got {value}")
     return value
@@ -34,15 +33,15 @@ def add_arguments(parser):
     parser.add_argument("--to", dest="stop", required=True, metavar="B", help="last value")
     parser.add_argument("--steps", type=_steps, required=True, metavar="N",
                         help="number of values, both ends included")
-    parser.add_argument("--count", type=_positive_int, default=10, metavar="K",
+    parser.add_argument("--count", type=positive_int, default=10, metavar="K",
                         help="eigenvalues per value, counted with multiplicity (default 10)")
-    parser.add_argument("--digits", type=_positive_int, default=12, metavar="D",
+    parser.add_argument("--digits", type=positive_int, default=12, metavar="D",
                         help="significant digits, all correct (default 12 for sweeps)")
-    parser.add_argument("--sigma-max", type=_nonnegative, metavar="S",
+    parser.add_argument("--sigma-max", type=nonnegative, metavar="S",
                         help="damped models: search -S <= Re lam <= 0")
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search (see symtmm solve)")
-    parser.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
+    parser.add_argument("--jobs", type=positive_int, default=None, metavar="J",
                         help="local worker processes (default: number of CPUs)")
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="run on a Dask cluster, e.g. tcp://host:8786 (needs symtmm[dask])")
