@@ -31,7 +31,7 @@ class ModelError(SymtmmError, ValueError):
         self.source = source
         super().__init__(str(self))
 
-    def with_source(self, source: str) -> "ModelError":
+    def with_source(self, source: str) -> ModelError:
         """Return the same error attributed to ``source`` (unless it has one)."""
         return self if self.source else ModelError(self.message, self.field, source)
 

@@ -19,8 +19,8 @@ Grammar::
 from __future__ import annotations
 
 import re
+from collections.abc import Callable, Mapping
 from decimal import Decimal, InvalidOperation
-from typing import Callable, Mapping
 
 import sympy as sp
 

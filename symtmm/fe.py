@@ -20,6 +20,7 @@ frequencies converge from above at rate ``h**4``.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping, Sequence
 
@@ -198,10 +199,10 @@ def _beam_nodes(beam, spring_positions, elements_per_beam):
     """Node coordinates: required points plus equal subdivisions in between."""
     points = _required_points(beam, spring_positions)
     pieces = []
-    for start, stop in zip(points[:-1], points[1:]):
+    for start, stop in itertools.pairwise(points):
         # Share the element budget in proportion to length so the mesh stays
         # roughly uniform whatever the spring layout.
-        count = max(1, int(round(elements_per_beam * (stop - start) / beam["L"])))
+        count = max(1, round(elements_per_beam * (stop - start) / beam["L"]))
         pieces.append(np.linspace(start, stop, count + 1)[:-1])
     pieces.append(points[-1:])
     return np.concatenate(pieces)

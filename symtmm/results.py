@@ -123,7 +123,7 @@ class Spectrum:
         with mpmath.workdps(self.digits + 10):
             return [mpmath.sqrt(w / scale) for w in self.omegas(expand)]
 
-    def with_model_name(self, name: str) -> "Spectrum":
+    def with_model_name(self, name: str) -> Spectrum:
         """The same spectrum labelled with ``name`` (the model file, in JSON)."""
         return replace(self, model_name=name)
 

@@ -10,9 +10,9 @@ import pytest
 
 pytest.importorskip("scipy")
 
-from symtmm.fe import fe_frequencies  # noqa: E402
-from symtmm.modelfile import load  # noqa: E402
-from symtmm.solve import solve  # noqa: E402
+from symtmm.fe import fe_frequencies
+from symtmm.modelfile import load
+from symtmm.solve import solve
 
 
 def _plain(model):

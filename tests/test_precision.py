@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-
 from reference import classical_roots
+
 from symtmm import Beam, Model, Spring
 from symtmm.errors import ComputationError
 from symtmm.solve import solve

@@ -4,8 +4,8 @@ import itertools
 
 import mpmath
 import pytest
-
 from reference import FREQUENCY_EQUATIONS, classical_roots, rigid_modes
+
 from symtmm import Beam, Model
 from symtmm.roots import rigid_body_modes
 from symtmm.solve import solve

@@ -34,8 +34,8 @@ from ..compile import Evaluator
 from ..errors import ComputationError
 from ..model import Model
 from ..results import Eigenvalue, Spectrum
-from .bracket import anderson_bjorck, bracket_done
 from ..stiffness import StiffnessModel
+from .bracket import anderson_bjorck, bracket_done
 
 __all__ = ["solve_undamped", "rigid_body_modes", "omega_scale"]
 
@@ -147,7 +147,7 @@ class _Search:
         """One simple root in ``(a, b]`` to ``digits`` significant digits."""
         extra = 0
         while True:
-            dps = self.digits + int(math.ceil(self.ev.digits_lost(float(b)))) + 10 + extra
+            dps = self.digits + math.ceil(self.ev.digits_lost(float(b))) + 10 + extra
             if dps > MAX_DPS:
                 raise ComputationError(
                     f"cannot reach {self.digits} digits for the root near {float(b):.6g} rad/s "
