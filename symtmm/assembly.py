@@ -22,12 +22,50 @@ from functools import cached_property
 
 import sympy as sp
 
-from .elements import STATE, Coupling, EulerBernoulliSegment, GroundSpring, PointElement
+from .elements import (
+    STATE,
+    Coupling,
+    EulerBernoulliSegment,
+    GroundSpring,
+    LumpedMass,
+    PointElement,
+    RotationalCoupling,
+    RotationalGroundSpring,
+)
 from .elements.base import LAM
 from .model import BOUNDARY_CONDITIONS, Model
 
 __all__ = ["Layout", "Interval", "Station", "overall_transfer_matrix", "boundary_matrix",
-           "characteristic_determinant"]
+           "characteristic_determinant", "point_elements"]
+
+
+def point_elements(model: Model) -> list:
+    """Every point element of ``model`` as ``(x, element)``, in the order of the model.
+
+    ``element.beams`` names the beams of its levels. Springs come first (in
+    file order), then masses; both formulations (transfer and stiffness) read
+    the model's point elements from here only.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Spring, Mass, Model
+    >>> m = Model((Beam("a", 1, 1, 1),), (Spring("a", "ground", 0, 5, kind="rotational"),),
+    ...           masses=(Mass("a", 1, 2),))
+    >>> [(x, type(e).__name__) for x, e in point_elements(m)]
+    [(0, 'RotationalGroundSpring'), (1, 'LumpedMass')]
+    """
+    out = []
+    for spring in model.springs:
+        rotational = spring.kind == "rotational"
+        if spring.grounded:
+            cls = RotationalGroundSpring if rotational else GroundSpring
+            out.append((spring.x, cls(spring.a, spring.k, spring.c)))
+        else:
+            cls = RotationalCoupling if rotational else Coupling
+            out.append((spring.x, cls(spring.a, spring.b, spring.k, spring.c)))
+    for mass in model.masses:
+        out.append((mass.x, LumpedMass(mass.beam, mass.M, mass.J)))
+    return out
 
 
 @dataclass(frozen=True)
@@ -113,7 +151,8 @@ class Layout:
         points = []
         for beam in beams:
             points += [beam.x0, beam.x1]
-        points += [s.x for s in self.model.springs]
+        self._points = point_elements(self.model)
+        points += [x for x, _ in self._points]
         xs = _sorted_unique(points, sample)
         stations, steps = [], []
         for i, x in enumerate(xs):
@@ -136,14 +175,10 @@ class Layout:
 
     def _point_elements_at(self, x):
         index = {b.name: i for i, b in enumerate(self.model.beams)}
-        for spring in self.model.springs:
-            if sp.simplify(spring.x - x) != 0:
+        for xe, element in self._points:
+            if sp.simplify(xe - x) != 0:
                 continue
-            if spring.grounded:
-                yield GroundSpring(spring.a, spring.k, spring.c), (index[spring.a],)
-            else:
-                yield Coupling(spring.a, spring.b, spring.k, spring.c), (index[spring.a],
-                                                                          index[spring.b])
+            yield element, tuple(index[name] for name in element.beams)
 
     @cached_property
     def unknowns(self) -> tuple:

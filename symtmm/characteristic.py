@@ -303,8 +303,8 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
             continue
         entries: dict = {}
         for element, levels in step.elements:
-            S = element.stiffness(LAM).xreplace({LAM: lam_of_Omega}) if damped \
-                else element.stiffness(LAM)
+            # masses (lam**2) enter undamped models too: lam**2 = -Omega**4/(mu_1 L_1)**4
+            S = element.stiffness(LAM).xreplace({LAM: lam_of_Omega})
             for i, (li, var_i) in enumerate(element.dofs):
                 force, sign = CONJUGATE[var_i]
                 row = 4 * levels[li] + STATE.index(force)
@@ -365,6 +365,8 @@ class _Algebra:
             elif e in problem.relations:
                 base, Q = problem.relations[e]
                 self.power_rules[idx] = (Q, base)
+        # Omega = 1/W as a generator of its own (lumped masses); W * Omega -> 1 in reduce
+        self.inv_w = self.extra_index.get(1 / _W)
         half = self.ring.coefficient(sp.Rational(1, 2))
         self.N = []
         G = self.ring.gens
@@ -390,8 +392,10 @@ class _Algebra:
         terms = self.ring.terms(p)
         odd = [(4 * g + 1, 4 * g, -1) for g in range(self.groups)]   # s: s^2 = 1 - c^2
         odd += [(4 * g + 3, 4 * g + 2, +1) for g in range(self.groups)]  # sh: sh^2 = ch^2 - 1
+        iw = self.inv_w
         if not any(mon[i] >= 2 for mon in terms for i, _, _ in odd) and not any(
-                mon[i] >= q for mon in terms for i, (q, _) in self.power_rules.items()):
+                mon[i] >= q for mon in terms for i, (q, _) in self.power_rules.items()) and (
+                iw is None or not any(mon[iw] and mon[self.w] for mon in terms)):
             return p
         out: dict = {}
         for mon, cf in terms.items():
@@ -424,6 +428,12 @@ class _Algebra:
                     nxt[key] = nxt.get(key, 0) + c2 * self.ring.coefficient(value ** k)
                 partial = nxt
             for key, c2 in partial.items():
+                if iw is not None and key[iw] and key[self.w]:
+                    key = list(key)
+                    k = min(key[iw], key[self.w])
+                    key[iw] -= k
+                    key[self.w] -= k
+                    key = tuple(key)
                 out[key] = out.get(key, 0) + c2
         return self.ring.from_dict({k: v for k, v in out.items() if v != 0})
 
@@ -676,7 +686,8 @@ class _Writer:
                 base, Q = p.relations[e]
                 self.extra.append(base ** sp.Rational(1, Q))
             else:
-                self.extra.append(e)
+                # 1/W (lumped masses bring positive powers of Omega) is Omega itself
+                self.extra.append(e.xreplace({_W: 1 / Omega}))
         self._trig_cache: dict = {}
 
     def _harmonics(self, exps: tuple, hyperbolic: bool) -> tuple[dict, int]:

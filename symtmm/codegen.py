@@ -117,7 +117,7 @@ def _plan(model, symbolic=()) -> _Plan:
         return len(raw) - 1
 
     seg_index: dict = {}
-    stiff_index: dict = {}  # (k, c) -> index; a coupling's entries are +-s: one variable
+    stiff_index: dict = {}  # (k, c, M) -> index; a coupling's entries are +-s: one variable
     for step in layout.steps:
         if isinstance(step, Interval):
             for lvl, seg in step.segments:
@@ -136,20 +136,21 @@ def _plan(model, symbolic=()) -> _Plan:
             for i in range(d):
                 for k in range(d):
                     poly = sp.Poly(sp.expand(S[i, k]), LAM)
-                    if poly.degree() > 1:
-                        raise NotImplementedError("stiffness of degree > 1 in lam")
-                    k0, k1 = poly.coeff_monomial(1), poly.coeff_monomial(LAM)
-                    if k0 == 0 and k1 == 0:
+                    if poly.degree() > 2:
+                        raise NotImplementedError("stiffness of degree > 2 in lam")
+                    key = tuple(poly.coeff_monomial(LAM**d) for d in range(3))
+                    if all(v == 0 for v in key):
                         continue
-                    entry[(i, k)] = (k0, k1)
-            for (i, k), (k0, k1) in entry.items():
+                    entry[(i, k)] = key
+            for (i, k), key in entry.items():
                 sign = 1
-                if (-k0, -k1) in stiff_index:
-                    k0, k1, sign = -k0, -k1, -1
-                if (k0, k1) not in stiff_index:
-                    stiff_index[(k0, k1)] = len(plan.stiff)
-                    plan.stiff.append((slot(k0), slot(k1)))
-                entry[(i, k)] = (sign, stiff_index[(k0, k1)])
+                neg = tuple(-v for v in key)
+                if neg in stiff_index:
+                    key, sign = neg, -1
+                if key not in stiff_index:
+                    stiff_index[key] = len(plan.stiff)
+                    plan.stiff.append(tuple(slot(v) for v in key))
+                entry[(i, k)] = (sign, stiff_index[key])
             for i, (li, var_i) in enumerate(element.dofs):
                 force, jump_sign = CONJUGATE[var_i]
                 row = 4 * levels[li] + STATE.index(force)
@@ -200,11 +201,14 @@ def _jump(terms, s_name, e_name, mul="*") -> str:
     return text.strip()[2:] if text.strip().startswith("+") else "-" + text.strip()[2:]
 
 
-def _stiffness(k0, k1, val, lam="lam", mul="*") -> str:
-    """``k + c lam``, without a dashpot term that is zero."""
-    if sp.sympify(k1) == 0:
-        return val(k0)
-    return f"{val(k0)} + {val(k1)} {mul} {lam}"
+def _stiffness(k0, k1, k2, val, lam="lam", mul="*") -> str:
+    """``k + c lam + M lam**2``, without the terms that are zero (``k`` is always written)."""
+    text = val(k0) if sp.sympify(k0) != 0 or (sp.sympify(k1) == 0 and sp.sympify(k2) == 0) \
+        else ""
+    for coef, power in ((k1, f"{lam}"), (k2, f"{lam} {mul} {lam}")):
+        if sp.sympify(coef) != 0:
+            text += (" + " if text else "") + f"{val(coef)} {mul} {power}"
+    return text
 
 
 def _series_coefficients():
@@ -343,8 +347,8 @@ def _emit_c(plan: _Plan) -> str:
         out.append(f"    symtmm_segment(lam2, {p(a)}, {p(l)}, {p(EI)}, U[{i}]);")
     if plan.stiff:
         out.append(f"    double complex s[{len(plan.stiff)}];")
-    for i, (k0, k1) in enumerate(plan.stiff):
-        out.append(f"    s[{i}] = {_stiffness(k0, k1, p)};")
+    for i, (k0, k1, k2) in enumerate(plan.stiff):
+        out.append(f"    s[{i}] = {_stiffness(k0, k1, k2, p)};")
     for step in plan.steps:
         if step[0] == "seg":
             out.append(f"    symtmm_apply(U[{step[1]}], E, {4 * step[2]});")
@@ -505,8 +509,8 @@ def _emit_fortran(plan: _Plan) -> str:
         out.append(f"    e({c + 1}, {j + 1}) = (1.0_dp, 0.0_dp)")
     for i, (a, l, EI) in enumerate(plan.segments):
         out.append(f"    call segment(lam2, {f(a)}, {f(l)}, {f(EI)}, u(:, :, {i + 1}))")
-    for i, (k0, k1) in enumerate(plan.stiff):
-        out.append(f"    s({i + 1}) = {_stiffness(k0, k1, f)}")
+    for i, (k0, k1, k2) in enumerate(plan.stiff):
+        out.append(f"    s({i + 1}) = {_stiffness(k0, k1, k2, f)}")
     for step in plan.steps:
         if step[0] == "seg":
             r0 = 4 * step[2]
@@ -547,8 +551,8 @@ def _emit_octave(plan: _Plan) -> str:
         out.append(f"    E({c + 1}, {j + 1}) = 1;")
     for i, sa in enumerate(seg_args):
         out.append(f"    U{i + 1} = symtmm_segment(lam2, {sa});")
-    for i, (k0, k1) in enumerate(plan.stiff):
-        out.append(f"    s{i + 1} = {_stiffness(k0, k1, p, lam='lm')};")
+    for i, (k0, k1, k2) in enumerate(plan.stiff):
+        out.append(f"    s{i + 1} = {_stiffness(k0, k1, k2, p, lam='lm')};")
     for step in plan.steps:
         if step[0] == "seg":
             r0 = 4 * step[2]
@@ -670,8 +674,8 @@ def _emit_julia(plan: _Plan) -> str:
     for i, (a, l, EI) in enumerate(plan.segments):
         out.append(f"    U{i + 1} = symtmm_segment(lam2, Float64({p(a)}), Float64({p(l)}), "
                    f"Float64({p(EI)}))")
-    for i, (k0, k1) in enumerate(plan.stiff):
-        out.append(f"    s{i + 1} = {_stiffness(k0, k1, p)}")
+    for i, (k0, k1, k2) in enumerate(plan.stiff):
+        out.append(f"    s{i + 1} = {_stiffness(k0, k1, k2, p)}")
     for step in plan.steps:
         if step[0] == "seg":
             r0 = 4 * step[2]
@@ -744,8 +748,8 @@ def _emit_python(plan: _Plan) -> str:
         out.append(f"    E[:, {c}, {j}] = 1.0")
     for i, (a, l, EI) in enumerate(plan.segments):
         out.append(f"    U{i} = _segment(lam2, {p(a)}, {p(l)}, {p(EI)})")
-    for i, (k0, k1) in enumerate(plan.stiff):
-        out.append(f"    s{i} = np.broadcast_to({_stiffness(k0, k1, p, lam='flat')}, "
+    for i, (k0, k1, k2) in enumerate(plan.stiff):
+        out.append(f"    s{i} = np.broadcast_to({_stiffness(k0, k1, k2, p, lam='flat')}, "
                    "flat.shape)[:, None]")
     for step in plan.steps:
         if step[0] == "seg":

@@ -92,8 +92,7 @@ class Evaluator:
             rows_force.append(4 * lvl + STATE.index(force))
             signs.append(sign)
         S = element.stiffness(LAM)
-        return _PointPlan(rows_disp, rows_force, signs,
-                          sp.lambdify(LAM, S, modules="numpy"),
+        return _PointPlan(rows_disp, rows_force, signs, _entrywise_numpy(S),
                           sp.lambdify(LAM, S, modules="mpmath"))
 
     # -- precision ------------------------------------------------------------------
@@ -129,9 +128,7 @@ class Evaluator:
                     E[:, blk, :] = U @ E[:, blk, :]
             else:
                 for plan in items:
-                    S = np.asarray(plan.stiffness_np(flat), dtype=complex)
-                    S = np.broadcast_to(S.reshape(S.shape[:2] + (-1,)).transpose(2, 0, 1)
-                                        if S.ndim == 3 else S, (flat.size,) + S.shape[:2])
+                    S = plan.stiffness_np(flat)
                     disp = E[:, plan.rows_disp, :]
                     jump = S @ disp
                     for i, (row, sign) in enumerate(zip(plan.rows_force, plan.signs)):
@@ -197,6 +194,24 @@ class Evaluator:
     def delta_omega_mp(self, omega):
         """``Delta(i omega)`` of an undamped model, real, at the working precision."""
         return self.delta_mp(mpmath.mpc(0, omega), real=True)
+
+
+def _entrywise_numpy(S: sp.Matrix):
+    """``lam array -> (N, d, d)`` complex stiffness, each entry lambdified on its own.
+
+    Entries may be constants (a mass has zero off-diagonal entries), which a
+    lambdified matrix would not broadcast.
+    """
+    d = S.rows
+    funcs = [[sp.lambdify(LAM, S[i, j], modules="numpy") for j in range(d)] for i in range(d)]
+
+    def evaluate(lam):
+        out = np.empty((lam.size, d, d), dtype=complex)
+        for i in range(d):
+            for j in range(d):
+                out[:, i, j] = np.broadcast_to(funcs[i][j](lam), lam.shape)
+        return out
+    return evaluate
 
 
 def compile_model(model: Model) -> Evaluator:

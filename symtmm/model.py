@@ -28,7 +28,7 @@ import sympy as sp
 from .errors import ModelError
 from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
 
-__all__ = ["Beam", "Spring", "Model", "BOUNDARY_CONDITIONS", "GROUND"]
+__all__ = ["Beam", "Spring", "Mass", "Model", "BOUNDARY_CONDITIONS", "GROUND", "SPRING_KINDS"]
 
 #: Boundary conditions and the state variables (of Y, Theta, M, Q) they set to zero.
 BOUNDARY_CONDITIONS: Mapping[str, tuple[str, str]] = {
@@ -39,6 +39,8 @@ BOUNDARY_CONDITIONS: Mapping[str, tuple[str, str]] = {
 }
 #: Name standing for the ground in :attr:`Spring.b`.
 GROUND = "ground"
+#: What a spring resists: the transverse displacement Y or the rotation Theta.
+SPRING_KINDS = ("translational", "rotational")
 
 _IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z_0-9]*$")
 
@@ -139,6 +141,10 @@ class Spring:
         Stiffness (not negative).
     c : number or str, optional
         Dashpot coefficient (not negative), default 0.
+    kind : str, optional
+        ``"translational"`` (default: force on Y, ``k`` in force/length) or
+        ``"rotational"`` (moment on Theta, ``k`` in moment/radian): then the
+        moment ``(k + c λ)(Θ_b − Θ_a)`` acts on ``a`` and its opposite on ``b``.
     """
 
     a: str
@@ -146,6 +152,7 @@ class Spring:
     x: sp.Expr
     k: sp.Expr
     c: sp.Expr = sp.Integer(0)
+    kind: str = "translational"
 
     def __post_init__(self):
         if self.a == GROUND and self.b != GROUND:
@@ -153,6 +160,9 @@ class Spring:
             object.__setattr__(self, "a", a)
             object.__setattr__(self, "b", b)
         where = f"spring {self.a}-{self.b}"
+        if self.kind not in SPRING_KINDS:
+            raise ModelError(f"unknown kind {self.kind!r} (use one of {', '.join(SPRING_KINDS)})",
+                             field=f"{where}.kind")
         if self.a == self.b:
             raise ModelError("a spring must join two different beams", field=f"{where}.between")
         for attr in ("x", "k", "c"):
@@ -165,6 +175,43 @@ class Spring:
     def grounded(self) -> bool:
         """True for a spring from beam ``a`` to the ground."""
         return self.b == GROUND
+
+
+@dataclass(frozen=True)
+class Mass:
+    """A lumped mass with rotary inertia attached to a beam.
+
+    Its inertia forces ``−M λ² Y`` and ``−J λ² Θ`` act on the beam at ``x``.
+
+    Parameters
+    ----------
+    beam : str
+        Name of the beam carrying it.
+    x : number or str
+        Global coordinate; must lie on the beam (ends included).
+    M : number or str
+        Mass (not negative).
+    J : number or str, optional
+        Rotary inertia about the beam's neutral axis (not negative), default 0.
+
+    Examples
+    --------
+    >>> Mass("a", x="1/2", M=2).J
+    0
+    """
+
+    beam: str
+    x: sp.Expr
+    M: sp.Expr
+    J: sp.Expr = sp.Integer(0)
+
+    def __post_init__(self):
+        where = f"mass on {self.beam}"
+        for attr in ("x", "M", "J"):
+            value = _exact(getattr(self, attr), f"{where}.{attr}")
+            object.__setattr__(self, attr, value)
+            if attr != "x":
+                _check_sign(value, f"{where}.{attr}", allow_zero=True)
 
 
 @dataclass(frozen=True)
@@ -182,6 +229,8 @@ class Model:
     title : str, optional
     source : str, optional
         Where the model came from (a file path), used in messages.
+    masses : tuple of Mass, optional
+        Lumped masses on the beams.
     """
 
     beams: tuple
@@ -189,12 +238,14 @@ class Model:
     parameters: Mapping[str, object] = field(default_factory=dict)
     title: str = ""
     source: str | None = None
+    masses: tuple = ()
 
     def __post_init__(self):
         beams = tuple(self.beams)
         springs = tuple(self.springs)
         object.__setattr__(self, "beams", beams)
         object.__setattr__(self, "springs", springs)
+        object.__setattr__(self, "masses", tuple(self.masses))
         params = {}
         for name, value in dict(self.parameters).items():
             if not isinstance(name, str) or not _IDENTIFIER.match(name):
@@ -238,6 +289,19 @@ class Model:
                                      f"[{beam.x0}, {beam.x1}]", field=f"{where}.x")
             for attr in ("k", "c"):
                 _check_sign(self.value(getattr(spring, attr)), f"{where}.{attr}", allow_zero=True)
+        for mass in self.masses:
+            where = f"mass on {mass.beam}"
+            if not isinstance(mass, Mass):
+                raise ModelError("expected a Mass", field="mass")
+            if mass.beam not in names:
+                raise ModelError(f"unknown beam '{mass.beam}'", field=f"{where}.beam")
+            x, beam = self.value(mass.x), resolved[mass.beam]
+            inside = [(x - beam.x0), (beam.x1 - x)]
+            if all(d.is_number for d in inside) and any(d.is_negative for d in inside):
+                raise ModelError(f"x = {x} lies outside beam '{mass.beam}' "
+                                 f"[{beam.x0}, {beam.x1}]", field=f"{where}.x")
+            for attr in ("M", "J"):
+                _check_sign(self.value(getattr(mass, attr)), f"{where}.{attr}", allow_zero=True)
 
     # -- parameters -----------------------------------------------------------------
     def value(self, expr: sp.Expr) -> sp.Expr:
@@ -257,8 +321,10 @@ class Model:
         beams = tuple(self._resolved_beam(b) for b in self.beams)
         springs = tuple(replace(s, x=self.value(s.x), k=self.value(s.k), c=self.value(s.c))
                         for s in self.springs)
+        masses = tuple(replace(p, x=self.value(p.x), M=self.value(p.M), J=self.value(p.J))
+                       for p in self.masses)
         keep = {n: v for n, v in self.parameters.items() if v is None}
-        return Model(beams, springs, keep, self.title, self.source)
+        return Model(beams, springs, keep, self.title, self.source, masses)
 
     def with_parameters(self, **values) -> "Model":
         """A copy with some parameter values set or replaced.
@@ -288,6 +354,9 @@ class Model:
         for spring in self.resolved().springs:
             for attr in ("x", "k", "c"):
                 syms |= getattr(spring, attr).free_symbols
+        for mass in self.resolved().masses:
+            for attr in ("x", "M", "J"):
+                syms |= getattr(mass, attr).free_symbols
         return tuple(sorted(s.name for s in syms))
 
     @property
@@ -340,3 +409,6 @@ def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
     for spring in model.springs:
         for attr in ("x", "k", "c"):
             yield f"spring {spring.a}-{spring.b}.{attr}", getattr(spring, attr)
+    for mass in model.masses:
+        for attr in ("x", "M", "J"):
+            yield f"mass on {mass.beam}.{attr}", getattr(mass, attr)

@@ -43,7 +43,7 @@ import sympy as sp
 
 from .errors import ModelError
 from .expr import ExpressionError, exact_number, parse_expression
-from .model import GROUND, Beam, Model, Spring
+from .model import GROUND, Beam, Mass, Model, Spring
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -52,11 +52,13 @@ else:  # pragma: no cover
 
 __all__ = ["load", "loads", "parse_assignment"]
 
-_TOP = {"title", "parameters", "beam", "spring"}
+_TOP = {"title", "parameters", "beam", "spring", "mass"}
 _BEAM_REQUIRED = ("name", "EI", "m", "L", "left", "right")
 _BEAM_OPTIONAL = ("x0",)
 _SPRING_REQUIRED = ("between", "x", "k")
-_SPRING_OPTIONAL = ("c",)
+_SPRING_OPTIONAL = ("c", "kind")
+_MASS_REQUIRED = ("beam", "x", "M")
+_MASS_OPTIONAL = ("J",)
 
 
 def load(path, overrides: dict | None = None) -> Model:
@@ -215,14 +217,39 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
                              field=f"{where}.between")
         fields = {k: _number(raw[k], f"{where}.{k}") for k in ("x", "k")}
         fields["c"] = _number(raw.get("c", 0), f"{where}.c")
+        kind = raw.get("kind", "translational")
+        if not isinstance(kind, str):
+            raise ModelError(f"expected a string, got {_kind(kind)}", field=f"{where}.kind")
         try:
-            springs.append(Spring(between[0], between[1], **fields))
+            springs.append(Spring(between[0], between[1], kind=kind, **fields))
+        except ModelError as exc:
+            raise ModelError(exc.message, field=_rename(exc.field, where)) from None
+        for value in fields.values():
+            known_names |= {s.name for s in value.free_symbols}
+
+    masses_raw = data.get("mass", [])
+    if not isinstance(masses_raw, list):
+        raise ModelError("expected an array of tables: write [[mass]]", field="mass")
+    masses = []
+    for i, raw in enumerate(masses_raw, 1):
+        where = f"mass[{i}]"
+        _check_keys(raw, _MASS_REQUIRED, _MASS_OPTIONAL, where)
+        if not isinstance(raw["beam"], str):
+            raise ModelError(f"expected a beam name, got {_kind(raw['beam'])}",
+                             field=f"{where}.beam")
+        fields = {k: _number(raw[k], f"{where}.{k}") for k in ("x", "M")}
+        fields["J"] = _number(raw.get("J", 0), f"{where}.J")
+        try:
+            masses.append(Mass(raw["beam"], **fields))
         except ModelError as exc:
             raise ModelError(exc.message, field=_rename(exc.field, where)) from None
         for value in fields.values():
             known_names |= {s.name for s in value.free_symbols}
 
     names = {b.name for b in beams}
+    for i, mass in enumerate(masses, 1):
+        if mass.beam not in names:
+            raise ModelError(f"unknown beam '{mass.beam}'", field=f"mass[{i}].beam")
     for i, spring in enumerate(springs, 1):
         for end in (spring.a, spring.b):
             if end != GROUND and end not in names:
@@ -231,9 +258,10 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         if name not in known_names:
             raise ModelError(f"'{name}' is not a parameter of this model", field="--set " + name)
     try:
-        return Model(tuple(beams), tuple(springs), params, title, source)
+        return Model(tuple(beams), tuple(springs), params, title, source, tuple(masses))
     except ModelError as exc:
-        raise ModelError(exc.message, field=_spring_field(exc.field, springs, beams)) from None
+        raise ModelError(exc.message,
+                         field=_spring_field(exc.field, springs, beams, masses)) from None
 
 
 def _rename(field: str | None, where: str) -> str:
@@ -244,13 +272,16 @@ def _rename(field: str | None, where: str) -> str:
     return f"{where}.{attr}"
 
 
-def _spring_field(field: str | None, springs, beams) -> str | None:
+def _spring_field(field: str | None, springs, beams, masses=()) -> str | None:
     """Name fields by their position in the file, as the user wrote them."""
     if not field:
         return field
     for i, s in enumerate(springs, 1):
         if field.startswith(f"spring {s.a}-{s.b}."):
             return f"spring[{i}]." + field.rsplit(".", 1)[-1]
+    for i, p in enumerate(masses, 1):
+        if field.startswith(f"mass on {p.beam}."):
+            return f"mass[{i}]." + field.rsplit(".", 1)[-1]
     for i, b in enumerate(beams, 1):
         if field.startswith(f"beam '{b.name}'."):
             return f"beam[{i}] ({b.name})." + field.rsplit(".", 1)[-1]

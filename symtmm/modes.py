@@ -22,7 +22,9 @@ transfer matrices carry that state along the beams (paper eq. 3). The steps:
    segment has the closed form ``[F]/(4 kappa)`` with ``kappa = beta**4`` and
    ``F = x (kappa Y**2 - 2 Y' Y''' + Y''**2) + 3 Y Y''' - Y' Y''`` (which
    follows from ``Y'''' = kappa Y``), and Gauss--Legendre quadrature where
-   ``kappa l**4`` is small. The ``m`` shapes of a multiple eigenvalue are
+   ``kappa l**4`` is small. Lumped masses add their kinetic energy
+   ``M Y**2 + J Theta**2`` (the element's mass matrix), which keeps the shapes
+   of distinct frequencies orthogonal. The ``m`` shapes of a multiple eigenvalue are
    made mass-orthonormal (Cholesky factor of their mass Gram matrix). Each
    shape's largest displacement is made positive. Damped shapes are complex
    and scaled so that the largest ``|Y|`` over all beams is ``1`` (real).
@@ -288,11 +290,15 @@ class _Walker:
         self.layout = Layout(model)
         self.n = self.layout.levels
         self._stiffness = {}
+        self._inertia = {}
         for step in self.layout.steps:
             if not isinstance(step, Interval):
                 for element, _levels in step.elements:
                     S = element.stiffness(LAM)
                     self._stiffness[id(element)] = sp.lambdify(LAM, S, modules="mpmath")
+                    inertia = element.inertia()
+                    if not inertia.is_zero_matrix:
+                        self._inertia[id(element)] = inertia
 
     def _consts(self, seg):
         dps = mpmath.mp.dps
@@ -369,6 +375,13 @@ class _Walker:
                         disp.append(4 * lvl + STATE.index(var))
                         force.append(4 * lvl + STATE.index(f))
                         sign.append(s)
+                    if gram and id(element) in self._inertia:
+                        # kinetic energy of lumped masses: d^T M d (displacements do not jump)
+                        Mi = self._inertia[id(element)]
+                        Mi = np.array([[to_mp(v, mpmath.mp.dps) for v in row]
+                                       for row in Mi.tolist()], dtype=object)
+                        D = E[disp, :]
+                        G += D.T.dot(Mi).dot(D)
                     jump = S.dot(E[disp, :])
                     for i, (row, s) in enumerate(zip(force, sign)):
                         E[row, :] = E[row, :] + s * jump[i, :]

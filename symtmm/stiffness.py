@@ -29,7 +29,8 @@ import mpmath
 import numpy as np
 import sympy as sp
 
-from .elements import Coupling, EulerBernoulliSegment, GroundSpring
+from .assembly import point_elements
+from .elements import EulerBernoulliSegment
 from .elements.base import LAM
 from .model import Model
 from .numeric import to_mp
@@ -99,12 +100,12 @@ class StiffnessModel:
 
     def _build(self):
         beams = self.model.beams
+        points_el = point_elements(self.model)
         nodes = []        # (x float, beam index, exact x)
         self.segments = []  # (beam index, segment, left node id, right node id)
         beam_nodes = []
         for b_idx, beam in enumerate(beams):
-            required = [beam.x0, beam.x1] + [s.x for s in self.model.springs
-                                             if beam.name in (s.a, s.b)]
+            required = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
             xs = sorted(set(sp.nsimplify(x) for x in required), key=float)
             points = [xs[0]]
             mu = (float(beam.m) / float(beam.EI)) ** 0.25 * math.sqrt(self.omega_design)
@@ -138,14 +139,9 @@ class StiffnessModel:
         self.size = n
         self.points = []
         index = {b.name: i for i, b in enumerate(beams)}
-        for spring in self.model.springs:
-            x = sp.nsimplify(spring.x)
-            if spring.grounded:
-                el = GroundSpring(spring.a, spring.k, spring.c)
-                node_ids = [beam_nodes[index[spring.a]][x]]
-            else:
-                el = Coupling(spring.a, spring.b, spring.k, spring.c)
-                node_ids = [beam_nodes[index[spring.a]][x], beam_nodes[index[spring.b]][x]]
+        for x, el in points_el:
+            x = sp.nsimplify(x)
+            node_ids = [beam_nodes[index[name]][x] for name in el.beams]
             dofs = [self.dof.get((node_ids[lvl], 0 if var == "Y" else 1))
                     for lvl, var in el.dofs]
             S = el.stiffness(LAM)

@@ -7,7 +7,9 @@ as an exact SymPy matrix.
 
 from .base import STATE, Element, FieldElement, PointElement
 from .beam import EulerBernoulliSegment
+from .point import LumpedMass, RotationalCoupling, RotationalGroundSpring
 from .spring import Coupling, GroundSpring
 
 __all__ = ["STATE", "Element", "FieldElement", "PointElement", "EulerBernoulliSegment",
-           "Coupling", "GroundSpring"]
+           "Coupling", "GroundSpring", "LumpedMass", "RotationalCoupling",
+           "RotationalGroundSpring"]

@@ -66,6 +66,24 @@ class PointElement(Element):
     def stiffness(self, lam=LAM) -> sp.Matrix:
         """Nodal dynamic stiffness on :attr:`dofs` (exact)."""
 
+    def inertia(self) -> sp.Matrix:
+        """The element's mass matrix on :attr:`dofs`: the ``lam**2`` coefficient of ``S``.
+
+        Its kinetic energy enters the mass normalisation of mode shapes.
+
+        Examples
+        --------
+        >>> from symtmm.elements import Coupling, LumpedMass
+        >>> LumpedMass("a", 2, 3).inertia(), Coupling("a", "b", k=5, c=1).inertia()
+        (Matrix([
+        [2, 0],
+        [0, 3]]), Matrix([
+        [0, 0],
+        [0, 0]]))
+        """
+        S = self.stiffness(LAM)
+        return (S.diff(LAM, 2) / 2).xreplace({LAM: 0})
+
     def transfer_matrix(self, lam=LAM) -> sp.Matrix:
         """Transfer matrix across the point, on the stacked states of its levels.
 

@@ -37,7 +37,9 @@ import sympy as sp
 from scipy.linalg.lapack import zgbcon as _zgbcon
 from scipy.linalg.lapack import zgbtrf as _zgbtrf
 
+from ..assembly import point_elements
 from ..elements import EulerBernoulliSegment
+from ..elements.base import LAM
 from ..model import Model
 
 __all__ = ["NU_MAX", "DynamicStiffness"]
@@ -119,13 +121,13 @@ class DynamicStiffness:
 
     def _build(self):
         beams = self.model.beams
-        springs = self.model.springs
+        points_el = point_elements(self.model)
         nodes = []          # (x float, beam index)
         node_len = []       # a length scale for the rotation freedom of each node
         segments = []       # (segment, left node, right node)
         beam_nodes = []
         for b_idx, beam in enumerate(beams):
-            required = [beam.x0, beam.x1] + [s.x for s in springs if beam.name in (s.a, s.b)]
+            required = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
             xs = sorted({sp.nsimplify(x) for x in required}, key=float)
             mu = (float(beam.m) / float(beam.EI)) ** 0.25 * math.sqrt(self.lam_max)
             points = [xs[0]]
@@ -166,13 +168,15 @@ class DynamicStiffness:
             d = [dof.get((ia, 0)), dof.get((ia, 1)), dof.get((ib, 0)), dof.get((ib, 1))]
             pairs += [abs(a - b) for a in d for b in d if a is not None and b is not None]
         index = {b.name: i for i, b in enumerate(beams)}
-        for spring in springs:
-            x = sp.nsimplify(spring.x)
-            if not spring.grounded:
-                a = dof.get((beam_nodes[index[spring.a]][x], 0))
-                b = dof.get((beam_nodes[index[spring.b]][x], 0))
-                if a is not None and b is not None:
-                    pairs.append(abs(a - b))
+        # point elements: S(lam) = K0 + lam C + lam**2 M on their freedoms
+        point_places = []
+        for x, el in points_el:
+            x = sp.nsimplify(x)
+            ds = [dof.get((beam_nodes[index[el.beams[lv]]][x], 0 if var == "Y" else 1))
+                  for lv, var in el.dofs]
+            live = [d for d in ds if d is not None]
+            pairs += [abs(a - b) for a in live for b in live]
+            point_places.append((ds, el.stiffness(LAM)))
         #: half-bandwidth of K (dofs are numbered along x, so K is banded)
         self.band = band = max(pairs, default=0)
         # LAPACK band storage with room for the fill-in of row interchanges:
@@ -200,25 +204,24 @@ class DynamicStiffness:
             consts = (float(EI), float(m), float(l))
             self._groups.append((g["seg"], consts, g["places"]))
         self.segment_count = len(segments)
-        # springs and dashpots: (k + c lam) times a fixed pattern on the displacement freedoms
+        # springs, dashpots, masses: K0 + c lam + M lam**2, fixed patterns on their freedoms
         pattern_k = np.zeros(n * rows)
         pattern_c = np.zeros(n * rows)
-        for spring in springs:
-            x = sp.nsimplify(spring.x)
-            ids = [beam_nodes[index[spring.a]][x]]
-            if not spring.grounded:
-                ids.append(beam_nodes[index[spring.b]][x])
-            ds = [dof.get((i, 0)) for i in ids]
-            signs = [1.0, -1.0][:len(ds)]
-            k, c = float(spring.k), float(spring.c)
-            for di, si in zip(ds, signs):
-                for dj, sj in zip(ds, signs):
+        pattern_m = np.zeros(n * rows)
+        for ds, S in point_places:
+            for i, di in enumerate(ds):
+                for j, dj in enumerate(ds):
                     if di is None or dj is None:
                         continue
-                    pattern_k[at(di, dj)] += si * sj * k
-                    pattern_c[at(di, dj)] += si * sj * c
+                    coeffs = sp.Poly(sp.expand(S[i, j]), LAM).all_coeffs()[::-1]
+                    if len(coeffs) > 3:
+                        raise ValueError("point element of degree > 2 in lam")
+                    sc = scale[di] * scale[dj]
+                    for pattern, cf in zip((pattern_k, pattern_c, pattern_m), coeffs):
+                        pattern[at(di, dj)] += float(cf) * sc
         self._pattern_k = pattern_k
         self._pattern_c = pattern_c
+        self._pattern_m = pattern_m
         self._rng = np.random.default_rng(12345)
 
     # -- evaluation ------------------------------------------------------------------
@@ -239,6 +242,8 @@ class DynamicStiffness:
         KT = np.empty((n * self._rows, N), dtype=complex)
         KT[:] = self._pattern_k[:, None]
         KT += self._pattern_c[:, None] * lam[None, :]
+        if self._pattern_m.any():
+            KT += self._pattern_m[:, None] * (lam * lam)[None, :]
         log_u12 = np.zeros(N, dtype=complex)
         lam2 = lam * lam
         for seg, consts, places in self._groups:
@@ -248,7 +253,6 @@ class DynamicStiffness:
             DT = segment_stiffness_batch(U).reshape(N, 16).T
             for flat_k, flat_l, sc in places:
                 KT[flat_k] += DT[flat_l] * sc[:, None]
-        # (springs act on displacements, whose scale is 1)
         return np.ascontiguousarray(KT.T).reshape(N, n, self._rows), log_u12
 
     def matrix(self, lam) -> np.ndarray:
