@@ -20,7 +20,7 @@ import mpmath
 import numpy as np
 import sympy as sp
 
-from .assembly import Interval, Layout, Station
+from .assembly import Interval, Layout
 from .elements import STATE
 from .elements.base import CONJUGATE, LAM
 from .model import Model

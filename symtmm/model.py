@@ -20,8 +20,8 @@ Examples
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Iterable, Mapping
 
 import sympy as sp
 
@@ -95,7 +95,7 @@ class Beam:
     EI: sp.Expr
     m: sp.Expr
     L: sp.Expr
-    x0: sp.Expr = sp.Integer(0)
+    x0: sp.Expr = 0  # made exact in __post_init__
     left: str = "free"
     right: str = "free"
 
@@ -151,7 +151,7 @@ class Spring:
     b: str
     x: sp.Expr
     k: sp.Expr
-    c: sp.Expr = sp.Integer(0)
+    c: sp.Expr = 0  # made exact in __post_init__
     kind: str = "translational"
 
     def __post_init__(self):
@@ -203,7 +203,7 @@ class Mass:
     beam: str
     x: sp.Expr
     M: sp.Expr
-    J: sp.Expr = sp.Integer(0)
+    J: sp.Expr = 0  # made exact in __post_init__
 
     def __post_init__(self):
         where = f"mass on {self.beam}"
@@ -313,7 +313,7 @@ class Model:
         return replace(beam, EI=self.value(beam.EI), m=self.value(beam.m),
                        L=self.value(beam.L), x0=self.value(beam.x0))
 
-    def resolved(self) -> "Model":
+    def resolved(self) -> Model:
         """The same model with every parameter value substituted into the fields.
 
         Parameters without value stay symbols (see :attr:`free_symbols`).
@@ -326,7 +326,7 @@ class Model:
         keep = {n: v for n, v in self.parameters.items() if v is None}
         return Model(beams, springs, keep, self.title, self.source, masses)
 
-    def with_parameters(self, **values) -> "Model":
+    def with_parameters(self, **values) -> Model:
         """A copy with some parameter values set or replaced.
 
         Examples
@@ -375,7 +375,7 @@ class Model:
         """Position of the beam called ``name`` in :attr:`beams`."""
         return [b.name for b in self.beams].index(name)
 
-    def require_numeric(self) -> "Model":
+    def require_numeric(self) -> Model:
         """The resolved model, or a :class:`ModelError` naming a parameter without value."""
         free = self.free_symbols
         if free:

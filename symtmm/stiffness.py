@@ -23,6 +23,7 @@ no digit is lost to the cancellation that long segments suffer.
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import mpmath
@@ -106,10 +107,10 @@ class StiffnessModel:
         beam_nodes = []
         for b_idx, beam in enumerate(beams):
             required = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
-            xs = sorted(set(sp.nsimplify(x) for x in required), key=float)
+            xs = sorted({sp.nsimplify(x) for x in required}, key=float)
             points = [xs[0]]
             mu = (float(beam.m) / float(beam.EI)) ** 0.25 * math.sqrt(self.omega_design)
-            for xa, xb in zip(xs, xs[1:]):
+            for xa, xb in itertools.pairwise(xs):
                 n_sub = max(1, math.ceil(mu * float(xb - xa) / NU_MAX))
                 points += [xa + (xb - xa) * sp.Rational(k, n_sub) for k in range(1, n_sub + 1)]
             ids = []
