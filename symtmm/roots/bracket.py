@@ -32,12 +32,15 @@ def bracket_done(a, b, digits: int, scale=1) -> bool:
     return width <= limit or decimal_string(a, digits) == decimal_string(b, digits)
 
 
-def anderson_bjorck(f, a, b, fa, fb, done):
+def anderson_bjorck(f, a, b, fa, fb, done, tol=None):
     """Shrink ``[a, b]`` with ``f(a) f(b) < 0`` until ``done(a, b)``.
 
     Regula falsi with the Anderson–Björck scaling of the end that stays (so
     neither end sticks), and a bisection whenever a step fails to halve the
     bracket: superlinear near a simple root, never slower than bisection.
+    With ``tol`` (the width ``done`` waits for), each step lands at least
+    ``tol/4`` inside the bracket: once the iterate is that close to the root,
+    the next step falls on its other side and the bracket closes at once.
 
     Returns
     -------
@@ -58,6 +61,8 @@ def anderson_bjorck(f, a, b, fa, fb, done):
         c = b - fb * (b - a) / (fb - fa)
         if not a < c < b:
             c = (a + b) / 2
+        if tol is not None and width > tol:
+            c = min(max(c, a + tol / 4), b - tol / 4)
         fc = f(c)
         if fc == 0:
             return c, c

@@ -344,8 +344,10 @@ class _Search:
             return b, b
         if (fa > 0) == (fb > 0):
             return None, None
+        tol = mpmath.mpf(10) ** (-(self.digits + 2)) * min(abs(a), abs(b))
         return anderson_bjorck(self._re_delta, a, b, fa, fb,
-                               lambda lo, hi: bracket_done(lo, hi, self.digits, self.p.lam_ref))
+                               lambda lo, hi: bracket_done(lo, hi, self.digits, self.p.lam_ref),
+                               tol if tol > 0 else None)
 
     def _sign_change(self, lo, hi, dps):
         """``(lo, hi)`` if ``Re Delta`` changes sign strictly across it at ``dps`` digits.

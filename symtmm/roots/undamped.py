@@ -178,8 +178,9 @@ class _Search:
             return b, b
         if (fa > 0) == (fb > 0):
             return None, None
+        tol = mpmath.mpf(10) ** (-(self.digits + 2)) * abs(a)
         return anderson_bjorck(self._f, a, b, fa, fb,
-                               lambda lo, hi: bracket_done(lo, hi, self.digits))
+                               lambda lo, hi: bracket_done(lo, hi, self.digits), tol)
 
     def _verify(self, lo, hi, dps) -> bool:
         """Delta changes sign strictly across [lo, hi] at a higher precision too."""
