@@ -164,7 +164,7 @@ class Layout:
             if i + 1 < len(xs):
                 x_end = xs[i + 1]
                 segs = tuple(
-                    (lvl, EulerBernoulliSegment(b.EI, b.m, x_end - x))
+                    (lvl, EulerBernoulliSegment(b.EI, b.m, x_end - x, b.kw))
                     for lvl, b in enumerate(beams)
                     if _before(x, b.x0, sample) is not True
                     and _before(b.x1, x_end, sample) is not True

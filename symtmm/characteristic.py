@@ -265,6 +265,12 @@ def _check_order(layout: Layout, sample: dict, source):
 
 
 def _build_problem(model: Model, sample: dict) -> _Problem:
+    for b in model.beams:
+        if b.kw != 0:
+            # beta_j**4 = -(m_j lam**2 + kw_j)/EI_j is not proportional to Omega**4
+            raise ModelError("the closed-form characteristic equation does not support a "
+                             "Winkler foundation (kw); solve the model numerically instead",
+                             field=f"beam '{b.name}'.kw", source=model.source)
     layout = Layout(model, sample)
     _check_order(layout, sample, model.source)
     model = layout.model

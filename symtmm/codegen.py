@@ -58,6 +58,7 @@ from .assembly import Interval, Layout
 from .characteristic import _check_order, _prepare
 from .elements import STATE
 from .elements.base import CONJUGATE, LAM
+from .errors import ModelError
 
 __all__ = ["EXTENSIONS", "LANGUAGES", "generate"]
 
@@ -100,6 +101,10 @@ class _Plan:
 def _plan(model, symbolic=()) -> _Plan:
     model_in = model
     model, sample = _prepare(model, tuple(symbolic))
+    for b in model.beams:
+        if b.kw != 0:
+            raise ModelError("code generation does not support a Winkler foundation (kw) yet",
+                             field=f"beam '{b.name}'.kw", source=model.source)
     layout = Layout(model, sample)
     _check_order(layout, sample, model.source)
     params = sorted(model.free_symbols)

@@ -79,8 +79,9 @@ class Evaluator:
                 self._steps.append(("point", [self._plan_point(e, lv) for e, lv in step.elements]))
         self._mp_cache: dict = {}
         self.damped = self.model.damped
-        # per-beam factor m/EI and length, for the precision estimate
-        self._beam_consts = [(float(b.m) / float(b.EI), float(b.L)) for b in self.model.beams]
+        # per-beam factors m/EI, length and kw/EI, for the precision estimate
+        self._beam_consts = [(float(b.m) / float(b.EI), float(b.L), float(b.kw) / float(b.EI))
+                             for b in self.model.beams]
 
     @staticmethod
     def _plan_point(element, levels) -> _PointPlan:
@@ -100,10 +101,11 @@ class Evaluator:
         """Estimated decimal digits lost to cancellation in ``Delta`` at ``lam``.
 
         Entries of a segment matrix grow like ``exp(|beta| l)``; the determinant
-        cancels about ``sum |beta| L / ln 10`` digits over the beams.
+        cancels about ``sum |beta| L / ln 10`` digits over the beams (a foundation
+        ``kw`` is bounded by ``|beta|**4 <= (m |lam|**2 + kw) / EI``).
         """
         a = abs(complex(lam))
-        return sum((mu * a * a) ** 0.25 * L for mu, L in self._beam_consts) / math.log(10)
+        return sum((mu * a * a + k) ** 0.25 * L for mu, L, k in self._beam_consts) / math.log(10)
 
     # -- numpy ----------------------------------------------------------------------
     def R(self, lam) -> np.ndarray:
@@ -121,7 +123,7 @@ class Evaluator:
                     key = id(seg)
                     consts = self._mp_cache.get(("f", key))
                     if consts is None:
-                        consts = (float(seg.EI), float(seg.m), float(seg.l))
+                        consts = (float(seg.EI), float(seg.m), float(seg.l), float(seg.kw))
                         self._mp_cache[("f", key)] = consts
                     U = seg.evaluate_numpy(lam2, consts)
                     blk = slice(4 * lvl, 4 * lvl + 4)
@@ -146,7 +148,8 @@ class Evaluator:
         consts = self._mp_cache.get(key)
         if consts is None:
             dps = mpmath.mp.dps
-            consts = (to_mp(seg.EI, dps), to_mp(seg.m, dps), to_mp(seg.l, dps))
+            consts = (to_mp(seg.EI, dps), to_mp(seg.m, dps), to_mp(seg.l, dps),
+                      to_mp(seg.kw, dps))
             self._mp_cache[key] = consts
         return consts
 
@@ -190,6 +193,42 @@ class Evaluator:
         """``Delta(lam)`` at the current mpmath working precision."""
         R = self.R_mp(lam, real)
         return mpmath.det(R) if R.rows > 0 else mpmath.mpf(1)
+
+    def nullity_at_zero(self, dps: int = 60) -> int:
+        """Dimension of the null space of ``R(0)``, decided at two precisions.
+
+        For models whose exact ``R(0)`` is transcendental (a Winkler
+        foundation): a singular value that is zero shrinks with the precision
+        (below ``10**(-dps/2)`` of the largest at ``dps`` and ``2 dps``
+        digits), a non-zero one does not.
+
+        Examples
+        --------
+        >>> from symtmm.model import Beam, Model
+        >>> ff = Beam("b", EI=1, m=1, L=1, left="free", right="free")
+        >>> Evaluator(Model((ff,))).nullity_at_zero()
+        2
+        >>> from dataclasses import replace
+        >>> Evaluator(Model((replace(ff, kw=3),))).nullity_at_zero()
+        0
+        """
+        counts = []
+        for d in (dps, 2 * dps):
+            with mpmath.workdps(d):
+                R = self.R_mp(mpmath.mpf(0), real=not self.damped)
+                if R.rows == 0:
+                    return 0
+                s = mpmath.svd_r(R, compute_uv=False) if not self.damped else \
+                    mpmath.svd_c(R, compute_uv=False)
+                top = max(abs(v) for v in s)
+                if top == 0:
+                    counts.append(R.rows)
+                    continue
+                counts.append(sum(1 for v in s if abs(v) < top * mpmath.mpf(10) ** (-d / 2)))
+        if counts[0] != counts[1]:
+            raise ArithmeticError("the rank of R(0) is not decided at "
+                                  f"{dps} and {2 * dps} digits")
+        return counts[0]
 
     def delta_omega_mp(self, omega):
         """``Delta(i omega)`` of an undamped model, real, at the working precision."""

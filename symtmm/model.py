@@ -89,6 +89,15 @@ class Beam:
         Global coordinate of the left end (default 0).
     left, right : str
         Boundary conditions: ``free``, ``clamped``, ``pinned`` or ``sliding``.
+    kw : number or str, optional
+        Stiffness per unit length of a Winkler foundation under the beam (not
+        negative, default 0): the field equation becomes
+        ``EI Y'''' + (kw + m λ²) Y = 0``.
+
+    Examples
+    --------
+    >>> Beam("b", EI=1, m=1, L=1, kw="1/2").kw
+    1/2
     """
 
     name: str
@@ -98,17 +107,18 @@ class Beam:
     x0: sp.Expr = 0  # made exact in __post_init__
     left: str = "free"
     right: str = "free"
+    kw: sp.Expr = 0  # made exact in __post_init__
 
     def __post_init__(self):
         where = f"beam '{self.name}'"
         if not isinstance(self.name, str) or not _IDENTIFIER.match(self.name) or self.name == GROUND:
             raise ModelError(f"invalid name {self.name!r} (an identifier other than 'ground')",
                              field="beam.name")
-        for attr in ("EI", "m", "L", "x0"):
+        for attr in ("EI", "m", "L", "x0", "kw"):
             value = _exact(getattr(self, attr), f"{where}.{attr}")
             object.__setattr__(self, attr, value)
             if attr != "x0":
-                _check_sign(value, f"{where}.{attr}", allow_zero=False)
+                _check_sign(value, f"{where}.{attr}", allow_zero=attr == "kw")
         for attr in ("left", "right"):
             bc = getattr(self, attr)
             if bc not in BOUNDARY_CONDITIONS:
@@ -273,6 +283,7 @@ class Model:
         for beam in resolved.values():
             for attr in ("EI", "m", "L"):
                 _check_sign(getattr(beam, attr), f"beam '{beam.name}'.{attr}", allow_zero=False)
+            _check_sign(beam.kw, f"beam '{beam.name}'.kw", allow_zero=True)
         for spring in self.springs:
             where = f"spring {spring.a}-{spring.b}"
             for end in (spring.a, spring.b):
@@ -311,7 +322,7 @@ class Model:
 
     def _resolved_beam(self, beam: Beam) -> Beam:
         return replace(beam, EI=self.value(beam.EI), m=self.value(beam.m),
-                       L=self.value(beam.L), x0=self.value(beam.x0))
+                       L=self.value(beam.L), x0=self.value(beam.x0), kw=self.value(beam.kw))
 
     def resolved(self) -> Model:
         """The same model with every parameter value substituted into the fields.
@@ -404,7 +415,7 @@ class _FrozenDict(dict):
 def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
     """All numeric fields of ``model`` as (field name, expression) pairs."""
     for beam in model.beams:
-        for attr in ("EI", "m", "L", "x0"):
+        for attr in ("EI", "m", "L", "x0", "kw"):
             yield f"beam '{beam.name}'.{attr}", getattr(beam, attr)
     for spring in model.springs:
         for attr in ("x", "k", "c"):

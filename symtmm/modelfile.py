@@ -54,7 +54,7 @@ __all__ = ["load", "loads", "parse_assignment"]
 
 _TOP = {"title", "parameters", "beam", "spring", "mass"}
 _BEAM_REQUIRED = ("name", "EI", "m", "L", "left", "right")
-_BEAM_OPTIONAL = ("x0",)
+_BEAM_OPTIONAL = ("x0", "kw")
 _SPRING_REQUIRED = ("between", "x", "k")
 _SPRING_OPTIONAL = ("c", "kind")
 _MASS_REQUIRED = ("beam", "x", "M")
@@ -196,6 +196,7 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         where = f"beam[{i}] ({name})"
         fields = {k: _number(raw[k], f"{where}.{k}") for k in ("EI", "m", "L")}
         fields["x0"] = _number(raw.get("x0", 0), f"{where}.x0")
+        fields["kw"] = _number(raw.get("kw", 0), f"{where}.kw")
         for k in ("left", "right"):
             if not isinstance(raw[k], str):
                 raise ModelError(f"expected a string, got {_kind(raw[k])}", field=f"{where}.{k}")

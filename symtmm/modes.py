@@ -50,7 +50,7 @@ import sympy as sp
 
 from .assembly import Interval, Layout
 from .compile import Evaluator
-from .elements import STATE
+from .elements import STATE, EulerBernoulliSegment
 from .elements.base import CONJUGATE, LAM
 from .errors import ComputationError
 from .model import Model
@@ -344,6 +344,12 @@ class _Walker:
                 xsf, xef = float(xs), float(xe)
                 for lvl, seg in step.segments:
                     consts = self._consts(seg)
+                    lam2_s = lam2
+                    if seg.kw != 0:
+                        # on a foundation the segment at lam is the bare one at
+                        # lam**2 + kw/m (same x), and the mass Gram is still m Y**2
+                        lam2_s = lam2 + to_mp(seg.kw, mpmath.mp.dps) / consts[1]
+                        seg = EulerBernoulliSegment(seg.EI, seg.m, seg.l)
                     blk = slice(4 * lvl, 4 * lvl + 4)
                     record(lvl, xs, "-+")          # a beam's left end without a station
                     inside = [(i, x) for i, (x, _s) in enumerate(samples[lvl])
@@ -351,11 +357,11 @@ class _Walker:
                               and x > xs + tol * max(1, abs(xs)) and not at(lvl, i, xe, xef)
                               and x < xe]
                     if inside:
-                        self._inside(lam2, seg, consts, E[blk, :], xs, inside, lvl, recorded)
-                    U = seg.evaluate_mp(lam2, consts)
+                        self._inside(lam2_s, seg, consts, E[blk, :], xs, inside, lvl, recorded)
+                    U = seg.evaluate_mp(lam2_s, consts)
                     E1 = U.dot(E[blk, :])
                     if gram:
-                        G += _segment_gram(seg, lam2, consts, E[blk, :], E1, real)
+                        G += _segment_gram(seg, lam2_s, consts, E[blk, :], E1, real)
                     E[blk, :] = E1
                     record(lvl, xe, "-+", only_new=False)
             else:

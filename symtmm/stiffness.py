@@ -119,7 +119,7 @@ class StiffnessModel:
                 nodes.append((float(x), b_idx, x))
             beam_nodes.append(dict(zip(points, ids)))
             for (xa, ia), (xb, ib) in zip(zip(points, ids), zip(points[1:], ids[1:])):
-                self.segments.append((b_idx, EulerBernoulliSegment(beam.EI, beam.m, xb - xa),
+                self.segments.append((b_idx, EulerBernoulliSegment(beam.EI, beam.m, xb - xa, beam.kw),
                                       ia, ib))
         removed = {}
         for b_idx, beam in enumerate(beams):
@@ -150,7 +150,8 @@ class StiffnessModel:
         self._seg_dofs = [[self.dof.get((ia, 0)), self.dof.get((ia, 1)),
                            self.dof.get((ib, 0)), self.dof.get((ib, 1))]
                           for _, _, ia, ib in self.segments]
-        self._seg_consts = [(float(s.EI), float(s.m), float(s.l)) for _, s, _, _ in self.segments]
+        self._seg_consts = [(float(s.EI), float(s.m), float(s.l), float(s.kw))
+                            for _, s, _, _ in self.segments]
         self._segment_kind = {c: seg for c, (_, seg, _, _) in zip(self._seg_consts, self.segments)}
         self._mp_consts: dict = {}
         self.bandwidth = 0
@@ -221,7 +222,7 @@ class StiffnessModel:
                 key = (kind, mpmath.mp.prec)
                 consts = self._mp_consts.get(key)
                 if consts is None:
-                    consts = tuple(to_mp(v, mpmath.mp.dps) for v in (seg.EI, seg.m, seg.l))
+                    consts = tuple(to_mp(v, mpmath.mp.dps) for v in seg.key)
                     self._mp_consts[key] = consts
                 D = cache[kind] = segment_stiffness(seg.evaluate_mp(lam2, consts))
             _scatter(K, D, dofs)

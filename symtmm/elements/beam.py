@@ -1,6 +1,8 @@
 """Euler–Bernoulli beam segment.
 
-Field equation ``EI Y'''' + m lam**2 Y = 0``. With ``beta**4 = -m lam**2 / EI``
+Field equation ``EI Y'''' + (kw + m lam**2) Y = 0`` (``kw``: stiffness per unit
+length of an optional Winkler foundation, default 0). With
+``beta**4 = -(m lam**2 + kw) / EI``
 the transfer matrix of a segment of length ``l`` is ``B(l) B(0)**-1``
 (derived in ``derivations/euler_bernoulli.py``)::
 
@@ -115,7 +117,12 @@ def c_functions_mp(x):
         return result
     nu = mpmath.root(x, 4)
     ch, co, sh, si = mpmath.cosh(nu), mpmath.cos(nu), mpmath.sinh(nu), mpmath.sin(nu)
-    return [(ch + co) / 2, (sh + si) / (2 * nu), (ch - co) / (2 * nu**2), (sh - si) / (2 * nu**3)]
+    out = [(ch + co) / 2, (sh + si) / (2 * nu), (ch - co) / (2 * nu**2), (sh - si) / (2 * nu**3)]
+    if isinstance(x, mpmath.mpf):
+        # a real negative x (a foundation stiffer than the inertia) has a complex
+        # fourth root, but the c_j are real there: keep real arithmetic real
+        out = [mpmath.re(c) for c in out]
+    return out
 
 
 def _fact_mp(n):
@@ -129,6 +136,10 @@ class EulerBernoulliSegment(FieldElement):
     ----------
     EI, m, l : sympy.Expr or number
         Bending stiffness, mass per unit length, length.
+    kw : sympy.Expr or number, optional
+        Winkler foundation stiffness per unit length (default 0). It enters
+        only through ``x = -(m lam**2 + kw) l**4 / EI``: the segment at ``lam``
+        is the bare segment at ``lam**2 + kw/m``.
 
     Examples
     --------
@@ -141,23 +152,33 @@ class EulerBernoulliSegment(FieldElement):
     [0, 0, 0, 0]])
     """
 
-    def __init__(self, EI, m, l):
+    def __init__(self, EI, m, l, kw=0):
         self.EI = sp.sympify(EI)
         self.m = sp.sympify(m)
         self.l = sp.sympify(l)
+        self.kw = sp.sympify(kw)
 
     @property
     def parameters(self) -> dict:
-        return {"EI": self.EI, "m": self.m, "l": self.l}
+        if self.kw == 0:
+            return {"EI": self.EI, "m": self.m, "l": self.l}
+        return {"EI": self.EI, "m": self.m, "l": self.l, "kw": self.kw}
+
+    @property
+    def key(self) -> tuple:
+        """The constants that fix the segment's matrix (equal keys, equal matrices)."""
+        return (self.EI, self.m, self.l, self.kw)
 
     def beta(self, lam=LAM):
-        """``beta = (-m lam**2 / EI)**(1/4)`` (any branch gives the same matrix)."""
-        return (-self.m * lam**2 / self.EI) ** sp.Rational(1, 4)
+        """``beta = (-(m lam**2 + kw) / EI)**(1/4)`` (any branch gives the same matrix)."""
+        return (-(self.m * lam**2 + self.kw) / self.EI) ** sp.Rational(1, 4)
 
     def transfer_matrix(self, lam=LAM) -> sp.Matrix:
-        """Exact transfer matrix at ``lam`` (closed form; at ``lam = 0`` the static one)."""
-        if lam == 0:
+        """Exact transfer matrix at ``lam`` (closed form; at ``x = 0`` the static one)."""
+        if self.m * lam**2 + self.kw == 0:
             return self.static_matrix()
+        if lam == 0:
+            return self.foundation_static_matrix()
         return stv_matrix(self.beta(lam), self.l, self.EI)
 
     def transfer_matrix_beta(self, beta) -> sp.Matrix:
@@ -174,16 +195,44 @@ class EulerBernoulliSegment(FieldElement):
         cs = [sp.Function(f"c{j}")(x) for j in range(4)]
         return sp.Matrix(_c_matrix(*cs, x, self.l, self.EI))
 
+    def foundation_static_matrix(self) -> sp.Matrix:
+        """Transfer matrix at ``lam = 0`` on a foundation, in real functions.
+
+        With ``x = -4 s**4``, ``s = l (kw / (4 EI))**(1/4)``, the fourth root of
+        ``x`` is ``s (1 + i)`` and the ``c_j`` become ``cosh s cos s``,
+        ``(cosh s sin s + sinh s cos s) / (2 s)``, ``sinh s sin s / (2 s**2)`` and
+        ``(cosh s sin s - sinh s cos s) / (4 s**3)``: real, which keeps exact
+        rank decisions (rigid-body modes) simple.
+
+        Examples
+        --------
+        >>> seg = EulerBernoulliSegment(1, 1, 1, kw=4)
+        >>> seg.foundation_static_matrix()[0, 0]
+        cos(1)*cosh(1)
+        """
+        s = self.l * (self.kw / (4 * self.EI)) ** sp.Rational(1, 4)
+        ch, co, sh, si = sp.cosh(s), sp.cos(s), sp.sinh(s), sp.sin(s)
+        cs = [ch * co, (ch * si + sh * co) / (2 * s), sh * si / (2 * s**2),
+              (ch * si - sh * co) / (4 * s**3)]
+        return sp.Matrix(_c_matrix(*cs, -4 * s**4, self.l, self.EI))
+
     def static_matrix(self) -> sp.Matrix:
-        """Transfer matrix at ``lam = 0``: ``c_j(0) = 1/j!``."""
+        """Transfer matrix at ``x = 0`` (``lam = 0`` without foundation): ``c_j(0) = 1/j!``."""
         cs = [sp.Integer(1), sp.Integer(1), sp.Rational(1, 2), sp.Rational(1, 6)]
         return sp.Matrix(_c_matrix(*cs, sp.Integer(0), self.l, self.EI))
 
     def evaluate_numpy(self, lam2, consts=None) -> np.ndarray:
-        """Transfer matrices for an array of ``lam**2`` values: shape ``(..., 4, 4)``."""
-        EI, m, l = consts if consts is not None else (float(self.EI), float(self.m), float(self.l))
+        """Transfer matrices for an array of ``lam**2`` values: shape ``(..., 4, 4)``.
+
+        ``consts`` are ``(EI, m, l)`` or ``(EI, m, l, kw)`` as floats; with
+        three, the segment's own ``kw`` is used.
+        """
+        if consts is None:
+            consts = (float(self.EI), float(self.m), float(self.l))
+        EI, m, l = consts[:3]
+        kw = consts[3] if len(consts) > 3 else float(self.kw)
         lam2 = np.asarray(lam2, dtype=complex)
-        x = -lam2 * (m * l**4 / EI)
+        x = -(lam2 * m + kw) * (l**4 / EI) if kw else -lam2 * (m * l**4 / EI)
         c0, c1, c2, c3 = c_functions_numpy(x)
         rows = _c_matrix(c0, c1, c2, c3, x, l, EI)
         return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
@@ -191,11 +240,15 @@ class EulerBernoulliSegment(FieldElement):
     def evaluate_mp(self, lam2, consts) -> np.ndarray:
         """Transfer matrix for one mpmath ``lam**2`` at the working precision.
 
-        ``consts`` are ``(EI, m, l)`` as mpmath numbers at that precision.
-        Returns a 4x4 object array.
+        ``consts`` are ``(EI, m, l)`` or ``(EI, m, l, kw)`` as mpmath numbers
+        at that precision (three only without foundation). Returns a 4x4
+        object array.
         """
-        EI, m, l = consts
-        x = -lam2 * (m * l**4 / EI)
+        EI, m, l = consts[:3]
+        if len(consts) == 3 and self.kw != 0:
+            raise ValueError("a segment on a foundation needs the constants (EI, m, l, kw)")
+        kw = consts[3] if len(consts) > 3 else 0
+        x = -(lam2 * m + kw) * (l**4 / EI) if kw else -lam2 * (m * l**4 / EI)
         c0, c1, c2, c3 = c_functions_mp(x)
         rows = _c_matrix(c0, c1, c2, c3, x, l, EI)
         out = np.empty((4, 4), dtype=object)
@@ -205,5 +258,6 @@ class EulerBernoulliSegment(FieldElement):
         return out
 
     def nu(self, omega: float) -> float:
-        """``beta l`` at circular frequency ``omega`` (undamped), as a float."""
-        return (float(self.m) / float(self.EI)) ** 0.25 * math.sqrt(abs(omega)) * float(self.l)
+        """``|beta| l`` at circular frequency ``omega`` (undamped), as a float."""
+        x = (float(self.m) * omega**2 - float(self.kw)) / float(self.EI)
+        return abs(x) ** 0.25 * float(self.l)

@@ -129,7 +129,8 @@ class DynamicStiffness:
         for b_idx, beam in enumerate(beams):
             required = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
             xs = sorted({sp.nsimplify(x) for x in required}, key=float)
-            mu = (float(beam.m) / float(beam.EI)) ** 0.25 * math.sqrt(self.lam_max)
+            # |beta|**4 <= (m |lam|**2 + kw) / EI: a foundation enters the bound
+            mu = ((float(beam.m) * self.lam_max**2 + float(beam.kw)) / float(beam.EI)) ** 0.25
             points = [xs[0]]
             for xa, xb in itertools.pairwise(xs):
                 n_sub = max(1, math.ceil(mu * float(xb - xa) / NU_MAX))
@@ -141,7 +142,7 @@ class DynamicStiffness:
                 node_len.append(0.0)
             beam_nodes.append(dict(zip(points, ids)))
             for (xa, ia), (xb, ib) in zip(zip(points, ids), zip(points[1:], ids[1:])):
-                seg = EulerBernoulliSegment(beam.EI, beam.m, xb - xa)
+                seg = EulerBernoulliSegment(beam.EI, beam.m, xb - xa, beam.kw)
                 segments.append((seg, ia, ib))
                 for i in (ia, ib):
                     node_len[i] = max(node_len[i], float(xb - xa))
@@ -191,7 +192,7 @@ class DynamicStiffness:
         # segments grouped by their constants: identical segments are evaluated once
         groups: dict = {}
         for seg, ia, ib in segments:
-            key = (seg.EI, seg.m, seg.l)
+            key = seg.key
             dofs = [dof.get((ia, 0)), dof.get((ia, 1)), dof.get((ib, 0)), dof.get((ib, 1))]
             local = [i for i, d in enumerate(dofs) if d is not None]
             flat_k = [at(dofs[i], dofs[j]) for i in local for j in local]
@@ -200,8 +201,8 @@ class DynamicStiffness:
             g = groups.setdefault(key, {"seg": seg, "places": []})
             g["places"].append((np.array(flat_k), np.array(flat_l), sc))
         self._groups = []
-        for (EI, m, l), g in groups.items():
-            consts = (float(EI), float(m), float(l))
+        for key, g in groups.items():
+            consts = tuple(float(v) for v in key)
             self._groups.append((g["seg"], consts, g["places"]))
         self.segment_count = len(segments)
         # springs, dashpots, masses: K0 + c lam + M lam**2, fixed patterns on their freedoms
