@@ -58,7 +58,6 @@ from .assembly import Interval, Layout
 from .characteristic import _check_order, _prepare
 from .elements import STATE
 from .elements.base import CONJUGATE, LAM
-from .errors import ModelError
 
 __all__ = ["EXTENSIONS", "LANGUAGES", "generate"]
 
@@ -101,10 +100,6 @@ class _Plan:
 def _plan(model, symbolic=()) -> _Plan:
     model_in = model
     model, sample = _prepare(model, tuple(symbolic))
-    for b in model.beams:
-        if b.kw != 0:
-            raise ModelError("code generation does not support a Winkler foundation (kw) yet",
-                             field=f"beam '{b.name}'.kw", source=model.source)
     layout = Layout(model, sample)
     _check_order(layout, sample, model.source)
     params = sorted(model.free_symbols)
@@ -126,11 +121,12 @@ def _plan(model, symbolic=()) -> _Plan:
     for step in layout.steps:
         if isinstance(step, Interval):
             for lvl, seg in step.segments:
-                key = (seg.EI, seg.m, seg.l)
+                key = seg.key
                 if key not in seg_index:
                     seg_index[key] = len(plan.segments)
+                    # a foundation kw: the bare segment at lam**2 + kw/m
                     plan.segments.append((slot(seg.m * seg.l**4 / seg.EI), slot(seg.l),
-                                          slot(seg.EI)))
+                                          slot(seg.EI), slot(seg.kw / seg.m)))
                 plan.steps.append(("seg", seg_index[key], lvl))
             continue
         updates = []
@@ -195,6 +191,11 @@ def _plan(model, symbolic=()) -> _Plan:
 
 # --------------------------------------------------------------------------------------
 # shared pieces
+
+
+def _shifted(s, printer) -> str:
+    """``lam2``, or ``(lam2 + kw/m)`` for a segment on a Winkler foundation."""
+    return "lam2" if s == 0 else f"(lam2 + {printer(s)})"
 
 
 def _jump(terms, s_name, e_name, mul="*") -> str:
@@ -348,8 +349,8 @@ def _emit_c(plan: _Plan) -> str:
     for j, c in enumerate(plan.columns):
         out.append(f"    E[{c}][{j}] = 1.0;")
     out += [f"    double complex U[{max(len(plan.segments), 1)}][4][4];"]
-    for i, (a, l, EI) in enumerate(plan.segments):
-        out.append(f"    symtmm_segment(lam2, {p(a)}, {p(l)}, {p(EI)}, U[{i}]);")
+    for i, (a, l, EI, s) in enumerate(plan.segments):
+        out.append(f"    symtmm_segment({_shifted(s, p)}, {p(a)}, {p(l)}, {p(EI)}, U[{i}]);")
     if plan.stiff:
         out.append(f"    double complex s[{len(plan.stiff)}];")
     for i, (k0, k1, k2) in enumerate(plan.stiff):
@@ -512,8 +513,8 @@ def _emit_fortran(plan: _Plan) -> str:
     out.append("    e = (0.0_dp, 0.0_dp)")
     for j, c in enumerate(plan.columns):
         out.append(f"    e({c + 1}, {j + 1}) = (1.0_dp, 0.0_dp)")
-    for i, (a, l, EI) in enumerate(plan.segments):
-        out.append(f"    call segment(lam2, {f(a)}, {f(l)}, {f(EI)}, u(:, :, {i + 1}))")
+    for i, (a, l, EI, s) in enumerate(plan.segments):
+        out.append(f"    call segment({_shifted(s, f)}, {f(a)}, {f(l)}, {f(EI)}, u(:, :, {i + 1}))")
     for i, (k0, k1, k2) in enumerate(plan.stiff):
         out.append(f"    s({i + 1}) = {_stiffness(k0, k1, k2, f)}")
     for step in plan.steps:
@@ -547,7 +548,8 @@ def _emit_octave(plan: _Plan) -> str:
     out += ["% lam may be any array; d has its shape.", "  d = zeros(size(lam));"]
     for name, expr in plan.temps:
         out.append(f"  {name} = {sp.octave_code(expr)};")
-    seg_args = [f"{p(a)}, {p(l)}, {p(EI)}" for a, l, EI in plan.segments]
+    seg_args = [f"{p(a)}, {p(l)}, {p(EI)}" for a, l, EI, _ in plan.segments]
+    seg_lam2 = [_shifted(s, p) for *_, s in plan.segments]
     out += ["  for idx = 1:numel(lam)",
             "    lm = lam(idx);",
             "    lam2 = lm * lm;",
@@ -555,7 +557,7 @@ def _emit_octave(plan: _Plan) -> str:
     for j, c in enumerate(plan.columns):
         out.append(f"    E({c + 1}, {j + 1}) = 1;")
     for i, sa in enumerate(seg_args):
-        out.append(f"    U{i + 1} = symtmm_segment(lam2, {sa});")
+        out.append(f"    U{i + 1} = symtmm_segment({seg_lam2[i]}, {sa});")
     for i, (k0, k1, k2) in enumerate(plan.stiff):
         out.append(f"    s{i + 1} = {_stiffness(k0, k1, k2, p, lam='lm')};")
     for step in plan.steps:
@@ -676,8 +678,8 @@ def _emit_julia(plan: _Plan) -> str:
     out.append(f"    E = zeros(ComplexF64, {ns}, {nc})")
     for j, c in enumerate(plan.columns):
         out.append(f"    E[{c + 1}, {j + 1}] = 1")
-    for i, (a, l, EI) in enumerate(plan.segments):
-        out.append(f"    U{i + 1} = symtmm_segment(lam2, Float64({p(a)}), Float64({p(l)}), "
+    for i, (a, l, EI, s) in enumerate(plan.segments):
+        out.append(f"    U{i + 1} = symtmm_segment({_shifted(s, p)}, Float64({p(a)}), Float64({p(l)}), "
                    f"Float64({p(EI)}))")
     for i, (k0, k1, k2) in enumerate(plan.stiff):
         out.append(f"    s{i + 1} = {_stiffness(k0, k1, k2, p)}")
@@ -751,8 +753,8 @@ def _emit_python(plan: _Plan) -> str:
     out.append(f"    E = np.zeros((flat.size, {4 * plan.n}, {plan.ncol}), dtype=complex)")
     for j, c in enumerate(plan.columns):
         out.append(f"    E[:, {c}, {j}] = 1.0")
-    for i, (a, l, EI) in enumerate(plan.segments):
-        out.append(f"    U{i} = _segment(lam2, {p(a)}, {p(l)}, {p(EI)})")
+    for i, (a, l, EI, s) in enumerate(plan.segments):
+        out.append(f"    U{i} = _segment({_shifted(s, p)}, {p(a)}, {p(l)}, {p(EI)})")
     for i, (k0, k1, k2) in enumerate(plan.stiff):
         out.append(f"    s{i} = np.broadcast_to({_stiffness(k0, k1, k2, p, lam='flat')}, "
                    "flat.shape)[:, None]")
