@@ -1,0 +1,70 @@
+"""Models for the benchmarks: the paper's examples and generated chains."""
+
+from __future__ import annotations
+
+import random
+from pathlib import Path
+
+from symtmm.model import Beam, Model, Spring
+from symtmm.modelfile import load
+
+__all__ = ["EXAMPLES", "example", "clamped_clamped", "chain", "fe_input"]
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def example(name: str) -> Model:
+    """A model of ``examples/`` by file stem, e.g. ``"paper_ex1_ff_cc"``."""
+    return load(EXAMPLES / f"{name}.toml")
+
+
+def clamped_clamped() -> Model:
+    """One clamped-clamped beam, ``EI = m = L = 1``."""
+    return Model((Beam("b", EI=1, m=1, L=1, left="clamped", right="clamped"),),
+                 title="clamped-clamped beam")
+
+
+def chain(levels: int, springs_per_level: int, seed: int = 1) -> Model:
+    """A chain of ``levels`` random beams over ``[0, 1]`` with random spring positions.
+
+    Level ``i`` carries ``springs_per_level`` springs to level ``i + 1`` (the
+    last level: to the ground), at positions drawn from ``j/1000``, distinct
+    over the whole model, so every spring adds a cut. ``EI`` and ``m`` are
+    drawn from ``{1/2, ..., 2}`` in steps of ``1/10``, supports from pinned and
+    clamped (no rigid-body modes), ``k`` from ``10 .. 1000``. Exact numbers
+    throughout (Fractions as strings).
+
+    Examples
+    --------
+    >>> m = chain(3, 2)
+    >>> len(m.beams), len(m.springs), sum(s.grounded for s in m.springs)
+    (3, 6, 2)
+    """
+    rng = random.Random(seed * 1_000_003 + levels * 1009 + springs_per_level)
+    total = levels * springs_per_level
+    if total > 998:
+        raise ValueError("at most 998 springs")
+    positions = rng.sample(range(1, 1000), total)
+    beams = []
+    for i in range(levels):
+        beams.append(Beam(f"b{i + 1}", EI=f"{rng.randint(5, 20)}/10", m=f"{rng.randint(5, 20)}/10",
+                          L=1, left=rng.choice(("pinned", "clamped")),
+                          right=rng.choice(("pinned", "clamped"))))
+    springs = []
+    for i in range(levels):
+        other = f"b{i + 2}" if i + 1 < levels else "ground"
+        for _ in range(springs_per_level):
+            springs.append(Spring(f"b{i + 1}", other, x=f"{positions.pop()}/1000",
+                                  k=rng.randint(10, 1000)))
+    return Model(tuple(beams), tuple(springs),
+                 title=f"random chain, {levels} levels, {springs_per_level} springs per level")
+
+
+def fe_input(model: Model) -> tuple:
+    """``(beams, springs)`` as the plain dicts of :mod:`symtmm.fe` (floats)."""
+    model = model.resolved()
+    beams = [dict(name=b.name, EI=float(b.EI), m=float(b.m), L=float(b.L), x0=float(b.x0),
+                  left=b.left, right=b.right) for b in model.beams]
+    springs = [dict(between=[s.a, s.b], x=float(s.x), k=float(s.k), c=float(s.c))
+               for s in model.springs]
+    return beams, springs

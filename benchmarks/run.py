@@ -1,0 +1,126 @@
+"""Run the benchmarks: ``python benchmarks/run.py [--quick] [--json] [-o FILE]``.
+
+Without ``--json`` a markdown report goes to standard output (and to
+``FILE`` with ``-o``; the repository's copy is ``docs/benchmarks.md``).
+``--quick`` runs small sizes only (under a minute); ``--sections`` picks
+sections; ``--from-json FILE`` renders the report of a saved ``--json`` run.
+Progress goes to standard error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
+
+SECTIONS = ("root_search", "evaluator", "fe", "scaling")
+
+
+def _load() -> list:
+    try:
+        return [float(x) for x in Path("/proc/loadavg").read_text().split()[:3]]
+    except OSError:
+        return list(os.getloadavg())
+
+
+def _cpu() -> str:
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def _version(module: str) -> str | None:
+    try:
+        mod = __import__(module)
+    except ImportError:
+        return None
+    return getattr(mod, "__version__", "?")
+
+
+def _gcc() -> str | None:
+    cc = shutil.which("gcc")
+    if not cc:
+        return None
+    out = subprocess.run([cc, "--version"], capture_output=True, text=True, check=False)
+    return out.stdout.splitlines()[0] if out.stdout else None
+
+
+def _commit() -> str | None:
+    out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                         text=True, cwd=ROOT, check=False)
+    return out.stdout.strip() or None
+
+
+def machine() -> dict:
+    """What the numbers were measured on."""
+    return dict(cpu=_cpu(), cores=os.cpu_count(), platform=platform.platform(),
+                python=platform.python_version(),
+                packages={m: _version(m) for m in ("symtmm", "numpy", "scipy", "mpmath", "sympy",
+                                                   "cxroots")},
+                gcc=_gcc(), commit=_commit(),
+                date=time.strftime("%Y-%m-%d %H:%M:%S %Z"))
+
+
+def run(quick: bool, sections, progress) -> dict:
+    from benchmarks import evaluator, fe_compare, root_search, scaling
+
+    modules = {"root_search": root_search, "evaluator": evaluator, "fe": fe_compare,
+               "scaling": scaling}
+    result = dict(quick=quick, machine=machine(), load_before=_load(),
+                  command="python benchmarks/run.py" + (" --quick" if quick else ""))
+    start = time.perf_counter()
+    seconds = {}
+    for name in sections:
+        t = time.perf_counter()
+        result[name] = modules[name].run(quick=quick, progress=progress)
+        seconds[name] = round(time.perf_counter() - t, 1)
+    result["seconds"] = dict(seconds, total=round(time.perf_counter() - start, 1))
+    result["load_after"] = _load()
+    result["targets"] = {name: result[name]["target"]["met"] for name in sections}
+    return result
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="small sizes, under a minute")
+    parser.add_argument("--json", action="store_true", help="print the results as JSON")
+    parser.add_argument("--sections", nargs="+", choices=SECTIONS, default=list(SECTIONS),
+                        help="sections to run (default: all)")
+    parser.add_argument("-o", "--output", type=Path, help="also write the report to this file")
+    parser.add_argument("--from-json", type=Path, help="render the report of a saved JSON run")
+    args = parser.parse_args(argv)
+
+    def progress(msg):
+        print(msg, file=sys.stderr, flush=True)
+
+    if args.from_json:
+        result = json.loads(args.from_json.read_text())
+    else:
+        result = run(args.quick, args.sections, progress)
+    if args.json:
+        text = json.dumps(result, indent=1, default=str)
+    else:
+        from benchmarks.report import render
+        text = render(result)
+    print(text)
+    if args.output:
+        args.output.write_text(text + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

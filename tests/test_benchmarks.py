@@ -1,0 +1,153 @@
+"""The benchmark harness: its baselines, references and output structure.
+
+The baselines must be right for the comparison to mean anything: the naive
+transfer product and the grid search are checked against closed forms, the
+benchmark's reference values against the test suite's own textbook roots
+(tests/reference.py) and the undamped solver. The quick run's JSON keeps the
+keys the issue names.
+"""
+
+from __future__ import annotations
+
+import doctest
+import importlib
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+from reference import classical_roots
+
+from symtmm.compile import Evaluator
+from symtmm.model import Beam, Model
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from benchmarks import baselines, compare, models, references
+
+MODULES = ["baselines", "cbench", "compare", "evaluator", "fe_compare", "models", "references",
+           "report", "root_search", "scaling"]
+
+
+@pytest.mark.parametrize("name", MODULES)
+def test_doctests(name):
+    module = importlib.import_module(f"benchmarks.{name}")
+    failures, _ = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    assert failures == 0
+
+
+def test_clamped_clamped_reference_agrees_with_textbook_roots():
+    ours = references.clamped_clamped_omegas(12, dps=30)
+    theirs = classical_roots("clamped", "clamped", 12, dps=30)
+    with mpmath.workdps(30):
+        for w, nu in zip(ours, theirs):
+            assert abs(w - nu**2) < mpmath.mpf(10) ** -25 * w
+
+
+def test_chain_families_undamped_agree_with_solver():
+    # example 3 (three pinned-pinned beams, springs at 1/4 and 3/4, K = 25) without dashpots:
+    # the families' roots must be the undamped solver's, with multiplicity
+    from symtmm.solve import solve
+
+    roots = references.chain_family_roots(3, 1, 1, 1, [0.25, 0.75], 25, 0, 300, 10, dps=25)
+    spectrum = solve(models.example("paper_ex3_three_pp_coupled"), omega_max=300, digits=15)
+    found = [e.lam for e in spectrum for _ in range(e.multiplicity)]
+    m = compare.match(found, roots)
+    assert m.missed == 0 and m.spurious == 0
+    assert m.max_rel_error < 1e-14
+    assert all(abs(z.real) < 1e-20 for z in roots)
+
+
+@pytest.mark.parametrize("left,right", [("pinned", "pinned"), ("clamped", "clamped"),
+                                        ("free", "clamped"), ("sliding", "pinned")])
+def test_naive_product_matches_evaluator(left, right):
+    beams = (Beam("a", EI=2, m=1, L=1, left=left, right=right),
+             Beam("b", EI=1, m="3/2", L=1, left=right, right=left))
+    from symtmm.model import Spring
+    model = Model(beams, (Spring("a", "b", x="3/10", k=50, c=2), Spring("b", "ground", x="7/10",
+                                                                           k=20)))
+    lam = np.array([2j, -1 + 7j, -3 + 30j, 0.5 + 80j])
+    naive = baselines.NaiveTransfer(model).delta(lam)
+    ev = Evaluator(model).delta(lam)
+    assert np.allclose(naive, ev, rtol=1e-9, atol=0)
+
+
+def test_naive_product_vanishes_at_closed_form():
+    cc = models.clamped_clamped()
+    naive = baselines.NaiveTransfer(cc)
+    w1 = float(references.clamped_clamped_omegas(1)[0])
+    # Delta changes sign across the first root
+    assert naive.delta(np.array([1j * w1 * (1 - 1e-9)]))[0].real * \
+        naive.delta(np.array([1j * w1 * (1 + 1e-9)]))[0].real < 0
+
+
+def test_grid_bisection_misses_double_and_close_roots():
+    # sin^2: double roots at (n pi)^2 (no sign change); a close pair at 50 and 50 + 1e-4
+    def delta(lam):
+        w = np.abs(lam)
+        return np.sin(np.sqrt(w)) ** 2 * (w - 50) * (w - 50 - 1e-4) * (w - 70)
+
+    r = baselines.grid_bisection(delta, 1, 10.0)
+    # the first root it reports is the simple one at 70: the double roots (n pi)^2 and
+    # the pair at 50 are not seen
+    assert len(r.omegas) == 1 and abs(r.omegas[0] - 70) < 1e-9
+
+
+def test_grid_bisection_counts_its_evaluations():
+    calls = []
+
+    def delta(lam):
+        calls.append(np.size(lam))
+        return np.sin(np.sqrt(np.abs(lam)))
+
+    r = baselines.grid_bisection(delta, 2, 10.0)
+    assert r.evaluations == sum(calls)
+    assert [round(float(w) / np.pi**2, 9) for w in r.omegas] == [1.0, 4.0]
+
+
+def test_match_counts_multiplicity():
+    m = compare.match([1.0, 1.0], [1.0, 1.0, 1.0, 2.0])
+    assert (m.matched, m.missed, m.spurious) == (2, 2, 0)
+
+
+def test_cxroots_budget_is_respected():
+    pytest.importorskip("cxroots")
+    r = baselines.cxroots_search(lambda z: (z - 1) * (z - 2j), (-3, 3.1), (-3, 3.2), budget=20)
+    assert r.status == "ok"
+    assert sorted(round(abs(z), 6) for z in r.roots) == [1.0, 2.0]
+    assert r.evaluations > 0
+
+
+def _run(*args, timeout=60):
+    out = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "run.py"), *args],
+                         capture_output=True, text=True, timeout=timeout, cwd=ROOT, check=True)
+    return out.stdout
+
+
+def test_quick_json_evaluator_keys():
+    result = json.loads(_run("--quick", "--json", "--sections", "evaluator"))
+    rates = result["evaluator"]["points_per_second"]
+    for key in ("symtmm", "naive_numpy", "mpmath_30", "mpmath_60", "generated_c"):
+        assert key in rates
+    assert rates["symtmm"] > rates["naive_numpy"] > rates["mpmath_30"] > 0
+    assert set(result["machine"]) >= {"cpu", "cores", "python", "packages"}
+    assert result["targets"] == {"evaluator": result["evaluator"]["target"]["met"]}
+
+
+@pytest.mark.slow
+def test_quick_run_all_sections(tmp_path):
+    saved = tmp_path / "quick.json"
+    saved.write_text(_run("--quick", "--json", timeout=180))
+    result = json.loads(saved.read_text())
+    assert set(result["targets"]) == {"root_search", "evaluator", "fe", "scaling"}
+    for case in result["root_search"]["cases"]:
+        assert case["methods"]["default"]["missed"] == 0
+        assert case["methods"]["default"]["max_rel_error"] < 1e-12
+    assert result["fe"]["symtmm"]["max_rel_error"] < 1e-12
+    markdown = _run("--from-json", str(saved))
+    assert markdown.startswith("# Benchmarks")
+    assert "## 4. Scaling" in markdown
