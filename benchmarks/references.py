@@ -185,8 +185,9 @@ def chain_family_roots(levels: int, EI, m, L, positions, k, c, omega_max, sigma_
                 continue
             mu_ = mpmath.mpf(mu)
             supports = [(mpmath.mpf(x), mpmath.mpf(k), mpmath.mpf(c)) for x in positions]
-            # roots move down as the dashpots grow: scan well above omega_max
-            starts = _undamped_axis_roots(EI, m, L, supports, mu, 3 * omega_max)
+            # roots move as the dashpots grow: start from undamped roots well beyond the region
+            starts = _undamped_axis_roots(EI, m, L, supports, mu,
+                                          3 * max(omega_max, sigma_max))
             for w0 in starts:
                 z = mpmath.mpc(0, w0)
                 for s in range(steps + 1):
