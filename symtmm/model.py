@@ -22,6 +22,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import sympy as sp
 
@@ -265,6 +266,7 @@ class Model:
         # A read-only view keeps the model immutable.
         object.__setattr__(self, "parameters", _FrozenDict(params))
         try:
+            self._substitution  # noqa: B018 - a circle among parameters is reported here
             self._validate()
         except ModelError as exc:
             raise exc.with_source(self.source) if self.source else exc from None
@@ -315,9 +317,42 @@ class Model:
                 _check_sign(self.value(getattr(mass, attr)), f"{where}.{attr}", allow_zero=True)
 
     # -- parameters -----------------------------------------------------------------
+    @cached_property
+    def _substitution(self) -> dict:
+        """Parameter symbol -> value with every reference to other parameters resolved.
+
+        A parameter may be written in terms of others (``k = "K*EI/L**3"``);
+        they are resolved here, lazily, so that changing ``K`` changes ``k``.
+        """
+        raw = {parameter_symbol(n): v for n, v in self.parameters.items() if v is not None}
+        done: dict = {}
+
+        def resolve(sym, chain):
+            if sym in done:
+                return done[sym]
+            if sym in chain:
+                names = " -> ".join(s.name for s in chain + [sym])
+                raise ModelError(f"parameters refer to each other in a circle: {names}",
+                                 field=f"parameters.{sym.name}", source=self.source)
+            expr = raw[sym]
+            subs = {s: resolve(s, chain + [sym]) for s in expr.free_symbols if s in raw}
+            done[sym] = expr.xreplace(subs) if subs else expr
+            return done[sym]
+
+        for sym in raw:
+            resolve(sym, [])
+        return done
+
     def value(self, expr: sp.Expr) -> sp.Expr:
-        """Substitute the parameters that have values into ``expr``."""
-        subs = {parameter_symbol(n): v for n, v in self.parameters.items() if v is not None}
+        """Substitute the parameters that have values into ``expr``.
+
+        Examples
+        --------
+        >>> m = Model((Beam("b", EI=1, m=1, L=1),), parameters={"K": 3, "k": "2*K"})
+        >>> m.value(parameter_symbol("k")), m.with_parameters(K=5).value(parameter_symbol("k"))
+        (6, 10)
+        """
+        subs = self._substitution
         return sp.sympify(expr).xreplace(subs) if subs else sp.sympify(expr)
 
     def _resolved_beam(self, beam: Beam) -> Beam:

@@ -42,7 +42,7 @@ from pathlib import Path
 import sympy as sp
 
 from .errors import ModelError
-from .expr import ExpressionError, exact_number, parse_expression
+from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
 from .model import GROUND, Beam, Mass, Model, Spring
 
 if sys.version_info >= (3, 11):
@@ -140,6 +140,12 @@ def _check_keys(table, required, optional, where):
 
 
 def _parameters(raw: dict, overrides: dict) -> dict:
+    """Parameter expressions as written, references to other parameters kept as symbols.
+
+    Keeping the references (``k = "K*EI/L**3"`` stays in ``K``) is what lets
+    ``--set K=...``, ``Model.with_parameters`` and ``--symbolic K`` reach the
+    parameters defined in terms of ``K``; :class:`Model` resolves them.
+    """
     if not isinstance(raw, dict):
         raise ModelError(f"expected a table, got {_kind(raw)}", field="parameters")
     texts = dict(raw)
@@ -147,22 +153,25 @@ def _parameters(raw: dict, overrides: dict) -> dict:
     values: dict = {}
     active: list = []
 
-    def resolve(name):
+    def parse(name):
         if name in values:
-            return values[name]
-        if name not in texts:
-            return None
+            return
         if name in active:
             raise ModelError("parameters refer to each other in a circle: "
                              + " -> ".join(active + [name]), field=f"parameters.{name}")
         active.append(name)
         field = "--set " + name if name in overrides else f"parameters.{name}"
-        values[name] = _number(texts[name], field, resolve)
+
+        def reference(other):
+            if other not in texts:
+                return None
+            parse(other)   # parsed first: a circle is reported where it closes
+            return parameter_symbol(other)
+        values[name] = _number(texts[name], field, reference)
         active.pop()
-        return values[name]
 
     for name in texts:
-        resolve(name)
+        parse(name)
     return values
 
 

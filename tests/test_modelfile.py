@@ -60,6 +60,20 @@ def test_set_overrides_and_chains_through_parameters():
     assert model.springs[0].k == sp.Rational(3, 14)
 
 
+def test_parameters_written_in_terms_of_others_follow_them():
+    # half = K/2: changing K after loading (a sweep, --symbolic K) must reach half too
+    model = loads(GOOD)
+    assert model.with_parameters(K=8).resolved().springs[0].k == 4
+    K = sp.Symbol("K", positive=True)
+    assert model.with_parameters(K=None).resolved().springs[0].k == K / 2
+
+
+def test_a_circle_built_in_code_is_reported():
+    from symtmm.model import Beam, Model
+    with pytest.raises(ModelError, match="in a circle"):
+        Model((Beam("b", EI="a", m=1, L=1),), parameters={"a": "b", "b": "2*a"})
+
+
 def test_name_without_value_stays_a_symbol():
     model = loads(GOOD.replace("K = 100\n", ""))
     assert model.free_symbols == ("K",)

@@ -102,6 +102,17 @@ def test_two_identical_beams_decouple_into_0_and_2K(serial):
         assert expanded(spectrum)[:4] == pytest.approx(reference, rel=1e-9)
 
 
+def test_sweep_reaches_parameters_defined_through_the_swept_one():
+    # k = "K*EI/L**3" is written in terms of K, as in the paper's example 4: sweeping K
+    # must move the out-of-phase family (beam on grounded springs 2k), not leave it fixed
+    text = TWO_BEAMS.replace('K = 40', 'K = 40\nEIp = 1\nk = "K*EIp"').replace(
+        'k = "K"', 'k = "k"')
+    result = sweep(loads(text), "K", 10, 70, 2, count=2, digits=10, jobs=1)
+    for K, spectrum in zip((10, 70), result.spectra):
+        fam = family_values((0, 2), K, sp.Rational(1, 5), 2, 10)
+        assert expanded(spectrum)[:2] == pytest.approx(sorted(fam[0] + fam[2])[:2], rel=1e-9)
+
+
 def half_beam(k, x1, middle):
     """Half of a grounded beam: symmetric modes (sliding middle) or antisymmetric (pinned)."""
     springs = () if k == 0 else (Spring("h", "ground", x1, k),)
