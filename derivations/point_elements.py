@@ -1,11 +1,12 @@
 """Lumped mass with rotary inertia and rotational springs, derived from the field equation.
 
 A point force ``F`` and a point couple ``C`` (positive like a positive
-rotation) at ``x0`` enter the beam equation as
-``EI Y'''' + m lam**2 Y = F delta(x - x0) - C delta'(x - x0)``. Integrating
-once over ``(x0 - eps, x0 + eps)`` gives the shear jump ``Q+ - Q- = F``;
-virtual work (``[M dTheta - Q dY]`` between the ends of a piece) gives
-the moment jump ``M+ - M- = -C``. ``Y`` and ``Theta`` are continuous.
+rotation) at ``x0`` do the work ``F Y(x0) + C Theta(x0)``. The first
+variation of the potential energy ``int EI Y''**2 / 2 - F Y(x0) - C Theta(x0)``
+vanishes for every virtual displacement (continuous with its slope) only if
+the shear jumps by ``Q+ - Q- = F`` and the moment by ``M+ - M- = -C``: both
+are derived below, with ``Y`` and ``Theta`` continuous. (Inertia and springs
+act as forces and couples of this kind at the point.)
 
 * Lumped mass ``M`` with rotary inertia ``J``: d'Alembert's inertia force and
   couple are ``F = -M lam**2 Y`` and ``C = -J lam**2 Theta``.
@@ -31,12 +32,35 @@ lam, x, x0, eps = sp.symbols("lam x x0 epsilon")
 M, J, k, c, EI = sp.symbols("M J k c EI", positive=True)
 F = sp.Symbol("F")
 
-# The moment jump follows from virtual work: the beam's end actions do the work
-# [M dTheta - Q dY] between the ends of a piece, so a couple C doing C dTheta at x0
-# balances M+ - M- = -C, as a force F doing F dY balances Q+ - Q- = F (checked below
-# against the delta function for the force).
-Qjump = sp.integrate(sp.DiracDelta(x - x0) * F, (x, x0 - eps, x0 + eps))
-assert sp.simplify(Qjump.subs(eps, sp.Rational(1, 10))) == F  # any eps > 0
+# The jumps from the first variation of the potential energy. Static pieces left
+# (-1 < x < 0) and right (0 < x < 1) of the point x0 = 0 are cubics; the virtual
+# displacements are quintics continuous with their slope at 0 and vanishing with their
+# slope at the outer ends.
+xs = sp.Symbol("x", real=True)
+ca, cb = sp.symbols("a0:4"), sp.symbols("b0:4")
+YL, YR = (sum(c[i] * xs**i for i in range(4)) for c in (ca, cb))
+pa, pb = sp.symbols("p0:6"), sp.symbols("q0:6")
+eL, eR = (sum(c[i] * xs**i for i in range(6)) for c in (pa, pb))
+admissible = sp.solve([eL.subs(xs, -1), eL.diff(xs).subs(xs, -1), eR.subs(xs, 1),
+                       eR.diff(xs).subs(xs, 1), (eL - eR).subs(xs, 0),
+                       (eL - eR).diff(xs).subs(xs, 0)], pa[:3] + pb[:3], dict=True)[0]
+eL, eR = eL.subs(admissible), eR.subs(admissible)
+C = sp.Symbol("C")
+variation = sp.expand(sp.integrate(EI * YL.diff(xs, 2) * eL.diff(xs, 2), (xs, -1, 0))
+                      + sp.integrate(EI * YR.diff(xs, 2) * eR.diff(xs, 2), (xs, 0, 1))
+                      - F * eL.subs(xs, 0) - C * eL.diff(xs).subs(xs, 0))
+free_shapes = [v for v in pa + pb if v not in admissible]
+equilibrium = sp.solve([variation.coeff(v) for v in free_shapes], [ca[2], ca[3]], dict=True)[0]
+
+
+def _jump(order):
+    """EI Y^(order) right of x0 minus left of it, at equilibrium."""
+    return sp.simplify((EI * YR.diff(xs, order) - EI * YL.diff(xs, order)).subs(xs, 0)
+                       .subs(equilibrium))
+
+
+assert _jump(3) == F     # Q+ - Q- = F
+assert _jump(2) == -C    # M+ - M- = -C
 
 Y, Th, Mm, Q = sp.symbols("Y Theta M Q")
 Yb, Thb, Mb, Qb = sp.symbols("Y_b Theta_b M_b Q_b")

@@ -14,7 +14,8 @@ Checks (exact SymPy identities):
    segment's at ``lam2 = lam**2 + kw/m`` (same ``beta**4``);
 3. the real form used at ``lam = 0`` (``foundation_static_matrix``) equals the
    closed form with ``beta**4 = -kw/EI`` (compared at a sample to 40 digits);
-4. the numeric evaluator at ``lam = i omega`` gives ``x = (m omega**2 - kw) l**4 / EI``.
+4. the numeric evaluator at ``lam = i omega`` equals the closed form with
+   ``beta**4 = (m omega**2 - kw) / EI``, and the bare segment at ``lam**2 + kw/m``.
 
 Run: ``python derivations/winkler_foundation.py``.
 """
@@ -57,14 +58,16 @@ with mpmath.workdps(40):
               for i in range(4) for j in range(4))
 assert gap < 1e-30, gap
 
-# 4. the evaluator's x at lam = i omega
+# 4. the evaluator at lam = i omega is the closed form at beta**4 = (m omega**2 - kw)/EI
 omega = 5.0
 num = sample.evaluate_numpy(np.array(-omega**2), (2.0, 3.0, 1.4, 11.0))
-x_expected = (3.0 * omega**2 - 11.0) * 1.4**4 / 2.0
-ref = EulerBernoulliSegment(2, 3, sp.Rational(7, 5)).evaluate_numpy(
+beta_expected = ((3 * sp.Integer(5) ** 2 - 11) / sp.Integer(2)) ** sp.Rational(1, 4)
+ref = np.array(sp.N(stv_matrix(beta_expected, sp.Rational(7, 5), 2), 20).tolist(), dtype=float)
+assert np.allclose(num, ref, rtol=1e-13, atol=0), (num, ref)
+# and it is the bare segment at lam**2 + kw/m
+bare = EulerBernoulliSegment(2, 3, sp.Rational(7, 5)).evaluate_numpy(
     np.array(-omega**2 + 11.0 / 3.0))
-assert np.allclose(num, ref, rtol=1e-14, atol=0), (num, ref)
-assert x_expected > 0
+assert np.allclose(num, bare, rtol=1e-14, atol=0), (num, bare)
 
 print("Winkler foundation segment: field equation, lam**2 shift, real static form and "
       "evaluator checked.")
