@@ -30,13 +30,13 @@ FIGURES = {
                          "x1 = 0.3)"),
               "--plot", str(OUT / "fig09_ex1_scan.png")],
     "fig10": ["sweep", EX1, "--param", "x1", "--from", "0", "--to", "0.5", "--steps", "51",
-              "--count", "10", "--no-progress",
+              "--count", "10", "--no-progress", "--panels",
               "--title", ("Paper fig. 10 - example 1: the first ten frequency parameters "
                          "against the spring position, K = 100"),
               "--x-label", "spring position x1 [m]",
               "--plot", str(OUT / "fig10_ex1_sweep_K100.png")],
     "fig10b": ["sweep", EX1, "--set", "K=1000", "--param", "x1", "--from", "0", "--to", "0.5",
-               "--steps", "51", "--count", "10", "--no-progress",
+               "--steps", "51", "--count", "10", "--no-progress", "--panels",
                "--title", ("Paper fig. 10 - example 1: the first ten frequency parameters "
                           "against the spring position, K = 1000"),
                "--x-label", "spring position x1 [m]",

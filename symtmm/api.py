@@ -8,7 +8,7 @@
     api.scan(model, omega_max=200).plot()
 
 Models come from files (:func:`load`), from TOML text (:func:`loads`) or are
-built in code from :class:`Beam` and :class:`Spring`. Results print as tables,
+built in code from :class:`Beam`, :class:`Spring` and :class:`Mass`. Results print as tables,
 render as HTML/LaTeX in Jupyter, and have ``to_dict()``/``to_json()`` (the
 command line's JSON) and ``plot()`` (a :class:`matplotlib.figure.Figure`).
 
@@ -19,6 +19,8 @@ command line                    Python
 ``symtmm modes M --count N``    ``modes(model, count=N)``
 ``symtmm sweep M --param P …``  ``sweep(model, "P", A, B, steps, count=K)``
 ``symtmm scan M --omega-max W`` ``scan(model, omega_max=W)``
+``symtmm derive M``             ``derive(model)`` (SymPy expressions, LaTeX)
+``symtmm codegen M --lang L``   ``codegen(model, "L")`` (the source text)
 ``--set NAME=VALUE``            ``load(path, NAME=VALUE)`` or
                                 ``model.with_parameters(NAME=VALUE)``
 ``--plot FILE``                 ``result.plot().savefig(FILE)``
@@ -41,7 +43,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .model import Beam, Model, Spring
+from .characteristic import characteristic_equation
+from .codegen import generate
+from .model import Beam, Mass, Model, Spring
 from .modelfile import load as _load_file
 from .modelfile import loads as _loads_text
 from .modes import evaluate_mode
@@ -51,8 +55,9 @@ from .scan import scan
 from .solve import METHODS, solve
 from .sweep import sweep
 
-__all__ = ["METHODS", "Beam", "Model", "Spring", "evaluate_mode", "load", "loads", "modes",
-           "plot_modes", "plot_scan", "plot_scan_map", "plot_sweep", "scan", "solve", "sweep"]
+__all__ = ["METHODS", "Beam", "Mass", "Model", "Spring", "codegen", "derive", "evaluate_mode",
+           "load", "loads", "modes", "plot_modes", "plot_scan", "plot_scan_map", "plot_sweep",
+           "scan", "solve", "sweep"]
 
 
 def load(path, **parameters) -> Model:
@@ -93,3 +98,46 @@ def loads(text: str, **parameters) -> Model:
     2
     """
     return _loads_text(text, parameters or None)
+
+
+def derive(model: Model, symbolic=()):
+    """The characteristic function in closed form (``symtmm derive``).
+
+    Parameters
+    ----------
+    model : Model
+    symbolic : iterable of str
+        Parameters to keep symbolic although the model gives them a value.
+
+    Returns
+    -------
+    symtmm.characteristic.CharacteristicEquation
+        ``.delta`` (in ``omega`` or ``lam``), ``.delta_Omega``, ``.factors``;
+        renders as LaTeX in Jupyter.
+
+    Examples
+    --------
+    >>> cc = Model((Beam("b", EI=1, m=1, L=1, left="clamped", right="clamped"),))
+    >>> derive(cc).delta_Omega
+    (cos(Omega)*cosh(Omega) - 1)/Omega**4
+    """
+    return characteristic_equation(model, symbolic)
+
+
+def codegen(model: Model, lang: str, symbolic=()) -> str:
+    """Source of a self-contained evaluator of Delta(lam) (``symtmm codegen``).
+
+    Parameters
+    ----------
+    model : Model
+    lang : {"c", "fortran", "octave", "julia", "python"}
+    symbolic : iterable of str
+        Parameters to make extra arguments although the model gives them a value.
+
+    Examples
+    --------
+    >>> pp = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
+    >>> "void symtmm_delta(double lam_re, double lam_im," in codegen(pp, "c")
+    True
+    """
+    return generate(model, lang, symbolic)

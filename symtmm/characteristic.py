@@ -885,6 +885,10 @@ class CharacteristicEquation:
     def __str__(self) -> str:
         return f"Delta({self.variable}) = {self.delta}"
 
+    def _repr_latex_(self) -> str:
+        """``Delta(variable) = ...`` typeset (Jupyter)."""
+        return f"$\\Delta({sp.latex(self.variable)}) = {self.latex()}$"
+
 
 def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation:
     """The characteristic function of ``model`` in closed form.

@@ -228,7 +228,8 @@ class ModeSet:
         lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
         damped = any(m.damped for m in self.modes)
         points = len(next(iter(self.modes[0].beams.values())).x) if self.modes else 0
-        lines.append(f"{len(self.modes)} mode shape(s), {points} points per beam; "
+        lines.append(f"{len(self.modes)} mode shape(s), {points} points per beam (max|Y| over "
+                     "those points); "
                      + ("complex, largest |Y| = 1" if damped else
                         "mass-normalised: sum of integral m Y^2 dx = 1"))
         lines += list(self.notes)
@@ -725,7 +726,7 @@ def mode_shapes(model: Model, count: int | None = None, omega_max=None, sigma_ma
     -  -----------------  ----------------  --------
     1  3.51601526850015i  1.87510406871196         2
     2  22.0344915646668i  4.69409113297417         2
-    2 mode shape(s), 11 points per beam; mass-normalised: sum of integral m Y^2 dx = 1
+    2 mode shape(s), 11 points per beam (max|Y| over those points); mass-normalised: ...
     """
     from .solve import solve
 
@@ -741,4 +742,10 @@ def mode_shapes(model: Model, count: int | None = None, omega_max=None, sigma_ma
         shapes = shapes_at(model, e, points=points, number=number, walker=walker, evaluator=ev)
         modes += shapes
         number += len(shapes)
-    return ModeSet(tuple(modes), model, spectrum, time.perf_counter() - start)
+    notes = []
+    if count is not None and len(modes) > count:
+        multiple = [e for e in spectrum if e.multiplicity > 1]
+        notes.append(f"{len(modes)} shapes for {count} requested: a multiple eigenvalue "
+                     f"(here {', '.join(str(e) for e in multiple)}) "
+                     "is given a basis of its whole eigenspace, mass-orthonormal")
+    return ModeSet(tuple(modes), model, spectrum, time.perf_counter() - start, tuple(notes))

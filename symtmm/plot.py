@@ -113,14 +113,16 @@ def plot_modes(modes, variable: str = "Y", which=None, x_label: str = "x [m]",
     for ax, beam in zip(axes, beams):
         for i, mode in enumerate(chosen):
             shape = mode.beams[beam.name]
-            color = f"C{i % 10}"
+            color = _branch_color(i, len(chosen))
             label = _mode_label(mode, scale)
             values = shape[variable]
             if damped:
                 ax.plot(shape.x, values.real, color=color, label=label + " (Re)")
                 ax.plot(shape.x, values.imag, color=color, ls="--", label=label + " (Im)")
             else:
-                ax.plot(shape.x, values, color=color, label=label)
+                # past 20 modes the colours repeat: the line style tells them apart
+                ax.plot(shape.x, values, color=color, ls=("-", "--", "-.", ":")[i // 20 % 4],
+                        label=label)
         ax.axhline(0, color="0.6", lw=0.6)
         for spring in modes.model.springs:
             if beam.name in (spring.a, spring.b):
@@ -192,16 +194,40 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
         else:
             y = lam.imag
         curves.append((n, bid, x, y))
+    # number the branches by where they start (then by how high they go), and label each
+    # with the range it covers: branches that start together still read apart
+    curves.sort(key=lambda c: (float(c[3][0]), float(np.max(c[3]))) if len(c[3])
+                else (np.inf, np.inf))
+    sym = {"Omega": "Ω", "omega": "ω", "sigma": "σ"}[frequency]
+    labels = {}
+    for k, (n, bid, x, y) in enumerate(curves, 1):
+        if not len(y):
+            labels[bid] = f"{k}"
+            continue
+        lo, hi = float(np.min(y)), float(np.max(y))
+        labels[bid] = (f"{k}: {sym} = {lo:.5g} throughout" if hi - lo <= 1e-9 * abs(hi)
+                       else f"{k}: {sym} from {lo:.5g} to {hi:.5g}")
+    curves = [(k, bid, x, y) for k, (_, bid, x, y) in enumerate(curves)]
     groups = _groups(curves) if panels else [curves]
     if figsize is None:
         figsize = (7.5, 5.0) if len(groups) <= 2 else (7.5, 1.6 * len(groups) + 1.2)
+    if panels and len(groups) > 1:
+        figsize = (figsize[0] + 2.5, figsize[1])
     fig = new_figure(figsize)
     axes = fig.subplots(len(groups), 1, sharex=True, squeeze=False)[:, 0]
+    show_legend = legend if legend is not None else len(ids) <= 20
     for ax, group in zip(axes, reversed(groups)):      # the highest group on top
         for n, bid, x, y in group:
             ax.plot(x, y, "-", marker="o", ms=2.5, lw=1.2, color=_branch_color(n, len(ids)),
-                    label=f"branch {bid}")
+                    label=labels[bid])
         ax.grid(alpha=0.3)
+        if len(groups) > 1:
+            lo = min(float(np.min(c[3])) for c in group)
+            hi = max(float(np.max(c[3])) for c in group)
+            ax.set_title(f"{len(group)} branch{'es' if len(group) > 1 else ''}, "
+                         f"{sym} from {lo:.4g} to {hi:.4g}", fontsize="small", loc="left")
+            if show_legend:
+                ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
     axes[-1].set_xlabel(x_label or f"{sweep.parameter}")
     ylabel = {"Omega": OMEGA_LABEL + f" of beam {scale[0] if scale else ''}",
               "omega": r"$\omega = \mathrm{Im}\,\lambda$ [rad/s]",
@@ -212,12 +238,10 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
         fig.supylabel(ylabel)
     if title:
         fig.suptitle(_wrap(title))            # over the legend too: the axes are narrower
-    show_legend = legend if legend is not None else len(ids) <= 20
-    if show_legend and ids:
-        handles = [h for ax in axes for h in ax.get_lines()]
-        handles.sort(key=lambda h: int(h.get_label().split()[-1]))
-        fig.legend(handles=handles, fontsize="small", loc="outside right center",
-                   title="tracked\nbranches", title_fontsize="small")
+    if show_legend and ids and len(groups) == 1:
+        fig.legend(handles=list(axes[0].get_lines()), fontsize="small",
+                   loc="outside right center", title="branches, numbered\nby where they start",
+                   title_fontsize="small")
     return fig
 
 
@@ -299,6 +323,12 @@ def plot_scan(scan, frequency: str | None = None, title: str | None = None,
                 if e.multiplicity > 1:
                     ax.annotate(f"×{e.multiplicity}", (xv, bottom), textcoords="offset points",
                                 xytext=(4, 4), fontsize="small", color="C3")
+            # marks closer than the eye can part at this scale: say how many there are
+            span = float(x[-1] - x[0]) or 1.0
+            for start, stop in _close_runs(xs, 0.006 * span):
+                ax.annotate(f"{stop - start} close roots", (xs[start], bottom),
+                            textcoords="offset points", xytext=(4, 14), fontsize="x-small",
+                            color="C3")
         if damped:
             xs = where(damped)
             ax.plot(xs, np.full(xs.shape, bottom), "o", mfc="none", color="C1", ms=7, mew=1.5,
@@ -310,6 +340,23 @@ def plot_scan(scan, frequency: str | None = None, title: str | None = None,
     ax.grid(alpha=0.3)
     ax.legend(fontsize="small", loc="upper left")
     return fig
+
+
+def _close_runs(xs, tol):
+    """``(start, stop)`` of runs of two or more sorted values closer than ``tol``.
+
+    Examples
+    --------
+    >>> _close_runs(np.array([1.0, 1.001, 2.0, 3.0, 3.002, 3.003]), 0.01)
+    [(0, 2), (3, 6)]
+    """
+    runs, start = [], 0
+    for i in range(1, len(xs) + 1):
+        if i == len(xs) or xs[i] - xs[i - 1] > tol:
+            if i - start > 1:
+                runs.append((start, i))
+            start = i
+    return runs
 
 
 def plot_scan_map(scan, title: str | None = None, figsize=(7.0, 5.5), mark: bool = True) -> Figure:
@@ -349,6 +396,49 @@ def plot_scan_map(scan, title: str | None = None, figsize=(7.0, 5.5), mark: bool
     ax.set_ylabel(r"$\mathrm{Im}\,\lambda = \omega$ [rad/s]")
     ax.set_title(_wrap(title or scan.model_name or "characteristic function in the complex plane"))
     return fig
+
+
+def check_figure_path(path) -> None:
+    """Refuse, before any computation, a figure file that could not be written.
+
+    The format must be one matplotlib writes (by the extension) and the folder
+    must exist and be writable; otherwise a long sweep would end in an error.
+
+    Raises
+    ------
+    ModelError
+        Naming ``--plot`` and the problem.
+
+    Examples
+    --------
+    >>> check_figure_path("/no/such/folder/fig.png")
+    Traceback (most recent call last):
+    ...
+    symtmm.errors.ModelError: /no/such/folder/fig.png: --plot: cannot write the figure: no folder /no/such/folder
+    """
+    import os
+    from pathlib import Path
+
+    from .errors import ModelError
+
+    def fail(reason):
+        raise ModelError(f"cannot write the figure: {reason}", field="--plot", source=str(path))
+
+    try:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+    except ImportError:  # pragma: no cover
+        fail("plots need matplotlib: pip install 'symtmm[plot]'")
+    target = Path(path)
+    suffix = target.suffix.lower().lstrip(".")
+    supported = FigureCanvasAgg(Figure()).get_supported_filetypes()
+    if suffix not in supported:
+        fail(f"unknown format {target.suffix or '(no extension)'!r} "
+             f"(use one of {', '.join(sorted(supported))})")
+    folder = target.parent if str(target.parent) else Path(".")
+    if not folder.is_dir():
+        fail(f"no folder {folder}")
+    if not os.access(folder, os.W_OK):
+        fail(f"folder {folder} is not writable")
 
 
 def save_figure(fig, path) -> None:

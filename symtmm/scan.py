@@ -129,6 +129,10 @@ class Scan:
         from html import escape
         return "<pre>" + escape(self.table()) + "</pre>"
 
+    def _repr_latex_(self) -> str | None:
+        """The eigenvalues marked, as a LaTeX array (Jupyter); the curve is :meth:`plot`."""
+        return self.spectrum._repr_latex_() if self.spectrum is not None else None
+
     def plot(self, **kwargs):
         """The curve as a matplotlib figure (see :func:`symtmm.plot.plot_scan`)."""
         from .plot import plot_scan

@@ -169,7 +169,8 @@ def _dask_client(scheduler):
         return scheduler, False
     try:
         return Client(scheduler, timeout="20s"), True
-    except (OSError, TimeoutError) as exc:
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        # an unreachable host (OSError, TimeoutError) or a malformed address (ValueError)
         raise ModelError(f"cannot reach the Dask scheduler: {exc}", field="--scheduler",
                          source=str(scheduler)) from None
 
@@ -177,16 +178,20 @@ def _dask_client(scheduler):
 def _process_context():
     """Start method of the worker processes.
 
-    ``spawn`` (fresh interpreters) is safe when the caller runs threads (Jupyter,
-    Dask), but it re-imports the main script by its path; a main program read
-    from standard input has none, and then only ``fork`` can work.
+    ``fork`` when the caller runs no other thread: it needs no main module, so
+    a plain script without ``if __name__ == "__main__":`` works. Otherwise
+    (Jupyter, Dask, a GUI) forking could copy a lock held by another thread,
+    and ``spawn`` starts fresh interpreters; it re-imports the main script by
+    its path, which a main program read from standard input does not have.
     """
     import multiprocessing
     import sys
+    import threading
 
+    methods = multiprocessing.get_all_start_methods()
     main_file = getattr(sys.modules.get("__main__"), "__file__", None)
-    if main_file is not None and not os.path.exists(main_file) and \
-            "fork" in multiprocessing.get_all_start_methods():
+    unreadable_main = main_file is not None and not os.path.exists(main_file)
+    if "fork" in methods and (threading.active_count() == 1 or unreadable_main):
         return multiprocessing.get_context("fork")
     return multiprocessing.get_context("spawn")
 

@@ -106,15 +106,42 @@ def test_damped_map_has_its_minima_at_the_roots():
     i, j = np.unravel_index(np.argmin(np.where(near, s.map_log10, np.inf)), near.shape)
     assert abs(re[j] - root.real) <= 1.01 * abs(re[1] - re[0])
     assert abs(im[i] - root.imag) <= 1.01 * (im[1] - im[0])
-    # the marks come from the damped solver where there is one
-    if s.spectrum is None:
-        assert any("not marked" in n for n in s.notes)
-    else:
-        lams = [complex(e.lam) for e in s.spectrum]
-        assert min(abs(lam - root) for lam in lams) < 1e-6 * abs(root)
+    # the marks come from the damped solver
+    assert s.spectrum is not None, s.notes
+    lams = [complex(e.lam) for e in s.spectrum]
+    assert min(abs(lam - root) for lam in lams) < 1e-6 * abs(root)
     fig = s.plot_map()
     assert isinstance(fig, Figure)
     assert "Re" in fig.axes[0].get_xlabel() and "1/s" in fig.axes[0].get_xlabel()
+
+
+def test_damped_cli_plot_writes_the_curve_and_the_map(tmp_path, capsys):
+    path = tmp_path / "damped.toml"
+    path.write_text('[[beam]]\nname = "a"\nEI = 1\nm = 1\nL = 1\nleft = "pinned"\n'
+                    'right = "pinned"\n[[spring]]\nbetween = ["a", "ground"]\nx = 0.3\n'
+                    'k = 50\nc = 2\n')
+    png = tmp_path / "scan.png"
+    assert main(["scan", str(path), "--omega-max", "60", "--points", "60", "--plot",
+                 str(png)]) == 0
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    assert (tmp_path / "scan-map.png").read_bytes()[:4] == b"\x89PNG"
+    out = capsys.readouterr().out
+    assert str(png) in out and "scan-map.png" in out
+
+
+def test_bad_plot_path_is_refused_before_computing(tmp_path, capsys):
+    path = tmp_path / "pp.toml"
+    path.write_text('[[beam]]\nname = "b"\nEI = 1\nm = 1\nL = 1\nleft = "pinned"\n'
+                    'right = "pinned"\n')
+    for bad, message in ((tmp_path / "no" / "fig.png", "no folder"),
+                         (tmp_path / "fig.nope", "unknown format")):
+        for command in (["scan", str(path), "--omega-max", "30"],
+                        ["modes", str(path), "--count", "2"],
+                        ["sweep", str(path), "--param", "L", "--from", "1", "--to", "2",
+                         "--steps", "2", "--count", "1"]):
+            assert main(command + ["--plot", str(bad)]) == 2
+            err = capsys.readouterr().err
+            assert message in err and "--plot" in err and err.count("\n") == 1
 
 
 def test_map_without_marks_when_the_solver_cannot(monkeypatch):

@@ -152,6 +152,55 @@ def test_three_beams_decouple_and_branches_follow_crossings(examples_dir):
     assert rank_changes >= 2          # crossings happened and were followed
 
 
+VEERING = """
+title = "two unlike beams: no symmetry, so their branches can only veer"
+[parameters]
+K = 200
+x1 = 0.3
+[[beam]]
+name = "a"
+EI = 1
+m = 1
+L = 1
+left = "pinned"
+right = "pinned"
+[[beam]]
+name = "b"
+EI = 1.3
+m = 0.9
+L = 1
+left = "clamped"
+right = "free"
+[[spring]]
+between = ["a", "b"]
+x = "x1"
+k = "K"
+[[spring]]
+between = ["b", "ground"]
+x = "0.8*x1"
+k = 30
+"""
+
+
+def test_branches_veer_without_crossing_where_nothing_is_symmetric():
+    # No symmetry separates the modes, so eigenvalues of this one-parameter family do not
+    # cross (von Neumann-Wigner): through the near-miss of the 3rd and 4th frequencies at
+    # x1 = 0.5 every tracked branch must keep its place in the sorted spectrum.
+    result = sweep(loads(VEERING), "x1", "0.4", "0.6", 9, count=5, digits=10, jobs=1)
+    ranks = {}
+    for spectrum, step in zip(result.spectra, result.branches):
+        assert [float(e.omega) for e in spectrum] == sorted(float(e.omega) for e in spectrum)
+        for rank, group in enumerate(step):
+            for bid in group:
+                ranks.setdefault(bid, set()).add(rank)
+    assert all(len(r) == 1 for r in ranks.values()), ranks
+    # and it is a veering: the gap between the 3rd and 4th shrinks to a fraction of its
+    # size at the ends of the range, then opens again
+    gaps = [float(s[3].omega) - float(s[2].omega) for s in result.spectra]
+    assert min(gaps) < 0.5 * min(gaps[0], gaps[-1])
+    assert 0 < gaps.index(min(gaps)) < len(gaps) - 1
+
+
 def test_tracking_through_a_multiple_eigenvalue():
     e1, e2 = np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
     mix = np.array([[1.0, 1.0, 0.0], [1.0, -1.0, 0.0]]) / np.sqrt(2)   # arbitrary basis
@@ -177,12 +226,27 @@ def test_local_processes_give_the_serial_result(two_beams, serial):
 
 
 def test_dask_cluster_gives_the_serial_result(two_beams, serial):
+    # a scheduler and two worker processes on TCP loopback, reached by their address: the
+    # steps really travel pickled to other interpreters, as on a cluster
     distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(processes=False, n_workers=1, threads_per_worker=1,
+    with distributed.LocalCluster(host="127.0.0.1", protocol="tcp", processes=True,
+                                  n_workers=2, threads_per_worker=1,
                                   dashboard_address=None) as cluster:
+        address = cluster.scheduler_address
+        assert address.startswith("tcp://127.0.0.1:")
         result = sweep(two_beams, "x1", "0.1", "0.3", 3, count=4, digits=10,
-                       scheduler=cluster.scheduler_address)
+                       scheduler=address)
     assert _comparable(result) == _comparable(serial)
+
+
+def test_bad_scheduler_address_is_one_line(two_beams, capsys, tmp_path):
+    path = tmp_path / "two.toml"
+    path.write_text(TWO_BEAMS)
+    for address in ("garbage", "http://127.0.0.1:1"):
+        assert main(["sweep", str(path), "--param", "x1", "--from", "0.1", "--to", "0.2",
+                     "--steps", "2", "--scheduler", address]) == 2
+        err = capsys.readouterr().err
+        assert "--scheduler" in err and err.count("\n") == 1 and "Traceback" not in err
 
 
 @pytest.mark.slow
@@ -200,10 +264,7 @@ def test_damped_sweep_tracks_complex_branches():
     model = Model((Beam("a", 1, 1, 1, left="pinned", right="pinned"),
                    Beam("b", 1, 1, 1, left="pinned", right="pinned")),
                   (Spring("a", "b", x="3/10", k=200, c="c"),), parameters={"c": 1})
-    try:
-        result = sweep(model, "c", 1, 2, 2, count=2, digits=8, jobs=1, sigma_max=20)
-    except ComputationError as exc:          # the damped search may decline a region
-        pytest.skip(f"damped solver: {exc}")
+    result = sweep(model, "c", 1, 2, 2, count=2, digits=8, jobs=1, sigma_max=20)
     assert result.damped
     assert all(len(step) >= 1 for step in result.branches)
     # the undamped in-phase mode (springs idle) stays at pi^2 on one branch
@@ -260,3 +321,24 @@ def test_result_api(serial):
     assert "x1" in serial.table() and "<table>" in serial._repr_html_()
     with mpmath.workdps(15):
         assert serial.omega_scale[0] == "a"
+
+
+def test_a_script_without_main_guard_runs_a_parallel_sweep(tmp_path):
+    # the README's snippet saved as a file: worker processes must not re-run the script
+    import subprocess
+    import sys
+
+    model = tmp_path / "two.toml"
+    model.write_text(TWO_BEAMS)
+    script = tmp_path / "snippet.py"
+    script.write_text("from symtmm import api\n"
+                      f"model = api.load({str(model)!r})\n"
+                      "print('solve', len(api.solve(model, count=2, digits=8)))\n"
+                      "s = api.sweep(model, 'x1', '0.1', '0.3', 3, count=2, digits=8, jobs=2)\n"
+                      "print('steps', len(s))\n")
+    root = Path(__file__).resolve().parent.parent
+    proc = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                          timeout=300, cwd=tmp_path, env={"PYTHONPATH": str(root),
+                                                          "PATH": "/usr/bin:/bin"})
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split() == ["solve", "2", "steps", "3"]

@@ -48,6 +48,9 @@ def run(args) -> int:
     from ..modes import mode_shapes
 
     model = load_model_arg(args)
+    if args.plot:
+        from ..plot import check_figure_path
+        check_figure_path(args.plot)
     count = args.count if args.count is not None else 6
     try:
         modes = mode_shapes(model, count=count, sigma_max=args.sigma_max, points=args.points,

@@ -65,6 +65,9 @@ def run(args) -> int:
     from ..scan import scan
 
     model = load_model_arg(args)
+    if args.plot:
+        from ..plot import check_figure_path
+        check_figure_path(args.plot)
     try:
         result = scan(model, args.omega_max, points=args.points, omega_min=args.omega_min,
                       sigma_max=args.sigma_max, eigenvalues=not args.no_eigenvalues,

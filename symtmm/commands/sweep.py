@@ -63,6 +63,9 @@ def run(args) -> int:
     from ..sweep import sweep
 
     model = load_model_arg(args)
+    if args.plot:
+        from ..plot import check_figure_path
+        check_figure_path(args.plot)
     progress = sys.stderr.isatty() if args.progress is None else args.progress
     try:
         result = sweep(model, args.param, args.start, args.stop, args.steps, count=args.count,
