@@ -9,7 +9,9 @@
    are narrower than double precision can resolve go to step 4.
 3. **Refine** each simple root on ``Delta(i omega) = det R`` (the transfer
    formulation, real on the frequency axis) with the Anderson–Björck
-   bracketing method, in mpmath at ``D + loss + 10`` digits, where ``loss``
+   bracketing method: first in double precision on the stable evaluator, to
+   a bracket of relative width about 1e-9 that mpmath must confirm (a sign
+   change at its ends), then in mpmath at ``D + loss + 10`` digits, where ``loss``
    estimates the cancellation in ``Delta`` (``sum beta L / ln 10``). The
    final bracket, of relative width below ``10**-(D+2)`` and with both ends
    rounding to the same ``D`` digits, is then checked at 15 more digits:
@@ -27,6 +29,7 @@ import math
 import time
 
 import mpmath
+import numpy as np
 import sympy as sp
 
 from ..assembly import boundary_matrix
@@ -146,9 +149,39 @@ class _Search:
             return out
 
     # -- refinement --------------------------------------------------------------------
+    def _double_bracket(self, a: float, b: float):
+        """The root's bracket narrowed to ~1e-11 relative on the double-precision Delta.
+
+        The stable evaluator (:meth:`Evaluator.log_delta`) keeps about 13 digits, so
+        the sign it shows is right except within about ``1e-13 |lam|`` of the root.
+        Nothing is concluded from it: the narrowed bracket, padded, must show the
+        sign change again in mpmath before it replaces ``(a, b]``. Returns None when
+        double precision shows no sign change.
+        """
+        ref = []
+
+        def f(w):
+            logabs, phase = self.ev.log_delta(np.array([1j * float(w)]))
+            if not np.isfinite(logabs[0]):
+                return 0.0
+            if not ref:
+                ref.append(logabs[0])
+            return math.copysign(math.exp(min(logabs[0] - ref[0], 700.0)), math.cos(phase[0]))
+
+        fa, fb = f(a), f(b)
+        if fa == 0 or fb == 0 or (fa > 0) == (fb > 0):
+            return None
+        lo, hi = anderson_bjorck(f, a, b, fa, fb, lambda lo, hi: hi - lo <= 1e-11 * hi,
+                                 1e-11 * b)
+        return float(lo), float(hi)
+
     def refine(self, a, b) -> Eigenvalue:
         """One simple root in ``(a, b]`` to ``digits`` significant digits."""
         extra = 0
+        narrow = self._double_bracket(float(a), float(b))
+        if narrow is not None:
+            pad = 1e-9 * narrow[1]
+            narrow = (max(float(a), narrow[0] - pad), min(float(b), narrow[1] + pad))
         while True:
             dps = self.digits + math.ceil(self.ev.digits_lost(float(b))) + 10 + extra
             if dps > MAX_DPS:
@@ -156,7 +189,13 @@ class _Search:
                     f"cannot reach {self.digits} digits for the root near {float(b):.6g} rad/s "
                     f"within {MAX_DPS} working digits")
             with mpmath.workdps(dps):
-                lo, hi = self._bracket_refine(mpmath.mpf(a), mpmath.mpf(b))
+                lo = None
+                if narrow is not None:
+                    # the double-precision bracket, if mpmath confirms its sign change
+                    lo, hi = self._bracket_refine(mpmath.mpf(narrow[0]), mpmath.mpf(narrow[1]))
+                    narrow = None if lo is None else narrow
+                if lo is None:
+                    lo, hi = self._bracket_refine(mpmath.mpf(a), mpmath.mpf(b))
             if lo is not None and self._verify(lo, hi, dps + 15):
                 # build the result inside the context: mpc() rounds to the working precision
                 with mpmath.workdps(dps):
