@@ -124,10 +124,14 @@ class Evaluator:
         for j, c in enumerate(self.columns):
             E[:, c, j] = 1.0
         lam2 = flat * flat
+        cache: dict = {}
         for kind, items in self._steps:
             if kind == "segments":
                 for lvl, seg in items:
-                    U = seg.evaluate_numpy(lam2, self._float_consts(seg))
+                    key = self._float_consts(seg)
+                    U = cache.get(key)
+                    if U is None:          # equal segments share their matrix in a call
+                        U = cache[key] = seg.evaluate_numpy(lam2, key)
                     blk = slice(4 * lvl, 4 * lvl + 4)
                     E[:, blk, :] = U @ E[:, blk, :]
             else:
@@ -193,6 +197,7 @@ class Evaluator:
         logabs = np.sum(np.log(D[:, self.columns]), axis=-1) - np.sum(np.log(D[:, self.rows]),
                                                                        axis=-1)
         phase = np.zeros(N)
+        cache: dict = {}
 
         def orthonormalise(E):
             Q, F = np.linalg.qr(E)
@@ -213,7 +218,10 @@ class Evaluator:
                 subs = []
                 for lvl, seg, (EI, m, l, kw) in plans:
                     blk = slice(4 * lvl, 4 * lvl + 4)
-                    U = seg.evaluate_numpy(lam2, (EI, m, l / n_sub, kw))
+                    key = (EI, m, l / n_sub, kw)
+                    U = cache.get(key)
+                    if U is None:          # equal segments share their matrix in a call
+                        U = cache[key] = seg.evaluate_numpy(lam2, key)
                     subs.append((blk, U * (D[:, blk, None] / D[:, None, blk])))
                 for _ in range(n_sub):
                     for blk, U in subs:

@@ -217,7 +217,7 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
     axes = fig.subplots(len(groups), 1, sharex=True, squeeze=False)[:, 0]
     show_legend = legend if legend is not None else len(ids) <= 20
     for ax, group in zip(axes, reversed(groups)):      # the highest group on top
-        for n, bid, x, y in group:
+        for n, bid, x, y in sorted(group, key=lambda c: c[0]):     # legend in number order
             ax.plot(x, y, "-", marker="o", ms=2.5, lw=1.2, color=_branch_color(n, len(ids)),
                     label=labels[bid])
         ax.grid(alpha=0.3)

@@ -36,8 +36,9 @@ def anderson_bjorck(f, a, b, fa, fb, done, tol=None):
     """Shrink ``[a, b]`` with ``f(a) f(b) < 0`` until ``done(a, b)``.
 
     Regula falsi with the Anderson–Björck scaling of the end that stays (so
-    neither end sticks), and a bisection whenever a step fails to halve the
-    bracket: superlinear near a simple root, never slower than bisection.
+    neither end sticks), and a bisection whenever two steps together fail to
+    halve the bracket: superlinear near a simple root, and at worst a bisection
+    every other step.
     With ``tol`` (the width ``done`` waits for), each step lands at least
     ``tol/4`` inside the bracket: once the iterate is that close to the root,
     the next step falls on its other side and the bracket closes at once.
@@ -56,6 +57,7 @@ def anderson_bjorck(f, a, b, fa, fb, done, tol=None):
     ...     print(decimal_string((lo + hi) / 2, 25))
     1.414213562373095048801689
     """
+    previous = b - a               # the bracket's width at the start of the previous step
     while not done(a, b):
         width = b - a
         c = b - fb * (b - a) / (fb - fa)
@@ -74,7 +76,13 @@ def anderson_bjorck(f, a, b, fa, fb, done, tol=None):
             m = 1 - fc / fa
             fb = fb * (m if m > 0 else mpmath.mpf(0.5))
             a, fa = c, fc
-        if b - a > 0.5 * width:
+        # Regula falsi approaches a simple root from one side: the bracket need not
+        # halve at every step while the scaled far end catches up. Bisect only when
+        # two steps together have not halved it (bisecting every time would throw
+        # the far end's scaling away and cost a bisection per step).
+        stalled = b - a > 0.5 * previous
+        previous = width
+        if stalled:
             mid = (a + b) / 2
             fm = f(mid)
             if fm == 0:

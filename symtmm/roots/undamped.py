@@ -63,7 +63,15 @@ def rigid_body_modes(model: Model) -> int:
         # R(0) is transcendental on a foundation: decide the rank numerically
         return Evaluator(model.require_numeric()).nullity_at_zero()
     R = boundary_matrix(model.require_numeric(), lam=sp.Integer(0))
-    return R.shape[1] - R.rank(simplify=True)
+    if R.shape[1] == 0:
+        return 0
+    # exact elimination in the smallest domain holding the entries (the rationals for
+    # numeric models): Matrix.rank's fraction-free elimination takes minutes at 10 levels
+    from sympy.polys.matrices import DomainMatrix
+    dm = DomainMatrix.from_Matrix(R)
+    if dm.domain.is_EX:
+        return R.shape[1] - R.rank(simplify=True)
+    return R.shape[1] - dm.rank()
 
 
 def omega_scale(model: Model):
