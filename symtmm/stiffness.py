@@ -36,7 +36,21 @@ from .elements.base import LAM
 from .model import Model
 from .numeric import to_mp
 
-__all__ = ["StiffnessModel", "NU_MAX"]
+__all__ = ["StiffnessModel", "NU_MAX", "SingularCount", "SINGULAR_DPS"]
+
+#: A count whose pivot stays below the working precision up to this many digits is taken at
+#: an eigenvalue (within 10**-SINGULAR_DPS of it): :class:`SingularCount`.
+SINGULAR_DPS = 240
+
+
+class SingularCount(ArithmeticError):
+    """``K(omega)`` is singular: ``omega`` is an eigenvalue, and the count is not defined there.
+
+    The count ``J(omega)`` counts the eigenvalues strictly below ``omega``; at an
+    eigenvalue a pivot of ``K`` is zero and its sign undefined. Callers count at a
+    point moved off it instead.
+    """
+
 
 #: Largest ``beta l`` of a segment at the design frequency.
 NU_MAX = 2.0
@@ -139,6 +153,7 @@ class StiffnessModel:
                     n += 1
         self.size = n
         self.points = []
+        self.point_elements = []    # (dofs, element): the exact stiffness, for ball arithmetic
         index = {b.name: i for i, b in enumerate(beams)}
         for x, el in points_el:
             x = sp.nsimplify(x)
@@ -147,6 +162,7 @@ class StiffnessModel:
                     for lvl, var in el.dofs]
             S = el.stiffness(LAM)
             self.points.append((dofs, sp.lambdify(LAM, S, "numpy"), sp.lambdify(LAM, S, "mpmath")))
+            self.point_elements.append((dofs, el))
         self._seg_dofs = [[self.dof.get((ia, 0)), self.dof.get((ia, 1)),
                            self.dof.get((ib, 0)), self.dof.get((ib, 1))]
                           for _, _, ia, ib in self.segments]
@@ -204,8 +220,8 @@ class StiffnessModel:
                                         else omega)
             if result is not None:
                 return result
-            if dps > 2000:
-                raise ArithmeticError(f"K({omega}) is singular to 2000 digits")
+            if dps >= SINGULAR_DPS:
+                raise SingularCount(f"K({omega}) is singular to {dps} digits: an eigenvalue")
             dps *= 2
 
     def matrix_mp(self, omega) -> list:

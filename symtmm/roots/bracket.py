@@ -6,7 +6,12 @@ import mpmath
 
 from ..results import decimal_string
 
-__all__ = ["anderson_bjorck", "bracket_done"]
+__all__ = ["anderson_bjorck", "bracket_done", "SEPARATION_DIGITS"]
+
+#: Eigenvalues are told apart down to a relative distance of ``10**-(D + 2 +
+#: SEPARATION_DIGITS)`` (``D`` the digits asked for); closer ones are reported as one
+#: eigenvalue with their multiplicity, as exact multiple eigenvalues are.
+SEPARATION_DIGITS = 20
 
 
 def bracket_done(a, b, digits: int, scale=1) -> bool:

@@ -21,8 +21,13 @@ Proofs, per eigenvalue:
   ``K``. ``z`` is first polished in mpmath, and ``B`` is taken small enough
   (about ``10**-(digits lost + 8) |lam|``) for the enclosure of ``Delta'(B)``
   to be tight.
-* ``none``: multiple eigenvalues (``Delta'`` vanishes there) are not
-  certified; they are reported with ``"certified": false``.
+* ``count``: an undamped eigenvalue of multiplicity ``m``: the
+  Wittrick–Williams count in ball arithmetic (:class:`ArbCount`, every pivot's
+  sign proved) differs by exactly ``m`` between the ends of its bracket, so the
+  bracket holds ``m`` eigenvalues counted with multiplicity (exactly one
+  eigenvalue of multiplicity ``m``, or several that agree to the bracket).
+* ``none``: multiple eigenvalues of damped models (``Delta'`` vanishes there)
+  are not certified; they are reported with ``"certified": false``.
 
 A certified eigenvalue whose real part is printed as ``0`` (an undamped mode
 of a damped model) gets an enclosure of its real part around 0: ball
@@ -45,7 +50,7 @@ from ..errors import ComputationError
 from ..model import Model
 from ..results import Eigenvalue, Spectrum
 
-__all__ = ["ArbDelta", "Enclosure", "certify", "require_flint"]
+__all__ = ["ArbCount", "ArbDelta", "Enclosure", "certify", "require_flint"]
 
 
 def require_flint():
@@ -202,9 +207,10 @@ class ArbDelta:
 
     def _segment(self, seg, lam):
         """Transfer matrix of a segment and its derivative in ``lam`` (4x4 lists of acb)."""
-        EI, m, l = self._consts(("seg", id(seg)), (seg.EI, seg.m, seg.l))
+        EI, m, l, kw = self._consts(("seg", id(seg)), (seg.EI, seg.m, seg.l, seg.kw))
         a = m * l ** 4 / EI
-        x = -(lam * lam) * a
+        # a Winkler foundation kw: x = -(m lam**2 + kw) l**4 / EI
+        x = -(lam * lam) * a - kw * l ** 4 / EI
         dx = -2 * lam * a
         (c0, c1, c2, c3), (d0, d1, d2, d3) = self._c_functions(x)
         U = [[c0, l * c1, l ** 2 * c2 / EI, l ** 3 * c3 / EI],
@@ -319,6 +325,114 @@ class ArbDelta:
                 M[i, j] = dR[i, j]
             deriv += M.det()
         return delta, deriv
+
+
+# -- the eigenvalue count in ball arithmetic -----------------------------------------------
+class ArbCount:
+    """The Wittrick–Williams count ``J(omega)`` of an undamped model, proved in ball arithmetic.
+
+    The dynamic stiffness ``K(omega)`` is assembled as :class:`symtmm.stiffness.StiffnessModel`
+    does (segments short enough that none reaches its clamped-clamped frequency, so
+    ``J = s{K}``), but in Arb balls; ``s{K}`` is the number of negative pivots of
+    ``LDL^T`` (Sylvester's law of inertia), proved when no pivot ball contains 0.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> c = ArbCount(Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),)), 100.0)
+    >>> [c.count(w) for w in (9.8, 9.9, 39.4, 39.5)]       # roots at (n pi)^2 = 9.87, 39.48
+    [0, 1, 1, 2]
+    """
+
+    def __init__(self, model: Model, omega_design: float):
+        from ..stiffness import StiffnessModel
+
+        self.flint = require_flint()
+        self.sm = StiffnessModel(model, omega_design)
+        self.arb = ArbDelta(self.sm.model)
+
+    def _matrix(self, omega):
+        arb = self.flint.arb
+        lam = self.flint.acb(0, _arb_exact(omega, self.flint))
+        n = self.sm.size
+        K = [[arb(0)] * n for _ in range(n)]
+        for (_, seg, _, _), dofs in zip(self.sm.segments, self.sm._seg_dofs):
+            U, _ = self.arb._segment(seg, lam)
+            U = [[v.real for v in row] for row in U]       # real on the frequency axis
+            _scatter_arb(K, _segment_stiffness_arb(U), dofs)
+        for dofs, element in self.sm.point_elements:
+            S = element.stiffness(LAM).xreplace({LAM: sp.I * sp.Symbol("w", real=True)})
+            w = _arb_exact(omega, self.flint)
+            local = [[_poly_arb(sp.re(sp.expand(S[i, j])), w, self.flint)
+                      for j in range(S.cols)] for i in range(S.rows)]
+            _scatter_arb(K, local, dofs)
+        return K
+
+    def count(self, omega) -> int | None:
+        """``J(omega)``, or None if some pivot's sign is not proved at 1000 bits."""
+        for bits in (128, 256, 512, 1024):
+            with self.flint.ctx.workprec(bits):
+                K = self._matrix(omega)
+                negative = _ldl_negative(K, self.sm.bandwidth)
+            if negative is not None:
+                return negative
+        return None
+
+
+def _segment_stiffness_arb(U):
+    """4x4 segment stiffness from a 4x4 transfer matrix of arb balls (see stiffness.py)."""
+    U11 = [r[:2] for r in U[:2]]
+    U12 = [r[2:] for r in U[:2]]
+    U21 = [r[:2] for r in U[2:]]
+    U22 = [r[2:] for r in U[2:]]
+    det = U12[0][0] * U12[1][1] - U12[0][1] * U12[1][0]
+    inv = [[U12[1][1] / det, -U12[0][1] / det], [-U12[1][0] / det, U12[0][0] / det]]
+
+    def mul(X, Y):
+        return [[X[i][0] * Y[0][j] + X[i][1] * Y[1][j] for j in range(2)] for i in range(2)]
+
+    A = [[-v for v in row] for row in mul(inv, U11)]
+    C = [[a + b for a, b in zip(r1, r2)] for r1, r2 in zip(U21, mul(U22, A))]
+    E = mul(U22, inv)
+    f0 = [A[i] + inv[i] for i in range(2)]       # rows M0, Q0
+    f1 = [C[i] + E[i] for i in range(2)]         # rows M1, Q1
+    return [f0[1], [-v for v in f0[0]], [-v for v in f1[1]], f1[0]]
+
+
+def _scatter_arb(K, local, dofs):
+    for i, di in enumerate(dofs):
+        if di is None:
+            continue
+        for j, dj in enumerate(dofs):
+            if dj is not None:
+                K[di][dj] = K[di][dj] + local[i][j]
+
+
+def _poly_arb(expr, w, flint):
+    """A polynomial in ``w`` with exact coefficients, at the ball ``w``."""
+    poly = sp.Poly(expr, sp.Symbol("w", real=True))
+    value = flint.arb(0)
+    for (k,), cf in poly.terms():
+        value += to_arb(cf, flint) * w ** k
+    return value
+
+
+def _ldl_negative(K, band: int) -> int | None:
+    """Negative pivots of banded ``LDL^T`` in balls; None if a pivot ball holds 0."""
+    n = len(K)
+    negative = 0
+    for k in range(n):
+        pivot = K[k][k]
+        if pivot.contains(0):
+            return None
+        if pivot < 0:
+            negative += 1
+        top = min(n, k + band + 1)
+        for i in range(k + 1, top):
+            f = K[k][i] / pivot
+            for j in range(i, top):
+                K[i][j] = K[i][j] - f * K[k][j]
+    return negative
 
 
 # -- enclosures ------------------------------------------------------------------------------
@@ -494,6 +608,14 @@ class _Certifier:
         if e.multiplicity > 1:
             if lam == 0 and e.bracket == (0.0, 0.0):
                 return Enclosure(e, (zero, zero), (zero, zero), "exact")
+            if not self.model.damped and e.bracket is not None and lam.real == 0:
+                # an m-fold root: exactly m eigenvalues (with multiplicity) in [lo, hi]
+                lo, hi = sorted(e.bracket)
+                counter = ArbCount(self.model, 1.01 * float(hi))
+                below, upto = counter.count(lo), counter.count(hi)
+                if below is not None and upto is not None and upto - below == e.multiplicity:
+                    return Enclosure(e, (zero, zero), (_exact_mpf(lo), _exact_mpf(hi)),
+                                     "count")
             return Enclosure(e, None, None, "none")
         bracket = e.bracket if isinstance(e.bracket, tuple) and len(e.bracket) == 2 \
             and not isinstance(e.bracket[0], tuple) else None

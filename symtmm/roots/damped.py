@@ -46,9 +46,10 @@ Eigenvalues ``lam = -sigma + i omega`` are the zeros of the entire function
 5. **Multiple zeros.** A rectangle that still holds ``m >= 2`` zeros when it
    is too small for double precision is handed to mpmath: the modified
    Newton method ``z - m Delta/Delta'`` finds the cluster, and a count on a
-   square of half-width ``10**-(D+2) |lam|`` around it decides between one
-   zero of multiplicity ``m`` (at ``D`` digits) and zeros to be separated by
-   the same quadtree in mpmath.
+   square of half-width ``10**-(D + 2 + SEPARATION_DIGITS) |lam|`` around it
+   decides between one zero of multiplicity ``m`` (its ``m`` zeros agree to
+   ``D + SEPARATION_DIGITS`` digits) and distinct zeros, separated by the same
+   quadtree in mpmath and refined one by one, however close.
 """
 
 from __future__ import annotations
@@ -65,7 +66,7 @@ from ..compile import Evaluator
 from ..errors import ComputationError
 from ..model import Model
 from ..results import Eigenvalue, Spectrum, decimal_string
-from .bracket import anderson_bjorck, bracket_done
+from .bracket import SEPARATION_DIGITS, anderson_bjorck, bracket_done
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
 from .dynamic_stiffness import DynamicStiffness
 from .undamped import omega_scale, rigid_body_modes
@@ -486,27 +487,34 @@ class _Search:
 
     # -- clusters ------------------------------------------------------------------------
     def resolve_cluster(self, rect: Rectangle, m: int, center) -> list:
-        """The zeros in a tiny rectangle holding ``m`` of them."""
+        """The zeros in a tiny rectangle holding ``m`` of them.
+
+        They are one zero of multiplicity ``m`` only if a box of relative half-width
+        ``10**-(D + 2 + SEPARATION_DIGITS)`` around the cluster's centre still holds
+        all ``m``; otherwise they are isolated and refined one by one, however
+        close, as distinct zeros.
+        """
+        res = self.digits + 2 + SEPARATION_DIGITS
         u = complex(center) if center is not None and rect.contains(center) else rect.center
         zf = complex(self._global(u))
-        dps = m * (self.digits + 2) + math.ceil(self.p.lost(zf)) + _GUARD + 10
-        extra = (m + 1) * (self.digits + 2) + 10
+        dps = m * res + math.ceil(self.p.lost(zf)) + _GUARD + 10
+        extra = (m + 1) * res + 10
         with mpmath.workdps(dps):
             z0 = self._global(u)
-            tol = mpmath.mpf(10) ** (-(self.digits + 6)) * max(abs(z0), self.p.lam_ref)
+            tol = mpmath.mpf(10) ** (-(res + 4)) * max(abs(z0), self.p.lam_ref)
             z, _ = self._secant(self.p.delta_mp, z0, tol, multiplicity=m)
             if rect.symmetric and z is not None:
                 z = mpmath.mpc(z.real, 0)   # the cluster is closed under conjugation
         if z is not None and rect.contains(self._local(z), 1e-9 * rect.size):
             scale = max(abs(zf), self.p.lam_ref)
-            r = 10.0 ** (-(self.digits + 2)) * scale
+            r = 10.0 ** (-res) * scale
             zc = complex(z)
             for part in (zc.real, zc.imag):
-                if abs(part) > 10.0 ** (-(self.digits + 2)) * scale:
-                    r = min(r, 10.0 ** (-(self.digits + 2)) * abs(part))
+                if abs(part) > 10.0 ** (-res) * scale:
+                    r = min(r, 10.0 ** (-res) * abs(part))
             box = (Rectangle(-r, r, -r, r, True) if rect.symmetric
                    else Rectangle(-r, r, -r, r))
-            # |Delta| ~ r**m on the box: m (D + 2) digits above the loss carry its phase
+            # |Delta| ~ r**m on the box: m res digits above the loss carry its phase
             ap = ArgumentPrinciple(_MPFunction(self.p, extra, z, check=False),
                                    spacing=lambda _u: r, min_step=lambda _u: r * 1e-6)
             try:
@@ -514,8 +522,8 @@ class _Search:
             except (NearZero, CountError):
                 k = -1
             if k == m:
-                return [self._cluster_eigenvalue(z, m, rect.symmetric, dps)]
-        # the cluster separates at D digits: isolate its zeros with mpmath, around a local origin
+                return [self._cluster_eigenvalue(z, m, rect.symmetric, dps, r)]
+        # the cluster separates: isolate its zeros with mpmath, around a local origin
         with mpmath.workdps(dps):
             origin = self._global(rect.center)
             if rect.symmetric:
@@ -529,25 +537,32 @@ class _Search:
                                         spacing=lambda _u: local.size / 8,
                                         min_step=lambda _u: 1e-6 * r_min),
                       origin)
-        r_min = 10.0 ** (-(self.digits + 2)) * abs(zf)
-        singles, clusters = sub.isolate([(local, m, None)], 10.0 ** -(self.digits + 2))
+        r_min = 10.0 ** (-res) * abs(zf)
+        singles, clusters = sub.isolate([(local, m, None)], 10.0 ** -res)
         out = [sub.single(r, c) for r, c in singles]
         for r, k, _ in clusters:
             with mpmath.workdps(dps):
-                out.append(sub._cluster_eigenvalue(sub._global(r.center), k, r.symmetric, dps))
+                out.append(sub._cluster_eigenvalue(sub._global(r.center), k, r.symmetric, dps,
+                                                   r.size))
         self.idle += sub.idle
         return out
 
-    def _cluster_eigenvalue(self, z, m, symmetric, dps) -> Eigenvalue:
+    def _cluster_eigenvalue(self, z, m, symmetric, dps, radius) -> Eigenvalue:
+        """An ``m``-fold eigenvalue at ``z``, known to within ``radius``."""
         size = abs(z)
         with mpmath.workdps(dps):
             if not self.p.model.damped:
                 return Eigenvalue(mpmath.mpc(0, abs(z.imag)), m, self.digits, None)
-            if symmetric and abs(z.imag) <= 10.0 ** -(self.digits + 2) * size:
+            if symmetric and abs(z.imag) <= radius:
                 return Eigenvalue(mpmath.mpc(z.real, 0), m, self.digits, None)
-            if abs(z.real) <= 10.0 ** -(self.digits + 2) * size and self._idle(z, dps, m):
-                self.idle += 1
-                return Eigenvalue(mpmath.mpc(0, z.imag), m, self.digits, None)
+            if abs(z.real) <= radius:
+                if self._idle(z, dps, m):
+                    self.idle += 1
+                    return Eigenvalue(mpmath.mpc(0, z.imag), m, self.digits, None)
+                raise ComputationError(
+                    f"{m} eigenvalues agree to {self.digits + SEPARATION_DIGITS} digits near "
+                    f"{complex(z):.6g} and their real part, below {float(radius):.1e}, cannot "
+                    "be given to the digits asked for")
             return Eigenvalue(+z, m, self.digits, None)
 
     def single(self, rect, center) -> Eigenvalue:

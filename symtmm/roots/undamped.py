@@ -18,13 +18,17 @@
    ``Delta`` must still change sign strictly across it, or the precision is
    raised and the refinement repeated.
 4. **Clusters.** Brackets holding several roots are bisected with the count
-   in mpmath at ``D + 15`` digits until each holds one root (then step 3) or
-   is narrower than ``10**-(D+2)`` relative: the roots it holds agree to
-   ``D`` digits and are reported once with their multiplicity.
+   in mpmath until each holds one root (then step 3) or is narrower than
+   ``10**-(D + 2 + SEPARATION_DIGITS)`` relative with both ends printing the
+   same ``D`` digits: the roots it holds agree to ``D + SEPARATION_DIGITS``
+   digits and are reported once with their multiplicity (exact multiple roots
+   end there). Distinct roots closer than ``10**-D`` are reported separately,
+   with a note that they print alike.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 
@@ -37,8 +41,8 @@ from ..compile import Evaluator
 from ..errors import ComputationError
 from ..model import Model
 from ..results import Eigenvalue, Spectrum
-from ..stiffness import StiffnessModel
-from .bracket import anderson_bjorck, bracket_done
+from ..stiffness import SingularCount, StiffnessModel
+from .bracket import SEPARATION_DIGITS, anderson_bjorck, bracket_done
 
 __all__ = ["solve_undamped", "rigid_body_modes", "omega_scale"]
 
@@ -46,6 +50,7 @@ __all__ = ["solve_undamped", "rigid_body_modes", "omega_scale"]
 _DOUBLE_WIDTH = 1e-11
 #: Largest precision (decimal digits) the refinement may climb to.
 MAX_DPS = 3000
+
 
 
 def rigid_body_modes(model: Model) -> int:
@@ -103,6 +108,21 @@ class _Search:
     def count(self, omega, dps=None) -> int:
         return self.sm.count(omega, dps=dps)
 
+    def count_off(self, omega, toward, dps=None):
+        """``(point, count)``: the count at ``omega``, or, if ``omega`` is exactly an
+        eigenvalue (the count is not defined there), at a point moved a little
+        toward ``toward``. Any point serves where this is used (a bisection point,
+        an upper bound), as long as it is not an eigenvalue.
+        """
+        step = (toward - omega) * 1e-7
+        for k in range(12):
+            try:
+                return omega, self.count(omega, dps=dps)
+            except SingularCount:
+                omega = omega + step * 4**k
+        raise ComputationError(f"cannot find a point near {float(omega):.6g} rad/s that is "
+                               "not an eigenvalue")
+
     # -- isolation ------------------------------------------------------------------
     def isolate(self, lo, c_lo, hi, c_hi, needed=None):
         """Brackets ``(a, b, k)`` with ``k`` roots in ``(a, b]``, ascending.
@@ -125,8 +145,7 @@ class _Search:
                 out.append((a, b, k))
                 found += k
                 continue
-            mid = 0.5 * (a + b)
-            cm = self.count(mid)
+            mid, cm = self.count_off(0.5 * (a + b), b)
             # left half first: push it last
             stack.append((mid, cm, b, cb))
             stack.append((a, ca, mid, cm))
@@ -134,24 +153,32 @@ class _Search:
 
     # -- clusters ---------------------------------------------------------------------
     def split_cluster(self, a, b, k):
-        """Resolve ``k`` roots in ``(a, b]`` with high-precision counts."""
-        dps = self.digits + 15
+        """Separate the ``k`` roots in ``(a, b]`` by bisection on high-precision counts.
+
+        Returns brackets ``(lo, hi, m)``, ascending: ``m == 1`` for a root of its
+        own, ``m > 1`` for roots that still share a bracket of relative width
+        ``10**-(D + 2 + SEPARATION_DIGITS)``: they agree to ``D + SEPARATION_DIGITS``
+        digits and are reported as one eigenvalue of multiplicity ``m``. Exact
+        multiple roots (identical beams, symmetric couplings) end there; distinct
+        roots are told apart however close, down to that resolution.
+        """
+        resolution = self.digits + 2 + SEPARATION_DIGITS
+        dps = resolution + 15
         with mpmath.workdps(dps):
             a, b = mpmath.mpf(a), mpmath.mpf(b)
-            ca = self.count(a, dps=dps)
+            a, ca = self.count_off(a, b, dps=dps)
             cb = ca + k
-            tol = mpmath.mpf(10) ** (-(self.digits + 2))
+            tol = mpmath.mpf(10) ** (-resolution)
             out, stack = [], [(a, ca, b, cb)]
             while stack:
                 a, ca, b, cb = stack.pop()
                 m = cb - ca
                 if m <= 0:
                     continue
-                if m == 1 or (b - a) <= tol * b:
+                if m == 1 or ((b - a) <= tol * b and bracket_done(a, b, self.digits)):
                     out.append((a, b, m))
                     continue
-                mid = (a + b) / 2
-                cm = self.count(mid, dps=dps)
+                mid, cm = self.count_off((a + b) / 2, b, dps=dps)
                 stack.append((mid, cm, b, cb))
                 stack.append((a, ca, mid, cm))
             return out
@@ -186,12 +213,16 @@ class _Search:
     def refine(self, a, b) -> Eigenvalue:
         """One simple root in ``(a, b]`` to ``digits`` significant digits."""
         extra = 0
-        narrow = self._double_bracket(float(a), float(b))
+        # a bracket from a separated cluster may be far narrower than double precision
+        width = mpmath.mpf(b - a) / b
+        resolved = max(0, -int(mpmath.floor(mpmath.log10(width)))) if width > 0 else 0
+        narrow = self._double_bracket(float(a), float(b)) if width > 1e-9 else None
         if narrow is not None:
             pad = 1e-9 * narrow[1]
             narrow = (max(float(a), narrow[0] - pad), min(float(b), narrow[1] + pad))
         while True:
-            dps = self.digits + math.ceil(self.ev.digits_lost(float(b))) + 10 + extra
+            dps = (max(self.digits, resolved) + math.ceil(self.ev.digits_lost(float(b))) + 10
+                   + extra)
             if dps > MAX_DPS:
                 raise ComputationError(
                     f"cannot reach {self.digits} digits for the root near {float(b):.6g} rad/s "
@@ -290,7 +321,10 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     else:
         hi = _first_guess(model)
         search = _Search(model, digits, hi, rigid)
-        while rigid < count and search.count(hi) < count:
+        while rigid < count:
+            hi, c_hi = search.count_off(hi, 2 * hi)
+            if c_hi >= count:
+                break
             hi *= 2.0
     eigen = []
     if rigid:
@@ -298,15 +332,14 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     wanted = None if count is None else count - rigid
     if hi > 0 and (wanted is None or wanted > 0):
         # include a root sitting exactly on omega_max
-        top = hi * (1 + 4e-16)
-        c_top = search.count(top)
+        top, c_top = search.count_off(hi * (1 + 4e-16), 2 * hi)
         for a, b, k in search.isolate(0.0, rigid, top, c_top, wanted):
             parts = [(a, b, k)] if k == 1 else search.split_cluster(a, b, k)
             for pa, pb, pk in parts:
                 if pk == 1:
                     eigen.append(search.refine(pa, pb))
                 else:
-                    with mpmath.workdps(digits + 15):
+                    with mpmath.workdps(digits + 2 + SEPARATION_DIGITS + 15):
                         mid = (mpmath.mpf(pa) + mpmath.mpf(pb)) / 2
                         eigen.append(Eigenvalue(mpmath.mpc(0, mid), pk, digits, (pa, pb)))
     eigen.sort(key=lambda e: e.omega)
@@ -325,4 +358,17 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         scale_mp = mpmath.mpf(sp.N(scale, digits + 20)._to_mpmath(mpmath.mp.prec))
     return Spectrum(tuple(eigen), digits, "default", search.evaluations,
                     time.perf_counter() - start, model.title or (model.source or ""),
-                    (name, scale_mp))
+                    (name, scale_mp), _notes(eigen, digits))
+
+
+def _notes(eigen, digits) -> tuple:
+    """What a reader of the printed values should know: roots alike in print, multiples."""
+    notes = []
+    for i, (e, f) in enumerate(itertools.pairwise(eigen), 1):
+        if e.omega != 0 and str(e) == str(f):
+            notes.append(f"eigenvalues {i} and {i + 1} are distinct but agree to {digits} "
+                         "digits; more digits (--digits) tell them apart")
+    if any(e.multiplicity > 1 and e.omega != 0 for e in eigen):
+        notes.append(f"a multiplicity m > 1: m eigenvalues agree to {digits + SEPARATION_DIGITS} "
+                     "digits (exact multiple roots, or closer than that)")
+    return tuple(notes)
