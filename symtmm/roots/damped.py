@@ -549,7 +549,6 @@ class _Search:
 
     def _cluster_eigenvalue(self, z, m, symmetric, dps, radius) -> Eigenvalue:
         """An ``m``-fold eigenvalue at ``z``, known to within ``radius``."""
-        size = abs(z)
         with mpmath.workdps(dps):
             if not self.p.model.damped:
                 return Eigenvalue(mpmath.mpc(0, abs(z.imag)), m, self.digits, None)
