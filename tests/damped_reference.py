@@ -125,3 +125,44 @@ def ex4_reference(dps: int = 30):
                 if z.imag <= 1500 and -3000 <= z.real <= 0:
                     out.append((z, mu))
     return sorted(out, key=lambda t: t[0].imag)
+
+
+def pp_root_above(n, EI, m, L, supports, dps=60):
+    """The root of a pinned-pinned beam on grounded springs ``(x, k)`` just above mode ``n``.
+
+    Springs raise the ``n``-th frequency ``(n pi)**2 sqrt(EI/m) / L**2`` by a little
+    when they are weak: the root is bracketed between that frequency (a pole of the
+    Green's function, excluded) and a point where the pole-free characteristic
+    function has changed sign, then found by bisection-safe Anderson iteration at
+    ``dps`` digits. For closely spaced roots of weakly coupled beams.
+    """
+    with mpmath.workdps(dps):
+        EI, m, L = _mp(EI), _mp(m), _mp(L)
+        sup = [(_mp(x), _mp(k)) for x, k in supports]
+        w0 = (n * mpmath.pi) ** 2 * mpmath.sqrt(EI / m) / L**2
+
+        def f(w):
+            beta = mpmath.sqrt(w) * mpmath.root(m / EI, 4)
+            s = mpmath.sin(beta * L)
+            A = mpmath.matrix(len(sup), len(sup))
+            for i, (xi, ki) in enumerate(sup):
+                for j, (xj, _) in enumerate(sup):
+                    lo, hi = min(xi, xj), max(xi, xj)
+                    t1 = -mpmath.sinh(beta * lo) * mpmath.sinh(beta * (L - hi)) / \
+                        mpmath.sinh(beta * L)
+                    t2 = mpmath.sin(beta * lo) * mpmath.sin(beta * (L - hi))
+                    A[i, j] = (s if i == j else 0) + ki / EI * (t1 * s + t2) / (2 * beta**3)
+            return mpmath.det(A) / s ** (len(sup) - 1)
+
+        lo = w0 * (1 + mpmath.mpf(10) ** -(dps - 8))
+        f_lo = f(lo)
+        t = mpmath.mpf(10) ** -(dps - 10)
+        while True:
+            hi = w0 * (1 + t)
+            if f(hi) * f_lo < 0:
+                break
+            lo, f_lo = hi, f(hi)
+            t *= 10
+            if t > 0.1:
+                raise ArithmeticError("no root above the mode")
+        return mpmath.findroot(f, (lo, hi), solver="anderson")
