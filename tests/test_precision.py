@@ -3,9 +3,9 @@
 import mpmath
 import numpy as np
 import pytest
+from damped_reference import pp_root_above
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from damped_reference import pp_root_above
 from reference import classical_roots
 
 from symtmm import Beam, Model, Spring
