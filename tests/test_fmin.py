@@ -108,3 +108,57 @@ def test_fmin2d_count_mode():
     for e, ref in zip(spec, exact):
         assert digits_agree(e.to_dict()["real"], ref.lam.real)
         assert digits_agree(e.to_dict()["imag"], ref.lam.imag)
+
+
+# -- stats.evaluations counts every evaluation, whatever the method ------------------------
+
+def _tally(monkeypatch):
+    """Count, independently of the code's own counters, every lam at which Delta, R or
+    the eigenvalue count is evaluated (numpy arrays count one per element)."""
+    import numpy as np
+
+    from symtmm import assembly, compile, stiffness
+    from symtmm.roots import dynamic_stiffness, undamped
+
+    calls = {"n": 0}
+
+    def wrap(owner, name, per_point=False):
+        original = getattr(owner, name)
+
+        def counted(self, lam, *args, **kwargs):
+            calls["n"] += int(np.asarray(lam).size) if per_point else 1
+            return original(self, lam, *args, **kwargs)
+        monkeypatch.setattr(owner, name, counted)
+
+    wrap(compile.Evaluator, "R_mp")
+    wrap(compile.Evaluator, "R", per_point=True)
+    wrap(compile.Evaluator, "log_delta", per_point=True)
+    wrap(stiffness.StiffnessModel, "count")
+    wrap(dynamic_stiffness.DynamicStiffness, "log_delta", per_point=True)
+    original_boundary = undamped.boundary_matrix
+
+    def boundary(model, lam=assembly.LAM, segment_matrix=None):
+        calls["n"] += 1
+        return original_boundary(model, lam, segment_matrix)
+    monkeypatch.setattr(undamped, "boundary_matrix", boundary)
+    return calls
+
+
+@pytest.mark.parametrize("method", ["default", "fmin1d"])
+def test_undamped_evaluations_are_all_counted(monkeypatch, method):
+    model = Model((Beam("a", 1, 1, 1, left="free", right="free"),
+                   Beam("b", 1, 1, 1, left="clamped", right="clamped")),
+                  (Spring("a", "b", x="3/10", k=100), Spring("a", "b", x="7/10", k=100)))
+    calls = _tally(monkeypatch)
+    spectrum = solve(model, count=4, digits=12, method=method)
+    assert spectrum.evaluations == calls["n"]
+
+
+@pytest.mark.parametrize("method", ["default", "fmin2d"])
+def test_damped_evaluations_are_all_counted(monkeypatch, method):
+    model = Model((Beam("a", 1, 1, 1, left="pinned", right="pinned"),),
+                  (Spring("a", "ground", x="1/4", k=20, c="1/2"),))
+    calls = _tally(monkeypatch)
+    spectrum = solve(model, omega_max=50, sigma_max=10, digits=10, method=method)
+    assert len(spectrum) >= 2
+    assert spectrum.evaluations == calls["n"]

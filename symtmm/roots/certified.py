@@ -50,7 +50,7 @@ from ..errors import ComputationError
 from ..model import Model
 from ..results import Eigenvalue, Spectrum
 
-__all__ = ["ArbCount", "ArbDelta", "Enclosure", "certify", "require_flint"]
+__all__ = ["ArbCount", "ArbDelta", "Enclosure", "Enclosures", "certify", "require_flint"]
 
 
 def require_flint():
@@ -527,6 +527,11 @@ class _Certifier:
         self.digits = digits
         self.f = ArbDelta(self.model)
         self.ev = Evaluator(self.model)
+        self.counts = 0
+
+    @property
+    def evaluations(self) -> int:
+        return self.f.evaluations + self.ev.evaluations + self.counts
 
     def _bits(self, lam, extra_digits) -> int:
         lost = self.ev.digits_lost(complex(lam))
@@ -613,6 +618,7 @@ class _Certifier:
                 lo, hi = sorted(e.bracket)
                 counter = ArbCount(self.model, 1.01 * float(hi))
                 below, upto = counter.count(lo), counter.count(hi)
+                self.counts += 2
                 if below is not None and upto is not None and upto - below == e.multiplicity:
                     return Enclosure(e, (zero, zero), (_exact_mpf(lo), _exact_mpf(hi)),
                                      "count")
@@ -676,4 +682,13 @@ def certify(model: Model, spectrum: Spectrum) -> list:
     (['sign change', 'sign change'], [True, True])
     """
     certifier = _Certifier(model, spectrum.digits)
-    return [certifier.enclose(e) for e in spectrum]
+    out = Enclosures(certifier.enclose(e) for e in spectrum)
+    out.evaluations = certifier.evaluations
+    return out
+
+
+class Enclosures(list):
+    """The enclosures of a spectrum, with :attr:`evaluations`: the evaluations of Delta,
+    R or the count (in balls or in mpmath) that proving them took."""
+
+    evaluations: int = 0

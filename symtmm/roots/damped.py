@@ -634,8 +634,10 @@ def _first_guess(model: Model) -> float:
 
 
 def _search_region(model, omega_max, sigma_max, digits):
+    """``(search, counted cells, evaluations spent on attempts given up)``."""
     lam_ref = _reference_frequency(model)
     last = None
+    spent = 0
     for attempt in range(5):
         rects = _region(omega_max, sigma_max, lam_ref, attempt)
         lam_max = 1.05 * max(abs(complex(x, y)) for r in rects for x in (r.x0, r.x1)
@@ -643,9 +645,10 @@ def _search_region(model, omega_max, sigma_max, digits):
         problem = _Problem(model, lam_max)
         search = _Search(problem, digits)
         try:
-            return search, _count_region(search, rects)
+            return search, _count_region(search, rects), spent
         except (NearZero, CountError) as exc:
             last = exc
+            spent += problem.evaluations
     raise ComputationError(f"the boundary of the search region keeps meeting eigenvalues: {last}")
 
 
@@ -698,12 +701,14 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         S = default_sigma_max(W) if sigma_max is None else float(sigma_max)
         if W < 0 or S < 0:
             raise ValueError("omega_max and sigma_max must not be negative")
-        search, cells = _search_region(model, W, S, digits)
+        search, cells, spent = _search_region(model, W, S, digits)
+        evaluations += spent
     else:
         W = _first_guess(model)
         while True:
             S = default_sigma_max(W) if sigma_max is None else float(sigma_max)
-            search, cells = _search_region(model, W, S, digits)
+            search, cells, spent = _search_region(model, W, S, digits)
+            evaluations += spent
             # the symmetric strip counts conjugate pairs twice: at least half are above
             found = sum(n if not r.symmetric else (n + 1) // 2 for r, n, _ in cells)
             if found >= count:
@@ -753,7 +758,7 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         notes.append(f"Re lam = 0 for {search.idle} eigenvalue(s): also eigenvalues of the "
                      f"model without dashpots and with doubled dashpots to "
                      f"{digits + 20} digits (modes that do not move the dashpots)")
-    evaluations += search.p.evaluations
+    evaluations += search.p.evaluations + 1     # (+1: R(0) for the rigid-body modes)
     name, scale = omega_scale(model)
     with mpmath.workdps(digits + 20):
         scale_mp = mpmath.mpf(sp.N(scale, digits + 20)._to_mpmath(mpmath.mp.prec))

@@ -356,7 +356,8 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     name, scale = omega_scale(model)
     with mpmath.workdps(digits + 20):
         scale_mp = mpmath.mpf(sp.N(scale, digits + 20)._to_mpmath(mpmath.mp.prec))
-    return Spectrum(tuple(eigen), digits, "default", search.evaluations,
+    # (+1: the exact R(0) that gave the rigid-body modes)
+    return Spectrum(tuple(eigen), digits, "default", search.evaluations + 1,
                     time.perf_counter() - start, model.title or (model.source or ""),
                     (name, scale_mp), _notes(eigen, digits))
 
