@@ -13,6 +13,18 @@ Boundary conditions zero two variables at each end: the columns of ``T`` for
 the unknown left-end variables and the rows for the right-end variables that
 must vanish give the square matrix ``R(lam)``; eigenvalues solve
 ``det R(lam) = 0``.
+
+Rigid bodies (and joints, which are massless bodies) join beams at points:
+chains of beams, trees, closed loops. Each brings *virtual* state variables
+after the ``4 n`` of the beams, constant along ``x``: its own deflection and
+rotation and the force (and couple) it exerts at each attachment, all
+unknowns (columns of ``R``); and one accumulator per equation it must satisfy
+(compatibility at each attachment, its equations of motion), which gathers
+that equation's terms at the stations and must vanish at the right (rows of
+``R``). So the overall transfer equation of any topology is one product along
+``x``, and ``R`` stays square. At a station every element adds ``G`` to the
+identity (the transfer matrix there is ``I + G``); its entries are exact
+polynomials in ``lam`` (:attr:`Station.terms`).
 """
 
 from __future__ import annotations
@@ -25,18 +37,16 @@ import sympy as sp
 from .elements import (
     STATE,
     Coupling,
-    EulerBernoulliSegment,
     GroundSpring,
     LumpedMass,
-    PointElement,
     RotationalCoupling,
     RotationalGroundSpring,
 )
-from .elements.base import LAM
+from .elements.base import CONJUGATE, LAM
 from .model import BOUNDARY_CONDITIONS, Model
 
-__all__ = ["Layout", "Interval", "Station", "overall_transfer_matrix", "boundary_matrix",
-           "characteristic_determinant", "point_elements"]
+__all__ = ["Layout", "Interval", "Station", "BodyLayout", "overall_transfer_matrix",
+           "boundary_matrix", "characteristic_determinant", "point_elements"]
 
 
 def point_elements(model: Model) -> list:
@@ -80,11 +90,35 @@ class Interval:
 
 @dataclass(frozen=True)
 class Station:
-    """A cut, with the point elements acting there."""
+    """A cut, with the point elements acting there.
+
+    ``terms`` are the entries ``(row, col, value)`` of ``G`` on the extended
+    state (beams, then the bodies' virtual variables): across the station the
+    state goes to ``(I + G) z``. Rows written are never columns read at the
+    same station (forces read displacements), so the elements' ``G`` add up.
+    """
 
     x: sp.Expr
     #: ``(element, levels)``: levels maps the element's own levels to beam indices
     elements: tuple
+    #: ``(row, col, value)`` entries of G, value exact in ``lam``
+    terms: tuple = ()
+
+
+@dataclass(frozen=True)
+class BodyLayout:
+    """Where a rigid body's virtual variables sit in the extended state.
+
+    ``unknowns`` and ``equations`` map labels (``"Y"``, ``"Theta"``,
+    ``("F", i)``, ``("C", i)`` / ``("Y", i)``, ``("Theta", i)``, ``"force"``,
+    ``"moment"``) to indices; ``units`` gives each index the ``(level, variable)``
+    whose physical unit it has (for scaling).
+    """
+
+    body: object
+    unknowns: dict
+    equations: dict
+    levels: tuple      # level of each attachment's beam
 
 
 def _before(a: sp.Expr, b: sp.Expr, sample: dict | None = None) -> bool | None:
@@ -153,18 +187,21 @@ class Layout:
             points += [beam.x0, beam.x1]
         self._points = point_elements(self.model)
         points += [x for x, _ in self._points]
+        self.bodies = self._place_bodies()
+        points += [a.x for bl in self.bodies for a in bl.body.attachments]
         xs = _sorted_unique(points, sample)
         stations, steps = [], []
         for i, x in enumerate(xs):
             elements = tuple(self._point_elements_at(x))
-            station = Station(x, elements)
+            terms = tuple(self._terms_at(x, elements))
+            station = Station(x, elements, terms)
             stations.append(station)
-            if elements:
+            if terms:
                 steps.append(station)
             if i + 1 < len(xs):
                 x_end = xs[i + 1]
                 segs = tuple(
-                    (lvl, EulerBernoulliSegment(b.EI, b.m, x_end - x, b.kw))
+                    (lvl, b.segment(x_end - x))
                     for lvl, b in enumerate(beams)
                     if _before(x, b.x0, sample) is not True
                     and _before(b.x1, x_end, sample) is not True
@@ -172,6 +209,102 @@ class Layout:
                 steps.append(Interval(x, x_end, segs))
         self.stations = tuple(stations)
         self.steps = tuple(steps)
+
+    # -- rigid bodies -------------------------------------------------------------------
+    def _place_bodies(self) -> tuple:
+        index = {b.name: i for i, b in enumerate(self.model.beams)}
+        out, nxt = [], 4 * self.levels
+        units = {}
+        for body in self.model.bodies:
+            levels = tuple(index[a.beam] for a in body.attachments)
+            unknowns, equations = {}, {}
+
+            def new(table, label, level, var):
+                nonlocal nxt
+                table[label] = nxt
+                units[nxt] = (level, var)
+                nxt += 1
+            rot = body.rotates
+            new(unknowns, "Y", levels[0], "Y")
+            if rot:
+                new(unknowns, "Theta", levels[0], "Theta")
+            for i, (att, lvl) in enumerate(zip(body.attachments, levels)):
+                new(unknowns, ("F", i), lvl, "Q")
+                if not att.hinged:
+                    new(unknowns, ("C", i), lvl, "M")
+            for i, (att, lvl) in enumerate(zip(body.attachments, levels)):
+                new(equations, ("Y", i), lvl, "Y")
+                if not att.hinged:
+                    new(equations, ("Theta", i), lvl, "Theta")
+            new(equations, "force", levels[0], "Q")
+            if rot:
+                new(equations, "moment", levels[0], "M")
+            out.append(BodyLayout(body, unknowns, equations, levels))
+        self.size = nxt
+        self._units = units
+        return tuple(out)
+
+    def _body_terms_at(self, x):
+        """Entries of G of the bodies at ``x``: attachments, and each body's equations of
+        motion at the station of its first attachment."""
+        lam2 = LAM**2
+        for bl in self.bodies:
+            body, u, e = bl.body, bl.unknowns, bl.equations
+            rot = "Theta" in u
+            for i, (att, lvl) in enumerate(zip(body.attachments, bl.levels)):
+                if sp.simplify(att.x - x) != 0:
+                    continue
+                d = att.x - body.xc                  # arm from the centre of mass
+                # the body's force and couple on the beam: Q+ - Q- = F, M+ - M- = -C
+                yield (4 * lvl + 3, u[("F", i)], sp.Integer(1))
+                # compatibility: the beam's deflection (and rotation) are the body's there
+                yield (e[("Y", i)], 4 * lvl, sp.Integer(1))
+                yield (e[("Y", i)], u["Y"], sp.Integer(-1))
+                if rot and d != 0:
+                    yield (e[("Y", i)], u["Theta"], -d)
+                if not att.hinged:
+                    yield (4 * lvl + 2, u[("C", i)], sp.Integer(-1))
+                    yield (e[("Theta", i)], 4 * lvl + 1, sp.Integer(1))
+                    yield (e[("Theta", i)], u["Theta"], sp.Integer(-1))
+            if sp.simplify(body.attachments[0].x - x) != 0:
+                continue
+            # M lam^2 Y_c + sum F_i = 0 and J lam^2 Theta_c + sum (d_i F_i + C_i) = 0: the
+            # reactions -F_i, -C_i of the beams accelerate the body (moments about xc)
+            if body.M != 0:
+                yield (e["force"], u["Y"], body.M * lam2)
+            for i, att in enumerate(body.attachments):
+                yield (e["force"], u[("F", i)], sp.Integer(1))
+                if rot:
+                    d = att.x - body.xc
+                    if d != 0:
+                        yield (e["moment"], u[("F", i)], d)
+                    if not att.hinged:
+                        yield (e["moment"], u[("C", i)], sp.Integer(1))
+            if rot and body.J != 0:
+                yield (e["moment"], u["Theta"], body.J * lam2)
+
+    def _terms_at(self, x, elements):
+        """Every entry of G at the station ``x``: point elements, then bodies; summed."""
+        out: dict = {}
+        for element, levels in elements:
+            S = element.stiffness(LAM)
+            for i, (li, var_i) in enumerate(element.dofs):
+                force, sign = CONJUGATE[var_i]
+                row = 4 * levels[li] + STATE.index(force)
+                for k, (lk, var_k) in enumerate(element.dofs):
+                    value = sp.expand(sign * S[i, k])
+                    if value != 0:
+                        col = 4 * levels[lk] + STATE.index(var_k)
+                        out[(row, col)] = out.get((row, col), 0) + value
+        for row, col, value in self._body_terms_at(x):
+            out[(row, col)] = out.get((row, col), 0) + value
+        return [(r, c, v) for (r, c), v in out.items() if v != 0]
+
+    @property
+    def units(self) -> list:
+        """``(level, variable)`` whose unit each index of the extended state has."""
+        out = [(lvl, v) for lvl in range(self.levels) for v in STATE]
+        return out + [self._units[i] for i in range(4 * self.levels, self.size)]
 
     def _point_elements_at(self, x):
         index = {b.name: i for i, b in enumerate(self.model.beams)}
@@ -199,34 +332,24 @@ class Layout:
 
     @property
     def columns(self) -> list:
-        """Indices of :attr:`unknowns` in the stacked state vector."""
-        return [4 * lvl + STATE.index(v) for lvl, v in self.unknowns]
+        """Indices (extended state) of the unknowns: beams' left-end variables, then bodies'."""
+        out = [4 * lvl + STATE.index(v) for lvl, v in self.unknowns]
+        return out + [i for bl in self.bodies for i in bl.unknowns.values()]
 
     @property
     def rows(self) -> list:
-        """Indices of :attr:`conditions` in the stacked state vector."""
-        return [4 * lvl + STATE.index(v) for lvl, v in self.conditions]
+        """Indices (extended state) of the conditions: beams' right ends, then the bodies'
+        equations (accumulators)."""
+        out = [4 * lvl + STATE.index(v) for lvl, v in self.conditions]
+        return out + [i for bl in self.bodies for i in bl.equations.values()]
 
 
-def _embed_point(element: PointElement, levels: tuple, n: int, lam) -> sp.Matrix:
-    """Transfer matrix of a point element on the full stacked state."""
-    local = element.transfer_matrix(lam)
-    full = sp.eye(4 * n)
-    for i_loc, lvl_i in enumerate(levels):
-        for j_loc, lvl_j in enumerate(levels):
-            block = local[4 * i_loc:4 * i_loc + 4, 4 * j_loc:4 * j_loc + 4]
-            full[4 * lvl_i:4 * lvl_i + 4, 4 * lvl_j:4 * lvl_j + 4] = block
-    return full
-
-
-def _step_matrix(step, n: int, lam, segment_matrix) -> sp.Matrix:
+def _step_matrix(step, size: int, lam, segment_matrix) -> sp.Matrix:
+    out = sp.eye(size)
     if isinstance(step, Station):
-        out = sp.eye(4 * n)
-        for element, levels in step.elements:
-            # point transfer matrices are I + G with G*G' = 0, so they compose additively
-            out += _embed_point(element, levels, n, lam) - sp.eye(4 * n)
+        for row, col, value in step.terms:
+            out[row, col] += value.xreplace({LAM: lam}) if lam is not LAM else value
         return out
-    out = sp.eye(4 * n)
     for lvl, seg in step.segments:
         out[4 * lvl:4 * lvl + 4, 4 * lvl:4 * lvl + 4] = segment_matrix(seg)
     return out
@@ -253,13 +376,12 @@ def overall_transfer_matrix(model: Model, lam=LAM, segment_matrix=None) -> sp.Ma
     Matrix([[1, 2, 2, 4/3]])
     """
     layout = model if isinstance(model, Layout) else Layout(model)
-    n = layout.levels
     if segment_matrix is None:
         def segment_matrix(seg):
             return seg.transfer_matrix(lam)
-    T = sp.eye(4 * n)
+    T = sp.eye(layout.size)
     for step in layout.steps:
-        T = _step_matrix(step, n, lam, segment_matrix) * T
+        T = _step_matrix(step, layout.size, lam, segment_matrix) * T
     return T
 
 

@@ -1,28 +1,30 @@
 """Numeric evaluators of ``R(lam)`` and ``Delta(lam) = det R(lam)``.
 
-The evaluator is compiled once per model from its layout: the exact element
-parameters are converted to numbers (double precision, or any mpmath
-precision), the point-element stiffnesses are lambdified once, and the
-transfer product is then evaluated on just the ``2 n`` columns of the unknown
-left-end variables. Cost per evaluation is linear in the number of cuts.
+The evaluator is compiled once per model from its layout
+(:class:`symtmm.assembly.Layout`): the exact element parameters are converted
+to numbers (double precision, or any mpmath precision), the entries of every
+station's jump matrix ``G`` (springs, dashpots, masses, rigid bodies: exact
+polynomials in ``lam``) become coefficient arrays, and the transfer product
+is then evaluated on just the columns of the unknowns. Cost per evaluation is
+linear in the number of cuts.
 
-Both backends share one propagation routine; numpy arrays of complex numbers
-carry a whole vector of eigenvalues at once, object arrays of mpmath numbers
-carry one eigenvalue at any precision.
+Three evaluations share that plan: :meth:`Evaluator.R` (numpy, the plain
+product), :meth:`Evaluator.log_delta` (numpy, orthonormalised columns: stable
+at any mode) and :meth:`Evaluator.R_mp` (mpmath, any precision). Numpy arrays
+of complex numbers carry a whole vector of eigenvalues at once, object arrays
+of mpmath numbers carry one eigenvalue at any precision.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import mpmath
 import numpy as np
 import sympy as sp
 
 from .assembly import Interval, Layout
-from .elements import STATE
-from .elements.base import CONJUGATE, LAM
+from .elements.base import LAM
 from .model import Model
 from .numeric import to_mp
 
@@ -33,13 +35,43 @@ __all__ = ["Evaluator", "compile_model", "NU_STEP"]
 NU_STEP = 4.0
 
 
-@dataclass
-class _PointPlan:
-    rows_disp: list   # stacked rows of the displacement variables
-    rows_force: list  # stacked rows of the conjugate forces
-    signs: list       # sign of each force jump
-    stiffness_np: object  # lam -> d x d (numpy)
-    stiffness_mp: object  # lam -> d x d (mpmath)
+class _Jumps:
+    """The entries ``(row, col, value)`` of a station's ``G``, values as polynomials in lam."""
+
+    def __init__(self, terms):
+        self.rows = [r for r, _, _ in terms]
+        self.cols = [c for _, c, _ in terms]
+        self.coeffs = []        # per term: exact coefficients of lam**0, lam**1, ...
+        for _, _, value in terms:
+            poly = sp.Poly(sp.expand(value), LAM)
+            self.coeffs.append([sp.sympify(c) for c in reversed(poly.all_coeffs())])
+        self._float = [[complex(sp.N(c, 20)) for c in cs] for cs in self.coeffs]
+        self._mp: dict = {}
+
+    def values_numpy(self, lam) -> list:
+        out = []
+        for cs in self._float:
+            v = np.zeros_like(lam)
+            for c in reversed(cs):
+                v = v * lam + c
+            out.append(v)
+        return out
+
+    def values_mp(self, lam, real: bool) -> list:
+        key = (mpmath.mp.prec, real)
+        coeffs = self._mp.get(key)
+        if coeffs is None:
+            dps = mpmath.mp.dps
+            coeffs = [[to_mp(c, dps) if c.is_real else mpmath.mpmathify(complex(sp.N(c, dps)))
+                       for c in cs] for cs in self.coeffs]
+            self._mp[key] = coeffs
+        out = []
+        for cs in coeffs:
+            v = mpmath.mpf(0)
+            for c in reversed(cs):
+                v = v * lam + c
+            out.append(mpmath.re(v) if real else v)
+        return out
 
 
 class Evaluator:
@@ -72,57 +104,70 @@ class Evaluator:
         self.model = model.require_numeric()
         self.layout = Layout(self.model)
         self.n = self.layout.levels
+        self.size = self.layout.size
         self.columns = self.layout.columns
         self.rows = self.layout.rows
         self.evaluations = 0
         self._steps = []
         for step in self.layout.steps:
             if isinstance(step, Interval):
-                self._steps.append(("segments", [(lvl, seg) for lvl, seg in step.segments]))
+                self._steps.append(("segments", list(step.segments)))
             else:
-                self._steps.append(("point", [self._plan_point(e, lv) for e, lv in step.elements]))
-        self._mp_cache: dict = {}
+                self._steps.append(("point", _Jumps(step.terms)))
+        self._cache: dict = {}
         self.damped = self.model.damped
-        # per-beam factors m/EI, length and kw/EI, for the precision estimate
-        self._beam_consts = [(float(b.m) / float(b.EI), float(b.L), float(b.kw) / float(b.EI))
-                             for b in self.model.beams]
-        # per level (EI, m/EI, L, kw/EI): the wave number that scales the stable propagation
-        self._level_scales = [(float(b.EI), float(b.m) / float(b.EI), float(b.L),
-                               float(b.kw) / float(b.EI)) for b in self.model.beams]
+        # per level: the beam as one segment (its wave number scales the stable
+        # propagation and estimates the cancellation), and its EI and length
+        self._levels = [(b.segment(b.L), float(b.EI), float(b.L)) for b in self.model.beams]
+        self._units = self.layout.units
 
-    @staticmethod
-    def _plan_point(element, levels) -> _PointPlan:
-        rows_disp, rows_force, signs = [], [], []
-        for lvl_local, var in element.dofs:
-            lvl = levels[lvl_local]
-            force, sign = CONJUGATE[var]
-            rows_disp.append(4 * lvl + STATE.index(var))
-            rows_force.append(4 * lvl + STATE.index(force))
-            signs.append(sign)
-        S = element.stiffness(LAM)
-        return _PointPlan(rows_disp, rows_force, signs, _entrywise_numpy(S),
-                          sp.lambdify(LAM, S, modules="mpmath"))
+    # -- constants ------------------------------------------------------------------
+    def _float_consts(self, seg) -> tuple:
+        key = ("f", id(seg))
+        consts = self._cache.get(key)
+        if consts is None:
+            consts = self._cache[key] = seg.constants()
+        return consts
+
+    def _consts_mp(self, seg):
+        key = (id(seg), mpmath.mp.prec)
+        consts = self._cache.get(key)
+        if consts is None:
+            consts = self._cache[key] = seg.constants_mp(mpmath.mp.dps)
+        return consts
 
     # -- precision ------------------------------------------------------------------
+    def wave_numbers(self, lam) -> np.ndarray:
+        """Per beam, a bound on the largest wave number ``|beta|`` at ``lam`` (1/length)."""
+        lam2 = np.asarray(lam, dtype=complex) ** 2
+        return np.array([seg.wave_number(lam2) for seg, _, _ in self._levels])
+
     def digits_lost(self, lam) -> float:
         """Estimated decimal digits lost to cancellation in ``Delta`` at ``lam``.
 
         Entries of a segment matrix grow like ``exp(|beta| l)``; the determinant
-        cancels about ``sum |beta| L / ln 10`` digits over the beams (a foundation
-        ``kw`` is bounded by ``|beta|**4 <= (m |lam|**2 + kw) / EI``).
+        cancels at most about ``sum |beta| L / ln 10`` digits over the beams.
         """
-        a = abs(complex(lam))
-        return sum((mu * a * a + k) ** 0.25 * L for mu, L, k in self._beam_consts) / math.log(10)
+        b = self.wave_numbers(complex(lam))
+        return float(sum(bj * L for bj, (_, _, L) in zip(b, self._levels))) / math.log(10)
 
     # -- numpy ----------------------------------------------------------------------
+    def _start(self, N):
+        E = np.zeros((N, self.size, len(self.columns)), dtype=complex)
+        for j, c in enumerate(self.columns):
+            E[:, c, j] = 1.0
+        return E
+
     def R(self, lam) -> np.ndarray:
-        """``R(lam)`` for an array of eigenvalues: shape ``lam.shape + (2n, 2n)``."""
+        """``R(lam)`` for an array of eigenvalues: shape ``lam.shape + (k, k)``.
+
+        The plain product: fine at low modes; at high ones (``sum |beta| L``
+        beyond about 20) its determinant loses digits, see :meth:`log_delta`.
+        """
         lam = np.asarray(lam, dtype=complex)
         flat = lam.reshape(-1)
         self.evaluations += flat.size
-        E = np.zeros((flat.size, 4 * self.n, len(self.columns)), dtype=complex)
-        for j, c in enumerate(self.columns):
-            E[:, c, j] = 1.0
+        E = self._start(flat.size)
         lam2 = flat * flat
         cache: dict = {}
         for kind, items in self._steps:
@@ -135,12 +180,9 @@ class Evaluator:
                     blk = slice(4 * lvl, 4 * lvl + 4)
                     E[:, blk, :] = U @ E[:, blk, :]
             else:
-                for plan in items:
-                    S = plan.stiffness_np(flat)
-                    disp = E[:, plan.rows_disp, :]
-                    jump = S @ disp
-                    for i, (row, sign) in enumerate(zip(plan.rows_force, plan.signs)):
-                        E[:, row, :] += sign * jump[:, i, :]
+                values = items.values_numpy(flat)
+                for row, col, v in zip(items.rows, items.cols, values):
+                    E[:, row, :] += v[:, None] * E[:, col, :]
         R = E[:, self.rows, :]
         return R.reshape(lam.shape + R.shape[1:])
 
@@ -162,37 +204,46 @@ class Evaluator:
         logabs, phase = self.log_delta(lam)
         return np.exp(logabs + 1j * phase)
 
+    def _units_numpy(self, lam2) -> np.ndarray:
+        """Per point and index of the extended state, the unit it is measured in.
+
+        The state of beam ``j`` in units of its wave number ``b``: ``[Y, Theta/b,
+        M/(EI b**2), Q/(EI b**3)]``; a body's variables in those of the beam
+        they act on. Unscaled, the rows of a high mode differ by powers of ``b``
+        and the orthonormal columns would carry ``Y`` and ``Theta`` in their last
+        digits.
+        """
+        N = lam2.size
+        per_level = []
+        for seg, EI, L in self._levels:
+            b = np.maximum(seg.wave_number(lam2), 1.0 / L)
+            per_level.append({"Y": np.ones(N), "Theta": 1 / b, "M": 1 / (EI * b**2),
+                              "Q": 1 / (EI * b**3)})
+        D = np.empty((N, self.size))
+        for i, (lvl, var) in enumerate(self._units):
+            D[:, i] = per_level[lvl][var]
+        return D
+
     def log_delta(self, lam) -> tuple:
         """``(log|Delta|, arg Delta)`` for an array of eigenvalues, without overflow.
 
-        The columns of the unknown left-end variables are propagated as in
-        :meth:`R`, but every segment is applied in steps of ``|beta| l <=``
-        :data:`NU_STEP` and the columns are re-orthonormalised after each step
-        (Godunov's method for stiff boundary-value problems): ``E = Q F``
+        The columns of the unknowns are propagated as in :meth:`R`, but every
+        segment is applied in steps of ``|beta| l <=`` :data:`NU_STEP`, the state
+        measured in wave-number units, and the columns re-orthonormalised after
+        each step (Godunov's method for stiff boundary-value problems): ``E = Q F``
         with ``Q`` orthonormal, so ``Delta = det Q[rows] * prod det F``. Without
-        it the columns grow like ``exp(|beta| l)`` and become parallel to
-        working precision, and ``det R`` loses about ``sum |beta| L / ln 10``
-        digits (all of them by ``beta L = 36``); with it the value keeps about
-        13 significant digits away from the eigenvalues at any mode.
+        it the columns grow like ``exp(|beta| l)`` and become parallel to working
+        precision, and ``det R`` loses about ``sum |beta| L / ln 10`` digits (all
+        of them by ``beta L = 36``); with it the value keeps about 13
+        significant digits away from the eigenvalues at any mode.
         """
         lam = np.asarray(lam, dtype=complex)
         flat = lam.reshape(-1)
         self.evaluations += flat.size
         N = flat.size
         lam2 = flat * flat
-        # The state of level j is measured in the units of its wave number b:
-        # [Y, Theta/b, M/(EI b**2), Q/(EI b**3)]. Unscaled, the rows of a high mode
-        # differ by powers of b, and the orthonormal columns would carry Y and Theta
-        # in their last digits.
-        D = np.ones((N, 4 * self.n))
-        for j, (EI, mu, L, kw) in enumerate(self._level_scales):
-            b = np.maximum(np.abs(mu * lam2 + kw) ** 0.25, 1.0 / L)
-            D[:, 4 * j + 1] = 1 / b
-            D[:, 4 * j + 2] = 1 / (EI * b**2)
-            D[:, 4 * j + 3] = 1 / (EI * b**3)
-        E = np.zeros((N, 4 * self.n, len(self.columns)), dtype=complex)
-        for j, c in enumerate(self.columns):
-            E[:, c, j] = 1.0
+        D = self._units_numpy(lam2)
+        E = self._start(N)
         # E holds D * (true columns) / D[columns]: det R = det E[rows] * prod D[cols] / prod D[rows]
         logabs = np.sum(np.log(D[:, self.columns]), axis=-1) - np.sum(np.log(D[:, self.rows]),
                                                                        axis=-1)
@@ -211,28 +262,27 @@ class Evaluator:
                 plans = []
                 n_sub = 1
                 for lvl, seg in items:
-                    EI, m, l, kw = self._float_consts(seg)
-                    nu = np.max(np.abs((lam2 * m + kw) * (l**4 / EI)), initial=0.0) ** 0.25
+                    consts = self._float_consts(seg)
+                    l = float(consts[2])
+                    nu = float(np.max(seg.wave_number(lam2, consts), initial=0.0)) * l
                     n_sub = max(n_sub, math.ceil(nu / NU_STEP))
-                    plans.append((lvl, seg, (EI, m, l, kw)))
+                    plans.append((lvl, seg, consts, l))
                 subs = []
-                for lvl, seg, (EI, m, l, kw) in plans:
+                for lvl, seg, consts, l in plans:
                     blk = slice(4 * lvl, 4 * lvl + 4)
-                    key = (EI, m, l / n_sub, kw)
+                    key = (consts, n_sub)
                     U = cache.get(key)
                     if U is None:          # equal segments share their matrix in a call
-                        U = cache[key] = seg.evaluate_numpy(lam2, key)
+                        U = cache[key] = seg.evaluate_numpy(lam2, consts, l=l / n_sub)
                     subs.append((blk, U * (D[:, blk, None] / D[:, None, blk])))
                 for _ in range(n_sub):
                     for blk, U in subs:
                         E[:, blk, :] = U @ E[:, blk, :]
                     E = orthonormalise(E)
             else:
-                for plan in items:
-                    S = plan.stiffness_np(flat)
-                    jump = S @ (E[:, plan.rows_disp, :] / D[:, plan.rows_disp, None])
-                    for i, (row, sign) in enumerate(zip(plan.rows_force, plan.signs)):
-                        E[:, row, :] += sign * D[:, row, None] * jump[:, i, :]
+                values = items.values_numpy(flat)
+                for row, col, v in zip(items.rows, items.cols, values):
+                    E[:, row, :] += (v * D[:, row] / D[:, col])[:, None] * E[:, col, :]
         if len(self.columns):
             det = np.linalg.det(E[:, self.rows, :])
             with np.errstate(divide="ignore"):
@@ -240,25 +290,7 @@ class Evaluator:
             phase = phase + np.angle(det)
         return logabs.reshape(lam.shape), np.angle(np.exp(1j * phase)).reshape(lam.shape)
 
-    def _float_consts(self, seg) -> tuple:
-        key = ("f", id(seg))
-        consts = self._mp_cache.get(key)
-        if consts is None:
-            consts = (float(seg.EI), float(seg.m), float(seg.l), float(seg.kw))
-            self._mp_cache[key] = consts
-        return consts
-
     # -- mpmath ---------------------------------------------------------------------
-    def _consts_mp(self, seg):
-        key = (id(seg), mpmath.mp.prec)
-        consts = self._mp_cache.get(key)
-        if consts is None:
-            dps = mpmath.mp.dps
-            consts = (to_mp(seg.EI, dps), to_mp(seg.m, dps), to_mp(seg.l, dps),
-                      to_mp(seg.kw, dps))
-            self._mp_cache[key] = consts
-        return consts
-
     def R_mp(self, lam, real: bool = False) -> mpmath.matrix:
         """``R(lam)`` at one eigenvalue, at the current mpmath working precision.
 
@@ -275,7 +307,7 @@ class Evaluator:
         else:
             lam2 = lam * lam
         zero, one = mpmath.mpf(0), mpmath.mpf(1)
-        E = np.full((4 * self.n, len(self.columns)), zero, dtype=object)
+        E = np.full((self.size, len(self.columns)), zero, dtype=object)
         for j, c in enumerate(self.columns):
             E[c, j] = one
         for kind, items in self._steps:
@@ -285,14 +317,9 @@ class Evaluator:
                     blk = slice(4 * lvl, 4 * lvl + 4)
                     E[blk, :] = U.dot(E[blk, :])
             else:
-                for plan in items:
-                    S = plan.stiffness_mp(lam)
-                    S = np.array(S.tolist() if hasattr(S, "tolist") else S, dtype=object)
-                    if real:
-                        S = np.vectorize(lambda v: mpmath.mpf(mpmath.re(v)), otypes=[object])(S)
-                    jump = S.dot(E[plan.rows_disp, :])
-                    for i, (row, sign) in enumerate(zip(plan.rows_force, plan.signs)):
-                        E[row, :] = E[row, :] + sign * jump[i, :]
+                values = items.values_mp(lam, real)
+                for row, col, v in zip(items.rows, items.cols, values):
+                    E[row, :] = E[row, :] + v * E[col, :]
         return mpmath.matrix(E[self.rows, :].tolist())
 
     def delta_mp(self, lam, real: bool = False):
@@ -304,9 +331,9 @@ class Evaluator:
         """Dimension of the null space of ``R(0)``, decided at two precisions.
 
         For models whose exact ``R(0)`` is transcendental (a Winkler
-        foundation): a singular value that is zero shrinks with the precision
-        (below ``10**(-dps/2)`` of the largest at ``dps`` and ``2 dps``
-        digits), a non-zero one does not.
+        foundation, an axial force): a singular value that is zero shrinks with
+        the precision (below ``10**(-dps/2)`` of the largest at ``dps`` and
+        ``2 dps`` digits), a non-zero one does not.
 
         Examples
         --------
@@ -341,24 +368,7 @@ class Evaluator:
         return self.delta_mp(mpmath.mpc(0, omega), real=True)
 
 
-def _entrywise_numpy(S: sp.Matrix):
-    """``lam array -> (N, d, d)`` complex stiffness, each entry lambdified on its own.
-
-    Entries may be constants (a mass has zero off-diagonal entries), which a
-    lambdified matrix would not broadcast.
-    """
-    d = S.rows
-    funcs = [[sp.lambdify(LAM, S[i, j], modules="numpy") for j in range(d)] for i in range(d)]
-
-    def evaluate(lam):
-        out = np.empty((lam.size, d, d), dtype=complex)
-        for i in range(d):
-            for j in range(d):
-                out[:, i, j] = np.broadcast_to(funcs[i][j](lam), lam.shape)
-        return out
-    return evaluate
-
-
 def compile_model(model: Model) -> Evaluator:
     """Compile ``model`` into an :class:`Evaluator` (convenience alias)."""
     return Evaluator(model)
+

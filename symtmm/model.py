@@ -27,9 +27,11 @@ from functools import cached_property
 import sympy as sp
 
 from .errors import ModelError
+from .elements.theories import THEORIES
 from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
 
-__all__ = ["Beam", "Spring", "Mass", "Model", "BOUNDARY_CONDITIONS", "GROUND", "SPRING_KINDS"]
+__all__ = ["Beam", "Spring", "Mass", "Attachment", "RigidBody", "Model", "BOUNDARY_CONDITIONS",
+           "GROUND", "SPRING_KINDS"]
 
 #: Boundary conditions and the state variables (of Y, Theta, M, Q) they set to zero.
 BOUNDARY_CONDITIONS: Mapping[str, tuple[str, str]] = {
@@ -94,11 +96,24 @@ class Beam:
         Stiffness per unit length of a Winkler foundation under the beam (not
         negative, default 0): the field equation becomes
         ``EI Y'''' + (kw + m λ²) Y = 0``.
+    theory : str, optional
+        ``"euler-bernoulli"`` (default), ``"rayleigh"`` (rotary inertia
+        ``rhoI``) or ``"timoshenko"`` (rotary inertia ``rhoI`` and shear
+        stiffness ``kGA``); see :mod:`symtmm.elements.theories`.
+    N : number or str, optional
+        Axial force, tension positive (default 0), with any theory.
+    rhoI : number or str, optional
+        Rotary inertia per unit length (``rho I``, not negative); needed by
+        the Rayleigh and Timoshenko theories.
+    kGA : number or str, optional
+        Shear stiffness ``kappa G A`` (positive); needed by the Timoshenko theory.
 
     Examples
     --------
     >>> Beam("b", EI=1, m=1, L=1, kw="1/2").kw
     1/2
+    >>> Beam("t", EI=1, m=1, L=1, theory="timoshenko", rhoI="1/1000", kGA=400).kGA
+    400
     """
 
     name: str
@@ -109,17 +124,36 @@ class Beam:
     left: str = "free"
     right: str = "free"
     kw: sp.Expr = 0  # made exact in __post_init__
+    theory: str = "euler-bernoulli"
+    N: sp.Expr = 0  # made exact in __post_init__
+    rhoI: sp.Expr = 0  # made exact in __post_init__
+    kGA: sp.Expr | None = None
 
     def __post_init__(self):
         where = f"beam '{self.name}'"
         if not isinstance(self.name, str) or not _IDENTIFIER.match(self.name) or self.name == GROUND:
             raise ModelError(f"invalid name {self.name!r} (an identifier other than 'ground')",
                              field="beam.name")
-        for attr in ("EI", "m", "L", "x0", "kw"):
+        for attr in ("EI", "m", "L", "x0", "kw", "N", "rhoI"):
             value = _exact(getattr(self, attr), f"{where}.{attr}")
             object.__setattr__(self, attr, value)
-            if attr != "x0":
-                _check_sign(value, f"{where}.{attr}", allow_zero=attr == "kw")
+            if attr not in ("x0", "N"):
+                _check_sign(value, f"{where}.{attr}", allow_zero=attr in ("kw", "rhoI"))
+        if self.theory not in THEORIES:
+            raise ModelError(f"unknown theory {self.theory!r} (use one of {', '.join(THEORIES)})",
+                             field=f"{where}.theory")
+        if self.kGA is not None:
+            if self.theory != "timoshenko":
+                raise ModelError("a shear stiffness needs theory = \"timoshenko\"",
+                                 field=f"{where}.kGA")
+            value = _exact(self.kGA, f"{where}.kGA")
+            object.__setattr__(self, "kGA", value)
+            _check_sign(value, f"{where}.kGA", allow_zero=False)
+        elif self.theory == "timoshenko":
+            raise ModelError("a Timoshenko beam needs its shear stiffness kGA", field=f"{where}.kGA")
+        if self.theory == "euler-bernoulli" and self.rhoI != 0:
+            raise ModelError("rotary inertia needs theory = \"rayleigh\" or \"timoshenko\"",
+                             field=f"{where}.rhoI")
         for attr in ("left", "right"):
             bc = getattr(self, attr)
             if bc not in BOUNDARY_CONDITIONS:
@@ -131,6 +165,22 @@ class Beam:
     def x1(self) -> sp.Expr:
         """Global coordinate of the right end."""
         return self.x0 + self.L
+
+    @property
+    def plain(self) -> bool:
+        """True for an Euler–Bernoulli beam without axial force (the fast element)."""
+        return self.theory == "euler-bernoulli" and self.N == 0
+
+    def segment(self, length):
+        """The element of a piece of this beam, ``length`` long.
+
+        :class:`~symtmm.elements.beam.EulerBernoulliSegment` for a plain beam,
+        :class:`~symtmm.elements.theories.BeamSegment` otherwise.
+        """
+        from .elements import BeamSegment, EulerBernoulliSegment
+        if self.plain:
+            return EulerBernoulliSegment(self.EI, self.m, length, self.kw)
+        return BeamSegment(self.EI, self.m, length, self.kw, self.N, self.rhoI, self.kGA)
 
 
 @dataclass(frozen=True)
@@ -226,6 +276,89 @@ class Mass:
 
 
 @dataclass(frozen=True)
+class Attachment:
+    """Where a rigid body holds a beam: the point ``x`` of beam ``beam``.
+
+    A rigid attachment makes the beam's deflection and rotation there those
+    of the body; a hinged one only its deflection (the beam turns freely).
+
+    Examples
+    --------
+    >>> Attachment("a", "1/2", hinged=True).x
+    1/2
+    """
+
+    beam: str
+    x: sp.Expr
+    hinged: bool = False
+
+    def __post_init__(self):
+        object.__setattr__(self, "x", _exact(self.x, f"attachment on {self.beam}.x"))
+        if not isinstance(self.hinged, bool):
+            raise ModelError("expected true or false", field=f"attachment on {self.beam}.hinged")
+
+
+@dataclass(frozen=True)
+class RigidBody:
+    """A rigid body (mass ``M``, rotary inertia ``J`` about its centre of mass at ``xc``).
+
+    It moves in the plane of the beams as ``Y(x) = Y_c + (x - xc) Theta_c``
+    and holds them at its :class:`Attachment` points: carried by one beam, or
+    linking several (joints of beam ends, trees, closed loops). A joint of beam
+    ends is a massless body whose attachments share one ``x``.
+
+    Parameters
+    ----------
+    name : str
+    attachments : tuple of Attachment
+    M, J : number or str, optional
+        Mass and rotary inertia about the centre of mass (default 0).
+    xc : number or str, optional
+        Global coordinate of the centre of mass (default: the first attachment's).
+
+    Examples
+    --------
+    >>> body = RigidBody("fork", (Attachment("trunk", 1), Attachment("branch", 1)))
+    >>> body.xc, body.rotates
+    (1, True)
+    >>> RigidBody("pin", (Attachment("a", 1, True), Attachment("b", 1, True))).rotates
+    False
+    """
+
+    name: str
+    attachments: tuple
+    M: sp.Expr = 0  # made exact in __post_init__
+    J: sp.Expr = 0  # made exact in __post_init__
+    xc: sp.Expr | None = None
+
+    def __post_init__(self):
+        where = f"body '{self.name}'"
+        if not isinstance(self.name, str) or not _IDENTIFIER.match(self.name):
+            raise ModelError(f"invalid name {self.name!r}", field="rigid.name")
+        attachments = tuple(self.attachments)
+        if not attachments or not all(isinstance(a, Attachment) for a in attachments):
+            raise ModelError("a rigid body needs at least one attachment", field=f"{where}.attach")
+        object.__setattr__(self, "attachments", attachments)
+        for attr in ("M", "J"):
+            value = _exact(getattr(self, attr), f"{where}.{attr}")
+            object.__setattr__(self, attr, value)
+            _check_sign(value, f"{where}.{attr}", allow_zero=True)
+        xc = attachments[0].x if self.xc is None else _exact(self.xc, f"{where}.xc")
+        object.__setattr__(self, "xc", xc)
+
+    @property
+    def rotates(self) -> bool:
+        """Whether the body's rotation is an unknown of its own.
+
+        Not when every attachment is a hinge at the centre of mass and ``J = 0``:
+        then nothing fixes or feels the rotation (a pin joint of beam ends).
+        """
+        if self.J != 0 or any(not a.hinged for a in self.attachments):
+            return True
+        return any(sp.simplify(a.x - self.xc) != 0 for a in self.attachments)
+
+
+@dataclass(frozen=True)
 class Model:
     """A multilevel beam system.
 
@@ -242,6 +375,8 @@ class Model:
         Where the model came from (a file path), used in messages.
     masses : tuple of Mass, optional
         Lumped masses on the beams.
+    bodies : tuple of RigidBody, optional
+        Rigid bodies carried by the beams or joining them (joints).
     """
 
     beams: tuple
@@ -250,6 +385,7 @@ class Model:
     title: str = ""
     source: str | None = None
     masses: tuple = ()
+    bodies: tuple = ()
 
     def __post_init__(self):
         beams = tuple(self.beams)
@@ -257,6 +393,7 @@ class Model:
         object.__setattr__(self, "beams", beams)
         object.__setattr__(self, "springs", springs)
         object.__setattr__(self, "masses", tuple(self.masses))
+        object.__setattr__(self, "bodies", tuple(self.bodies))
         params = {}
         for name, value in dict(self.parameters).items():
             if not isinstance(name, str) or not _IDENTIFIER.match(name):
@@ -286,6 +423,13 @@ class Model:
             for attr in ("EI", "m", "L"):
                 _check_sign(getattr(beam, attr), f"beam '{beam.name}'.{attr}", allow_zero=False)
             _check_sign(beam.kw, f"beam '{beam.name}'.kw", allow_zero=True)
+            _check_sign(beam.rhoI, f"beam '{beam.name}'.rhoI", allow_zero=True)
+            if beam.kGA is not None:
+                _check_sign(beam.kGA, f"beam '{beam.name}'.kGA", allow_zero=False)
+                margin = beam.kGA + beam.N
+                if margin.is_number and not margin.is_positive:
+                    raise ModelError("the axial compression must stay below the shear stiffness "
+                                     "kGA (kGA + N > 0)", field=f"beam '{beam.name}'.N")
         for spring in self.springs:
             where = f"spring {spring.a}-{spring.b}"
             for end in (spring.a, spring.b):
@@ -315,6 +459,29 @@ class Model:
                                  f"[{beam.x0}, {beam.x1}]", field=f"{where}.x")
             for attr in ("M", "J"):
                 _check_sign(self.value(getattr(mass, attr)), f"{where}.{attr}", allow_zero=True)
+        body_names = set()
+        for body in self.bodies:
+            if not isinstance(body, RigidBody):
+                raise ModelError("expected a RigidBody", field="rigid")
+            where = f"body '{body.name}'"
+            if body.name in body_names:
+                raise ModelError(f"duplicate body name '{body.name}'", field="rigid.name")
+            body_names.add(body.name)
+            seen = set()
+            for att in body.attachments:
+                if att.beam not in names:
+                    raise ModelError(f"unknown beam '{att.beam}'", field=f"{where}.attach")
+                x, beam = self.value(att.x), resolved[att.beam]
+                inside = [(x - beam.x0), (beam.x1 - x)]
+                if all(d.is_number for d in inside) and any(d.is_negative for d in inside):
+                    raise ModelError(f"x = {x} lies outside beam '{att.beam}' "
+                                     f"[{beam.x0}, {beam.x1}]", field=f"{where}.attach")
+                if (att.beam, x) in seen:
+                    raise ModelError(f"attached twice to beam '{att.beam}' at x = {x}",
+                                     field=f"{where}.attach")
+                seen.add((att.beam, x))
+            for attr in ("M", "J"):
+                _check_sign(self.value(getattr(body, attr)), f"{where}.{attr}", allow_zero=True)
 
     # -- parameters -----------------------------------------------------------------
     @cached_property
@@ -357,7 +524,14 @@ class Model:
 
     def _resolved_beam(self, beam: Beam) -> Beam:
         return replace(beam, EI=self.value(beam.EI), m=self.value(beam.m),
-                       L=self.value(beam.L), x0=self.value(beam.x0), kw=self.value(beam.kw))
+                       L=self.value(beam.L), x0=self.value(beam.x0), kw=self.value(beam.kw),
+                       N=self.value(beam.N), rhoI=self.value(beam.rhoI),
+                       kGA=None if beam.kGA is None else self.value(beam.kGA))
+
+    def _resolved_body(self, body: RigidBody) -> RigidBody:
+        return replace(body, M=self.value(body.M), J=self.value(body.J), xc=self.value(body.xc),
+                       attachments=tuple(replace(a, x=self.value(a.x))
+                                         for a in body.attachments))
 
     def resolved(self) -> Model:
         """The same model with every parameter value substituted into the fields.
@@ -369,8 +543,9 @@ class Model:
                         for s in self.springs)
         masses = tuple(replace(p, x=self.value(p.x), M=self.value(p.M), J=self.value(p.J))
                        for p in self.masses)
+        bodies = tuple(self._resolved_body(b) for b in self.bodies)
         keep = {n: v for n, v in self.parameters.items() if v is None}
-        return Model(beams, springs, keep, self.title, self.source, masses)
+        return Model(beams, springs, keep, self.title, self.source, masses, bodies)
 
     def with_parameters(self, **values) -> Model:
         """A copy with some parameter values set or replaced.
@@ -394,9 +569,15 @@ class Model:
     def free_symbols(self) -> tuple:
         """Names of the symbols left in the resolved fields, sorted."""
         syms = set()
-        for beam in self.resolved().beams:
-            for attr in ("EI", "m", "L", "x0"):
+        resolved = self.resolved()
+        for beam in resolved.beams:
+            for attr in ("EI", "m", "L", "x0", "kw", "N", "rhoI"):
                 syms |= getattr(beam, attr).free_symbols
+            if beam.kGA is not None:
+                syms |= beam.kGA.free_symbols
+        for body in resolved.bodies:
+            for expr in (body.M, body.J, body.xc, *(a.x for a in body.attachments)):
+                syms |= expr.free_symbols
         for spring in self.resolved().springs:
             for attr in ("x", "k", "c"):
                 syms |= getattr(spring, attr).free_symbols
@@ -458,3 +639,13 @@ def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
     for mass in model.masses:
         for attr in ("x", "M", "J"):
             yield f"mass on {mass.beam}.{attr}", getattr(mass, attr)
+    for beam in model.beams:
+        for attr in ("N", "rhoI"):
+            yield f"beam '{beam.name}'.{attr}", getattr(beam, attr)
+        if beam.kGA is not None:
+            yield f"beam '{beam.name}'.kGA", beam.kGA
+    for body in model.bodies:
+        for attr in ("M", "J", "xc"):
+            yield f"body '{body.name}'.{attr}", getattr(body, attr)
+        for att in body.attachments:
+            yield f"body '{body.name}'.attach", att.x

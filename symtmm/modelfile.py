@@ -43,7 +43,8 @@ import sympy as sp
 
 from .errors import ModelError
 from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
-from .model import GROUND, Beam, Mass, Model, Spring
+from .elements.theories import THEORIES
+from .model import GROUND, Attachment, Beam, Mass, Model, RigidBody, Spring
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -52,9 +53,15 @@ else:  # pragma: no cover
 
 __all__ = ["load", "loads", "parse_assignment"]
 
-_TOP = {"title", "parameters", "beam", "spring", "mass"}
+_TOP = {"title", "parameters", "beam", "spring", "mass", "rigid", "joint"}
 _BEAM_REQUIRED = ("name", "EI", "m", "L", "left", "right")
-_BEAM_OPTIONAL = ("x0", "kw")
+_BEAM_OPTIONAL = ("x0", "kw", "theory", "N", "rhoI", "kGA")
+_RIGID_REQUIRED = ("attach",)
+_RIGID_OPTIONAL = ("name", "M", "J", "xc", "hinged")
+_JOINT_REQUIRED = ("ends",)
+_JOINT_OPTIONAL = ("name", "kind", "M", "J")
+#: kinds of joint: all ends rigidly together, or pinned to a common point
+JOINT_KINDS = ("rigid", "hinge")
 _SPRING_REQUIRED = ("between", "x", "k")
 _SPRING_OPTIONAL = ("c", "kind")
 _MASS_REQUIRED = ("beam", "x", "M")
@@ -206,11 +213,24 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         fields = {k: _number(raw[k], f"{where}.{k}") for k in ("EI", "m", "L")}
         fields["x0"] = _number(raw.get("x0", 0), f"{where}.x0")
         fields["kw"] = _number(raw.get("kw", 0), f"{where}.kw")
+        fields["N"] = _number(raw.get("N", 0), f"{where}.N")
+        theory = raw.get("theory", "euler-bernoulli")
+        if not isinstance(theory, str):
+            raise ModelError(f"expected a string, got {_kind(theory)}", field=f"{where}.theory")
+        for needed in THEORIES.get(theory, ()):
+            if needed not in raw:
+                raise ModelError(f"missing field '{needed}' (theory = \"{theory}\" needs it)",
+                                 field=where)
+        if "rhoI" in raw:
+            fields["rhoI"] = _number(raw["rhoI"], f"{where}.rhoI")
+        if "kGA" in raw:
+            fields["kGA"] = _number(raw["kGA"], f"{where}.kGA")
         for k in ("left", "right"):
             if not isinstance(raw[k], str):
                 raise ModelError(f"expected a string, got {_kind(raw[k])}", field=f"{where}.{k}")
         try:
-            beams.append(Beam(name, left=raw["left"], right=raw["right"], **fields))
+            beams.append(Beam(name, left=raw["left"], right=raw["right"], theory=theory,
+                              **fields))
         except ModelError as exc:
             raise ModelError(exc.message, field=_rename(exc.field, where)) from None
         for value in fields.values():
@@ -256,6 +276,8 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         for value in fields.values():
             known_names |= {s.name for s in value.free_symbols}
 
+    bodies = _bodies(data, {b.name: b for b in beams}, known_names)
+
     names = {b.name for b in beams}
     for i, mass in enumerate(masses, 1):
         if mass.beam not in names:
@@ -268,10 +290,89 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         if name not in known_names:
             raise ModelError(f"'{name}' is not a parameter of this model", field="--set " + name)
     try:
-        return Model(tuple(beams), tuple(springs), params, title, source, tuple(masses))
+        return Model(tuple(beams), tuple(springs), params, title, source, tuple(masses),
+                     tuple(bodies))
     except ModelError as exc:
         raise ModelError(exc.message,
                          field=_spring_field(exc.field, springs, beams, masses)) from None
+
+
+def _attachment_point(text, beams: dict, where: str):
+    """``"beam.left"``, ``"beam.right"`` or ``"beam@x"`` as ``(beam, x)``."""
+    if not isinstance(text, str):
+        raise ModelError(f'expected a point such as "a.right" or "a@0.5", got {_kind(text)}',
+                         field=where)
+    if "@" in text:
+        name, _, x_text = text.partition("@")
+        name = name.strip()
+        x = _number(x_text.strip(), where)
+    else:
+        name, dot, end = text.strip().rpartition(".")
+        if not dot or end not in ("left", "right"):
+            raise ModelError(f'{text!r} is not a point: write "beam.left", "beam.right" or '
+                             '"beam@x"', field=where)
+        x = None
+    if name not in beams:
+        raise ModelError(f"unknown beam '{name}'", field=where)
+    if x is None:
+        beam = beams[name]
+        x = beam.x0 if end == "left" else beam.x0 + beam.L
+    return name, x
+
+
+def _bodies(data: dict, beams: dict, known_names: set) -> list:
+    """The ``[[rigid]]`` bodies and the ``[[joint]]`` tables, as rigid bodies."""
+    out = []
+    for table, required, optional in (("rigid", _RIGID_REQUIRED, _RIGID_OPTIONAL),
+                                      ("joint", _JOINT_REQUIRED, _JOINT_OPTIONAL)):
+        raw_list = data.get(table, [])
+        if not isinstance(raw_list, list):
+            raise ModelError(f"expected an array of tables: write [[{table}]]", field=table)
+        for i, raw in enumerate(raw_list, 1):
+            where = f"{table}[{i}]"
+            _check_keys(raw, required, optional, where)
+            name = raw.get("name", f"{table}{i}")
+            if not isinstance(name, str):
+                raise ModelError(f"expected a string, got {_kind(name)}", field=f"{where}.name")
+            key = "attach" if table == "rigid" else "ends"
+            points = raw[key]
+            if not isinstance(points, list) or not points:
+                raise ModelError('expected a list of points, e.g. ["a.right", "b@0.5"]',
+                                 field=f"{where}.{key}")
+            located = [_attachment_point(p, beams, f"{where}.{key}") for p in points]
+            if table == "rigid":
+                hinged_raw = raw.get("hinged", [])
+                if not isinstance(hinged_raw, list):
+                    raise ModelError("expected a list of points", field=f"{where}.hinged")
+                hinged = set()
+                for p in hinged_raw:
+                    if p not in points:
+                        raise ModelError(f"{p!r} is not one of the attach points",
+                                         field=f"{where}.hinged")
+                    hinged.add(p)
+                flags = [p in hinged for p in points]
+            else:
+                kind = raw.get("kind", "rigid")
+                if kind not in JOINT_KINDS:
+                    raise ModelError(f"unknown kind {kind!r} (use one of {', '.join(JOINT_KINDS)})",
+                                     field=f"{where}.kind")
+                flags = [kind == "hinge"] * len(points)
+                xs = [x for _, x in located]
+                if any(sp.simplify(x - xs[0]) != 0 for x in xs[1:]):
+                    raise ModelError("the ends of a joint must meet at one x; a body spanning a "
+                                     "distance is a [[rigid]]", field=f"{where}.ends")
+            fields = {k: _number(raw.get(k, 0), f"{where}.{k}") for k in ("M", "J")}
+            if table == "rigid" and "xc" in raw:
+                fields["xc"] = _number(raw["xc"], f"{where}.xc")
+            try:
+                body = RigidBody(name, tuple(Attachment(b, x, h) for (b, x), h
+                                            in zip(located, flags)), **fields)
+            except ModelError as exc:
+                raise ModelError(exc.message, field=_rename(exc.field, where)) from None
+            out.append(body)
+            for value in list(fields.values()) + [x for _, x in located]:
+                known_names |= {sym.name for sym in sp.sympify(value).free_symbols}
+    return out
 
 
 def _rename(field: str | None, where: str) -> str:

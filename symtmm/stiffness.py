@@ -249,17 +249,23 @@ class StiffnessModel:
         return K
 
     def _count_mp(self, omega):
-        """Negative pivots of banded LDL^T; None if a pivot is too small to trust."""
+        """Negative pivots of banded LDL^T; None if a pivot is too small to trust.
+
+        Without pivoting, a small pivot makes the entries it updates grow, and
+        the rounding errors of every later pivot grow with them: a pivot's sign
+        is trusted only if it exceeds ``n`` times the largest entry met so far
+        times the working precision (with 10 digits to spare).
+        """
         K = self.matrix_mp(omega)
         n, b = self.size, self.bandwidth
         # the largest entry lies on the band: scan only that
-        scale = max((abs(K[i][j]) for i in range(n) for j in range(i, min(n, i + b + 1))),
-                    default=mpmath.mpf(1))
-        tiny = scale * mpmath.mpf(10) ** (-(mpmath.mp.dps - 10))
+        grow = max((abs(K[i][j]) for i in range(n) for j in range(i, min(n, i + b + 1))),
+                   default=mpmath.mpf(1))
+        unit = (n + 1) * mpmath.mpf(10) ** (-(mpmath.mp.dps - 10))
         negative = 0
         for k in range(n):
             pivot = K[k][k]
-            if abs(pivot) <= tiny:
+            if abs(pivot) <= grow * unit:
                 return None
             if pivot < 0:
                 negative += 1
@@ -274,6 +280,8 @@ class StiffnessModel:
                 for j in range(i, top):
                     if row_k[j] != 0:
                         row_i[j] -= f * row_k[j]
+                        if abs(row_i[j]) > grow:
+                            grow = abs(row_i[j])
         return negative
 
 
@@ -281,18 +289,20 @@ def _banded_inertia(K: np.ndarray, band: int) -> int | None:
     """Number of negative pivots of LDL^T of a symmetric banded matrix (double).
 
     By Sylvester's law of inertia this is the number of negative eigenvalues.
-    Returns None when a pivot is too small, relative to the matrix, for its sign
-    to be trusted (the caller then counts again in higher precision).
+    Returns None when a pivot is too small, relative to the largest entry met
+    so far in the elimination (growth without pivoting carries the rounding
+    errors up), for its sign to be trusted: the caller then counts again in
+    higher precision.
     """
     n = K.shape[0]
     if n == 0:
         return 0
     K = K.copy()
-    tiny = _DOUBLE_TRUST * np.max(np.abs(K))
+    grow = np.max(np.abs(K))
     negative = 0
     for k in range(n):
         pivot = K[k, k]
-        if abs(pivot) <= tiny:
+        if abs(pivot) <= _DOUBLE_TRUST * grow:
             return None
         if pivot < 0:
             negative += 1
@@ -301,6 +311,7 @@ def _banded_inertia(K: np.ndarray, band: int) -> int | None:
             row = K[k, k + 1:top]
             # rank-one update of the trailing band block (upper and lower alike)
             K[k + 1:top, k + 1:top] -= np.outer(row, row) / pivot
+            grow = max(grow, float(np.max(np.abs(K[k + 1:top, k + 1:top]))))
     return negative
 
 

@@ -95,16 +95,25 @@ def test_real_eigenvalue_sign_change_enclosure():
     assert all(enc.certified for enc in enclosures)
 
 
-def test_rigid_modes_exact_and_multiple_roots_not_certified():
+def test_rigid_modes_exact_and_multiple_roots_by_the_count():
     beams = tuple(Beam(n, EI=1, m=1, L=1, left="free", right="free") for n in "ab")
     model = Model(beams, (Spring("a", "b", x="1/2", k=30, c=0),))
     spec = solve(model, count=4, digits=12)
     enclosures = certify(model, spec)
     assert enclosures[0].proof == "exact" and enclosures[0].contains(0)
     triple = Model(tuple(Beam(n, EI=1, m=1, L=1, left="pinned", right="pinned") for n in "abc"))
-    enc = certify(triple, solve(triple, count=3, digits=12))
-    assert [e.certified for e in enc] == [False]
-    assert enc[0].to_dict(12) == {"certified": False, "proof": "none"}
+    enc = certify(triple, solve(triple, count=6, digits=12))
+    # the triple roots (n pi)**2: the count in ball arithmetic proves three eigenvalues
+    # in each bracket, which holds the closed-form value
+    assert [(e.certified, e.proof) for e in enc] == [(True, "count"), (True, "count")]
+    with mpmath.workdps(40):
+        assert all(e.contains(mpmath.mpc(0, (n * mpmath.pi) ** 2)) for e, n in zip(enc, (1, 2)))
+        assert not enc[0].contains(mpmath.mpc(0, mpmath.pi**2 * (1 + mpmath.mpf(10) ** -12)))
+    assert enc[0].to_dict(12)["proof"] == "count"
+    # what cannot be proved says so (a damped multiple eigenvalue)
+    from symtmm.roots.certified import Enclosure
+    assert Enclosure(enc[0].eigenvalue, None, None, "none").to_dict(12) == {
+        "certified": False, "proof": "none"}
 
 
 def test_cli_certified_json(capsys):

@@ -190,3 +190,20 @@ def test_random_models_agree_with_finite_elements(model):
     high = solve(model, count=8, digits=30)
     assert [e.to_dict()["imag"] for e in spectrum] == [decimal_string(e.omega, 15)
                                                       for e in high]
+
+
+def test_mirrored_beams_give_exact_double_roots():
+    """A pinned-free and a free-pinned beam, uncoupled: every root of tan = tanh twice.
+
+    The banded count eliminates the two beams' freedoms interleaved; at the double root
+    a tiny pivot of one beam makes later entries grow by 1e28, and a pivot is only
+    trusted when it stands clear of that growth times the precision.
+    """
+    model = Model((Beam("p", EI=1, m=1, L=1, left="pinned", right="free"),
+                   Beam("q", EI=1, m=1, L=1, left="free", right="pinned")))
+    spectrum = solve(model, count=6, digits=15)
+    assert [e.multiplicity for e in spectrum] == [2, 2, 2]
+    expected = classical_roots("pinned", "free", 2, dps=40)
+    with mpmath.workdps(40):
+        assert [e.to_dict()["imag"] for e in spectrum][1:] == [_rounded(nu**2, 15)
+                                                              for nu in expected]

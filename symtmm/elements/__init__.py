@@ -9,7 +9,9 @@ from .base import STATE, Element, FieldElement, PointElement
 from .beam import EulerBernoulliSegment
 from .point import LumpedMass, RotationalCoupling, RotationalGroundSpring
 from .spring import Coupling, GroundSpring
+from .theories import THEORIES, BeamSegment
 
 __all__ = ["STATE", "Element", "FieldElement", "PointElement", "EulerBernoulliSegment",
+           "BeamSegment", "THEORIES",
            "Coupling", "GroundSpring", "LumpedMass", "RotationalCoupling",
            "RotationalGroundSpring"]

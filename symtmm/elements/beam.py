@@ -169,6 +169,35 @@ class EulerBernoulliSegment(FieldElement):
         """The constants that fix the segment's matrix (equal keys, equal matrices)."""
         return (self.EI, self.m, self.l, self.kw)
 
+    def with_length(self, l) -> EulerBernoulliSegment:
+        """The same beam over another length."""
+        return EulerBernoulliSegment(self.EI, self.m, l, self.kw)
+
+    def constants(self) -> tuple:
+        """``(EI, m, l, kw)`` as floats, for :meth:`evaluate_numpy`."""
+        return (float(self.EI), float(self.m), float(self.l), float(self.kw))
+
+    def constants_mp(self, dps: int) -> tuple:
+        """``(EI, m, l, kw)`` at ``dps`` digits, for :meth:`evaluate_mp`."""
+        from ..numeric import to_mp
+        return (to_mp(self.EI, dps), to_mp(self.m, dps), to_mp(self.l, dps), to_mp(self.kw, dps))
+
+    def wave_number(self, lam2, consts=None):
+        """``|beta| = |(m lam**2 + kw)/EI|**(1/4)`` (numpy arrays or floats)."""
+        EI, m, _, kw = (consts if consts is not None else self.constants())[:4]
+        return np.abs((m * np.asarray(lam2, dtype=complex) + kw) / EI) ** 0.25
+
+    def safe_length(self, omega2: float, nu_max: float = 2.0) -> float:
+        """A piece length with ``beta l <= nu_max`` at ``omega**2`` (at most the segment's).
+
+        With ``nu_max`` below the first clamped-clamped root ``beta l = 4.730``, such
+        a piece has no clamped-clamped natural frequency below ``omega`` (a
+        foundation only raises them); and it loses no digit to cancellation.
+        """
+        beta = (float(self.m) * max(omega2, 0.0) / float(self.EI)) ** 0.25
+        length = float(self.l)
+        return length if beta * length <= nu_max else nu_max / beta
+
     def beta(self, lam=LAM):
         """``beta = (-(m lam**2 + kw) / EI)**(1/4)`` (any branch gives the same matrix)."""
         return (-(self.m * lam**2 + self.kw) / self.EI) ** sp.Rational(1, 4)
@@ -221,15 +250,17 @@ class EulerBernoulliSegment(FieldElement):
         cs = [sp.Integer(1), sp.Integer(1), sp.Rational(1, 2), sp.Rational(1, 6)]
         return sp.Matrix(_c_matrix(*cs, sp.Integer(0), self.l, self.EI))
 
-    def evaluate_numpy(self, lam2, consts=None) -> np.ndarray:
+    def evaluate_numpy(self, lam2, consts=None, l=None) -> np.ndarray:
         """Transfer matrices for an array of ``lam**2`` values: shape ``(..., 4, 4)``.
 
         ``consts`` are ``(EI, m, l)`` or ``(EI, m, l, kw)`` as floats; with
-        three, the segment's own ``kw`` is used.
+        three, the segment's own ``kw`` is used. ``l`` overrides the length (a
+        piece of the segment).
         """
         if consts is None:
             consts = (float(self.EI), float(self.m), float(self.l))
-        EI, m, l = consts[:3]
+        EI, m = consts[:2]
+        l = consts[2] if l is None else l
         kw = consts[3] if len(consts) > 3 else float(self.kw)
         lam2 = np.asarray(lam2, dtype=complex)
         x = -(lam2 * m + kw) * (l**4 / EI) if kw else -lam2 * (m * l**4 / EI)
@@ -237,14 +268,15 @@ class EulerBernoulliSegment(FieldElement):
         rows = _c_matrix(c0, c1, c2, c3, x, l, EI)
         return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
 
-    def evaluate_mp(self, lam2, consts) -> np.ndarray:
+    def evaluate_mp(self, lam2, consts, l=None) -> np.ndarray:
         """Transfer matrix for one mpmath ``lam**2`` at the working precision.
 
         ``consts`` are ``(EI, m, l)`` or ``(EI, m, l, kw)`` as mpmath numbers
         at that precision (three only without foundation). Returns a 4x4
-        object array.
+        object array. ``l`` overrides the length.
         """
-        EI, m, l = consts[:3]
+        EI, m = consts[:2]
+        l = consts[2] if l is None else l
         if len(consts) == 3 and self.kw != 0:
             raise ValueError("a segment on a foundation needs the constants (EI, m, l, kw)")
         kw = consts[3] if len(consts) > 3 else 0

@@ -1,0 +1,391 @@
+"""Beam segments beyond Euler–Bernoulli: axial force, rotary inertia (Rayleigh), shear (Timoshenko).
+
+Energy per unit length (free vibration ``e^{lam t}``; derived in
+``derivations/beam_theories.py``)::
+
+    strain:   EI psi'**2 + kGA (Y' - psi)**2 + N Y'**2 + kw Y**2      (halved)
+    kinetic:  m Y_t**2 + rhoI psi_t**2                                (halved)
+
+``psi`` is the rotation of the cross-section, ``kGA`` the shear stiffness
+(``kappa G A``; ``None`` for a beam rigid in shear, where ``psi = Y'``),
+``rhoI`` the rotary inertia per unit length, ``N`` the axial force (tension
+positive, a dead load along the undeformed axis) and ``kw`` a Winkler
+foundation. The state keeps the project's convention ``z = [Y, Theta, M,
+Q]`` with ``Theta = psi`` (``Y'`` when ``kGA`` is None), ``M = EI psi'`` and
+``Q`` the transverse force, whose jump at a point force ``F`` is ``F``. The
+field equations are the first-order system ``z' = A(lam) z``::
+
+    Y'     = a Theta + b Q          a = kGA/(kGA + N), b = -1/(kGA + N)   (a = 1, b = 0 rigid)
+    Theta' = M / EI
+    M'     = c Theta + a Q          c = N a + rhoI lam**2
+    Q'     = -mu Y                  mu = m lam**2 + kw
+
+In the order ``(Y, M | Theta, Q)``, ``A = [[0, B], [C, 0]]`` with ``B = [[a,
+b], [c, a]]`` and ``C = [[0, 1/EI], [-mu, 0]]``: ``A**2`` is block-diagonal,
+``G = B C`` on ``(Y, M)`` and ``G' = C B`` on ``(Theta, Q)``, both with trace
+``t = c/EI - b mu`` and determinant ``d = mu (a**2 - b c)/EI``. Hence
+
+    U(l) = exp(A l) = [[F0(G), B F1(G')], [C F1(G), F0(G')]],
+    F0(s**2) = cosh(s l),   F1(s**2) = sinh(s l) / s,
+
+entire functions of ``s**2``. A function of a 2x2 matrix with eigenvalues
+``r1, r2`` (``r**2 - t r + d = 0``) is ``f(G) = alpha I + beta G`` with
+``beta = (f(r1) - f(r2))/(r1 - r2)`` and ``alpha = (r1 f(r2) - r2 f(r1))/(r1 - r2)``:
+the exact matrix (:meth:`BeamSegment.transfer_matrix`) is written so. The
+plain Euler–Bernoulli beam is ``t = 0``, ``d = -beta**4`` (``a = 1``, ``b = c =
+0``), where ``alpha, beta`` are the ``c_j`` of :mod:`symtmm.elements.beam`.
+
+Numerically ``alpha, beta`` come from their power series in ``(t, d)`` for a
+segment short enough that ``max|r| h**2 <= 1``, then the doubling formulas
+``F0(2h) = 2 F0(h)**2 - 1``, ``F1(2h) = 2 F0(h) F1(h)`` (with ``G**2 = t G - d``)
+give the whole length: no branch of a square root to choose, no division by
+``r1 - r2`` (which vanishes where the two wave numbers meet), and the same
+routine in numpy, mpmath and generated code.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import sympy as sp
+
+from .base import LAM, FieldElement
+
+__all__ = ["BeamSegment", "THEORIES"]
+
+#: Beam theories and the fields they need beyond EI, m, L (model file: ``theory``).
+THEORIES = {
+    "euler-bernoulli": (),
+    "rayleigh": ("rhoI",),
+    "timoshenko": ("rhoI", "kGA"),
+}
+
+_MAX_TERMS_DOUBLE = 14   # k/(2k)! < 1e-18 beyond: the series' error for max|r| h**2 <= 1
+
+
+class BeamSegment(FieldElement):
+    """A uniform beam segment with axial force, rotary inertia and shear flexibility.
+
+    Parameters
+    ----------
+    EI, m, l : sympy.Expr or number
+        Bending stiffness, mass per unit length, length.
+    kw : optional
+        Winkler foundation stiffness per unit length (default 0).
+    N : optional
+        Axial force, tension positive (default 0).
+    rhoI : optional
+        Rotary inertia per unit length (default 0): Rayleigh's correction.
+    kGA : optional
+        Shear stiffness ``kappa G A``; None (default) for a beam rigid in shear.
+
+    Examples
+    --------
+    A pinned-pinned Rayleigh beam: ``omega**2 = EI q**2 / (m + rhoI q)``,
+    ``q = (pi/L)**2``, so ``Delta`` vanishes there:
+
+    >>> seg = BeamSegment(1, 1, 1, rhoI=sp.Rational(1, 100))
+    >>> q = np.pi**2
+    >>> U = seg.evaluate_numpy(np.array([-q**2 / (1 + q / 100)]))[0]
+    >>> bool(abs(U[0, 1] * U[2, 3] - U[0, 3] * U[2, 1]) < 1e-12)   # det of rows Y, M; cols Theta, Q
+    True
+    """
+
+    def __init__(self, EI, m, l, kw=0, N=0, rhoI=0, kGA=None):
+        self.EI = sp.sympify(EI)
+        self.m = sp.sympify(m)
+        self.l = sp.sympify(l)
+        self.kw = sp.sympify(kw)
+        self.N = sp.sympify(N)
+        self.rhoI = sp.sympify(rhoI)
+        self.kGA = None if kGA is None else sp.sympify(kGA)
+
+    # -- description ----------------------------------------------------------------------
+    @property
+    def parameters(self) -> dict:
+        out = {"EI": self.EI, "m": self.m, "l": self.l}
+        for name in ("kw", "N", "rhoI"):
+            if getattr(self, name) != 0:
+                out[name] = getattr(self, name)
+        if self.kGA is not None:
+            out["kGA"] = self.kGA
+        return out
+
+    @property
+    def key(self) -> tuple:
+        """The constants that fix the segment's matrix (equal keys, equal matrices)."""
+        return (self.EI, self.m, self.l, self.kw, self.N, self.rhoI, self.kGA)
+
+    def with_length(self, l) -> BeamSegment:
+        """The same beam over another length."""
+        return BeamSegment(self.EI, self.m, l, self.kw, self.N, self.rhoI, self.kGA)
+
+    # -- the field equations --------------------------------------------------------------
+    def coefficients(self, lam2):
+        """``(a, b, c, mu)`` of the first-order system at ``lam**2`` (exact)."""
+        mu = self.m * lam2 + self.kw
+        if self.kGA is None:
+            return sp.Integer(1), sp.Integer(0), self.N + self.rhoI * lam2, mu
+        a = self.kGA / (self.kGA + self.N)
+        return a, -1 / (self.kGA + self.N), self.N * a + self.rhoI * lam2, mu
+
+    def system_matrix(self, lam=LAM) -> sp.Matrix:
+        """``A(lam)`` of ``z' = A z``, ``z = [Y, Theta, M, Q]`` (exact)."""
+        a, b, c, mu = self.coefficients(lam**2)
+        EI = self.EI
+        return sp.Matrix([[0, a, 0, b], [0, 0, 1 / EI, 0], [0, c, 0, a], [-mu, 0, 0, 0]])
+
+    def invariants(self, lam2):
+        """``(t, d)``: trace and determinant of ``G = B C`` (exact)."""
+        a, b, c, mu = self.coefficients(lam2)
+        return sp.expand(c / self.EI - b * mu), sp.expand(mu * (a**2 - b * c) / self.EI)
+
+    def transfer_matrix(self, lam=LAM) -> sp.Matrix:
+        """Exact transfer matrix ``exp(A l)`` at ``lam``.
+
+        Through the eigenvalues ``r1, r2`` of ``G`` where they differ, and the
+        confluent form ``f(G) = f(r) I + f'(r) (G - r I)`` where they coincide
+        (e.g. at ``lam = 0`` without axial force, where ``U`` is polynomial).
+        """
+        lam2 = lam**2
+        a, b, c, mu = self.coefficients(lam2)
+        t, d = self.invariants(lam2)
+        l = self.l
+        disc = sp.simplify(t**2 / 4 - d)
+        r = sp.Symbol("r")
+        F0 = sp.Lambda(r, sp.cosh(sp.sqrt(r) * l))
+        F1 = sp.Lambda(r, sp.sinh(sp.sqrt(r) * l) / sp.sqrt(r))
+        if disc == 0:
+            r0 = sp.simplify(t / 2)
+            if r0 == 0:
+                values = [(sp.Integer(1), l**2 / 2), (l, l**3 / 6)]   # f(0), f'(0)
+            else:
+                d0 = l * F1(r0) / 2
+                d1 = (l * F0(r0) - F1(r0)) / (2 * r0)
+                values = [(F0(r0), d0), (F1(r0), d1)]
+            coef = [c_ for fv, dv in values for c_ in (fv - dv * r0, dv)]   # alpha, beta
+        else:
+            root = sp.sqrt(disc)
+            r1, r2 = t / 2 + root, t / 2 - root
+            coef = []
+            for f in (F0, F1):
+                coef += [(r1 * f(r2) - r2 * f(r1)) / (r1 - r2), (f(r1) - f(r2)) / (r1 - r2)]
+        return _assemble(coef, a, b, c, mu, self.EI, sp.Matrix, sp.eye(2))
+
+    # -- numbers ----------------------------------------------------------------------------
+    def constants(self) -> tuple:
+        """``(EI, m, l, kw, N, rhoI, kGA)`` as floats (``kGA`` infinite when rigid in shear)."""
+        return (float(self.EI), float(self.m), float(self.l), float(self.kw), float(self.N),
+                float(self.rhoI), math.inf if self.kGA is None else float(self.kGA))
+
+    def constants_mp(self, dps: int) -> tuple:
+        """The same at ``dps`` digits (mpmath; ``kGA`` is None when rigid in shear)."""
+        from ..numeric import to_mp
+        return (to_mp(self.EI, dps), to_mp(self.m, dps), to_mp(self.l, dps),
+                to_mp(self.kw, dps), to_mp(self.N, dps), to_mp(self.rhoI, dps),
+                None if self.kGA is None else to_mp(self.kGA, dps))
+
+    def evaluate_numpy(self, lam2, consts=None, l=None) -> np.ndarray:
+        """Transfer matrices for an array of ``lam**2``: shape ``(..., 4, 4)``, complex.
+
+        ``l`` overrides the length (a piece of the segment).
+        """
+        EI, m, length, kw, N, rhoI, kGA = consts if consts is not None else self.constants()
+        length = length if l is None else l
+        lam2 = np.asarray(lam2, dtype=complex)
+        a, b, c, mu = _coefficients(lam2, m, kw, N, rhoI, kGA, np)
+        t = c / EI - b * mu
+        d = mu * (a * a - b * c) / EI
+        rho = np.abs(t) / 2 + np.sqrt(np.abs(t) ** 2 / 4 + np.abs(d))
+        grow = float(np.max(np.sqrt(rho), initial=0.0)) * length
+        j = max(0, math.ceil(math.log2(grow))) if grow > 1 else 0
+        h = length / 2**j
+        coef = _series(t, d, h, _MAX_TERMS_DOUBLE, np.zeros_like(t), np.ones_like(t))
+        for _ in range(j):
+            coef = _double(coef, t, d)
+        return _assemble_numpy(coef, a, b, c, mu, EI)
+
+    def evaluate_mp(self, lam2, consts, l=None) -> np.ndarray:
+        """Transfer matrix for one mpmath ``lam**2`` at the working precision (4x4 objects).
+
+        ``l`` overrides the length.
+        """
+        EI, m, length, kw, N, rhoI, kGA = consts
+        length = length if l is None else l
+        a, b, c, mu = _coefficients(lam2, m, kw, N, rhoI, kGA, None)
+        t = c / EI - b * mu
+        d = mu * (a * a - b * c) / EI
+        rho = abs(t) / 2 + mpmath.sqrt(abs(t) ** 2 / 4 + abs(d))
+        grow = mpmath.sqrt(rho) * length
+        j = max(0, int(mpmath.ceil(mpmath.log(grow, 2)))) if grow > 1 else 0
+        h = length / mpmath.mpf(2) ** j
+        # terms until k/(2k)! falls below the working precision (max|r| h**2 <= 1)
+        terms, bound = 2, mpmath.mpf(1)
+        while bound > mpmath.eps:
+            terms += 1
+            bound = mpmath.mpf(terms) / mpmath.factorial(2 * terms)
+        zero, one = (mpmath.mpf(0), mpmath.mpf(1))
+        coef = _series(t, d, h, terms + 1, zero, one)
+        for _ in range(j):
+            coef = _double(coef, t, d)
+        rows = _assemble(coef, a, b, c, mu, EI, None, None)
+        out = np.empty((4, 4), dtype=object)
+        for i in range(4):
+            for k in range(4):
+                out[i, k] = rows[i][k]
+        return out
+
+    def wave_number(self, lam2, consts=None):
+        """A bound on the largest wave number ``|s|`` at ``lam**2`` (numpy arrays or floats).
+
+        The entries of ``U`` grow like ``exp(|s| l)``.
+        """
+        EI, m, _, kw, N, rhoI, kGA = consts if consts is not None else self.constants()
+        lam2 = np.asarray(lam2, dtype=complex)
+        a, b, c, mu = _coefficients(lam2, m, kw, N, rhoI, kGA, np)
+        t = c / EI - b * mu
+        d = mu * (a * a - b * c) / EI
+        return np.sqrt(np.abs(t) / 2 + np.sqrt(np.abs(t) ** 2 / 4 + np.abs(d)))
+
+    def clamped_frequency_bound(self, length: float) -> float:
+        """A lower bound on ``omega**2`` of the clamped-clamped modes of a piece ``length`` long.
+
+        From the Rayleigh quotient with Poincaré's inequality ``int f'**2 >= q int
+        f**2`` (``q = (pi/length)**2``) for functions vanishing at both ends (``Y``,
+        ``psi`` and ``Y'`` of a clamped piece); 0 when the bound says nothing
+        (the piece is too long, or buckled under compression). Rigorous: a piece
+        shorter than where this exceeds ``omega**2`` has no clamped-clamped
+        natural frequency below ``omega``.
+        """
+        EI, m, _, kw, N, rhoI, kGA = self.constants()
+        q = (math.pi / length) ** 2
+        if math.isinf(kGA):
+            A = EI * q + N                      # int EI Y''**2 + N Y'**2 >= A int Y'**2
+            if A <= 0:
+                return 0.0
+            bound = (A * q + kw) / (m + rhoI * q)
+            return min(bound, A / rhoI) if rhoI > 0 else bound
+        # kGA (Y' - psi)**2 + N Y'**2 >= kp (Y' - psi)**2 + N (1 + 1/eta) psi**2 for N < 0
+        if N >= 0:
+            kp, extra = kGA, 0.0
+        else:
+            eta = 1.0 if kGA + 2 * N > 0 else (-kGA / N - 1) / 2
+            kp, extra = kGA + N * (1 + eta), N * (1 + 1 / eta)
+            if kp <= 0:
+                return 0.0
+        eps = 0.5                              # (u - v)**2 >= (1 - eps) u**2 - (1/eps - 1) v**2
+        coef_y = (kp * (1 - eps) + max(N, 0.0)) * q + kw
+        coef_psi = EI * q - kp * (1 / eps - 1) + extra
+        if coef_psi < 0:
+            return 0.0
+        bound = coef_y / m
+        return min(bound, coef_psi / rhoI) if rhoI > 0 else bound
+
+    def safe_length(self, omega2: float) -> float:
+        """A piece length whose clamped-clamped modes all lie above ``omega2`` (x 1.1 margin).
+
+        Returns at most the segment's own length.
+        """
+        length = float(self.l)
+        target = 1.1 * omega2
+        if self.clamped_frequency_bound(length) > target:
+            return length
+        lo, hi = 0.0, length         # bound(lo) > target, found by halving first
+        trial = length
+        while self.clamped_frequency_bound(trial) <= target:
+            hi = trial
+            trial /= 2
+            if trial < 1e-12 * length:
+                raise ArithmeticError("no piece length keeps the clamped modes above omega")
+        lo = trial
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            if self.clamped_frequency_bound(mid) > target:
+                lo = mid
+            else:
+                hi = mid
+        return lo
+
+
+def _coefficients(lam2, m, kw, N, rhoI, kGA, module):
+    """``(a, b, c, mu)`` of the first-order system, numbers (``kGA`` inf/None: rigid)."""
+    mu = m * lam2 + kw
+    if kGA is None or (isinstance(kGA, float) and math.isinf(kGA)):
+        one = 1.0 if module is np else mpmath.mpf(1)
+        zero = 0.0 if module is np else mpmath.mpf(0)
+        return one, zero, N + rhoI * lam2, mu
+    a = kGA / (kGA + N)
+    return a, -1 / (kGA + N), N * a + rhoI * lam2, mu
+
+
+def _series(t, d, h, terms, zero, one):
+    """``(alpha0, beta0, alpha1, beta1)`` of ``F0, F1`` at length ``h`` from the series in ``(t, d)``.
+
+    ``q_k = p_k h**(2(k-1))`` with ``p_k = (r1**k - r2**k)/(r1 - r2)``: ``q_0 = 0``,
+    ``q_1 = 1``, ``q_k = T q_(k-1) - D q_(k-2)`` (``T = t h**2``, ``D = d h**4``);
+    ``G**k = p_k G - d p_(k-1) I`` gives ``beta0 = h**2 sum q_k/(2k)!``,
+    ``alpha0 = 1 - D sum q_(k-1)/(2k)!`` and likewise with ``(2k+1)!`` for ``F1``.
+    """
+    T, D = t * h * h, d * h**4
+    q_prev, q = zero + 0 * T, one + 0 * T          # q_0, q_1 (arrays when t is one)
+    s0b, s0a, s1b, s1a = 0 * T, 0 * T, 0 * T, 0 * T
+    for k in range(1, terms):
+        f2k = math.factorial(2 * k)
+        f2k1 = f2k * (2 * k + 1)
+        s0b = s0b + q / f2k
+        s0a = s0a + q_prev / f2k
+        s1b = s1b + q / f2k1
+        s1a = s1a + q_prev / f2k1
+        q_prev, q = q, T * q - D * q_prev
+    return (1 - D * s0a, h * h * s0b, h * (1 - D * s1a), h**3 * s1b)
+
+
+def _double(coef, t, d):
+    """``F0, F1`` at twice the length: ``F0(2h) = 2 F0**2 - I``, ``F1(2h) = 2 F0 F1``."""
+    a0, b0, a1, b1 = coef
+    return (2 * (a0 * a0 - d * b0 * b0) - 1, 2 * (2 * a0 * b0 + t * b0 * b0),
+            2 * (a0 * a1 - d * b0 * b1), 2 * (a0 * b1 + a1 * b0 + t * b0 * b1))
+
+
+def _assemble(coef, a, b, c, mu, EI, matrix, eye):
+    """``U`` in the order ``[Y, Theta, M, Q]`` from ``alpha, beta`` of ``F0`` and ``F1``.
+
+    ``G = B C`` on ``(Y, M)``, ``G' = C B`` on ``(Theta, Q)``; ``U = [[F0(G), B F1(G')],
+    [C F1(G), F0(G')]]``. With ``matrix`` (``sp.Matrix``) a SymPy matrix, else rows.
+    """
+    a0, b0, a1, b1 = coef
+    g = [[-b * mu, a / EI], [-a * mu, c / EI]]          # G on (Y, M)
+    gp = [[c / EI, a / EI], [-mu * a, -mu * b]]         # G' on (Theta, Q)
+    B = [[a, b], [c, a]]
+    C = [[0, 1 / EI], [-mu, 0]]
+
+    def mul(X, Y):
+        return [[X[i][0] * Y[0][k] + X[i][1] * Y[1][k] for k in range(2)] for i in range(2)]
+
+    def comb(alpha, beta, X):
+        return [[(alpha if i == k else 0) + beta * X[i][k] for k in range(2)] for i in range(2)]
+
+    f0g, f0gp = comb(a0, b0, g), comb(a0, b0, gp)
+    up = mul(B, comb(a1, b1, gp))                       # (Theta, Q) -> (Y, M)
+    low = mul(C, comb(a1, b1, g))                       # (Y, M) -> (Theta, Q)
+    ym, tq = (0, 2), (1, 3)
+    U = [[0] * 4 for _ in range(4)]
+    for i in range(2):
+        for k in range(2):
+            U[ym[i]][ym[k]] = f0g[i][k]
+            U[ym[i]][tq[k]] = up[i][k]
+            U[tq[i]][ym[k]] = low[i][k]
+            U[tq[i]][tq[k]] = f0gp[i][k]
+    return matrix(U) if matrix is not None else U
+
+
+def _assemble_numpy(coef, a, b, c, mu, EI):
+    rows = _assemble(coef, a, b, c, mu, EI, None, None)
+    shape = np.shape(coef[0])
+    out = np.empty(shape + (4, 4), dtype=complex)
+    for i in range(4):
+        for k in range(4):
+            out[..., i, k] = rows[i][k]
+    return out
