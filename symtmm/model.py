@@ -26,8 +26,8 @@ from functools import cached_property
 
 import sympy as sp
 
-from .errors import ModelError
 from .elements.theories import THEORIES
+from .errors import ModelError
 from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
 
 __all__ = ["Beam", "Spring", "Mass", "Attachment", "RigidBody", "Model", "BOUNDARY_CONDITIONS",

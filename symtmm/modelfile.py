@@ -41,9 +41,9 @@ from pathlib import Path
 
 import sympy as sp
 
+from .elements.theories import THEORIES
 from .errors import ModelError
 from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
-from .elements.theories import THEORIES
 from .model import GROUND, Attachment, Beam, Mass, Model, RigidBody, Spring
 
 if sys.version_info >= (3, 11):

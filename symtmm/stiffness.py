@@ -280,8 +280,7 @@ class StiffnessModel:
                 for j in range(i, top):
                     if row_k[j] != 0:
                         row_i[j] -= f * row_k[j]
-                        if abs(row_i[j]) > grow:
-                            grow = abs(row_i[j])
+                        grow = max(grow, abs(row_i[j]))
         return negative
 
 
