@@ -276,7 +276,7 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         for value in fields.values():
             known_names |= {s.name for s in value.free_symbols}
 
-    bodies = _bodies(data, {b.name: b for b in beams}, known_names)
+    bodies, body_fields = _bodies(data, {b.name: b for b in beams}, known_names)
 
     names = {b.name for b in beams}
     for i, mass in enumerate(masses, 1):
@@ -294,7 +294,7 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
                      tuple(bodies))
     except ModelError as exc:
         raise ModelError(exc.message,
-                         field=_spring_field(exc.field, springs, beams, masses)) from None
+                         field=_spring_field(exc.field, springs, beams, masses, body_fields)) from None
 
 
 def _attachment_point(text, beams: dict, where: str):
@@ -320,9 +320,12 @@ def _attachment_point(text, beams: dict, where: str):
     return name, x
 
 
-def _bodies(data: dict, beams: dict, known_names: set) -> list:
-    """The ``[[rigid]]`` bodies and the ``[[joint]]`` tables, as rigid bodies."""
-    out = []
+def _bodies(data: dict, beams: dict, known_names: set) -> tuple:
+    """The ``[[rigid]]`` bodies and the ``[[joint]]`` tables, as rigid bodies.
+
+    Returns the bodies and, by body name, the file's name of its table (``rigid[2]``).
+    """
+    out, where_of = [], {}
     for table, required, optional in (("rigid", _RIGID_REQUIRED, _RIGID_OPTIONAL),
                                       ("joint", _JOINT_REQUIRED, _JOINT_OPTIONAL)):
         raw_list = data.get(table, [])
@@ -370,9 +373,10 @@ def _bodies(data: dict, beams: dict, known_names: set) -> list:
             except ModelError as exc:
                 raise ModelError(exc.message, field=_rename(exc.field, where)) from None
             out.append(body)
+            where_of[body.name] = where
             for value in list(fields.values()) + [x for _, x in located]:
                 known_names |= {sym.name for sym in sp.sympify(value).free_symbols}
-    return out
+    return out, where_of
 
 
 def _rename(field: str | None, where: str) -> str:
@@ -383,10 +387,13 @@ def _rename(field: str | None, where: str) -> str:
     return f"{where}.{attr}"
 
 
-def _spring_field(field: str | None, springs, beams, masses=()) -> str | None:
+def _spring_field(field: str | None, springs, beams, masses=(), bodies=None) -> str | None:
     """Name fields by their position in the file, as the user wrote them."""
     if not field:
         return field
+    for name, where in (bodies or {}).items():
+        if field.startswith(f"body '{name}'."):
+            return f"{where}." + field.rsplit(".", 1)[-1]
     for i, s in enumerate(springs, 1):
         if field.startswith(f"spring {s.a}-{s.b}."):
             return f"spring[{i}]." + field.rsplit(".", 1)[-1]

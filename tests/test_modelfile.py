@@ -123,6 +123,42 @@ BAD = {
     "no_beam": ('title = "x"\n', "beam: missing field"),
     "cycle": ("[parameters]\na = \"b\"\nb = \"a\"\n" + BEAM, "in a circle"),
     "unbound": (BEAM.replace("EI = 1", 'EI = "E0"'), "'E0' has no value"),
+    # beam theories
+    "bad_theory": (BEAM.replace("EI = 1", 'EI = 1\ntheory = "bernoulli"'),
+                   "beam[1] (b).theory: unknown theory 'bernoulli'"),
+    "rayleigh_without_rhoI": (BEAM.replace("EI = 1", 'EI = 1\ntheory = "rayleigh"'),
+                              "beam[1] (b): missing field 'rhoI'"),
+    "timoshenko_without_kGA": (BEAM.replace("EI = 1", 'EI = 1\ntheory = "timoshenko"\nrhoI = 0.01'),
+                               "beam[1] (b): missing field 'kGA'"),
+    "kGA_on_eb": (BEAM.replace("EI = 1", "EI = 1\nkGA = 100"),
+                  "beam[1] (b).kGA: a shear stiffness needs theory"),
+    "rhoI_on_eb": (BEAM.replace("EI = 1", "EI = 1\nrhoI = 0.1"),
+                   "beam[1] (b).rhoI: rotary inertia needs theory"),
+    "negative_rhoI": (BEAM.replace("EI = 1", 'EI = 1\ntheory = "rayleigh"\nrhoI = -1'),
+                      "beam[1] (b).rhoI: must not be negative"),
+    "zero_kGA": (BEAM.replace("EI = 1", 'EI = 1\ntheory = "timoshenko"\nrhoI = 0\nkGA = 0'),
+                 "beam[1] (b).kGA: must be positive"),
+    "shear_buckling": (BEAM.replace("EI = 1", 'EI = 1\ntheory = "timoshenko"\nrhoI = 0\n'
+                                    'kGA = 10\nN = -10'), "beam[1] (b).N: the axial compression"),
+    # rigid bodies and joints
+    "rigid_bad_point": (BEAM + '[[rigid]]\nattach = ["b:0.5"]\nM = 1\n',
+                        "rigid[1].attach: 'b:0.5' is not a point"),
+    "rigid_unknown_beam": (BEAM + '[[rigid]]\nattach = ["c@0.5"]\n',
+                           "rigid[1].attach: unknown beam 'c'"),
+    "rigid_outside": (BEAM + '[[rigid]]\nattach = ["b@2"]\n',
+                      "rigid[1].attach: x = 2 lies outside beam 'b'"),
+    "rigid_hinged_not_attached": (BEAM + '[[rigid]]\nattach = ["b@0.5"]\nhinged = ["b@0.6"]\n',
+                                  "rigid[1].hinged: 'b@0.6' is not one of the attach points"),
+    "rigid_twice": (BEAM + '[[rigid]]\nattach = ["b@0.5", "b@0.5"]\n',
+                    "rigid[1].attach: attached twice to beam 'b'"),
+    "rigid_negative_M": (BEAM + '[[rigid]]\nattach = ["b@0.5"]\nM = -1\n',
+                         "rigid[1].M: must not be negative"),
+    "rigid_no_points": (BEAM + '[[rigid]]\nattach = []\n', "rigid[1].attach: expected a list"),
+    "joint_apart": (BEAM + BEAM.replace('"b"', '"c"') + '[[joint]]\nends = ["b.left", "c.right"]\n',
+                    "joint[1].ends: the ends of a joint must meet at one x"),
+    "joint_kind": (BEAM + BEAM.replace('"b"', '"c"') + '[[joint]]\nends = ["b.right", "c.right"]\n'
+                   'kind = "weld"\n', "joint[1].kind: unknown kind 'weld'"),
+    "joint_not_list": (BEAM + '[[joint]]\nends = "b.right"\n', "joint[1].ends: expected a list"),
 }
 
 
