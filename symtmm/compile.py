@@ -240,6 +240,35 @@ class Evaluator:
         lam = np.asarray(lam, dtype=complex)
         flat = lam.reshape(-1)
         self.evaluations += flat.size
+        logabs = np.empty(flat.size)
+        phase = np.empty(flat.size)
+        # Points are propagated together only when they take the same steps: a batch
+        # stepped for its highest mode would cost its low modes digits.
+        steps = self._step_counts(flat * flat)
+        groups = {}
+        for i, key in enumerate(map(tuple, steps)):
+            groups.setdefault(key, []).append(i)
+        for key, idx in groups.items():
+            idx = np.array(idx)
+            logabs[idx], phase[idx] = self._log_delta(flat[idx], key)
+        return logabs.reshape(lam.shape), phase.reshape(lam.shape)
+
+    def _step_counts(self, lam2) -> np.ndarray:
+        """Per point, the number of steps of ``|beta| l <= NU_STEP`` of every interval."""
+        out = np.ones((lam2.size, sum(k == "segments" for k, _ in self._steps)), dtype=int)
+        col = 0
+        for kind, items in self._steps:
+            if kind != "segments":
+                continue
+            for _, seg in items:
+                consts = self._float_consts(seg)
+                nu = seg.wave_number(lam2, consts) * float(consts[2])
+                out[:, col] = np.maximum(out[:, col], np.ceil(nu / NU_STEP).astype(int))
+            col += 1
+        return out
+
+    def _log_delta(self, flat, steps) -> tuple:
+        """:meth:`log_delta` of points that take the same ``steps`` in every interval."""
         N = flat.size
         lam2 = flat * flat
         D = self._units_numpy(lam2)
@@ -257,23 +286,20 @@ class Evaluator:
             phase[:] += np.sum(np.angle(diag), axis=-1)
             return Q
 
+        interval = 0
         for kind, items in self._steps:
             if kind == "segments":
-                plans = []
-                n_sub = 1
-                for lvl, seg in items:
-                    consts = self._float_consts(seg)
-                    l = float(consts[2])
-                    nu = float(np.max(seg.wave_number(lam2, consts), initial=0.0)) * l
-                    n_sub = max(n_sub, math.ceil(nu / NU_STEP))
-                    plans.append((lvl, seg, consts, l))
+                n_sub = int(steps[interval])
+                interval += 1
+                plans = [(lvl, seg, self._float_consts(seg)) for lvl, seg in items]
                 subs = []
-                for lvl, seg, consts, l in plans:
+                for lvl, seg, consts in plans:
                     blk = slice(4 * lvl, 4 * lvl + 4)
                     key = (consts, n_sub)
                     U = cache.get(key)
                     if U is None:          # equal segments share their matrix in a call
-                        U = cache[key] = seg.evaluate_numpy(lam2, consts, l=l / n_sub)
+                        U = cache[key] = seg.evaluate_numpy(lam2, consts,
+                                                            l=float(consts[2]) / n_sub)
                     subs.append((blk, U * (D[:, blk, None] / D[:, None, blk])))
                 for _ in range(n_sub):
                     for blk, U in subs:
@@ -288,7 +314,7 @@ class Evaluator:
             with np.errstate(divide="ignore"):
                 logabs = logabs + np.log(np.abs(det))
             phase = phase + np.angle(det)
-        return logabs.reshape(lam.shape), np.angle(np.exp(1j * phase)).reshape(lam.shape)
+        return logabs, np.angle(np.exp(1j * phase))
 
     # -- mpmath ---------------------------------------------------------------------
     def R_mp(self, lam, real: bool = False) -> mpmath.matrix:
