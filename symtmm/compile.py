@@ -229,8 +229,9 @@ class Evaluator:
 
         The columns of the unknowns are propagated as in :meth:`R`, but every
         segment is applied in steps of ``|beta| l <=`` :data:`NU_STEP`, the state
-        measured in wave-number units, and the columns re-orthonormalised after
-        each step (Godunov's method for stiff boundary-value problems): ``E = Q F``
+        measured in wave-number units, and the columns re-orthonormalised whenever
+        they may have grown by ``exp(NU_STEP)`` since the last time (Godunov's
+        method for stiff boundary-value problems): ``E = Q F``
         with ``Q`` orthonormal, so ``Delta = det Q[rows] * prod det F``. Without
         it the columns grow like ``exp(|beta| l)`` and become parallel to working
         precision, and ``det R`` loses about ``sum |beta| L / ln 10`` digits (all
@@ -287,11 +288,14 @@ class Evaluator:
             return Q
 
         interval = 0
+        grown = 0.0        # sum of |beta| l applied since the columns were last orthonormal
         for kind, items in self._steps:
             if kind == "segments":
                 n_sub = int(steps[interval])
                 interval += 1
                 plans = [(lvl, seg, self._float_consts(seg)) for lvl, seg in items]
+                nu = max((float(np.max(seg.wave_number(lam2, c), initial=0.0)) * float(c[2])
+                          for _, seg, c in plans), default=0.0) / n_sub
                 subs = []
                 for lvl, seg, consts in plans:
                     blk = slice(4 * lvl, 4 * lvl + 4)
@@ -302,9 +306,13 @@ class Evaluator:
                                                             l=float(consts[2]) / n_sub)
                     subs.append((blk, U * (D[:, blk, None] / D[:, None, blk])))
                 for _ in range(n_sub):
+                    # orthonormalise only once the columns may have grown by exp(NU_STEP)
+                    if grown + nu > NU_STEP:
+                        E = orthonormalise(E)
+                        grown = 0.0
                     for blk, U in subs:
                         E[:, blk, :] = U @ E[:, blk, :]
-                    E = orthonormalise(E)
+                    grown += nu
             else:
                 values = items.values_numpy(flat)
                 for row, col, v in zip(items.rows, items.cols, values):
