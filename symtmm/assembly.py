@@ -126,6 +126,8 @@ def _before(a: sp.Expr, b: sp.Expr, sample: dict | None = None) -> bool | None:
 
     ``sample`` (symbol -> number) decides what the symbols alone cannot.
     """
+    if a.is_Rational and b.is_Rational:     # the usual case, and a cheap one
+        return bool(a < b)
     diff = sp.simplify(b - a)
     if diff.is_positive:
         return True
@@ -138,11 +140,18 @@ def _before(a: sp.Expr, b: sp.Expr, sample: dict | None = None) -> bool | None:
     return None
 
 
+def _same(a: sp.Expr, b: sp.Expr) -> bool:
+    """Exactly equal coordinates (rationals compare at once; others by simplification)."""
+    if a.is_Rational and b.is_Rational:
+        return a == b
+    return sp.simplify(a - b) == 0
+
+
 def _sorted_unique(points: list, sample: dict | None = None) -> list:
     """Sort exact coordinates; undecidable pairs keep the order they were given in."""
     result: list = []
-    for p in points:
-        if any(sp.simplify(p - q) == 0 for q in result):
+    for p in map(sp.sympify, points):
+        if any(_same(p, q) for q in result):
             continue
         pos = len(result)
         for i, q in enumerate(result):
@@ -252,7 +261,7 @@ class Layout:
             body, u, e = bl.body, bl.unknowns, bl.equations
             rot = "Theta" in u
             for i, (att, lvl) in enumerate(zip(body.attachments, bl.levels)):
-                if sp.simplify(att.x - x) != 0:
+                if not _same(att.x, x):
                     continue
                 d = att.x - body.xc                  # arm from the centre of mass
                 # the body's force and couple on the beam: Q+ - Q- = F, M+ - M- = -C
@@ -266,7 +275,7 @@ class Layout:
                     yield (4 * lvl + 2, u[("C", i)], sp.Integer(-1))
                     yield (e[("Theta", i)], 4 * lvl + 1, sp.Integer(1))
                     yield (e[("Theta", i)], u["Theta"], sp.Integer(-1))
-            if sp.simplify(body.attachments[0].x - x) != 0:
+            if not _same(body.attachments[0].x, x):
                 continue
             # M lam^2 Y_c + sum F_i = 0 and J lam^2 Theta_c + sum (d_i F_i + C_i) = 0: the
             # reactions -F_i, -C_i of the beams accelerate the body (moments about xc)
@@ -309,7 +318,7 @@ class Layout:
     def _point_elements_at(self, x):
         index = {b.name: i for i, b in enumerate(self.model.beams)}
         for xe, element in self._points:
-            if sp.simplify(xe - x) != 0:
+            if not _same(sp.sympify(xe), x):
                 continue
             yield element, tuple(index[name] for name in element.beams)
 

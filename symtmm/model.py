@@ -538,6 +538,12 @@ class Model:
 
         Parameters without value stay symbols (see :attr:`free_symbols`).
         """
+        return self._resolved
+
+    @cached_property
+    def _resolved(self) -> Model:
+        if not any(v is not None for v in self.parameters.values()):
+            return self             # nothing to substitute: the model is its own resolution
         beams = tuple(self._resolved_beam(b) for b in self.beams)
         springs = tuple(replace(s, x=self.value(s.x), k=self.value(s.k), c=self.value(s.c))
                         for s in self.springs)
