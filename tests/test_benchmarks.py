@@ -30,8 +30,8 @@ sys.path.insert(0, str(ROOT))
 
 from benchmarks import baselines, compare, models, references
 
-MODULES = ["baselines", "cbench", "compare", "evaluator", "fe_compare", "models", "references",
-           "report", "root_search", "scaling"]
+MODULES = ["baselines", "cbench", "compare", "evaluator", "fe_compare", "models", "profiling",
+           "references", "report", "root_search", "scaling"]
 
 
 @pytest.mark.parametrize("name", MODULES)
