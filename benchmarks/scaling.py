@@ -18,13 +18,15 @@ fewer sizes):
   would put more per-call overhead on each point of the large models and fake
   a steeper exponent), and ``Evaluator.delta_mp`` at 30 digits (what the
   refinement of the default search uses) at one point; each the minimum of
-  :data:`REPEAT` timings (other work on the machine only ever adds time),
+  :data:`REPEAT` timings taken in rounds over all sizes (other work on the
+  machine only ever adds time, and a busy spell then hits every size alike),
   one timing where a call takes over 5 s;
 * time per full solve (first 10 natural frequencies, 15 digits, default
   method), each series in its own process with a time limit, split over the
   library's routines (:func:`benchmarks.profiling.solve_profile`);
 * exponents: least-squares slopes on log-log, over all sizes and over the
-  largest three (where fixed per-call costs weigh least).
+  largest three (where fixed per-call costs weigh least), and for the target
+  the same fit to each round alone, which shows how far the noise moves it.
 """
 
 from __future__ import annotations
@@ -40,14 +42,14 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 
-__all__ = ["run", "SIZES", "fit_exponent", "BATCH", "REPEAT"]
+__all__ = ["run", "SIZES", "fit_exponent", "round_exponents", "BATCH", "REPEAT"]
 
 #: Sizes per measurement, (full run, quick run).
 SIZES = {
     "eval_levels": ((1, 2, 3, 5, 10, 20, 50), (1, 2, 3, 6)),
     "eval_springs": ((1, 2, 5, 10, 20, 50, 100), (1, 2, 5, 10, 20, 40)),
     "solve_levels": ((1, 2, 3, 5, 7, 10), (1, 2, 3)),
-    "solve_springs": ((1, 2, 5, 10, 20, 50), (1, 2, 4)),
+    "solve_springs": ((1, 2, 5, 10, 20, 50), (1, 2, 3)),
 }
 #: Springs per level when the levels vary; levels when the springs vary.
 FIXED_SPRINGS = 2
@@ -55,7 +57,7 @@ FIXED_LEVELS = 2
 #: Points per vectorised batch, at every size and in both runs.
 BATCH = 200
 #: Timings per measurement; the minimum is kept.
-REPEAT = 3
+REPEAT = 5
 #: Time limit of one full solve (seconds), (full run, quick run); a series of solves
 #: gets the sum over its sizes.
 SOLVE_LIMIT = (150.0, 20.0)
@@ -77,41 +79,79 @@ def fit_exponent(sizes, times) -> float | None:
     return float(np.polyfit(x, y, 1)[0])
 
 
-def _min_time(fn, repeat: int = REPEAT, enough: float = 5.0) -> float:
-    """The smallest of ``repeat`` timings of ``fn()``; a call longer than ``enough``
-    seconds is not repeated (the largest models: other work changes such a time by a
-    small fraction only)."""
-    best = np.inf
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t)
-        if best > enough:
-            break
-    return best
-
-
-def _eval_times(levels: int, springs: int) -> dict:
+def _prepare(levels: int, springs: int) -> dict:
+    """The evaluator of one chain, with the sizes the report shows."""
     from symtmm.compile import Evaluator
 
     from .models import chain
 
-    model = chain(levels, springs)
     t = time.perf_counter()
-    ev = Evaluator(model)
+    ev = Evaluator(chain(levels, springs))
     built = time.perf_counter() - t
     segments = [seg for kind, items in ev._steps if kind == "segments" for _, seg in items]
     # segments of equal constants share one matrix per call of the numpy evaluator
     distinct = len({ev._float_consts(seg) for seg in segments})
+    row = dict(levels=levels, springs_per_level=springs, segments=len(segments),
+               distinct_segments=distinct, evaluator_construction_seconds=built,
+               numpy_rounds=[], mpmath_rounds=[])
+    return dict(ev=ev, row=row)
+
+
+def _time_once(entry: dict, enough: float = 5.0) -> None:
+    """One timing of the numpy batch and of one 30-digit evaluation; none once a timing of
+    this size has taken over ``enough`` seconds (other work changes such a time by a
+    small fraction only)."""
+    ev, row = entry["ev"], entry["row"]
+    if row["numpy_rounds"] and max(row["numpy_rounds"][0] * BATCH,
+                                   row["mpmath_rounds"][0]) > enough:
+        return
     lam = -5 + 1j * np.linspace(1, 300, BATCH)
-    numpy_per_point = _min_time(lambda: ev.delta(lam)) / BATCH
+    t = time.perf_counter()
+    ev.delta(lam)
+    row["numpy_rounds"].append((time.perf_counter() - t) / BATCH)
     with mpmath.workdps(30):
         z = mpmath.mpc(-5, 150)
-        mp_seconds = _min_time(lambda: ev.delta_mp(z))
-    return dict(levels=levels, springs_per_level=springs, segments=len(segments),
-                distinct_segments=distinct, evaluator_construction_seconds=built,
-                numpy_seconds_per_point=numpy_per_point,
-                mpmath30_seconds_per_evaluation=mp_seconds)
+        t = time.perf_counter()
+        ev.delta_mp(z)
+        row["mpmath_rounds"].append(time.perf_counter() - t)
+
+
+def _eval_series(sizes, progress) -> list:
+    """Rows of :func:`_prepare` for ``(levels, springs)`` sizes, timed in rounds.
+
+    Each of :data:`REPEAT` rounds times every size once, and each size keeps its
+    minimum: a busy spell on the shared machine then falls on one round of all
+    sizes rather than on all rounds of one size.
+    """
+    entries = []
+    for n, s in sizes:
+        progress(f"scaling: Delta, {n} levels, {s} springs per level")
+        entries.append(_prepare(n, s))
+    for _ in range(REPEAT):
+        for entry in entries:
+            _time_once(entry)
+    rows = [e["row"] for e in entries]
+    for row in rows:
+        row["numpy_seconds_per_point"] = min(row["numpy_rounds"])
+        row["mpmath30_seconds_per_evaluation"] = min(row["mpmath_rounds"])
+    return rows
+
+
+def round_exponents(rows, key: str, size: str, largest: int = 3) -> list:
+    """The exponent over the ``largest`` sizes fitted to each round's timings alone (a
+    size timed once gives its one timing to every round): how far the noise of the
+    machine moves it.
+
+    Examples
+    --------
+    >>> rows = [dict(s=1, t=[1.0, 1.2]), dict(s=2, t=[2.0, 2.0]), dict(s=4, t=[4.0])]
+    >>> [round(e, 3) for e in round_exponents(rows, "t", "s")]
+    [1.0, 0.868]
+    """
+    rows = rows[-largest:]
+    rounds = max(len(r[key]) for r in rows)
+    return [fit_exponent([r[size] for r in rows], [r[key][min(k, len(r[key]) - 1)]
+                                                   for r in rows]) for k in range(rounds)]
 
 
 def _solve_in_process(levels: int, springs: int) -> dict:
@@ -177,13 +217,10 @@ def run(quick: bool = False, progress=print) -> dict:
            "fixed_springs_per_level": FIXED_SPRINGS, "fixed_levels": FIXED_LEVELS,
            "sizes": {k: v[pick] for k, v in SIZES.items()}, "solve_limit_seconds": limit,
            "batch": BATCH, "repeat": REPEAT}
-    for key in ("eval_levels", "eval_springs"):
-        rows = []
-        for size in SIZES[key][pick]:
-            n, s = (size, FIXED_SPRINGS) if key == "eval_levels" else (FIXED_LEVELS, size)
-            progress(f"scaling: Delta, {n} levels, {s} springs per level")
-            rows.append(_eval_times(n, s))
-        out[key] = rows
+    out["eval_levels"] = _eval_series([(n, FIXED_SPRINGS) for n in SIZES["eval_levels"][pick]],
+                                      progress)
+    out["eval_springs"] = _eval_series(
+        [(FIXED_LEVELS, s) for s in SIZES["eval_springs"][pick]], progress)
     levels = [(n, FIXED_SPRINGS) for n in SIZES["solve_levels"][pick]]
     springs = [(FIXED_LEVELS, s) for s in SIZES["solve_springs"][pick]]
     done = {}
@@ -202,6 +239,10 @@ def run(quick: bool = False, progress=print) -> dict:
     out["target"] = dict(text="cost per evaluation grows linearly with springs (exponent "
                               "fitted over the largest three sizes at most 1.15)",
                          exponent_numpy=e, exponent_mpmath=e_mp,
+                         rounds_numpy=round_exponents(out["eval_springs"], "numpy_rounds",
+                                                      "springs_per_level"),
+                         rounds_mpmath=round_exponents(out["eval_springs"], "mpmath_rounds",
+                                                       "springs_per_level"),
                          met=bool(e is not None and e_mp is not None
                                   and e <= 1.15 and e_mp <= 1.15))
     return out
