@@ -236,7 +236,8 @@ def _fe(fe) -> list:
             "mass, dense `scipy.linalg.eigh`, Rayleigh-quotient polish), timed with the BLAS "
             "threads numpy/scipy start by default and, in a child process, with one BLAS "
             f"thread ({', '.join(fe.get('blas_threads_env', []))} = 1); `seconds` is the "
-            "faster of the two, each the minimum of 3 runs."), "",
+            "faster of the two, each the minimum of 3 runs (one run where it takes over "
+            "1 s)."), "",
            (f"symtmm, `solve(model, count={fe['count']}, digits={s['digits']})`: "
             f"{_g(s['seconds'])} s (the fastest of three runs), {s['evaluations']} evaluations, "
             f"largest error of the printed values {_g(s['max_rel_error'], 2)}. A profiled run: "
