@@ -299,7 +299,8 @@ def _scaling(sc) -> list:
                    for k, v in sc["exponents"].items()])
     t = sc["target"]
     out += [(f"**Target** — {t['text']}: {_met(t['met'])} (numpy {_g(t['exponent_numpy'])}, "
-             f"mpmath {_g(t['exponent_mpmath'])})"), ""]
+             f"mpmath {_g(t['exponent_mpmath'])}; rounds {_band(t.get('rounds_numpy'))} and "
+             f"{_band(t.get('rounds_mpmath'))})"), ""]
     return out
 
 
@@ -436,9 +437,11 @@ def _grid_bisection_ex1(r):
 def _scaling_findings(sc) -> list:
     t = sc["target"]
     e, e3 = sc["exponents"], sc["exponents_largest_three"]
-    out = [(f"Scaling: {_met(t['met'])} (springs exponent over the largest three sizes: "
-           f"numpy {_g(t['exponent_numpy'])}, mpmath {_g(t['exponent_mpmath'])}; over all "
-           f"sizes {_g(e['eval_numpy_vs_springs'])} and {_g(e['eval_mpmath_vs_springs'])}).")]
+    out = [(f"Scaling: {_met(t['met'])} (springs exponent over the largest three sizes, "
+           f"median over rounds: numpy {_g(t['exponent_numpy'])}, mpmath "
+           f"{_g(t['exponent_mpmath'])}; fitted to the minima {_g(t.get('minima_numpy'))} and "
+           f"{_g(t.get('minima_mpmath'))}; over all sizes {_g(e['eval_numpy_vs_springs'])} and "
+           f"{_g(e['eval_mpmath_vs_springs'])}).")]
     out += _springs_noise(sc)
     out.append(f"In the levels the cost per evaluation grows with exponent "
                f"{_g(e3['eval_numpy_vs_levels'])} (numpy) and {_g(e3['eval_mpmath_vs_levels'])}"
@@ -492,9 +495,9 @@ def _springs_noise(sc) -> list:
     t = sc["target"]
     rows = sc["eval_springs"]
     lo, hi = rows[0], rows[-1]
-    line = (f"Fitted to single rounds of timings the same exponents span "
-            f"{_band(t.get('rounds_numpy'))} (numpy) and {_band(t.get('rounds_mpmath'))} "
-            f"(mpmath). Per segment, from {lo['springs_per_level']} to "
+    line = (f"Fitted to single rounds of timings (each round times every size once, within "
+            f"about a second) the exponents span {_band(t.get('rounds_numpy'))} (numpy) and "
+            f"{_band(t.get('rounds_mpmath'))} (mpmath): the noise of this machine. Per segment, from {lo['springs_per_level']} to "
             f"{hi['springs_per_level']} springs per level: numpy "
             f"{_g(lo['numpy_seconds_per_point'] / lo['segments'] * 1e6)} -> "
             f"{_g(hi['numpy_seconds_per_point'] / hi['segments'] * 1e6)} us per point, mpmath "
@@ -503,8 +506,8 @@ def _springs_noise(sc) -> list:
     rounds = [v for v in (t.get("rounds_numpy") or []) + (t.get("rounds_mpmath") or [])
               if v is not None]
     if not t["met"] and rounds and min(rounds) <= 1.15:
-        line += (" Some rounds stay within 1.15: this miss is within the timing noise of the "
-                 "shared machine, not a measured super-linear cost.")
+        line += (" Some rounds stay within 1.15: the miss may be the timing noise of the "
+                 "shared machine rather than a super-linear cost.")
     elif not t["met"]:
         line += " Every round exceeds 1.15: the cost per segment itself grows."
     return [line]
