@@ -48,9 +48,9 @@ __all__ = ["run", "SIZES", "fit_exponent", "round_exponents", "BATCH", "REPEAT"]
 #: Sizes per measurement, (full run, quick run).
 SIZES = {
     "eval_levels": ((1, 2, 3, 5, 10, 20, 50), (1, 2, 3, 6)),
-    "eval_springs": ((1, 2, 5, 10, 20, 50, 100), (1, 2, 5, 10, 20, 40)),
-    "solve_levels": ((1, 2, 3, 5, 7, 10), (1, 2, 3)),
-    "solve_springs": ((1, 2, 5, 10, 20, 50), (1, 2, 3)),
+    "eval_springs": ((1, 2, 5, 10, 20, 50, 100), (1, 2, 5, 10, 20)),
+    "solve_levels": ((1, 2, 3, 5, 7, 10), (1, 2)),
+    "solve_springs": ((1, 2, 5, 10, 20, 50), (1, 2)),
 }
 #: Springs per level when the levels vary; levels when the springs vary.
 FIXED_SPRINGS = 2
