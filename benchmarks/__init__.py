@@ -8,7 +8,10 @@ Run ``python benchmarks/run.py`` (``--quick`` for a run under a minute,
 * :mod:`benchmarks.evaluator` -- determinant evaluations per second of every
   backend and of a naive per-point numpy product;
 * :mod:`benchmarks.fe_compare` -- a cubic-Hermite finite-element model;
-* :mod:`benchmarks.scaling` -- cost against levels and springs per level.
+* :mod:`benchmarks.scaling` -- cost against levels and springs per level;
+* :mod:`benchmarks.report` -- the markdown report, whose verdicts and
+  explanations are generated from the run's numbers, with the profiles of
+  :mod:`benchmarks.profiling`.
 
 Reference values come from outside the code under test
 (:mod:`benchmarks.references`).

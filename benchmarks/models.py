@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import random
+from fractions import Fraction
 from pathlib import Path
 
 from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load
 
-__all__ = ["EXAMPLES", "example", "clamped_clamped", "chain", "fe_input"]
+__all__ = ["EXAMPLES", "example", "clamped_clamped", "chain", "fe_input", "global_input",
+           "exact_global_input", "check_ex1_model"]
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -68,3 +70,42 @@ def fe_input(model: Model) -> tuple:
     springs = [dict(between=[s.a, s.b], x=float(s.x), k=float(s.k), c=float(s.c))
                for s in model.springs]
     return beams, springs
+
+
+def global_input(model: Model) -> tuple:
+    """``(beams, springs)`` in the form of :func:`benchmarks.references.global_matrix_omegas`,
+    exact (Fractions), for checking that a reference computed from plain numbers
+    is the model's.
+
+    Examples
+    --------
+    >>> from benchmarks.references import EX1_BEAMS, EX1_SPRINGS
+    >>> global_input(example("paper_ex1_ff_cc")) == exact_global_input(EX1_BEAMS, EX1_SPRINGS)
+    True
+    """
+    model = model.resolved()
+    index = {b.name: i for i, b in enumerate(model.beams)}
+    if any(b.x0 != 0 or b.L != model.beams[0].L or b.kw != 0 for b in model.beams) or \
+            model.masses or any(s.kind != "translational" or s.c != 0 for s in model.springs):
+        raise ValueError("the global-matrix reference takes undamped beams over one span "
+                         "joined by translational springs")
+    beams = [(Fraction(str(b.EI)), Fraction(str(b.m)), b.left, b.right) for b in model.beams]
+    springs = [(index[s.a], None if s.grounded else index[s.b], Fraction(str(s.x)),
+                Fraction(str(s.k))) for s in model.springs]
+    return exact_global_input(beams, springs)
+
+
+def exact_global_input(beams, springs) -> tuple:
+    """``(beams, springs)`` with every number a Fraction (for comparisons)."""
+    return ([(Fraction(str(EI)), Fraction(str(m)), left, right) for EI, m, left, right in beams],
+            [(a, b, Fraction(str(x)), Fraction(str(k))) for a, b, x, k in springs])
+
+
+def check_ex1_model(model: Model) -> None:
+    """Raise unless ``model`` is the system :data:`benchmarks.references.EX1_BEAMS` and
+    ``EX1_SPRINGS`` describe (the reference is computed from those plain numbers)."""
+    from .references import EX1_BEAMS, EX1_SPRINGS
+
+    if global_input(model) != exact_global_input(EX1_BEAMS, EX1_SPRINGS):
+        raise ValueError("examples/paper_ex1_ff_cc.toml no longer matches "
+                         "benchmarks.references.EX1_BEAMS/EX1_SPRINGS")

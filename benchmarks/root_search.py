@@ -5,7 +5,10 @@ independently (see each case's ``reference`` text) and reports evaluations
 (one per ``lam`` at which ``Delta``, ``R`` or an eigenvalue count is
 evaluated, whatever the precision), seconds, the largest relative error of
 the eigenvalues found, and the reference eigenvalues missed (with
-multiplicity).
+multiplicity). The default search's time is split over the library's
+routines (:func:`benchmarks.profiling.solve_profile`), so the report can say
+where its time goes: its evaluations are fewer than the grid searches', but
+many are in mpmath, and wall time is reported beside evaluations.
 """
 
 from __future__ import annotations
@@ -14,6 +17,7 @@ import math
 import time
 
 import mpmath
+import sympy
 
 from symtmm.compile import Evaluator
 from symtmm.solve import solve
@@ -21,7 +25,8 @@ from symtmm.solve import solve
 from . import references
 from .baselines import cxroots_search, grid_bisection
 from .compare import match
-from .models import clamped_clamped, example
+from .models import check_ex1_model, clamped_clamped, example
+from .profiling import solve_profile
 
 __all__ = ["run"]
 
@@ -30,6 +35,13 @@ def _first_guess(model) -> float:
     model = model.resolved()
     return min(math.pi ** 2 * math.sqrt(float(b.EI) / float(b.m)) / float(b.L) ** 2
                for b in model.beams)
+
+
+def _mp(value):
+    """A model constant (exact, possibly with pi) at 50 digits: the reference is then
+    limited by its own working precision, not by a double rounding of its inputs."""
+    with mpmath.workdps(50):
+        return mpmath.mpf(str(sympy.N(value, 50)))
 
 
 def _expand(spectrum) -> list:
@@ -60,11 +72,19 @@ def _timed_solve(model, method, **kw):
     return spectrum, time.perf_counter() - start
 
 
+def _default_row(model, reference, **kw) -> dict:
+    """The default search, timed with its time split over the library's routines
+    (:func:`benchmarks.profiling.solve_profile`)."""
+    profile, spectrum = solve_profile(model, **kw)
+    row = _spectrum_row(spectrum, reference, profile["seconds"])
+    row["profile"] = profile
+    return row
+
+
 def _undamped_case(name, model, count, reference, reference_text, digits=15) -> dict:
-    methods = {}
-    for method in ("default", "fmin1d"):
-        spectrum, seconds = _timed_solve(model, method, count=count, digits=digits)
-        methods[method] = _spectrum_row(spectrum, reference, seconds)
+    methods = {"default": _default_row(model, reference, count=count, digits=digits)}
+    spectrum, seconds = _timed_solve(model, "fmin1d", count=count, digits=digits)
+    methods["fmin1d"] = _spectrum_row(spectrum, reference, seconds)
     ev = Evaluator(model)
     # the model's rigid-body modes (lam = 0) are no sign change: report them as the
     # grid search would be told them, from the reference
@@ -77,17 +97,16 @@ def _undamped_case(name, model, count, reference, reference_text, digits=15) -> 
                 methods=methods)
     d, f = methods["default"], methods["fmin1d"]
     case["evaluation_ratio_default_over_fmin1d"] = d["evaluations"] / max(f["evaluations"], 1)
+    case["seconds_ratio_default_over_fmin1d"] = d["seconds"] / max(f["seconds"], 1e-9)
     return case
 
 
 def case_ex1(quick: bool) -> dict:
     """The paper's example 1 (free-free over clamped-clamped, K = 100), first 10."""
     model = example("paper_ex1_ff_cc")
-    ref_spec = solve(model, count=10, digits=40)
-    reference = _expand(ref_spec)
-    text = ("40-digit default solve (no closed form; the two beams have different supports so "
-            "the system does not decouple)")
-    case = _undamped_case("ex1_ff_cc_first10", model, 10, reference, text)
+    check_ex1_model(model)
+    reference = [mpmath.mpc(0, w) for w in references.ex1_omegas(10)]
+    case = _undamped_case("ex1_ff_cc_first10", model, 10, reference, references.EX1_METHOD)
     if not quick:
         # cross-check of the reference by an independent search: the argument principle
         # on rectangles of the complex plane, which does not use the Wittrick-Williams count
@@ -98,11 +117,12 @@ def case_ex1(quick: bool) -> dict:
     return case
 
 
-def case_cc60(quick: bool) -> dict:
-    """High modes: a clamped-clamped beam, modes 1..60 (closed form)."""
+def case_cc(quick: bool) -> dict:
+    """High modes: a clamped-clamped beam, modes 1..60 (1..20 in the quick run; closed form)."""
+    count = 20 if quick else 60
     model = clamped_clamped()
-    reference = [mpmath.mpc(0, w) for w in references.clamped_clamped_omegas(60)]
-    return _undamped_case("clamped_clamped_modes_1_60", model, 60, reference,
+    reference = [mpmath.mpc(0, w) for w in references.clamped_clamped_omegas(count)]
+    return _undamped_case(f"clamped_clamped_modes_1_{count}", model, count, reference,
                           "closed form cos(nu) cosh(nu) = 1 at 40 digits")
 
 
@@ -124,18 +144,17 @@ def case_ex4(quick: bool, cxroots_budget: float, W: float = 1500.0, S: float = 3
     r = model.resolved()
     b = r.beams[0]
     spring = r.springs[0]
-    positions = sorted({float(s.x) for s in r.springs})
+    positions = [_mp(x) for x in sorted({s.x for s in r.springs})]
     reference = references.chain_family_roots(
-        len(r.beams), float(b.EI), float(b.m), float(b.L), positions, float(spring.k),
-        float(spring.c), W, S)
+        len(r.beams), _mp(b.EI), _mp(b.m), _mp(b.L), positions, _mp(spring.k), _mp(spring.c),
+        W, S)
     text = ("decoupled identical-beam families: modal coordinates of the 3-beam chain "
             "(Laplacian eigenvalues 0, 1, 3) give single pinned-pinned beams with grounded "
             "spring/dashpots mu (k + c lam); Green's-function characteristic equation, roots "
             "followed from the undamped ones as c grows, 40 digits")
-    methods = {}
-    for method in ("default", "fmin2d"):
-        spectrum, seconds = _timed_solve(model, method, omega_max=W, sigma_max=S, digits=15)
-        methods[method] = _spectrum_row(spectrum, reference, seconds)
+    methods = {"default": _default_row(model, reference, omega_max=W, sigma_max=S, digits=15)}
+    spectrum, seconds = _timed_solve(model, "fmin2d", omega_max=W, sigma_max=S, digits=15)
+    methods["fmin2d"] = _spectrum_row(spectrum, reference, seconds)
     ev = Evaluator(model)
     # the same rectangle, its edges moved off the undamped modes on Re lam = 0 and off
     # the real axis (cxroots needs no zero on the contour)
@@ -159,23 +178,22 @@ def case_ex4(quick: bool, cxroots_budget: float, W: float = 1500.0, S: float = 3
 
 
 def run(quick: bool = False, progress=print) -> dict:
-    """All root-search cases; ``quick`` skips the slower ones and the cross-checks."""
+    """All root-search cases; ``quick`` takes fewer modes of the clamped-clamped beam, the
+    small damped rectangle instead of the paper's and no cross-checks."""
     cases = []
     progress("root_search: example 1, first 10")
     cases.append(case_ex1(quick))
-    progress("root_search: clamped-clamped beam, modes 1-60")
-    cases.append(case_cc60(quick))
+    progress("root_search: clamped-clamped beam, high modes")
+    cases.append(case_cc(quick))
     if not quick:
         progress("root_search: example 2, 30 roots with multiplicity 3")
         cases.append(case_ex2(quick))
-    progress("root_search: example 4 (damped)")
-    cases.append(case_ex4(quick, cxroots_budget=5.0 if quick else 300.0))
-    if not quick:
-        # a corner of the same plane where double precision still holds (Delta loses
-        # about 6 digits there): what cxroots does when its function is clean
-        progress("root_search: example 4, small rectangle")
-        cases.append(case_ex4(quick, cxroots_budget=120.0, W=200.0, S=300.0,
-                              name="ex4_damped_small_rectangle"))
+        progress("root_search: example 4 (damped)")
+        cases.append(case_ex4(quick, cxroots_budget=300.0))
+    # a corner of the same plane: a smaller task for every method, cxroots included
+    progress("root_search: example 4, small rectangle")
+    cases.append(case_ex4(quick, cxroots_budget=5.0 if quick else 120.0, W=200.0, S=300.0,
+                          name="ex4_damped_small_rectangle"))
     targets = []
     for case in cases:
         if case["kind"] != "undamped":
@@ -184,6 +202,7 @@ def run(quick: bool = False, progress=print) -> dict:
         targets.append(dict(
             case=case["name"],
             ratio=case["evaluation_ratio_default_over_fmin1d"],
+            seconds_ratio=case["seconds_ratio_default_over_fmin1d"],
             max_rel_error=d["max_rel_error"], missed=d["missed"],
             met=bool(case["evaluation_ratio_default_over_fmin1d"] <= 0.1
                      and d["max_rel_error"] is not None and d["max_rel_error"] <= 1e-12

@@ -60,9 +60,16 @@ def _gcc() -> str | None:
 
 
 def _commit() -> str | None:
-    out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+    out = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True,
                          text=True, cwd=ROOT, check=False)
     return out.stdout.strip() or None
+
+
+def _mpmath_backend() -> str:
+    """``'gmpy'`` or ``'python'``: mpmath's integer arithmetic, which sets its speed."""
+    import mpmath.libmp
+
+    return mpmath.libmp.BACKEND
 
 
 def machine() -> dict:
@@ -71,6 +78,7 @@ def machine() -> dict:
                 python=platform.python_version(),
                 packages={m: _version(m) for m in ("symtmm", "numpy", "scipy", "mpmath", "sympy",
                                                    "cxroots")},
+                mpmath_backend=_mpmath_backend(),
                 gcc=_gcc(), commit=_commit(),
                 date=time.strftime("%Y-%m-%d %H:%M:%S %Z"))
 
