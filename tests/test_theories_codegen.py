@@ -79,6 +79,10 @@ kw = 4
 """
 RAYLEIGH_VALUES = {"EI": 1.5, "m": 0.8, "L": 1.2, "rhoI": 0.01, "N": -3.0, "kw": 4.0}
 
+# Euler-Bernoulli under tension: not a plain beam, the general routine with rhoI = 0
+AXIAL = RAYLEIGH.replace('theory = "rayleigh"\nrhoI = 0.01\nN = -3\nkw = 4', "N = 6")
+AXIAL_VALUES = dict(RAYLEIGH_VALUES, rhoI=0.0, N=6.0, kw=0.0)
+
 
 def _beam(name, EI, m, L, x0, left, right, extra=""):
     return (f'[[beam]]\nname = "{name}"\nEI = {EI}\nm = {m}\nL = {L}\nx0 = {x0}\n'
@@ -135,6 +139,7 @@ MODELS = {
     "timoshenko": (TIMOSHENKO, (), {}),
     "timoshenko_symbolic": (TIMOSHENKO, ("N", "kGA"), {"N": "-4", "kGA": "25"}),
     "rayleigh": (RAYLEIGH, (), {}),
+    "axial": (AXIAL, (), {}),
     "fork": (FORK, (), {}),
     "loop": (LOOP, (), {}),
     "timoshenko_fork": (TIMO_FORK, (), {}),
@@ -344,6 +349,13 @@ def test_rayleigh_with_axial_force_and_foundation_vanishes_at_closed_form(lang, 
     _assert_roots(delta, 1j * np.array(_rayleigh_pp(**RAYLEIGH_VALUES)))
 
 
+@pytest.mark.parametrize("lang", _langs())
+def test_euler_bernoulli_under_tension_vanishes_at_closed_form(lang, evaluator):
+    assert "theory" not in AXIAL and "N = 6" in AXIAL
+    delta = evaluator("axial", lang)
+    _assert_roots(delta, 1j * np.array(_rayleigh_pp(**AXIAL_VALUES)))
+
+
 # --- trees, loops and bodies: symmetry decoupling and closed forms -------------------------
 
 
@@ -427,7 +439,7 @@ def _reference(name, full=True):
 
 
 # 40-digit Delta of the multi-beam models costs 0.1-0.2 s a point: few probes by default
-_SINGLE = ("timoshenko", "timoshenko_symbolic", "rayleigh", "tip_body_symbolic")
+_SINGLE = ("timoshenko", "timoshenko_symbolic", "rayleigh", "axial", "tip_body_symbolic")
 
 
 def _check_agreement(lang, name, evaluator, full):
