@@ -8,18 +8,31 @@ than printing one expanded determinant: the closed form (see
 opposite signs and has thousands of operations for multilevel models. The
 generated code instead
 
-1. builds each segment's transfer matrix from the entire functions
-   ``c_j(x) = sum_k x**k / (4k+j)!`` of ``x = -lam**2 m l**4 / EI`` (a
-   16-term series below ``|x| = 1``, closed forms in ``x**(1/4)`` above), with
-   no branch to choose and no 0/0 at ``lam = 0``, for the segment cut into
-   ``n`` equal steps of ``|beta| l / n <= NU_STEP`` (``n`` from ``lam`` at run
-   time);
+1. builds each segment's transfer matrix for the segment cut into ``n`` equal
+   steps of ``|beta| l / n <= NU_STEP`` (``n`` from ``lam`` at run time,
+   ``|beta|`` the bound on the wave numbers of
+   :meth:`~symtmm.elements.theories.BeamSegment.wave_number`):
+
+   * a plain Euler–Bernoulli segment from the entire functions ``c_j(x) =
+     sum_k x**k / (4k+j)!`` of ``x = -lam**2 m l**4 / EI`` (a 16-term series
+     below ``|x| = 1``, closed forms in ``x**(1/4)`` above), with no branch to
+     choose and no 0/0 at ``lam = 0``;
+   * any other segment (axial force ``N``, rotary inertia ``rhoI``, shear
+     stiffness ``kGA``) as :mod:`symtmm.elements.theories` does: the series of
+     ``alpha0, beta0, alpha1, beta1`` in ``(t, d)`` (trace and determinant of
+     ``G = B C``) over a piece short enough that ``max|r| h**2 <= 1``, then the
+     doubling formulas back to the whole step;
+
 2. measures the state of every beam in units of its wave number ``b``:
-   ``[Y, Theta/b, M/(EI b**2), Q/(EI b**3)]``;
-3. propagates the ``2n`` columns of the unknown left-end variables through the
-   cuts (segment steps, then the point-element jumps ``Q += -(k + c lam) ...``),
-   re-orthonormalising them after every step (modified Gram–Schmidt, twice) and
-   adding up the logarithms of the norms (Godunov's method);
+   ``[Y, Theta/b, M/(EI b**2), Q/(EI b**3)]``, and each virtual variable of a
+   rigid body (its deflection, rotation, the forces and couples it exerts, the
+   accumulators of its equations) in the unit of the beam variable it stands
+   for (:attr:`symtmm.assembly.Layout.units`);
+3. propagates the columns of the unknowns (beams' free left-end variables,
+   bodies' unknowns) through the cuts (segment steps, then each station's jump
+   ``z -> (I + G) z`` whose entries are exact polynomials in ``lam``),
+   re-orthonormalising them after every step (modified Gram–Schmidt, twice)
+   and adding up the logarithms of the norms (Godunov's method);
 4. returns ``det E[rows] * exp(sum of the logarithms)``, the determinant by
    Gaussian elimination with partial pivoting.
 
@@ -58,6 +71,17 @@ Examples
 >>> import numpy as np
 >>> bool(abs(namespace["symtmm_delta"](np.array([1j * np.pi**2]))[0]) < 1e-12)
 True
+
+A Rayleigh beam, pinned at both ends: ``omega**2 = EI q**2 / (m + rhoI q)``
+with ``q = (pi/L)**2``:
+
+>>> rayleigh = Beam("r", 1, 1, 1, left="pinned", right="pinned", theory="rayleigh",
+...                 rhoI="1/100")
+>>> namespace = {}
+>>> exec(generate(Model((rayleigh,)), "python"), namespace)
+>>> q = np.pi**2
+>>> bool(abs(namespace["symtmm_delta"](np.array([1j * q / np.sqrt(1 + q / 100)]))[0]) < 1e-12)
+True
 """
 
 from __future__ import annotations
@@ -73,8 +97,8 @@ from . import __version__
 from .assembly import Interval, Layout
 from .characteristic import _check_order, _prepare
 from .compile import NU_STEP
-from .elements import STATE
-from .elements.base import CONJUGATE, LAM
+from .elements import STATE, BeamSegment
+from .elements.base import LAM
 
 __all__ = ["EXTENSIONS", "LANGUAGES", "generate"]
 
@@ -85,6 +109,9 @@ EXTENSIONS = {"c": ".c", "fortran": ".f90", "octave": ".m", "julia": ".jl", "pyt
 
 #: Terms of the series of c_j(x) for |x| < 1 (the last is below 1e-80).
 SERIES_TERMS = 16
+#: Terms of the series of alpha, beta in (t, d) (k < 14, as symtmm.elements.theories:
+#: k/(2k)! < 1e-18 beyond, the error for max|r| h**2 <= 1).
+THEORY_TERMS = 14
 
 # Names in scope in the generated symtmm_delta, per language: its locals, the
 # file's own globals, and what the language gives a meaning there.
@@ -105,7 +132,9 @@ _RESERVED = {
                           "orthonormalise", "det", "abs", "real", "aimag", "cmplx", "sqrt",
                           "exp", "log", "cos", "cosh", "sin", "sinh", "conjg", "sum",
                           "ceiling", "max", "kind", "ieee_value", "ieee_quiet_nan",
-                          "ieee_arithmetic", "iso_c_binding", "c_double", "c_double_complex"},
+                          "ieee_arithmetic", "iso_c_binding", "c_double", "c_double_complex",
+                          "th", "ifact", "invariants", "wave", "segment_gen", "steps_nu",
+                          "units_b"},
     "octave": _COMMON | {"d", "lm", "idx", "Us", "it", "F", "end", "function", "for", "if",
                          "else", "elseif", "while", "return", "switch", "case", "otherwise",
                          "do", "until", "break", "continue", "global", "persistent", "try",
@@ -119,11 +148,12 @@ _RESERVED = {
                         "isa", "true", "false", "break", "continue", "baremodule", "where",
                         "outer", "im", "pi", "abs", "sqrt", "exp", "log", "cos", "sin", "cosh",
                         "sinh", "conj", "zeros", "one", "zero", "size", "ceil", "Int", "max",
-                        "NaN", "Float64", "ComplexF64", "transpose"},
-    "python": _COMMON | {"flat", "Us", "F", "np"} | set(keyword.kwlist),
+                        "NaN", "Float64", "ComplexF64", "transpose", "NTuple"},
+    "python": _COMMON | {"flat", "Us", "F", "np", "n", "out", "sel", "key", "steps", "core"}
+    | set(keyword.kwlist),
 }
-# numbered locals of the generated code (U1, s0, n2, ...)
-_NUMBERED = re.compile(r"^[Usn]\d+$")
+# numbered locals of the generated code (U1, s0, n2, th0, ...)
+_NUMBERED = re.compile(r"^(?:[Usn]|th)\d+$")
 
 
 def _float_literal(value) -> str:
@@ -138,6 +168,8 @@ def _argument_names(params, lang: str) -> list:
     --------
     >>> _argument_names(["I", "K", "x1"], "c"), _argument_names(["E", "K"], "fortran")
     (['p_I', 'K', 'x1'], ['p_E', 'K'])
+    >>> _argument_names(["th0", "wave"], "fortran")
+    ['p_th0', 'p_wave']
     """
     fold = (lambda v: v.lower()) if lang == "fortran" else (lambda v: v)
     taken = {fold(v) for v in _RESERVED[lang]}
@@ -154,22 +186,34 @@ def _argument_names(params, lang: str) -> list:
 
 @dataclass
 class _Plan:
-    """Language-neutral description of the evaluation."""
+    """Language-neutral description of the evaluation.
+
+    Every value is a SymPy expression over the arguments and the CSE
+    temporaries (numbers where it is constant); kinds and indices are Python
+    strings and ints.
+    """
 
     title: str
     source: str
     params: list                 # names of symbolic parameters (extra arguments)
     values: dict                 # parameter name -> exact value (for the header)
-    n: int
+    n: int                       # beams
+    size: int                    # length of the extended state (beams, then bodies)
     rows: list
     columns: list
     args: list = field(default_factory=list)      # argument identifier per parameter
     temps: list = field(default_factory=list)     # (name, expr over arguments and temps)
-    levels: list = field(default_factory=list)    # (EI, mu, L, k): units b = |mu lam2 + k|^(1/4)
-    segments: list = field(default_factory=list)  # (a, l, EI, s); a = m l^4/EI, s = kw/m
+    # per beam: ("eb", EI, mu, L, k) with units b = |mu lam2 + k|^(1/4), or ("gen", th, L)
+    # with b the wave-number bound of theory th
+    levels: list = field(default_factory=list)
+    theories: list = field(default_factory=list)  # (EI, a, b, cN, rhoI, m, kw) of a BeamSegment
+    virtual: list = field(default_factory=list)   # (index, source): a body's unit is D[source]
+    # ("eb", a, l, EI, s) with a = m l^4/EI, s = kw/m; or ("gen", th, l)
+    segments: list = field(default_factory=list)
     guards: list = field(default_factory=list)    # lengths that must not be negative
-    steps: list = field(default_factory=list)     # ("seg", index, level) | ("point", updates)
-    stiff: list = field(default_factory=list)     # (k0, k1, k2): s = k0 + k1 lam + k2 lam**2
+    # ("seg", index, level) | ("point", [(row, [(sign, col, stiff index), ...]), ...])
+    steps: list = field(default_factory=list)
+    stiff: list = field(default_factory=list)     # (k0, k1, ...): s = k0 + k1 lam + ...
 
     @property
     def ncol(self) -> int:
@@ -177,7 +221,29 @@ class _Plan:
 
     @property
     def ns(self) -> int:
-        return 4 * self.n
+        return self.size
+
+    @property
+    def has_eb(self) -> bool:
+        """Whether some segment is a plain Euler–Bernoulli one (the c_j routine)."""
+        return any(seg[0] == "eb" for seg in self.segments)
+
+    @property
+    def has_gen(self) -> bool:
+        """Whether some segment or level needs the general beam routines."""
+        return bool(self.theories)
+
+
+def _theory(seg: BeamSegment) -> tuple:
+    """``(EI, a, b, cN, rhoI, m, kw)``: ``c = cN + rhoI lam**2``, ``mu = m lam**2 + kw``."""
+    a, b, cN, _ = seg.coefficients(sp.Integer(0))
+    return (seg.EI, a, b, cN, seg.rhoI, seg.m, seg.kw)
+
+
+def _poly_coefficients(value) -> tuple:
+    """Exact coefficients of ``lam**0, lam**1, ...`` of a station entry."""
+    poly = sp.Poly(sp.expand(value), LAM)
+    return tuple(sp.sympify(c) for c in reversed(poly.all_coeffs()))
 
 
 def _plan(model, symbolic=()) -> _Plan:
@@ -188,70 +254,70 @@ def _plan(model, symbolic=()) -> _Plan:
     params = sorted(model.free_symbols)
     plan = _Plan(title=model_in.title or "", source=model_in.source or "",
                  params=params, values={k: v for k, v in model_in.parameters.items()},
-                 n=layout.levels, rows=list(layout.rows), columns=list(layout.columns),
-                 args=list(params))
-    raw: list = []          # expressions to go through CSE, by position
+                 n=layout.levels, size=layout.size, rows=list(layout.rows),
+                 columns=list(layout.columns), args=list(params))
+    raw: list = []          # expressions to go through CSE; slot i stands for raw[i]
+    holders: list = []
 
     def slot(expr):
         expr = sp.sympify(expr)
         if expr.is_number:
             return expr
         raw.append(expr)
-        return len(raw) - 1
+        holders.append(sp.Dummy(f"raw{len(raw) - 1}"))
+        return holders[-1]
+
+    theory_index: dict = {}
+
+    def theory(seg) -> int:
+        key = _theory(seg)
+        if key not in theory_index:
+            theory_index[key] = len(plan.theories)
+            plan.theories.append(tuple(slot(v) for v in key))
+        return theory_index[key]
 
     for beam in layout.model.beams:
-        plan.levels.append((slot(beam.EI), slot(beam.m / beam.EI), slot(beam.L),
-                            slot(beam.kw / beam.EI)))
+        if beam.plain:
+            plan.levels.append(("eb", slot(beam.EI), slot(beam.m / beam.EI), slot(beam.L),
+                                slot(beam.kw / beam.EI)))
+        else:
+            plan.levels.append(("gen", theory(beam.segment(beam.L)), slot(beam.L)))
+    units = layout.units
+    for i in range(4 * layout.levels, layout.size):
+        lvl, var = units[i]
+        plan.virtual.append((i, 4 * lvl + STATE.index(var)))
     seg_index: dict = {}
-    stiff_index: dict = {}  # (k, c, M) -> index; a coupling's entries are +-s: one variable
+    stiff_index: dict = {}  # coefficients -> index; a coupling's entries are +-s: one variable
     for step in layout.steps:
         if isinstance(step, Interval):
             for lvl, seg in step.segments:
-                key = seg.key
+                key = (type(seg).__name__,) + tuple(seg.key)
                 if key not in seg_index:
                     seg_index[key] = len(plan.segments)
-                    # a foundation kw: the bare segment at lam**2 + kw/m
-                    plan.segments.append((slot(seg.m * seg.l**4 / seg.EI), slot(seg.l),
-                                          slot(seg.EI), slot(seg.kw / seg.m)))
+                    if isinstance(seg, BeamSegment):
+                        plan.segments.append(("gen", theory(seg), slot(seg.l)))
+                    else:
+                        # a foundation kw: the bare segment at lam**2 + kw/m
+                        plan.segments.append(("eb", slot(seg.m * seg.l**4 / seg.EI),
+                                              slot(seg.l), slot(seg.EI), slot(seg.kw / seg.m)))
                     if not sp.sympify(seg.l).is_number:
-                        plan.guards.append(plan.segments[-1][1])
+                        plan.guards.append(slot(seg.l))
                 plan.steps.append(("seg", seg_index[key], lvl))
             continue
-        updates = []
-        for element, levels in step.elements:
-            S = element.stiffness(LAM)
-            d = len(element.dofs)
-            entry = {}
-            for i in range(d):
-                for k in range(d):
-                    poly = sp.Poly(sp.expand(S[i, k]), LAM)
-                    if poly.degree() > 2:
-                        raise NotImplementedError("stiffness of degree > 2 in lam")
-                    key = tuple(poly.coeff_monomial(LAM**d) for d in range(3))
-                    if all(v == 0 for v in key):
-                        continue
-                    entry[(i, k)] = key
-            for (i, k), key in entry.items():
-                sign = 1
-                neg = tuple(-v for v in key)
-                if neg in stiff_index:
-                    key, sign = neg, -1
-                if key not in stiff_index:
-                    stiff_index[key] = len(plan.stiff)
-                    plan.stiff.append(tuple(slot(v) for v in key))
-                entry[(i, k)] = (sign, stiff_index[key])
-            for i, (li, var_i) in enumerate(element.dofs):
-                force, jump_sign = CONJUGATE[var_i]
-                row = 4 * levels[li] + STATE.index(force)
-                terms = []
-                for k, (lk, var_k) in enumerate(element.dofs):
-                    if (i, k) in entry:
-                        sign, s_idx = entry[(i, k)]
-                        terms.append((jump_sign * sign, 4 * levels[lk] + STATE.index(var_k),
-                                      s_idx))
-                if terms:
-                    updates.append((row, terms))
-        plan.steps.append(("point", updates))
+        updates: dict = {}
+        for row, col, value in step.terms:
+            key = _poly_coefficients(value)
+            if all(v == 0 for v in key):
+                continue
+            sign = 1
+            neg = tuple(-v for v in key)
+            if neg in stiff_index:
+                key, sign = neg, -1
+            if key not in stiff_index:
+                stiff_index[key] = len(plan.stiff)
+                plan.stiff.append(tuple(slot(v) for v in key))
+            updates.setdefault(row, []).append((sign, col, stiff_index[key]))
+        plan.steps.append(("point", list(updates.items())))
     # common subexpressions of the parameter expressions
     lookup: dict = {}
     if raw:
@@ -259,23 +325,34 @@ def _plan(model, symbolic=()) -> _Plan:
         temps, reduced = sp.cse(numeric, symbols=sp.numbered_symbols("symtmm_t"))
         plan.temps = list(temps)
         named: dict = {}
-        for i, e in enumerate(reduced):
+        for holder, e in zip(holders, reduced):
             if e.is_Symbol:          # a parameter or a CSE temporary: use it as it is
-                lookup[i] = e
+                lookup[holder] = e
                 continue
             if e not in named:
                 named[e] = sp.Symbol(f"symtmm_t{len(plan.temps)}")
                 plan.temps.append((named[e], e))
-            lookup[i] = named[e]
+            lookup[holder] = named[e]
+    return _mapped(plan, lambda v: v.xreplace(lookup) if lookup else v)
 
-    def resolve(v):
-        return lookup[v] if isinstance(v, int) else v
 
-    plan.levels = [tuple(resolve(v) for v in lv) for lv in plan.levels]
-    plan.segments = [tuple(resolve(v) for v in seg) for seg in plan.segments]
-    plan.stiff = [tuple(resolve(v) for v in s) for s in plan.stiff]
-    plan.guards = [resolve(v) for v in plan.guards]
-    return plan
+def _mapped(plan: _Plan, fn) -> _Plan:
+    """The plan with ``fn`` applied to every SymPy value (kinds and indices untouched)."""
+
+    def sub(v):
+        if isinstance(v, sp.Basic):
+            return fn(v)
+        if isinstance(v, tuple):
+            return tuple(sub(x) for x in v)
+        return v
+
+    return replace(plan,
+                   temps=[(nm, sub(e)) for nm, e in plan.temps],
+                   levels=[sub(v) for v in plan.levels],
+                   theories=[sub(v) for v in plan.theories],
+                   segments=[sub(v) for v in plan.segments],
+                   stiff=[sub(v) for v in plan.stiff],
+                   guards=[sub(v) for v in plan.guards])
 
 
 def _for_language(plan: _Plan, lang: str) -> _Plan:
@@ -283,16 +360,8 @@ def _for_language(plan: _Plan, lang: str) -> _Plan:
     args = _argument_names(plan.params, lang)
     ren = {sp.Symbol(p, positive=True): sp.Symbol(a, positive=True)
            for p, a in zip(plan.params, args) if p != a}
-
-    def sub(v):
-        return sp.sympify(v).xreplace(ren) if ren else v
-
-    return replace(plan, args=args,
-                   temps=[(nm, sub(e)) for nm, e in plan.temps],
-                   levels=[tuple(sub(v) for v in lv) for lv in plan.levels],
-                   segments=[tuple(sub(v) for v in sg) for sg in plan.segments],
-                   stiff=[tuple(sub(v) for v in st) for st in plan.stiff],
-                   guards=[sub(v) for v in plan.guards])
+    out = _mapped(plan, lambda v: v.xreplace(ren)) if ren else plan
+    return replace(out, args=args)
 
 
 # --------------------------------------------------------------------------------------
@@ -314,20 +383,66 @@ def _jump(terms, s_name, e_name, d_name, mul="*", div="/") -> str:
     return text[2:] if text.startswith("+") else "-" + text[2:]
 
 
-def _stiffness(k0, k1, k2, val, lam="lam", mul="*") -> str:
-    """``k + c lam + M lam**2``, without the terms that are zero (``k`` is always written)."""
-    text = val(k0) if sp.sympify(k0) != 0 or (sp.sympify(k1) == 0 and sp.sympify(k2) == 0) \
-        else ""
-    for coef, power in ((k1, f"{lam}"), (k2, f"{lam} {mul} {lam}")):
-        if sp.sympify(coef) != 0:
-            text += (" + " if text else "") + f"{val(coef)} {mul} {power}"
-    return text
+def _polynomial(coeffs, val, lam="lam", mul="*") -> str:
+    """``k0 + k1 lam + k2 lam lam + ...`` without the terms that are zero.
+
+    Examples
+    --------
+    >>> _polynomial((3, 0, -2), lambda v: str(v))
+    '3 + (-2) * lam * lam'
+    """
+    parts = []
+    for k, coef in enumerate(coeffs):
+        if sp.sympify(coef) == 0:
+            continue
+        text = val(coef)
+        if text.lstrip().startswith("-"):
+            text = f"({text})"          # no operator after an operator (Fortran)
+        parts.append(text if k == 0 else f" {mul} ".join([text] + [lam] * k))
+    return " + ".join(parts) if parts else val(0)
 
 
 def _series_coefficients():
     """``coef[j][k] = 1/(4k+j)!`` as exact-to-double literals."""
     return [[_float_literal(sp.Rational(1, math.factorial(4 * k + j)))
              for k in range(SERIES_TERMS)] for j in range(4)]
+
+
+def _inverse_factorials():
+    """``1/n!`` for ``n = 0 .. 2 THEORY_TERMS - 1`` as exact-to-double literals."""
+    return [_float_literal(sp.Rational(1, math.factorial(n))) for n in range(2 * THEORY_TERMS)]
+
+
+def _theory_assembly() -> list:
+    """``(target, expression)`` of U from ``alpha0, beta0, alpha1, beta1`` (a0, b0, a1, b1).
+
+    Targets ``g..``, ``p..``, ``h..``, ``k..`` are scalars, ``(i, k)`` entries of
+    ``U`` (0-based) in the order ``[Y, Theta, M, Q]``: ``U = [[F0(G), B F1(G')],
+    [C F1(G), F0(G')]]`` with ``G = B C`` on ``(Y, M)``, ``G' = C B`` on ``(Theta,
+    Q)``, ``B = [[a, b], [c, a]]``, ``C = [[0, 1/EI], [-mu, 0]]`` (see
+    :func:`symtmm.elements.theories._assemble`). The expressions read the same
+    in every target language.
+    """
+    return [
+        ("g00", "-b * mu"), ("g01", "a / EI"), ("g10", "-a * mu"), ("g11", "c / EI"),
+        ("p00", "c / EI"), ("p01", "a / EI"), ("p10", "-mu * a"), ("p11", "-mu * b"),
+        ((0, 0), "a0 + b0 * g00"), ((0, 2), "b0 * g01"),
+        ((2, 0), "b0 * g10"), ((2, 2), "a0 + b0 * g11"),
+        ((1, 1), "a0 + b0 * p00"), ((1, 3), "b0 * p01"),
+        ((3, 1), "b0 * p10"), ((3, 3), "a0 + b0 * p11"),
+        ("h00", "a1 + b1 * p00"), ("h01", "b1 * p01"), ("h10", "b1 * p10"),
+        ("h11", "a1 + b1 * p11"),
+        ((0, 1), "a * h00 + b * h10"), ((0, 3), "a * h01 + b * h11"),
+        ((2, 1), "c * h00 + a * h10"), ((2, 3), "c * h01 + a * h11"),
+        ("k00", "a1 + b1 * g00"), ("k01", "b1 * g01"), ("k10", "b1 * g10"),
+        ("k11", "a1 + b1 * g11"),
+        ((1, 0), "k10 / EI"), ((1, 2), "k11 / EI"), ((3, 0), "-mu * k00"), ((3, 2), "-mu * k01"),
+    ]
+
+
+def _theory_scalars() -> list:
+    """Names of the scalar temporaries of :func:`_theory_assembly`."""
+    return [t for t, _ in _theory_assembly() if isinstance(t, str)]
 
 
 def _header_lines(plan: _Plan, lang: str) -> list:
@@ -344,13 +459,22 @@ def _header_lines(plan: _Plan, lang: str) -> list:
             + ".")
         lines.append("The order of the cuts along the beams is the one at the values above; "
                      "values that reverse it give NaN.")
+    nvirt = plan.size - 4 * plan.n
+    lines.append(f"{plan.n} beam(s)" + (f" and {nvirt} virtual variable(s) of rigid bodies"
+                                        if nvirt else "")
+                 + f"; R is {plan.ncol} x {plan.ncol}. lam is the eigenvalue "
+                 "(lam = i*omega undamped).")
+    if plan.has_eb:
+        lines += ["Euler-Bernoulli segments: matrices from c_j(x) = sum_k x^k/(4k+j)!,",
+                  "x = -lam^2 m l^4/EI (series for |x| < 1)."]
+    if plan.theories:
+        lines += ["Other beam theories (axial force N, rotary inertia rhoI, shear kGA): exp(A l)",
+                  "from alpha, beta of cosh and sinh/s in (t, d) = (trace, det) of G = B C,",
+                  "series on a piece with max|r| h^2 <= 1, then doubled (symtmm.elements.theories)."]
     lines += [
-        (f"{plan.n} beam(s); R is {plan.ncol} x {plan.ncol}. lam is the eigenvalue "
-         "(lam = i*omega undamped)."),
-        "Method: segment matrices from c_j(x) = sum_k x^k/(4k+j)!, x = -lam^2 m l^4/EI",
-        f"(series for |x| < 1), applied in steps of |beta| l <= {NU_STEP:g}; states in units of",
-        "each beam's wave number; the unknown left-end columns re-orthonormalised after",
-        "every step (Godunov), Delta = det(E[rows]) * exp(sum of log norms): about 13",
+        f"Segments applied in steps of |beta| l <= {NU_STEP:g}; states in units of each",
+        "beam's wave number; the unknown columns re-orthonormalised after every step",
+        "(Godunov), Delta = det(E[rows]) * exp(sum of log norms): about 13",
         "significant digits at any mode, as symtmm.compile.Evaluator.log_delta.",
     ]
     return lines
@@ -372,14 +496,9 @@ def _logscale_terms(plan: _Plan):
 # C99
 
 
-def _emit_c(plan: _Plan) -> str:
-    ns, nc = plan.ns, plan.ncol
+def _c_eb_helpers() -> list:
     coef = _series_coefficients()
-    p = lambda e: _val(e, sp.ccode)
-    out = ["/*"] + [" * " + ln if ln else " *" for ln in _header_lines(plan, "c")] + [" */", ""]
-    out += ["#include <complex.h>", "#include <math.h>", "", f"#define NS {ns}", f"#define NC {nc}",
-            f"#define NU_STEP {_float_literal(NU_STEP)}",
-            "", f"static const double symtmm_coef[4][{SERIES_TERMS}] = {{"]
+    out = [f"static const double symtmm_coef[4][{SERIES_TERMS}] = {{"]
     for j in range(4):
         out.append("    {" + ", ".join(coef[j]) + "},")
     out += ["};", "",
@@ -403,7 +522,8 @@ def _emit_c(plan: _Plan) -> str:
             "    }",
             "}",
             "",
-            "/* transfer matrix of a beam segment of length l (a = m l^4 / EI); I for l = 0 */",
+            ("/* transfer matrix of an Euler-Bernoulli segment of length l (a = m l^4 / EI); "
+             "I for l = 0 */"),
             "static void symtmm_segment(double complex lam2, double a, double l, double EI,",
             "                           double complex U[4][4])",
             "{",
@@ -424,20 +544,104 @@ def _emit_c(plan: _Plan) -> str:
             ("    U[3][0] = EI * x * c[1] / l3; U[3][1] = EI * x * c[2] / l2; "
              "U[3][2] = x * c[3] / l;   U[3][3] = c[0];"),
             "}",
-            "",
-            "/* steps of |beta| l <= NU_STEP for a segment with x = (beta l)^4 */",
-            "static int symtmm_steps(double complex x)",
+            ""]
+    return out
+
+
+def _c_theory_helpers() -> list:
+    ifact = _inverse_factorials()
+    out = [f"static const double symtmm_ifact[{len(ifact)}] = {{"]
+    for i in range(0, len(ifact), 4):
+        out.append("    " + ", ".join(ifact[i:i + 4]) + ",")
+    out += ["};", "",
+            "/* beam theory th = {EI, a, b, cN, rhoI, m, kw} at lam2: c = cN + rhoI lam2,",
+            "   mu = m lam2 + kw, and t, d the trace and determinant of G = B C */",
+            "static void symtmm_invariants(double complex lam2, const double th[7],",
+            "                              double complex *c, double complex *mu,",
+            "                              double complex *t, double complex *d)",
             "{",
-            "    int n = (int)ceil(pow(cabs(x), 0.25) / NU_STEP);",
+            "    *c = th[3] + th[4] * lam2;",
+            "    *mu = th[5] * lam2 + th[6];",
+            "    *t = *c / th[0] - th[2] * *mu;",
+            "    *d = *mu * (th[1] * th[1] - th[2] * *c) / th[0];",
+            "}",
+            "",
+            "/* a bound on the largest wave number |s| of the theory th at lam2 (1/length) */",
+            "static double symtmm_wave(double complex lam2, const double th[7])",
+            "{",
+            "    double complex c, mu, t, d;",
+            "    symtmm_invariants(lam2, th, &c, &mu, &t, &d);",
+            "    double at = cabs(t);",
+            "    return sqrt(at / 2.0 + sqrt(at * at / 4.0 + cabs(d)));",
+            "}",
+            "",
+            "/* transfer matrix exp(A l) of a segment of the theory th, [Y, Theta, M, Q]:",
+            "   alpha, beta of F0 = cosh(s l), F1 = sinh(s l)/s from their series in (t, d)",
+            "   on a piece h = l/2^j with max|r| h^2 <= 1, then doubled j times */",
+            "static void symtmm_segment_gen(double complex lam2, const double th[7], double l,",
+            "                               double complex U[4][4])",
+            "{",
+            "    const double EI = th[0], a = th[1], b = th[2];",
+            "    double complex c, mu, t, d;",
+            "    symtmm_invariants(lam2, th, &c, &mu, &t, &d);",
+            "    double w = symtmm_wave(lam2, th), h = l;",
+            "    int j = 0;",
+            "    while (w * h > 1.0) {",
+            "        h /= 2.0;",
+            "        j++;",
+            "    }",
+            "    double complex T = t * h * h, DD = d * (h * h) * (h * h);",
+            "    double complex qp = 0.0, q = 1.0, s0a = 0.0, s0b = 0.0, s1a = 0.0, s1b = 0.0;",
+            f"    for (int k = 1; k < {THEORY_TERMS}; k++) {{",
+            "        s0b += q * symtmm_ifact[2 * k];",
+            "        s0a += qp * symtmm_ifact[2 * k];",
+            "        s1b += q * symtmm_ifact[2 * k + 1];",
+            "        s1a += qp * symtmm_ifact[2 * k + 1];",
+            "        double complex qn = T * q - DD * qp;",
+            "        qp = q;",
+            "        q = qn;",
+            "    }",
+            "    double complex a0 = 1.0 - DD * s0a, b0 = h * h * s0b;",
+            "    double complex a1 = h * (1.0 - DD * s1a), b1 = h * h * h * s1b;",
+            "    for (int i = 0; i < j; i++) {   /* F0(2h) = 2 F0^2 - I, F1(2h) = 2 F0 F1 */",
+            "        double complex na0 = 2.0 * (a0 * a0 - d * b0 * b0) - 1.0;",
+            "        double complex nb0 = 2.0 * (2.0 * a0 * b0 + t * b0 * b0);",
+            "        double complex na1 = 2.0 * (a0 * a1 - d * b0 * b1);",
+            "        double complex nb1 = 2.0 * (a0 * b1 + a1 * b0 + t * b0 * b1);",
+            "        a0 = na0;",
+            "        b0 = nb0;",
+            "        a1 = na1;",
+            "        b1 = nb1;",
+            "    }"]
+    for target, expr in _theory_assembly():
+        if isinstance(target, str):
+            out.append(f"    double complex {target} = {expr};")
+        else:
+            out.append(f"    U[{target[0]}][{target[1]}] = {expr};")
+    out += ["}", ""]
+    return out
+
+
+def _emit_c(plan: _Plan) -> str:
+    ns, nc = plan.ns, plan.ncol
+    p = lambda e: _val(e, sp.ccode)
+    out = ["/*"] + [" * " + ln if ln else " *" for ln in _header_lines(plan, "c")] + [" */", ""]
+    out += ["#include <complex.h>", "#include <math.h>", "", f"#define NS {ns}", f"#define NC {nc}",
+            f"#define NU_STEP {_float_literal(NU_STEP)}", ""]
+    if plan.has_eb:
+        out += _c_eb_helpers()
+    if plan.has_gen:
+        out += _c_theory_helpers()
+    out += ["/* steps of |beta| l <= NU_STEP for a segment with nu = |beta| l */",
+            "static int symtmm_steps(double nu)",
+            "{",
+            "    int n = (int)ceil(nu / NU_STEP);",
             "    return n < 1 ? 1 : n;",
             "}",
             "",
-            ("/* units of one beam's state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), b = |mu lam2 + k|^(1/4)"
-            " >= 1/L */"),
-            "static void symtmm_units(double complex lam2, double EI, double mu, double L, double k,",
-            "                         double *D)",
+            "/* units of one beam's state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), b >= 1/L the wave number */",
+            "static void symtmm_units(double b, double EI, double L, double *D)",
             "{",
-            "    double b = pow(cabs(mu * lam2 + k), 0.25);",
             "    if (b < 1.0 / L) b = 1.0 / L;",
             "    D[0] = 1.0; D[1] = 1.0 / b; D[2] = 1.0 / (EI * b * b); D[3] = 1.0 / (EI * b * b * b);",
             "}",
@@ -511,9 +715,21 @@ def _emit_c(plan: _Plan) -> str:
     for g in plan.guards:
         out += [f"    if (!({p(g)} >= 0.0)) {{  /* the cuts out of their order */",
                 "        *delta_re = NAN; *delta_im = NAN;", "        return;", "    }"]
+    for t, th in enumerate(plan.theories):
+        out.append(f"    const double th{t}[7] = {{{', '.join(p(v) for v in th)}}};"
+                   "  /* EI, a, b, cN, rhoI, m, kw */")
     out.append("    double D[NS];")
-    for j, (EI, mu, L, k) in enumerate(plan.levels):
-        out.append(f"    symtmm_units(lam2, {p(EI)}, {p(mu)}, {p(L)}, {p(k)}, D + {4 * j});")
+    for j, lv in enumerate(plan.levels):
+        if lv[0] == "eb":
+            _, EI, mu, L, k = lv
+            out.append(f"    symtmm_units(pow(cabs({p(mu)} * lam2 + {p(k)}), 0.25), {p(EI)}, "
+                       f"{p(L)}, D + {4 * j});")
+        else:
+            _, t, L = lv
+            out.append(f"    symtmm_units(symtmm_wave(lam2, th{t}), th{t}[0], {p(L)}, "
+                       f"D + {4 * j});")
+    for i, src in plan.virtual:
+        out.append(f"    D[{i}] = D[{src}];")
     out += ["    double complex E[NS][NC] = {{0}};"]
     for j, c in enumerate(plan.columns):
         out.append(f"    E[{c}][{j}] = 1.0;")
@@ -521,24 +737,32 @@ def _emit_c(plan: _Plan) -> str:
         f" {'+' if sg > 0 else '-'} log(D[{i}])" for sg, i in _logscale_terms(plan)) + ";")
     nseg = max(len(plan.segments), 1)
     out += [f"    double complex U[{nseg}][4][4];", f"    int nsub[{nseg}];"]
-    for i, (a, l, EI, s) in enumerate(plan.segments):
-        lam2s = _shifted(s, p)
-        out += ["    {",
-                f"        nsub[{i}] = symtmm_steps(-{lam2s} * {p(a)});",
-                f"        double n = nsub[{i}];",
-                (f"        symtmm_segment({lam2s}, {p(a)} / (n * n * n * n), {p(l)} / n, {p(EI)}, "
-                f"U[{i}]);"),
-                "    }"]
+    for i, seg in enumerate(plan.segments):
+        if seg[0] == "eb":
+            _, a, l, EI, s = seg
+            lam2s = _shifted(s, p)
+            out += ["    {",
+                    f"        nsub[{i}] = symtmm_steps(pow(cabs(-{lam2s} * {p(a)}), 0.25));",
+                    f"        double n = nsub[{i}];",
+                    (f"        symtmm_segment({lam2s}, {p(a)} / (n * n * n * n), {p(l)} / n, "
+                     f"{p(EI)}, U[{i}]);"),
+                    "    }"]
+        else:
+            _, t, l = seg
+            out += ["    {",
+                    f"        nsub[{i}] = symtmm_steps(symtmm_wave(lam2, th{t}) * {p(l)});",
+                    f"        symtmm_segment_gen(lam2, th{t}, {p(l)} / nsub[{i}], U[{i}]);",
+                    "    }"]
     if plan.stiff:
         out.append(f"    double complex s[{len(plan.stiff)}];")
-    for i, (k0, k1, k2) in enumerate(plan.stiff):
-        out.append(f"    s[{i}] = {_stiffness(k0, k1, k2, p)};")
+    for i, coeffs in enumerate(plan.stiff):
+        out.append(f"    s[{i}] = {_polynomial(coeffs, p)};")
     for step in plan.steps:
         if step[0] == "seg":
             out += [f"    for (int t = 0; t < nsub[{step[1]}]; t++) {{",
                     f"        symtmm_apply(U[{step[1]}], D, E, {4 * step[2]});",
                     "        logscale += symtmm_orthonormalise(E);", "    }"]
-        else:
+        elif step[1]:
             out.append("    for (int j = 0; j < NC; j++) {")
             for row, terms in step[1]:
                 rhs = _jump(terms, lambda i: f"s[{i}]", lambda c: f"E[{c}][j]",
@@ -582,28 +806,8 @@ def _fortran_wrap(line: str, width: int = 100) -> list:
     return out + [line]
 
 
-def _emit_fortran(plan: _Plan) -> str:
-    ns, nc = plan.ns, plan.ncol
-    coef = _series_coefficients()
-    f = _fortran_expr
-    out = ["! " + ln for ln in _header_lines(plan, "fortran")] + [""]
-    out += ["module symtmm_delta_mod",
-            "  use iso_c_binding, only: c_double, c_double_complex",
-            "  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan",
-            "  implicit none",
-            "  private",
-            "  public :: symtmm_delta",
-            "  integer, parameter :: dp = c_double",
-            f"  integer, parameter :: ns = {ns}, nc = {nc}",
-            f"  real(dp), parameter :: nu_step = {_float_literal(NU_STEP)}_dp",
-            f"  real(dp), parameter :: coef(0:{SERIES_TERMS - 1}, 0:3) = reshape([ &"]
-    flat = [c for j in range(4) for c in coef[j]]
-    for i in range(0, len(flat), 3):
-        chunk = ", ".join(v + "_dp" for v in flat[i:i + 3])
-        out.append("    " + chunk + (", &" if i + 3 < len(flat) else " &"))
-    out += [f"    ], [{SERIES_TERMS}, 4])",
-            "contains",
-            "",
+def _fortran_eb_helpers() -> list:
+    return ["",
             "  ! c_0..c_3 of x: series below |x| = 1, closed forms in x^(1/4) above",
             "  subroutine cfun(x, c)",
             "    complex(dp), intent(in) :: x",
@@ -627,7 +831,8 @@ def _emit_fortran(plan: _Plan) -> str:
             "    end if",
             "  end subroutine cfun",
             "",
-            "  ! transfer matrix of a beam segment of length l (a = m l^4 / EI); I for l = 0",
+            ("  ! transfer matrix of an Euler-Bernoulli segment of length l (a = m l^4 / EI); "
+             "I for l = 0"),
             "  subroutine segment(lam2, a, l, ei, u)",
             "    complex(dp), intent(in) :: lam2",
             "    real(dp), intent(in) :: a, l, ei",
@@ -654,21 +859,138 @@ def _emit_fortran(plan: _Plan) -> str:
             "    u(3, 3) = c(0);           u(3, 4) = l * c(1)",
             "    u(4, 1) = ei * x * c(1) / l3; u(4, 2) = ei * x * c(2) / l2",
             "    u(4, 3) = x * c(3) / l;   u(4, 4) = c(0)",
-            "  end subroutine segment",
-            "",
-            "  ! steps of |beta| l <= nu_step for a segment with x = (beta l)^4",
-            "  integer function steps(x)",
-            "    complex(dp), intent(in) :: x",
-            "    steps = max(1, ceiling(abs(x)**0.25_dp / nu_step))",
+            "  end subroutine segment"]
+
+
+def _fortran_theory_helpers() -> list:
+    scalars = ", ".join(_theory_scalars())
+    out = ["",
+           "  ! beam theory th = [EI, a, b, cN, rhoI, m, kw] at lam2: c = cN + rhoI lam2,",
+           "  ! mu = m lam2 + kw, and t, d the trace and determinant of G = B C",
+           "  subroutine invariants(lam2, th, c, mu, t, d)",
+           "    complex(dp), intent(in) :: lam2",
+           "    real(dp), intent(in) :: th(7)",
+           "    complex(dp), intent(out) :: c, mu, t, d",
+           "    c = th(4) + th(5) * lam2",
+           "    mu = th(6) * lam2 + th(7)",
+           "    t = c / th(1) - th(3) * mu",
+           "    d = mu * (th(2) * th(2) - th(3) * c) / th(1)",
+           "  end subroutine invariants",
+           "",
+           "  ! a bound on the largest wave number |s| of the theory th at lam2 (1/length)",
+           "  real(dp) function wave(lam2, th)",
+           "    complex(dp), intent(in) :: lam2",
+           "    real(dp), intent(in) :: th(7)",
+           "    complex(dp) :: c, mu, t, d",
+           "    call invariants(lam2, th, c, mu, t, d)",
+           "    wave = sqrt(abs(t) / 2.0_dp + sqrt(abs(t)**2 / 4.0_dp + abs(d)))",
+           "  end function wave",
+           "",
+           "  ! transfer matrix exp(A l) of a segment of the theory th, [Y, Theta, M, Q]:",
+           "  ! alpha, beta of F0 = cosh(s l), F1 = sinh(s l)/s from their series in (t, d)",
+           "  ! on a piece h = l/2^j with max|r| h^2 <= 1, then doubled j times",
+           "  subroutine segment_gen(lam2, th, l, u)",
+           "    complex(dp), intent(in) :: lam2",
+           "    real(dp), intent(in) :: th(7), l",
+           "    complex(dp), intent(out) :: u(4, 4)",
+           "    complex(dp) :: c, mu, t, d, ts, ds, qp, q, qn, s0a, s0b, s1a, s1b",
+           "    complex(dp) :: a0, b0, a1, b1, na0, nb0, na1, nb1",
+           f"    complex(dp) :: {scalars}",
+           "    real(dp) :: ei, a, b, w, h",
+           "    integer :: i, j, k",
+           "    ei = th(1)",
+           "    a = th(2)",
+           "    b = th(3)",
+           "    call invariants(lam2, th, c, mu, t, d)",
+           "    w = wave(lam2, th)",
+           "    h = l",
+           "    j = 0",
+           "    do while (w * h > 1.0_dp)",
+           "      h = h / 2.0_dp",
+           "      j = j + 1",
+           "    end do",
+           "    ts = t * h * h",
+           "    ds = d * (h * h) * (h * h)",
+           "    qp = (0.0_dp, 0.0_dp)",
+           "    q = (1.0_dp, 0.0_dp)",
+           "    s0a = qp; s0b = qp; s1a = qp; s1b = qp",
+           f"    do k = 1, {THEORY_TERMS - 1}",
+           "      s0b = s0b + q * ifact(2 * k)",
+           "      s0a = s0a + qp * ifact(2 * k)",
+           "      s1b = s1b + q * ifact(2 * k + 1)",
+           "      s1a = s1a + qp * ifact(2 * k + 1)",
+           "      qn = ts * q - ds * qp",
+           "      qp = q",
+           "      q = qn",
+           "    end do",
+           "    a0 = 1.0_dp - ds * s0a",
+           "    b0 = h * h * s0b",
+           "    a1 = h * (1.0_dp - ds * s1a)",
+           "    b1 = h * h * h * s1b",
+           "    do i = 1, j   ! F0(2h) = 2 F0^2 - I, F1(2h) = 2 F0 F1",
+           "      na0 = 2.0_dp * (a0 * a0 - d * b0 * b0) - 1.0_dp",
+           "      nb0 = 2.0_dp * (2.0_dp * a0 * b0 + t * b0 * b0)",
+           "      na1 = 2.0_dp * (a0 * a1 - d * b0 * b1)",
+           "      nb1 = 2.0_dp * (a0 * b1 + a1 * b0 + t * b0 * b1)",
+           "      a0 = na0",
+           "      b0 = nb0",
+           "      a1 = na1",
+           "      b1 = nb1",
+           "    end do"]
+    for target, expr in _theory_assembly():
+        name = target if isinstance(target, str) else f"u({target[0] + 1}, {target[1] + 1})"
+        out.append(f"    {name} = {expr.replace('EI', 'ei')}")
+    out.append("  end subroutine segment_gen")
+    return out
+
+
+def _emit_fortran(plan: _Plan) -> str:
+    ns, nc = plan.ns, plan.ncol
+    f = _fortran_expr
+    out = ["! " + ln for ln in _header_lines(plan, "fortran")] + [""]
+    out += ["module symtmm_delta_mod",
+            "  use iso_c_binding, only: c_double, c_double_complex",
+            "  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan",
+            "  implicit none",
+            "  private",
+            "  public :: symtmm_delta",
+            "  integer, parameter :: dp = c_double",
+            f"  integer, parameter :: ns = {ns}, nc = {nc}",
+            f"  real(dp), parameter :: nu_step = {_float_literal(NU_STEP)}_dp"]
+    if plan.has_eb:
+        coef = _series_coefficients()
+        out.append(f"  real(dp), parameter :: coef(0:{SERIES_TERMS - 1}, 0:3) = reshape([ &")
+        flat = [c for j in range(4) for c in coef[j]]
+        for i in range(0, len(flat), 3):
+            chunk = ", ".join(v + "_dp" for v in flat[i:i + 3])
+            out.append("    " + chunk + (", &" if i + 3 < len(flat) else " &"))
+        out.append(f"    ], [{SERIES_TERMS}, 4])")
+    if plan.has_gen:
+        ifact = _inverse_factorials()
+        out.append(f"  real(dp), parameter :: ifact(0:{len(ifact) - 1}) = [ &")
+        for i in range(0, len(ifact), 3):
+            chunk = ", ".join(v + "_dp" for v in ifact[i:i + 3])
+            out.append("    " + chunk + (", &" if i + 3 < len(ifact) else " &"))
+        out.append("    ]")
+    out.append("contains")
+    if plan.has_eb:
+        out += _fortran_eb_helpers()
+    if plan.has_gen:
+        out += _fortran_theory_helpers()
+    out += ["",
+            "  ! steps of |beta| l <= nu_step for a segment with nu = |beta| l",
+            "  integer function steps(nu)",
+            "    real(dp), intent(in) :: nu",
+            "    steps = max(1, ceiling(nu / nu_step))",
             "  end function steps",
             "",
-            "  ! units of one beam's state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), b = |mu lam2 + k|^(1/4)",
-            "  subroutine units(lam2, ei, mu, bl, k, dd)",
-            "    complex(dp), intent(in) :: lam2",
-            "    real(dp), intent(in) :: ei, mu, bl, k",
+            ("  ! units of one beam's state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), b >= 1/L the wave "
+             "number"),
+            "  subroutine units(b_in, ei, bl, dd)",
+            "    real(dp), intent(in) :: b_in, ei, bl",
             "    real(dp), intent(out) :: dd(4)",
             "    real(dp) :: b",
-            "    b = max(abs(mu * lam2 + k)**0.25_dp, 1.0_dp / bl)",
+            "    b = max(b_in, 1.0_dp / bl)",
             "    dd = [1.0_dp, 1.0_dp / b, 1.0_dp / (ei * b * b), 1.0_dp / (ei * b * b * b)]",
             "  end subroutine units",
             "",
@@ -729,13 +1051,17 @@ def _emit_fortran(plan: _Plan) -> str:
             "    real(c_double), intent(out) :: delta_re, delta_im",
             "    complex(dp) :: lam, lam2, e(ns, nc), r(nc, nc), dlt, tt(4, nc)",
             f"    complex(dp) :: u(4, 4, {nseg})",
-            "    real(dp) :: dd(ns), logscale, nn",
+            "    real(dp) :: dd(ns), logscale",
             f"    integer :: nsub({nseg}), it, ii, kk"]
+    if plan.has_eb:
+        out.append("    real(dp) :: nn")
+    if plan.theories:
+        out.append(f"    real(dp) :: th(7, {len(plan.theories)})")
     if plan.stiff:
         out.append(f"    complex(dp) :: s({len(plan.stiff)})")
     if plan.temps:
         out.append("    real(dp) :: " + ", ".join(str(nm) for nm, _ in plan.temps))
-    if any(step[0] == "point" for step in plan.steps):
+    if any(step[0] == "point" and step[1] for step in plan.steps):
         out.append("    integer :: jj")
     out += ["    lam = cmplx(lam_re, lam_im, kind=dp)", "    lam2 = lam * lam"]
     for name, expr in plan.temps:
@@ -744,21 +1070,42 @@ def _emit_fortran(plan: _Plan) -> str:
         out += [f"    if (.not. ({f(g)} >= 0.0_dp)) then  ! the cuts out of their order",
                 "      delta_re = ieee_value(delta_re, ieee_quiet_nan)",
                 "      delta_im = delta_re", "      return", "    end if"]
-    for j, (EI, mu, L, k) in enumerate(plan.levels):
-        out.append(f"    call units(lam2, {f(EI)}, {f(mu)}, {f(L)}, {f(k)}, dd({4 * j + 1}:"
-                   f"{4 * j + 4}))")
+    if plan.theories:
+        out.append("    ! beam theories: EI, a, b, cN, rhoI, m, kw")
+    for t, th in enumerate(plan.theories):
+        out.append(f"    th(:, {t + 1}) = [{', '.join(f(v) for v in th)}]")
+    for j, lv in enumerate(plan.levels):
+        blk = f"dd({4 * j + 1}:{4 * j + 4})"
+        if lv[0] == "eb":
+            _, EI, mu, L, k = lv
+            out.append(f"    call units(abs({f(mu)} * lam2 + {f(k)})**0.25_dp, {f(EI)}, {f(L)}, "
+                       f"{blk})")
+        else:
+            _, t, L = lv
+            out.append(f"    call units(wave(lam2, th(:, {t + 1})), th(1, {t + 1}), {f(L)}, "
+                       f"{blk})")
+    for i, src in plan.virtual:
+        out.append(f"    dd({i + 1}) = dd({src + 1})")
     out.append("    e = (0.0_dp, 0.0_dp)")
     for j, c in enumerate(plan.columns):
         out.append(f"    e({c + 1}, {j + 1}) = (1.0_dp, 0.0_dp)")
     out.append("    logscale = 0.0_dp" + "".join(
         f" {'+' if sg > 0 else '-'} log(dd({i + 1}))" for sg, i in _logscale_terms(plan)))
-    for i, (a, l, EI, s) in enumerate(plan.segments):
-        lam2s = _shifted(s, f)
-        out += [f"    nsub({i + 1}) = steps(-{lam2s} * {f(a)})",
-                f"    nn = real(nsub({i + 1}), kind=dp)",
-                f"    call segment({lam2s}, {f(a)} / nn**4, {f(l)} / nn, {f(EI)}, u(:, :, {i + 1}))"]
-    for i, (k0, k1, k2) in enumerate(plan.stiff):
-        out.append(f"    s({i + 1}) = {_stiffness(k0, k1, k2, f)}")
+    for i, seg in enumerate(plan.segments):
+        if seg[0] == "eb":
+            _, a, l, EI, s = seg
+            lam2s = _shifted(s, f)
+            out += [f"    nsub({i + 1}) = steps(abs(-{lam2s} * {f(a)})**0.25_dp)",
+                    f"    nn = real(nsub({i + 1}), kind=dp)",
+                    (f"    call segment({lam2s}, {f(a)} / nn**4, {f(l)} / nn, {f(EI)}, "
+                     f"u(:, :, {i + 1}))")]
+        else:
+            _, t, l = seg
+            out += [f"    nsub({i + 1}) = steps(wave(lam2, th(:, {t + 1})) * {f(l)})",
+                    (f"    call segment_gen(lam2, th(:, {t + 1}), {f(l)} / real(nsub({i + 1}), "
+                     f"kind=dp), u(:, :, {i + 1}))")]
+    for i, coeffs in enumerate(plan.stiff):
+        out.append(f"    s({i + 1}) = {_polynomial(coeffs, f)}")
     for step in plan.steps:
         if step[0] == "seg":
             r0 = 4 * step[2]
@@ -767,13 +1114,13 @@ def _emit_fortran(plan: _Plan) -> str:
                     "        tt(ii, :) = (0.0_dp, 0.0_dp)",
                     "        do kk = 1, 4",
                     (f"          tt(ii, :) = tt(ii, :) + u(ii, kk, {step[1] + 1}) * (dd({r0} + ii) / "
-                    f"dd({r0} + kk)) * e({r0} + kk, :)"),
+                     f"dd({r0} + kk)) * e({r0} + kk, :)"),
                     "        end do",
                     "      end do",
                     f"      e({r0 + 1}:{r0 + 4}, :) = tt",
                     "      logscale = logscale + orthonormalise(e)",
                     "    end do"]
-        else:
+        elif step[1]:
             out.append("    do jj = 1, nc")
             for row, terms in step[1]:
                 rhs = _jump(terms, lambda i: f"s({i + 1})", lambda c: f"e({c + 1}, jj)",
@@ -791,58 +1138,11 @@ def _emit_fortran(plan: _Plan) -> str:
 # Octave / MATLAB
 
 
-def _emit_octave(plan: _Plan) -> str:
+def _octave_eb_helpers() -> list:
     coef = _series_coefficients()
-    p = lambda e: _val(e, sp.octave_code)
-    args = ["lam"] + plan.args
-    out = [f"function d = symtmm_delta({', '.join(args)})"]
-    out += ["% " + ln for ln in _header_lines(plan, "octave")]
-    out += ["% lam may be any array; d has its shape.", "  d = zeros(size(lam));"]
-    for name, expr in plan.temps:
-        out.append(f"  {name} = {sp.octave_code(expr)};")
-    if plan.guards:
-        cond = " || ".join(f"~({p(g)} >= 0)" for g in plan.guards)
-        out += [f"  if {cond}  % the cuts out of their order",
-                "    d(:) = NaN;", "    return", "  end"]
-    out += ["  for idx = 1:numel(lam)",
-            "    lm = lam(idx);",
-            "    lam2 = lm * lm;",
-            f"    D = zeros({plan.ns}, 1);"]
-    for j, (EI, mu, L, k) in enumerate(plan.levels):
-        out.append(f"    D({4 * j + 1}:{4 * j + 4}) = symtmm_units(lam2, {p(EI)}, {p(mu)}, "
-                   f"{p(L)}, {p(k)});")
-    out.append(f"    E = zeros({plan.ns}, {plan.ncol});")
-    for j, c in enumerate(plan.columns):
-        out.append(f"    E({c + 1}, {j + 1}) = 1;")
-    out.append("    logscale = 0" + "".join(
-        f" {'+' if sg > 0 else '-'} log(D({i + 1}))" for sg, i in _logscale_terms(plan)) + ";")
-    for i, (a, l, EI, s) in enumerate(plan.segments):
-        lam2s = _shifted(s, p)
-        out += [(f"    n{i + 1} = max(1, ceil(abs(-{lam2s} * {p(a)})^0.25 / "
-                f"{_float_literal(NU_STEP)}));"),
-                (f"    U{i + 1} = symtmm_segment({lam2s}, {p(a)} / n{i + 1}^4, {p(l)} / n{i + 1}, "
-                f"{p(EI)});")]
-    for i, (k0, k1, k2) in enumerate(plan.stiff):
-        out.append(f"    s{i + 1} = {_stiffness(k0, k1, k2, p, lam='lm')};")
-    for step in plan.steps:
-        if step[0] == "seg":
-            r0 = 4 * step[2]
-            blk = f"{r0 + 1}:{r0 + 4}"
-            out += [f"    Us = U{step[1] + 1} .* (D({blk}) ./ D({blk}).');",
-                    f"    for it = 1:n{step[1] + 1}",
-                    f"      E({blk}, :) = Us * E({blk}, :);",
-                    "      [E, F] = qr(E, 0);",
-                    "      logscale = logscale + sum(log(diag(F)));",
-                    "    end"]
-        else:
-            for row, terms in step[1]:
-                rhs = _jump(terms, lambda i: f"s{i + 1}", lambda c: f"E({c + 1}, :)",
-                            lambda c: f"D({c + 1})")
-                out.append(f"    E({row + 1}, :) = E({row + 1}, :) + D({row + 1}) * ({rhs});")
-    rows = " ".join(str(r + 1) for r in plan.rows)
-    out += [f"    d(idx) = det(E([{rows}], :)) * exp(logscale);", "  end", "end", "",
-            "function U = symtmm_segment(lam2, a, l, EI)",
-            "  % transfer matrix of a beam segment of length l (a = m l^4 / EI); I for l = 0",
+    return ["function U = symtmm_segment(lam2, a, l, EI)",
+            ("  % transfer matrix of an Euler-Bernoulli segment of length l (a = m l^4 / EI); "
+             "I for l = 0"),
             "  if l == 0",
             "    U = eye(4);",
             "    return",
@@ -853,12 +1153,6 @@ def _emit_octave(plan: _Plan) -> str:
             "       x*c(4)/l, c(1), l*c(2)/EI, l^2*c(3)/EI;",
             "       EI*x*c(3)/l^2, EI*x*c(4)/l, c(1), l*c(2);",
             "       EI*x*c(2)/l^3, EI*x*c(3)/l^2, x*c(4)/l, c(1)];",
-            "end",
-            "",
-            "function D = symtmm_units(lam2, EI, mu, L, k)",
-            "  % units of one beam's state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), b = |mu lam2 + k|^(1/4)",
-            "  b = max(abs(mu * lam2 + k)^0.25, 1 / L);",
-            "  D = [1; 1 / b; 1 / (EI * b^2); 1 / (EI * b^3)];",
             "end",
             "",
             "function c = symtmm_cfun(x)",
@@ -882,6 +1176,144 @@ def _emit_octave(plan: _Plan) -> str:
             "  end",
             "end",
             ""]
+
+
+def _octave_theory_helpers() -> list:
+    ifact = _inverse_factorials()
+    out = ["function [c, mu, t, d] = symtmm_invariants(lam2, th)",
+           "  % beam theory th = [EI, a, b, cN, rhoI, m, kw] at lam2: c = cN + rhoI lam2,",
+           "  % mu = m lam2 + kw, and t, d the trace and determinant of G = B C",
+           "  c = th(4) + th(5) * lam2;",
+           "  mu = th(6) * lam2 + th(7);",
+           "  t = c / th(1) - th(3) * mu;",
+           "  d = mu * (th(2) * th(2) - th(3) * c) / th(1);",
+           "end",
+           "",
+           "function w = symtmm_wave(lam2, th)",
+           "  % a bound on the largest wave number |s| of the theory th at lam2 (1/length)",
+           "  [~, ~, t, d] = symtmm_invariants(lam2, th);",
+           "  w = sqrt(abs(t) / 2 + sqrt(abs(t)^2 / 4 + abs(d)));",
+           "end",
+           "",
+           "function U = symtmm_segment_gen(lam2, th, l)",
+           "  % transfer matrix exp(A l) of a segment of the theory th, [Y, Theta, M, Q]:",
+           "  % alpha, beta of F0 = cosh(s l), F1 = sinh(s l)/s from their series in (t, d)",
+           "  % on a piece h = l/2^j with max|r| h^2 <= 1, then doubled j times",
+           "  ifact = [" + ", ".join(ifact) + "];   % 1/n!, n = 0, 1, ...",
+           "  EI = th(1); a = th(2); b = th(3);",
+           "  [c, mu, t, d] = symtmm_invariants(lam2, th);",
+           "  w = symtmm_wave(lam2, th);",
+           "  h = l;",
+           "  nd = 0;",
+           "  while w * h > 1",
+           "    h = h / 2;",
+           "    nd = nd + 1;",
+           "  end",
+           "  T = t * h * h;",
+           "  DD = d * (h * h) * (h * h);",
+           "  qp = 0; q = 1; s0a = 0; s0b = 0; s1a = 0; s1b = 0;",
+           f"  for k = 1:{THEORY_TERMS - 1}",
+           "    s0b = s0b + q * ifact(2 * k + 1);",
+           "    s0a = s0a + qp * ifact(2 * k + 1);",
+           "    s1b = s1b + q * ifact(2 * k + 2);",
+           "    s1a = s1a + qp * ifact(2 * k + 2);",
+           "    qn = T * q - DD * qp;",
+           "    qp = q;",
+           "    q = qn;",
+           "  end",
+           "  a0 = 1 - DD * s0a; b0 = h * h * s0b;",
+           "  a1 = h * (1 - DD * s1a); b1 = h * h * h * s1b;",
+           "  for it = 1:nd   % F0(2h) = 2 F0^2 - I, F1(2h) = 2 F0 F1",
+           "    na0 = 2 * (a0 * a0 - d * b0 * b0) - 1;",
+           "    nb0 = 2 * (2 * a0 * b0 + t * b0 * b0);",
+           "    na1 = 2 * (a0 * a1 - d * b0 * b1);",
+           "    nb1 = 2 * (a0 * b1 + a1 * b0 + t * b0 * b1);",
+           "    a0 = na0; b0 = nb0; a1 = na1; b1 = nb1;",
+           "  end",
+           "  U = zeros(4, 4);"]
+    for target, expr in _theory_assembly():
+        name = target if isinstance(target, str) else f"U({target[0] + 1}, {target[1] + 1})"
+        out.append(f"  {name} = {expr};")
+    out += ["end", ""]
+    return out
+
+
+def _emit_octave(plan: _Plan) -> str:
+    p = lambda e: _val(e, sp.octave_code)
+    args = ["lam"] + plan.args
+    out = [f"function d = symtmm_delta({', '.join(args)})"]
+    out += ["% " + ln for ln in _header_lines(plan, "octave")]
+    out += ["% lam may be any array; d has its shape.", "  d = zeros(size(lam));"]
+    for name, expr in plan.temps:
+        out.append(f"  {name} = {sp.octave_code(expr)};")
+    if plan.guards:
+        cond = " || ".join(f"~({p(g)} >= 0)" for g in plan.guards)
+        out += [f"  if {cond}  % the cuts out of their order",
+                "    d(:) = NaN;", "    return", "  end"]
+    for t, th in enumerate(plan.theories):
+        out.append(f"  th{t + 1} = [{', '.join(p(v) for v in th)}];  % EI, a, b, cN, rhoI, m, kw")
+    out += ["  for idx = 1:numel(lam)",
+            "    lm = lam(idx);",
+            "    lam2 = lm * lm;",
+            f"    D = zeros({plan.ns}, 1);"]
+    for j, lv in enumerate(plan.levels):
+        blk = f"D({4 * j + 1}:{4 * j + 4})"
+        if lv[0] == "eb":
+            _, EI, mu, L, k = lv
+            out.append(f"    {blk} = symtmm_units(abs({p(mu)} * lam2 + {p(k)})^0.25, {p(EI)}, "
+                       f"{p(L)});")
+        else:
+            _, t, L = lv
+            out.append(f"    {blk} = symtmm_units(symtmm_wave(lam2, th{t + 1}), th{t + 1}(1), "
+                       f"{p(L)});")
+    for i, src in plan.virtual:
+        out.append(f"    D({i + 1}) = D({src + 1});")
+    out.append(f"    E = zeros({plan.ns}, {plan.ncol});")
+    for j, c in enumerate(plan.columns):
+        out.append(f"    E({c + 1}, {j + 1}) = 1;")
+    out.append("    logscale = 0" + "".join(
+        f" {'+' if sg > 0 else '-'} log(D({i + 1}))" for sg, i in _logscale_terms(plan)) + ";")
+    step = _float_literal(NU_STEP)
+    for i, seg in enumerate(plan.segments):
+        if seg[0] == "eb":
+            _, a, l, EI, s = seg
+            lam2s = _shifted(s, p)
+            out += [f"    n{i + 1} = max(1, ceil(abs(-{lam2s} * {p(a)})^0.25 / {step}));",
+                    (f"    U{i + 1} = symtmm_segment({lam2s}, {p(a)} / n{i + 1}^4, {p(l)} / "
+                     f"n{i + 1}, {p(EI)});")]
+        else:
+            _, t, l = seg
+            out += [f"    n{i + 1} = max(1, ceil(symtmm_wave(lam2, th{t + 1}) * {p(l)} / {step}));",
+                    f"    U{i + 1} = symtmm_segment_gen(lam2, th{t + 1}, {p(l)} / n{i + 1});"]
+    for i, coeffs in enumerate(plan.stiff):
+        out.append(f"    s{i + 1} = {_polynomial(coeffs, p, lam='lm')};")
+    for st in plan.steps:
+        if st[0] == "seg":
+            r0 = 4 * st[2]
+            blk = f"{r0 + 1}:{r0 + 4}"
+            out += [f"    Us = U{st[1] + 1} .* (D({blk}) ./ D({blk}).');",
+                    f"    for it = 1:n{st[1] + 1}",
+                    f"      E({blk}, :) = Us * E({blk}, :);",
+                    "      [E, F] = qr(E, 0);",
+                    "      logscale = logscale + sum(log(diag(F)));",
+                    "    end"]
+        else:
+            for row, terms in st[1]:
+                rhs = _jump(terms, lambda i: f"s{i + 1}", lambda c: f"E({c + 1}, :)",
+                            lambda c: f"D({c + 1})")
+                out.append(f"    E({row + 1}, :) = E({row + 1}, :) + D({row + 1}) * ({rhs});")
+    rows = " ".join(str(r + 1) for r in plan.rows)
+    out += [f"    d(idx) = det(E([{rows}], :)) * exp(logscale);", "  end", "end", ""]
+    if plan.has_eb:
+        out += _octave_eb_helpers()
+    if plan.has_gen:
+        out += _octave_theory_helpers()
+    out += ["function D = symtmm_units(b, EI, L)",
+            "  % units of one beam's state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), b >= 1/L the wave number",
+            "  b = max(b, 1 / L);",
+            "  D = [1; 1 / b; 1 / (EI * b^2); 1 / (EI * b^3)];",
+            "end",
+            ""]
     return "\n".join(out)
 
 
@@ -889,13 +1321,10 @@ def _emit_octave(plan: _Plan) -> str:
 # Julia
 
 
-def _emit_julia(plan: _Plan) -> str:
+def _julia_eb_helpers() -> list:
     coef = _series_coefficients()
-    p = lambda e: _val(e, sp.julia_code)
-    ns, nc = plan.ns, plan.ncol
-    out = ["# " + ln for ln in _header_lines(plan, "julia")] + [""]
-    out += [f"const SYMTMM_COEF = ({', '.join('(' + ', '.join(r) + ',)' for r in coef)},)",
-            f"const SYMTMM_NU_STEP = {_float_literal(NU_STEP)}", "",
+    return [f"const SYMTMM_COEF = ({', '.join('(' + ', '.join(r) + ',)' for r in coef)},)",
+            "",
             "# c_0..c_3 of x: series below |x| = 1, closed forms in x^(1/4) above",
             "function symtmm_cfun(x::ComplexF64)",
             "    if abs(x) < 1.0",
@@ -914,7 +1343,8 @@ def _emit_julia(plan: _Plan) -> str:
             "    return [(ch + co) / 2, (sh + si) / (2nu), (ch - co) / (2nu^2), (sh - si) / (2nu^3)]",
             "end",
             "",
-            "# transfer matrix of a beam segment of length l (a = m l^4 / EI); I for l = 0",
+            ("# transfer matrix of an Euler-Bernoulli segment of length l (a = m l^4 / EI); "
+             "I for l = 0"),
             "function symtmm_segment(lam2::ComplexF64, a::Float64, l::Float64, EI::Float64)",
             "    if l == 0",
             "        return ComplexF64[i == j ? 1 : 0 for i in 1:4, j in 1:4]",
@@ -926,11 +1356,77 @@ def _emit_julia(plan: _Plan) -> str:
             "                      EI*x*c[3]/l^2 EI*x*c[4]/l c[1] l*c[2];",
             "                      EI*x*c[2]/l^3 EI*x*c[3]/l^2 x*c[4]/l c[1]]",
             "end",
-            "",
-            "# units of one beam's state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), b = |mu lam2 + k|^(1/4)",
-            "function symtmm_units(lam2::ComplexF64, EI::Float64, mu::Float64, L::Float64,",
-            "                      k::Float64)",
-            "    b = max(abs(mu * lam2 + k)^0.25, 1 / L)",
+            ""]
+
+
+def _julia_theory_helpers() -> list:
+    ifact = _inverse_factorials()
+    out = [f"const SYMTMM_IFACT = ({', '.join(ifact)},)   # 1/n!, n = 0, 1, ...",
+           "",
+           "# beam theory th = (EI, a, b, cN, rhoI, m, kw) at lam2: c = cN + rhoI lam2,",
+           "# mu = m lam2 + kw, and t, d the trace and determinant of G = B C",
+           "function symtmm_invariants(lam2::ComplexF64, th::NTuple{7,Float64})",
+           "    c = th[4] + th[5] * lam2",
+           "    mu = th[6] * lam2 + th[7]",
+           "    return c, mu, c / th[1] - th[3] * mu, mu * (th[2] * th[2] - th[3] * c) / th[1]",
+           "end",
+           "",
+           "# a bound on the largest wave number |s| of the theory th at lam2 (1/length)",
+           "function symtmm_wave(lam2::ComplexF64, th::NTuple{7,Float64})",
+           "    _, _, t, d = symtmm_invariants(lam2, th)",
+           "    return sqrt(abs(t) / 2 + sqrt(abs(t)^2 / 4 + abs(d)))",
+           "end",
+           "",
+           "# transfer matrix exp(A l) of a segment of the theory th, [Y, Theta, M, Q]:",
+           "# alpha, beta of F0 = cosh(s l), F1 = sinh(s l)/s from their series in (t, d)",
+           "# on a piece h = l/2^j with max|r| h^2 <= 1, then doubled j times",
+           "function symtmm_segment_gen(lam2::ComplexF64, th::NTuple{7,Float64}, l::Float64)",
+           "    EI, a, b = th[1], th[2], th[3]",
+           "    c, mu, t, d = symtmm_invariants(lam2, th)",
+           "    w = symtmm_wave(lam2, th)",
+           "    h = l",
+           "    nd = 0",
+           "    while w * h > 1",
+           "        h /= 2",
+           "        nd += 1",
+           "    end",
+           "    T = t * h * h",
+           "    DD = d * (h * h) * (h * h)",
+           "    qp, q = zero(ComplexF64), one(ComplexF64)",
+           "    s0a = s0b = s1a = s1b = zero(ComplexF64)",
+           f"    for k in 1:{THEORY_TERMS - 1}",
+           "        s0b += q * SYMTMM_IFACT[2k + 1]",
+           "        s0a += qp * SYMTMM_IFACT[2k + 1]",
+           "        s1b += q * SYMTMM_IFACT[2k + 2]",
+           "        s1a += qp * SYMTMM_IFACT[2k + 2]",
+           "        qp, q = q, T * q - DD * qp",
+           "    end",
+           "    a0, b0 = 1 - DD * s0a, h * h * s0b",
+           "    a1, b1 = h * (1 - DD * s1a), h * h * h * s1b",
+           "    for _ in 1:nd   # F0(2h) = 2 F0^2 - I, F1(2h) = 2 F0 F1",
+           "        a0, b0, a1, b1 = (2 * (a0 * a0 - d * b0 * b0) - 1, 2 * (2 * a0 * b0 + t * b0 * b0),",
+           "                          2 * (a0 * a1 - d * b0 * b1), 2 * (a0 * b1 + a1 * b0 + t * b0 * b1))",
+           "    end",
+           "    U = zeros(ComplexF64, 4, 4)"]
+    for target, expr in _theory_assembly():
+        name = target if isinstance(target, str) else f"U[{target[0] + 1}, {target[1] + 1}]"
+        out.append(f"    {name} = {expr}")
+    out += ["    return U", "end", ""]
+    return out
+
+
+def _emit_julia(plan: _Plan) -> str:
+    p = lambda e: _val(e, sp.julia_code)
+    ns, nc = plan.ns, plan.ncol
+    out = ["# " + ln for ln in _header_lines(plan, "julia")] + [""]
+    out += [f"const SYMTMM_NU_STEP = {_float_literal(NU_STEP)}", ""]
+    if plan.has_eb:
+        out += _julia_eb_helpers()
+    if plan.has_gen:
+        out += _julia_theory_helpers()
+    out += ["# units of one beam's state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), b >= 1/L the wave number",
+            "function symtmm_units(b::Float64, EI::Float64, L::Float64)",
+            "    b = max(b, 1 / L)",
             "    return [1.0, 1 / b, 1 / (EI * b^2), 1 / (EI * b^3)]",
             "end",
             "",
@@ -988,22 +1484,42 @@ def _emit_julia(plan: _Plan) -> str:
         out.append(f"    {name} = {sp.julia_code(expr)}")
     for g in plan.guards:
         out.append(f"    ({p(g)} >= 0) || return ComplexF64(NaN, NaN)  # the cuts out of order")
+    for t, th in enumerate(plan.theories):
+        out.append(f"    th{t + 1} = ({', '.join(f'Float64({p(v)})' for v in th)},)"
+                   "  # EI, a, b, cN, rhoI, m, kw")
     out.append(f"    D = zeros(Float64, {ns})")
-    for j, (EI, mu, L, k) in enumerate(plan.levels):
-        out.append(f"    D[{4 * j + 1}:{4 * j + 4}] = symtmm_units(lam2, Float64({p(EI)}), "
-                   f"Float64({p(mu)}), Float64({p(L)}), Float64({p(k)}))")
+    for j, lv in enumerate(plan.levels):
+        blk = f"D[{4 * j + 1}:{4 * j + 4}]"
+        if lv[0] == "eb":
+            _, EI, mu, L, k = lv
+            out.append(f"    {blk} = symtmm_units(abs({p(mu)} * lam2 + {p(k)})^0.25, "
+                       f"Float64({p(EI)}), Float64({p(L)}))")
+        else:
+            _, t, L = lv
+            out.append(f"    {blk} = symtmm_units(symtmm_wave(lam2, th{t + 1}), th{t + 1}[1], "
+                       f"Float64({p(L)}))")
+    for i, src in plan.virtual:
+        out.append(f"    D[{i + 1}] = D[{src + 1}]")
     out.append(f"    E = zeros(ComplexF64, {ns}, {nc})")
     for j, c in enumerate(plan.columns):
         out.append(f"    E[{c + 1}, {j + 1}] = 1")
     out.append("    logscale = 0.0" + "".join(
         f" {'+' if sg > 0 else '-'} log(D[{i + 1}])" for sg, i in _logscale_terms(plan)))
-    for i, (a, l, EI, s) in enumerate(plan.segments):
-        lam2s = _shifted(s, p)
-        out += [f"    n{i + 1} = max(1, ceil(Int, abs(-{lam2s} * {p(a)})^0.25 / SYMTMM_NU_STEP))",
-                (f"    U{i + 1} = symtmm_segment({lam2s}, Float64({p(a)}) / n{i + 1}^4, "
-                f"Float64({p(l)}) / n{i + 1}, Float64({p(EI)}))")]
-    for i, (k0, k1, k2) in enumerate(plan.stiff):
-        out.append(f"    s{i + 1} = {_stiffness(k0, k1, k2, p)}")
+    for i, seg in enumerate(plan.segments):
+        if seg[0] == "eb":
+            _, a, l, EI, s = seg
+            lam2s = _shifted(s, p)
+            out += [f"    n{i + 1} = max(1, ceil(Int, abs(-{lam2s} * {p(a)})^0.25 / SYMTMM_NU_STEP))",
+                    (f"    U{i + 1} = symtmm_segment({lam2s}, Float64({p(a)}) / n{i + 1}^4, "
+                     f"Float64({p(l)}) / n{i + 1}, Float64({p(EI)}))")]
+        else:
+            _, t, l = seg
+            out += [(f"    n{i + 1} = max(1, ceil(Int, symtmm_wave(lam2, th{t + 1}) * {p(l)} / "
+                     "SYMTMM_NU_STEP))"),
+                    (f"    U{i + 1} = symtmm_segment_gen(lam2, th{t + 1}, Float64({p(l)}) / "
+                     f"n{i + 1})")]
+    for i, coeffs in enumerate(plan.stiff):
+        out.append(f"    s{i + 1} = {_polynomial(coeffs, p)}")
     for step in plan.steps:
         if step[0] == "seg":
             r0 = 4 * step[2]
@@ -1028,13 +1544,9 @@ def _emit_julia(plan: _Plan) -> str:
 # Python (numpy only)
 
 
-def _emit_python(plan: _Plan) -> str:
+def _python_eb_helpers() -> list:
     coef = _series_coefficients()
-    pyc = lambda x: sp.pycode(x).replace("math.", "np.")
-    p = lambda e: _val(e, pyc)
-    out = ['"""'] + _header_lines(plan, "python") + ['"""', "", "import numpy as np", "",
-                                                       f"_NU_STEP = {_float_literal(NU_STEP)}",
-                                                       "_COEF = ("]
+    out = ["_COEF = ("]
     for row in coef:
         out.append("    (" + ", ".join(row) + "),")
     out += [")", "", "",
@@ -1061,7 +1573,8 @@ def _emit_python(plan: _Plan) -> str:
             "",
             "",
             "def _segment(lam2, a, l, EI):",
-            '    """Transfer matrices of a beam segment, shape (N, 4, 4); a = m l^4 / EI."""',
+            ('    """Transfer matrices of an Euler-Bernoulli segment, shape (N, 4, 4); '
+             'a = m l^4 / EI."""'),
             "    if l == 0:",
             "        return np.broadcast_to(np.eye(4, dtype=complex), lam2.shape + (4, 4))",
             "    x = -lam2 * a",
@@ -1072,17 +1585,87 @@ def _emit_python(plan: _Plan) -> str:
             "            [EI * x * c1 / l**3, EI * x * c2 / l**2, x * c3 / l, c0]]",
             "    return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)",
             "",
+            ""]
+    return out
+
+
+def _python_theory_helpers() -> list:
+    ifact = _inverse_factorials()
+    out = ["_IFACT = ("]
+    for i in range(0, len(ifact), 4):
+        out.append("    " + ", ".join(ifact[i:i + 4]) + ",")
+    out += [")   # 1/n!, n = 0, 1, ...", "", "",
+            "def _invariants(lam2, th):",
+            '    """c, mu, t, d of a beam theory th = (EI, a, b, cN, rhoI, m, kw) at lam2."""',
+            "    EI, a, b, cN, rhoI, m, kw = th",
+            "    c = cN + rhoI * lam2",
+            "    mu = m * lam2 + kw",
+            "    return c, mu, c / EI - b * mu, mu * (a * a - b * c) / EI",
             "",
-            "def _units(lam2, EI, mu, L, k):",
-            '    """Units of one beam\'s state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), shape (N, 4)."""',
-            "    b = np.maximum(np.abs(mu * lam2 + k) ** 0.25, 1 / L)",
+            "",
+            "def _wave(lam2, th):",
+            '    """A bound on the largest wave number |s| of the theory th at lam2 (1/length)."""',
+            "    _, _, t, d = _invariants(lam2, th)",
+            "    return np.sqrt(np.abs(t) / 2 + np.sqrt(np.abs(t) ** 2 / 4 + np.abs(d)))",
+            "",
+            "",
+            "def _segment_gen(lam2, th, l):",
+            '    """exp(A l) of a segment of the theory th, shape (N, 4, 4), [Y, Theta, M, Q].',
+            "",
+            "    alpha, beta of F0 = cosh(s l), F1 = sinh(s l)/s from their series in (t, d)",
+            "    on a piece h = l/2^j with max|r| h^2 <= 1 (over the batch), then doubled.",
+            '    """',
+            "    EI, a, b = th[:3]",
+            "    c, mu, t, d = _invariants(lam2, th)",
+            "    w = float(np.max(_wave(lam2, th), initial=0.0))",
+            "    h, nd = l, 0",
+            "    while w * h > 1.0:",
+            "        h /= 2",
+            "        nd += 1",
+            "    T, DD = t * h * h, d * (h * h) * (h * h)",
+            "    qp, q = np.zeros_like(lam2), np.ones_like(lam2)",
+            "    s0a, s0b, s1a, s1b = (np.zeros_like(lam2) for _ in range(4))",
+            f"    for k in range(1, {THEORY_TERMS}):",
+            "        s0b = s0b + q * _IFACT[2 * k]",
+            "        s0a = s0a + qp * _IFACT[2 * k]",
+            "        s1b = s1b + q * _IFACT[2 * k + 1]",
+            "        s1a = s1a + qp * _IFACT[2 * k + 1]",
+            "        qp, q = q, T * q - DD * qp",
+            "    a0, b0 = 1 - DD * s0a, h * h * s0b",
+            "    a1, b1 = h * (1 - DD * s1a), h * h * h * s1b",
+            "    for _ in range(nd):   # F0(2h) = 2 F0^2 - I, F1(2h) = 2 F0 F1",
+            "        a0, b0, a1, b1 = (2 * (a0 * a0 - d * b0 * b0) - 1, 2 * (2 * a0 * b0 + t * b0 * b0),",
+            "                          2 * (a0 * a1 - d * b0 * b1), 2 * (a0 * b1 + a1 * b0 + t * b0 * b1))",
+            "    U = np.empty(lam2.shape + (4, 4), dtype=complex)"]
+    for target, expr in _theory_assembly():
+        name = target if isinstance(target, str) else f"U[..., {target[0]}, {target[1]}]"
+        out.append(f"    {name} = {expr}")
+    out += ["    return U", "", ""]
+    return out
+
+
+def _emit_python(plan: _Plan) -> str:
+    pyc = lambda x: sp.pycode(x).replace("math.", "np.")
+    p = lambda e: _val(e, pyc)
+    out = ['"""'] + _header_lines(plan, "python") + ['"""', "", "import numpy as np", "",
+                                                       f"_NU_STEP = {_float_literal(NU_STEP)}"]
+    if plan.has_eb:
+        out += _python_eb_helpers()
+    if plan.has_gen:
+        out += _python_theory_helpers()
+    out += ["",
+            "def _units(b, EI, L):",
+            ('    """Units of one beam\'s state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), b >= 1/L, '
+             'shape (N, 4)."""'),
+            "    b = np.maximum(b, 1 / L)",
             ("    return np.stack([np.ones_like(b), 1 / b, 1 / (EI * b**2), 1 / (EI * b**3)], "
-            "axis=-1)"),
+             "axis=-1)"),
             "",
             "",
-            "def _steps(x):",
-            '    """Steps of |beta| l <= _NU_STEP for the largest x = (beta l)^4 of the batch."""',
-            "    return max(1, int(np.ceil(np.max(np.abs(x), initial=0.0) ** 0.25 / _NU_STEP)))",
+            "def _steps(nu):",
+            '    """Per point, the steps of |beta| l <= _NU_STEP for a segment with nu = |beta| l."""',
+            "    n = np.ceil(np.where(np.isfinite(nu), nu, 0.0) / _NU_STEP)",
+            "    return np.maximum(n, 1).astype(int)",
             "",
             ""]
     args = ["lam"] + plan.args
@@ -1097,39 +1680,68 @@ def _emit_python(plan: _Plan) -> str:
         cond = " or ".join(f"not ({p(g)} >= 0)" for g in plan.guards)
         out += [f"    if {cond}:  # the cuts out of their order",
                 "        return np.full(lam.shape, np.nan + 1j * np.nan)"]
-    out.append(f"    D = np.empty((flat.size, {plan.ns}))")
-    for j, (EI, mu, L, k) in enumerate(plan.levels):
-        out.append(f"    D[:, {4 * j}:{4 * j + 4}] = _units(lam2, {p(EI)}, {p(mu)}, {p(L)}, "
-                   f"{p(k)})")
-    out.append(f"    E = np.zeros((flat.size, {plan.ns}, {plan.ncol}), dtype=complex)")
+    for t, th in enumerate(plan.theories):
+        out.append(f"    th{t} = ({', '.join(p(v) for v in th)})  # EI, a, b, cN, rhoI, m, kw")
+    out += ["",
+            "    def core(flat, lam2, steps):",
+            '        """Delta at points whose segments all take the same numbers of steps."""']
+    body = [f"D = np.empty((flat.size, {plan.ns}))"]
+    for j, lv in enumerate(plan.levels):
+        blk = f"D[:, {4 * j}:{4 * j + 4}]"
+        if lv[0] == "eb":
+            _, EI, mu, L, k = lv
+            body.append(f"{blk} = _units(np.abs({p(mu)} * lam2 + {p(k)}) ** 0.25, {p(EI)}, "
+                        f"{p(L)})")
+        else:
+            _, t, L = lv
+            body.append(f"{blk} = _units(_wave(lam2, th{t}), th{t}[0], {p(L)})")
+    for i, src in plan.virtual:
+        body.append(f"D[:, {i}] = D[:, {src}]")
+    body.append(f"E = np.zeros((flat.size, {plan.ns}, {plan.ncol}), dtype=complex)")
     for j, c in enumerate(plan.columns):
-        out.append(f"    E[:, {c}, {j}] = 1.0")
-    out.append("    logscale = np.zeros(flat.size, dtype=complex)" + "".join(
+        body.append(f"E[:, {c}, {j}] = 1.0")
+    body.append("logscale = np.zeros(flat.size, dtype=complex)" + "".join(
         f" {'+' if sg > 0 else '-'} np.log(D[:, {i}])" for sg, i in _logscale_terms(plan)))
-    for i, (a, l, EI, s) in enumerate(plan.segments):
-        lam2s = _shifted(s, p)
-        out += [f"    n{i} = _steps(-{lam2s} * {p(a)})",
-                f"    U{i} = _segment({lam2s}, {p(a)} / n{i}**4, {p(l)} / n{i}, {p(EI)})"]
-    for i, (k0, k1, k2) in enumerate(plan.stiff):
-        out.append(f"    s{i} = np.broadcast_to({_stiffness(k0, k1, k2, p, lam='flat')}, "
-                   "flat.shape)[:, None]")
+    nus = []
+    for i, seg in enumerate(plan.segments):
+        body.append(f"n{i} = int(steps[{i}])")
+        if seg[0] == "eb":
+            _, a, l, EI, s = seg
+            lam2s = _shifted(s, p)
+            nus.append(f"np.abs(-{lam2s} * {p(a)}) ** 0.25")
+            body.append(f"U{i} = _segment({lam2s}, {p(a)} / n{i}**4, {p(l)} / n{i}, {p(EI)})")
+        else:
+            _, t, l = seg
+            nus.append(f"_wave(lam2, th{t}) * {p(l)}")
+            body.append(f"U{i} = _segment_gen(lam2, th{t}, {p(l)} / n{i})")
+    for i, coeffs in enumerate(plan.stiff):
+        body.append(f"s{i} = np.broadcast_to({_polynomial(coeffs, p, lam='flat')}, "
+                    "flat.shape)[:, None]")
     for step in plan.steps:
         if step[0] == "seg":
             r0 = 4 * step[2]
             blk = f"{r0}:{r0 + 4}"
-            out += [f"    Us = U{step[1]} * (D[:, {blk}, None] / D[:, None, {blk}])",
-                    f"    for _ in range(n{step[1]}):",
-                    f"        E[:, {blk}, :] = Us @ E[:, {blk}, :]",
-                    "        E, F = np.linalg.qr(E)",
-                    ("        logscale += np.sum(np.log(np.diagonal(F, axis1=-2, axis2=-1)), "
-                    "axis=-1)")]
+            body += [f"Us = U{step[1]} * (D[:, {blk}, None] / D[:, None, {blk}])",
+                     f"for _ in range(n{step[1]}):",
+                     f"    E[:, {blk}, :] = Us @ E[:, {blk}, :]",
+                     "    E, F = np.linalg.qr(E)",
+                     "    logscale += np.sum(np.log(np.diagonal(F, axis1=-2, axis2=-1)), axis=-1)"]
         else:
             for row, terms in step[1]:
                 rhs = _jump(terms, lambda i: f"s{i}", lambda c: f"E[:, {c}, :]",
                             lambda c: f"D[:, {c}, None]")
-                out.append(f"    E[:, {row}, :] += D[:, {row}, None] * ({rhs})")
-    out += [f"    R = E[:, {plan.rows}, :]",
-            "    return (np.linalg.det(R) * np.exp(logscale)).reshape(lam.shape)", ""]
+                body.append(f"E[:, {row}, :] += D[:, {row}, None] * ({rhs})")
+    body += [f"R = E[:, {plan.rows}, :]", "return np.linalg.det(R) * np.exp(logscale)"]
+    out += ["        " + ln for ln in body]
+    out += ["",
+            "    # a batch shares its numbers of steps: points that need the same are taken",
+            "    # together (a point given the steps of a far higher mode loses digits)",
+            f"    steps = np.stack([{', '.join(f'_steps({nu})' for nu in nus)}], axis=-1)",
+            "    out = np.empty(flat.shape, dtype=complex)",
+            "    for key in np.unique(steps, axis=0):",
+            "        sel = np.all(steps == key, axis=1)",
+            "        out[sel] = core(flat[sel], lam2[sel], key)",
+            "    return out.reshape(lam.shape)", ""]
     return "\n".join(out)
 
 
@@ -1143,6 +1755,8 @@ def generate(model, lang: str, symbolic=()) -> str:
     Parameters
     ----------
     model : Model
+        Any beam theory (Euler–Bernoulli, Rayleigh, Timoshenko; axial force,
+        Winkler foundation), point elements and rigid bodies or joints.
         Parameters without value (and those named in ``symbolic``) become
         extra arguments after ``lam``, in alphabetical order.
     lang : {"c", "fortran", "octave", "julia", "python"}

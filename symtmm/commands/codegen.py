@@ -4,6 +4,11 @@ The generated function is called symtmm_delta; parameters left symbolic
 (no value in the file, or named with --symbolic) become extra arguments after
 lam, in alphabetical order. See docs/derive_codegen.md for the signatures.
 An Octave/MATLAB file must be called symtmm_delta.m to be found.
+
+Every model solve accepts is accepted: beams of any theory (Euler-Bernoulli,
+Rayleigh, Timoshenko; axial force, Winkler foundation), springs, dashpots and
+masses, rigid bodies and joints (chains, trees, closed loops). Any numeric
+field may be kept symbolic, e.g. --symbolic kGA,N.
 """
 
 from __future__ import annotations
