@@ -631,24 +631,24 @@ ends = ["b1.right", "b2.right", "tail.left"]
 """
 
 
-def fork_families(count=3):
+def fork_families(count=3, dps=40):
     """``(omega, family, beta, length)``: in-phase = clamped-free (1, 1, 7/4), opposite =
     each branch clamped-free (1/2, 1/2, 3/4)."""
     out = []
-    with mpmath.workdps(40):
-        for beta in cantilever_betas(count):
+    with mpmath.workdps(dps):
+        for beta in cantilever_betas(count, dps):
             out.append(((beta / mpmath.mpf("1.75")) ** 2, "in-phase", beta, 1.75))
             out.append(((beta / mpmath.mpf("0.75")) ** 2, "opposite", beta, 0.75))
     return sorted(out, key=lambda t: t[0])
 
 
-def loop_families(count=3):
+def loop_families(count=3, dps=40):
     """In-phase = clamped-pinned (1, 1, 3); opposite = each branch clamped-clamped (1/2, 1/2, 1)."""
     out = []
-    with mpmath.workdps(40):
-        for beta in clamped_pinned_betas(count + 2):
+    with mpmath.workdps(dps):
+        for beta in clamped_pinned_betas(count + 2, dps):
             out.append(((beta / 3) ** 2, "in-phase", beta, 3.0))
-        for beta in clamped_clamped_betas(count):
+        for beta in clamped_clamped_betas(count, dps):
             out.append((beta**2, "opposite", beta, 1.0))
     return sorted(out, key=lambda t: t[0])
 
