@@ -468,9 +468,13 @@ def _inside(lam2, seg, consts, Z0, xs, inside, lvl, recorded):
         ts = np.array([t for _i, t in items])
         U = np.empty((len(ts), 4, 4), dtype=complex)
         U[:] = np.eye(4)
-        for q, t in enumerate(ts):
-            if t > 0:
-                U[q] = seg.evaluate_numpy(lam2_c, consts_f, l=float(t))
+        nonzero = ts > 0
+        if isinstance(seg, EulerBernoulliSegment) and nonzero.any():
+            # the c_j take an array of lengths at once
+            U[nonzero] = seg.evaluate_numpy(lam2_c, consts_f, l=ts[nonzero])
+        else:
+            for q in np.flatnonzero(nonzero):
+                U[q] = seg.evaluate_numpy(lam2_c, consts_f, l=float(ts[q]))
         states = U @ Zc
         for (i, _t), z in zip(items, states):
             recorded[(lvl, i)] = z
