@@ -1,38 +1,49 @@
 """Mode shapes: the state ``[Y, Theta, M, Q]`` along every beam at an eigenvalue.
 
 At an eigenvalue ``lam`` the boundary matrix ``R(lam)`` is singular; a null
-vector gives the unknown left-end state variables of every beam, and the
-transfer matrices carry that state along the beams (paper eq. 3). The steps:
+vector gives the unknowns of the overall transfer equation (the beams'
+left-end state variables, and each rigid body's deflection, rotation and the
+forces it exerts), and the transfer matrices carry that extended state along
+the beams (paper eq. 3). The steps:
 
-1. **Precision.** The entries of ``R`` grow like ``exp(|beta| L)``, so the
-   work is done in mpmath at ``digits + loss + 15`` decimal digits, ``loss``
-   being :meth:`~symtmm.compile.Evaluator.digits_lost` at the eigenvalue.
-2. **Null space.** The singular value decomposition of ``R(lam)`` at that
-   precision; an eigenvalue of multiplicity ``m`` contributes the right
-   singular vectors of its ``m`` smallest singular values. The least-squares
-   character of the SVD keeps the growing exponential out of the vector, so
-   the shape is as accurate as the eigenvalue, even near the far end.
-3. **Propagation.** Segment transfer matrices
-   (:meth:`~symtmm.elements.EulerBernoulliSegment.evaluate_mp` with the
-   segment length replaced by the distance to each sample point) and the
-   jumps of the point elements at every station, in the order of
-   :class:`~symtmm.assembly.Layout`.
-4. **Normalisation.** Undamped shapes are real and mass-normalised,
-   ``sum over beams of the integral of m Y**2 dx = 1``; the integral over a
-   segment has the closed form ``[F]/(4 kappa)`` with ``kappa = beta**4`` and
-   ``F = x (kappa Y**2 - 2 Y' Y''' + Y''**2) + 3 Y Y''' - Y' Y''`` (which
-   follows from ``Y'''' = kappa Y``), and Gauss--Legendre quadrature where
-   ``kappa l**4`` is small. Lumped masses add their kinetic energy
-   ``M Y**2 + J Theta**2`` (the element's mass matrix), which keeps the shapes
-   of distinct frequencies orthogonal. The ``m`` shapes of a multiple eigenvalue are
-   made mass-orthonormal (Cholesky factor of their mass Gram matrix). Each
-   shape's largest displacement is made positive. Damped shapes are complex
-   and scaled so that the largest ``|Y|`` over all beams is ``1`` (real).
+1. **Precision.** The entries of ``R`` grow like ``exp(|s| L)`` (``s`` the
+   largest wave number), so the work is done in mpmath at
+   ``digits + loss + 15`` decimal digits, ``loss`` being
+   :meth:`~symtmm.compile.Evaluator.digits_lost` at the eigenvalue.
+2. **Null space.** At that precision, the space of the right singular
+   vectors of the ``m`` smallest singular values of ``R(lam)`` (``m`` the
+   multiplicity), by block inverse iteration on an LU factorisation
+   (:func:`_null_space`). Backward stable, it keeps the growing exponential
+   out of the vector, so the shape is as accurate as the eigenvalue, even
+   near the far end.
+3. **Propagation.** The layout (:class:`~symtmm.assembly.Layout`) is walked
+   on the extended state: every segment (any beam theory) by its transfer
+   matrix (``evaluate_mp``, with ``l=`` the distance to a sample point), every
+   station by its exact jump entries ``z -> (I + G) z`` (springs, masses,
+   rigid bodies and joints).
+4. **Normalisation.** Undamped shapes are real and mass-normalised in the
+   full kinetic energy: over the beams the integral of
+   ``m Y**2 + rhoI Theta**2`` (``Theta`` the section's rotation: rotary
+   inertia of Rayleigh and Timoshenko beams), plus ``M Y**2 + J Theta**2`` of
+   every lumped mass and ``M Y_c**2 + J Theta_c**2`` of every rigid body (its
+   unknowns in the null vector), which keeps the shapes of distinct
+   frequencies orthogonal. An Euler–Bernoulli segment's integral has the
+   closed form ``[F]/(4 kappa)``, ``kappa = beta**4``,
+   ``F = x (kappa Y**2 - 2 Y' Y''' + Y''**2) + 3 Y Y''' - Y' Y''`` (from
+   ``Y'''' = kappa Y``); every other segment (and an Euler–Bernoulli one where
+   ``kappa l**4`` is small) is integrated by Gauss--Legendre quadrature on
+   pieces with ``|s| h <= 1``, with as many nodes as the digits asked for need
+   (:func:`gauss_legendre_nodes`). The ``m`` shapes of a multiple eigenvalue
+   are made mass-orthonormal (Cholesky factor of their mass Gram matrix).
+   Each shape's largest displacement is made positive. Damped shapes are
+   complex and scaled so that the largest ``|Y|`` over all beams is ``1``
+   (real).
 
-Sample points and the two sides of a station: at a spring the shear force
-jumps. The state reported at a beam's left end is the one before the jumps
-there and at its right end the one after them (the states the boundary
-conditions constrain); at interior points sitting on a station the state just
+Sample points and the two sides of a station: at a spring (or a body's
+attachment) the shear force jumps. The state reported at a beam's left end
+is the one before the jumps there and at its right end the one after them
+(the states the boundary conditions constrain: a beam end held by a body is
+"free" outside it); at interior points sitting on a station the state just
 right of it (after the jumps). :func:`evaluate_mode` gives either side.
 """
 
@@ -41,6 +52,7 @@ from __future__ import annotations
 import functools
 import json
 import math
+import random
 import time
 from dataclasses import dataclass, field
 
@@ -49,9 +61,8 @@ import numpy as np
 import sympy as sp
 
 from .assembly import Interval, Layout
-from .compile import Evaluator
+from .compile import Evaluator, _Jumps
 from .elements import STATE, EulerBernoulliSegment
-from .elements.base import CONJUGATE, LAM
 from .errors import ComputationError
 from .model import Model
 from .numeric import to_mp
@@ -60,8 +71,6 @@ from .results import Eigenvalue, Spectrum, decimal_string
 __all__ = ["BeamShape", "ModeSet", "ModeShape", "evaluate_mode", "mode_shapes", "shapes_at",
            "working_digits"]
 
-#: Gauss–Legendre nodes used where ``|kappa| l**4`` is too small for the closed form.
-_GL_NODES = 10
 #: Below this ``|kappa| l**4`` the closed-form integral would cancel; use quadrature.
 _CLOSED_FORM_MIN = mpmath.mpf("1e-2")
 
@@ -118,13 +127,19 @@ class ModeShape:
     beams : dict
         Beam name -> :class:`BeamShape`, in the model's beam order.
     left_state : tuple
-        The normalised stacked state (``4 n`` mpmath numbers) at the beams'
-        left ends, before any jump there: with the model it determines the
-        shape everywhere (:func:`evaluate_mode`).
+        The normalised extended state (mpmath numbers) at the left, before
+        any jump: the beams' ``4 n`` variables at their left ends, then the
+        bodies' virtual variables (:class:`~symtmm.assembly.Layout`). With the
+        model it determines the shape everywhere (:func:`evaluate_mode`).
     dps : int
         Decimal digits of the arithmetic the shape was computed in.
     number : int
         Position of the mode in its set (1-based, ascending by ``Im lam``).
+    bodies : dict
+        Rigid body (joint) name -> ``{"Y": Y_c, "Theta": Theta_c}``: the
+        deflection of its centre of mass and its rotation (``Theta`` only when
+        the body rotates, :attr:`~symtmm.model.RigidBody.rotates`); float
+        for undamped shapes, complex for damped ones.
     """
 
     eigenvalue: Eigenvalue
@@ -132,6 +147,7 @@ class ModeShape:
     left_state: tuple
     dps: int
     number: int = 1
+    bodies: dict = field(default_factory=dict)
 
     @property
     def lam(self):
@@ -151,8 +167,19 @@ class ModeShape:
     def to_dict(self) -> dict:
         """The JSON object of one mode in ``symtmm modes --json``."""
         ev = self.eigenvalue.to_dict()
-        return {"eigenvalue": {"real": ev["real"], "imag": ev["imag"]},
-                "beams": {name: b.to_dict() for name, b in self.beams.items()}}
+        out = {"eigenvalue": {"real": ev["real"], "imag": ev["imag"]},
+               "beams": {name: b.to_dict() for name, b in self.beams.items()}}
+        if self.bodies:
+            out["bodies"] = {name: {var: _json_number(v) for var, v in motion.items()}
+                             for name, motion in self.bodies.items()}
+        return out
+
+
+def _json_number(value):
+    """A float, or ``{"real", "imag"}`` for a complex number (as the arrays are written)."""
+    if isinstance(value, complex):
+        return {"real": value.real, "imag": value.imag}
+    return float(value)
 
 
 @dataclass(frozen=True)
@@ -231,7 +258,8 @@ class ModeSet:
         lines.append(f"{len(self.modes)} mode shape(s), {points} points per beam (max|Y| over "
                      "those points); "
                      + ("complex, largest |Y| = 1" if damped else
-                        "mass-normalised: sum of integral m Y^2 dx = 1"))
+                        "mass-normalised: kinetic energy sum of integral (m Y^2 + rhoI "
+                        "Theta^2) dx + masses + bodies = 1"))
         lines += list(self.notes)
         return "\n".join(lines)
 
@@ -279,45 +307,71 @@ def working_digits(evaluator: Evaluator, lam, digits: int) -> int:
 
 
 class _Walker:
-    """Carries a stacked state (4n x k, mpmath) through the layout of a resolved model.
+    """Carries an extended state (``size x k``, mpmath) through the layout of a resolved model.
 
-    Sample requests: per beam level a list of ``(x, side)`` with ``x`` an
-    mpmath number (global coordinate) and ``side`` ``"-"`` (before the jumps
-    at ``x``) or ``"+"`` (after them). Work at the current mpmath precision.
+    The extended state stacks the beams' ``4 n`` variables and the bodies'
+    virtual ones (:class:`~symtmm.assembly.Layout`). Sample requests: per beam
+    level a list of ``(x, side)`` with ``x`` an mpmath number (global
+    coordinate) and ``side`` ``"-"`` (before the jumps at ``x``) or ``"+"``
+    (after them). Work at the current mpmath precision.
     """
 
     def __init__(self, model: Model):
         self.model = model
         self.layout = Layout(model)
         self.n = self.layout.levels
-        self._stiffness = {}
+        self.size = self.layout.size
+        self._jumps = {}
         self._inertia = {}
         for step in self.layout.steps:
-            if not isinstance(step, Interval):
-                for element, _levels in step.elements:
-                    S = element.stiffness(LAM)
-                    self._stiffness[id(element)] = sp.lambdify(LAM, S, modules="mpmath")
-                    inertia = element.inertia()
-                    if not inertia.is_zero_matrix:
-                        self._inertia[id(element)] = inertia
+            if isinstance(step, Interval):
+                continue
+            self._jumps[id(step)] = _Jumps(step.terms)
+            for element, levels in step.elements:
+                inertia = element.inertia()
+                if not inertia.is_zero_matrix:
+                    disp = [4 * levels[lvl] + STATE.index(var) for lvl, var in element.dofs]
+                    self._inertia.setdefault(id(step), []).append((disp, inertia))
+        # the bodies' kinetic energy M Y_c**2 + J Theta_c**2, on their virtual unknowns
+        self._body_inertia = []
+        for bl in self.layout.bodies:
+            if bl.body.M != 0:
+                self._body_inertia.append((bl.unknowns["Y"], bl.body.M))
+            if "Theta" in bl.unknowns and bl.body.J != 0:
+                self._body_inertia.append((bl.unknowns["Theta"], bl.body.J))
+        self._cache: dict = {}
 
     def _consts(self, seg):
-        dps = mpmath.mp.dps
-        return to_mp(seg.EI, dps), to_mp(seg.m, dps), to_mp(seg.l, dps)
+        key = (id(seg), mpmath.mp.prec)
+        consts = self._cache.get(key)
+        if consts is None:
+            consts = self._cache[key] = seg.constants_mp(mpmath.mp.dps)
+        return consts
 
-    def run(self, lam, E0, samples, real: bool, gram: bool):
-        """Propagate; return (recorded states, mass Gram matrix or None).
+    def _exact(self, value):
+        key = ("x", value, mpmath.mp.prec)
+        out = self._cache.get(key)
+        if out is None:
+            out = self._cache[key] = to_mp(value, mpmath.mp.dps)
+        return out
 
-        ``E0``: numpy object array ``(4n, k)``; ``samples``: list per level.
-        Recorded states: dict ``(level, i) -> (4, k)`` complex array.
+    def run(self, lam, E0, samples, real: bool, gram: bool, digits: int | None = None):
+        """Propagate; return (recorded states, kinetic-energy Gram matrix or None).
+
+        ``E0``: numpy object array ``(size, k)`` (the extended state at the left);
+        ``samples``: list per level. Recorded states: dict ``(level, i) -> (4, k)``
+        complex array. ``digits``: correct digits the Gram matrix must carry
+        (default: the working precision less 15).
 
         The state is carried in mpmath from cut to cut and, inside a segment,
-        to anchors ``h`` apart with ``|beta| h <= 1``; from an anchor to the
-        sample points the double-precision transfer matrix suffices (it loses
-        at most ``e**1`` in relative accuracy), which makes dense sampling cheap.
+        to anchors ``h`` apart with ``|s| h <= 1`` (``s`` the largest wave
+        number); from an anchor to the sample points the double-precision
+        transfer matrix suffices (it loses at most ``e**1`` in relative
+        accuracy), which makes dense sampling cheap.
         """
         lam = mpmath.mpmathify(lam)
         lam2 = mpmath.mpf(-(lam.imag ** 2)) if real else lam * lam
+        digits = mpmath.mp.dps - 15 if digits is None else digits
         E = E0.copy()
         k = E.shape[1]
         tol = mpmath.mpf(10) ** (-(mpmath.mp.dps - 10))
@@ -340,17 +394,10 @@ class _Walker:
 
         for step in self.layout.steps:
             if isinstance(step, Interval):
-                xs = to_mp(step.x_start, mpmath.mp.dps)
-                xe = to_mp(step.x_end, mpmath.mp.dps)
+                xs, xe = self._exact(step.x_start), self._exact(step.x_end)
                 xsf, xef = float(xs), float(xe)
                 for lvl, seg in step.segments:
                     consts = self._consts(seg)
-                    lam2_s = lam2
-                    if seg.kw != 0:
-                        # on a foundation the segment at lam is the bare one at
-                        # lam**2 + kw/m (same x), and the mass Gram is still m Y**2
-                        lam2_s = lam2 + to_mp(seg.kw, mpmath.mp.dps) / consts[1]
-                        seg = EulerBernoulliSegment(seg.EI, seg.m, seg.l)
                     blk = slice(4 * lvl, 4 * lvl + 4)
                     record(lvl, xs, "-+")          # a beam's left end without a station
                     inside = [(i, x) for i, (x, _s) in enumerate(samples[lvl])
@@ -358,42 +405,35 @@ class _Walker:
                               and x > xs + tol * max(1, abs(xs)) and not at(lvl, i, xe, xef)
                               and x < xe]
                     if inside:
-                        self._inside(lam2_s, seg, consts, E[blk, :], xs, inside, lvl, recorded)
-                    U = seg.evaluate_mp(lam2_s, consts)
+                        _inside(lam2, seg, consts, E[blk, :], xs, inside, lvl, recorded)
+                    U = seg.evaluate_mp(lam2, consts)
                     E1 = U.dot(E[blk, :])
                     if gram:
-                        G += _segment_gram(seg, lam2_s, consts, E[blk, :], E1, real)
+                        G += _segment_gram(seg, lam2, consts, E[blk, :], E1, digits)
                     E[blk, :] = E1
                     record(lvl, xe, "-+", only_new=False)
             else:
-                x = to_mp(step.x, mpmath.mp.dps)
-                levels = sorted({lv for _e, lvs in step.elements for lv in lvs})
+                x = self._exact(step.x)
+                jumps = self._jumps[id(step)]
+                levels = sorted({row // 4 for row in jumps.rows if row < 4 * self.n})
                 for lvl in levels:
                     record(lvl, x, "-+")
-                for element, lvs in step.elements:
-                    S = self._stiffness[id(element)](lam)
-                    S = np.array(S.tolist() if hasattr(S, "tolist") else S, dtype=object)
-                    if real:
-                        S = np.vectorize(lambda v: mpmath.mpf(mpmath.re(v)), otypes=[object])(S)
-                    disp, force, sign = [], [], []
-                    for lvl_local, var in element.dofs:
-                        lvl = lvs[lvl_local]
-                        f, s = CONJUGATE[var]
-                        disp.append(4 * lvl + STATE.index(var))
-                        force.append(4 * lvl + STATE.index(f))
-                        sign.append(s)
-                    if gram and id(element) in self._inertia:
-                        # kinetic energy of lumped masses: d^T M d (displacements do not jump)
-                        Mi = self._inertia[id(element)]
-                        Mi = np.array([[to_mp(v, mpmath.mp.dps) for v in row]
-                                       for row in Mi.tolist()], dtype=object)
+                if gram:
+                    # kinetic energy of lumped masses: d^T M d (displacements do not jump)
+                    for disp, inertia in self._inertia.get(id(step), ()):
+                        Mi = np.array([[self._exact(v) for v in row] for row in inertia.tolist()],
+                                      dtype=object)
                         D = E[disp, :]
                         G += D.T.dot(Mi).dot(D)
-                    jump = S.dot(E[disp, :])
-                    for i, (row, s) in enumerate(zip(force, sign)):
-                        E[row, :] = E[row, :] + s * jump[i, :]
+                # rows written are never columns read at the same station: in place is exact
+                for row, col, v in zip(jumps.rows, jumps.cols, jumps.values_mp(lam, real)):
+                    E[row, :] = E[row, :] + v * E[col, :]
                 for lvl in levels:
                     record(lvl, x, "+", only_new=False)
+        if gram:
+            # rigid bodies: their deflection and rotation are unknowns, constant along x
+            for index, value in self._body_inertia:
+                G += self._exact(value) * np.outer(E[index, :], E[index, :])
         missing = [(lvl, samples[lvl][i][0]) for lvl in range(self.n)
                    for i in range(len(samples[lvl])) if (lvl, i) not in recorded]
         if missing:
@@ -402,35 +442,42 @@ class _Walker:
                              f"'{self.model.beams[lvl].name}'")
         return recorded, G
 
-    @staticmethod
-    def _inside(lam2, seg, consts, Z0, xs, inside, lvl, recorded):
-        """States at sample points strictly inside a segment, from nearby mpmath anchors."""
-        EI, m, length = consts
-        kappa = abs(lam2 * m / EI)
-        reach = float(kappa) ** 0.25 * float(length)       # |beta| l
-        n_anchor = max(1, math.ceil(reach))
-        h = length / n_anchor
-        Uh = seg.evaluate_mp(lam2, (EI, m, h)) if n_anchor > 1 else None
-        anchors = [Z0]
-        groups: dict = {}
-        for i, x in inside:
-            j = min(int(mpmath.floor((x - xs) / h)), n_anchor - 1)
-            groups.setdefault(j, []).append((i, float(x - xs - j * h)))
-        while len(anchors) < max(groups) + 1:
-            anchors.append(Uh.dot(anchors[-1]))
-        consts_f = (float(EI), float(m))
-        lam2_c = complex(lam2)
-        for j, items in groups.items():
-            Zc = _to_complex(anchors[j])
-            ts = np.array([t for _i, t in items])
-            nonzero = ts > 0
-            U = np.empty((len(ts), 4, 4), dtype=complex)
-            if nonzero.any():
-                U[nonzero] = seg.evaluate_numpy(lam2_c, consts_f + (ts[nonzero],))
-            U[~nonzero] = np.eye(4)
-            states = U @ Zc
-            for (i, _t), z in zip(items, states):
-                recorded[(lvl, i)] = z
+
+def _reach(seg, lam2, length) -> float:
+    """``|s| l``: the largest wave number of ``seg`` at ``lam2`` times ``length``."""
+    return float(np.max(seg.wave_number(complex(lam2)))) * float(length)
+
+
+def _inside(lam2, seg, consts, Z0, xs, inside, lvl, recorded):
+    """States at sample points strictly inside a segment, from nearby mpmath anchors."""
+    length = consts[2]
+    n_anchor = max(1, math.ceil(_reach(seg, lam2, length)))
+    h = length / n_anchor
+    Uh = seg.evaluate_mp(lam2, consts, l=h) if n_anchor > 1 else None
+    anchors = [Z0]
+    groups: dict = {}
+    for i, x in inside:
+        j = min(int(mpmath.floor((x - xs) / h)), n_anchor - 1)
+        groups.setdefault(j, []).append((i, float(x - xs - j * h)))
+    while len(anchors) < max(groups) + 1:
+        anchors.append(Uh.dot(anchors[-1]))
+    consts_f = seg.constants()
+    lam2_c = complex(lam2)
+    for j, items in groups.items():
+        Zc = _to_complex(anchors[j])
+        ts = np.array([t for _i, t in items])
+        U = np.empty((len(ts), 4, 4), dtype=complex)
+        U[:] = np.eye(4)
+        nonzero = ts > 0
+        if isinstance(seg, EulerBernoulliSegment) and nonzero.any():
+            # the c_j take an array of lengths at once
+            U[nonzero] = seg.evaluate_numpy(lam2_c, consts_f, l=ts[nonzero])
+        else:
+            for q in np.flatnonzero(nonzero):
+                U[q] = seg.evaluate_numpy(lam2_c, consts_f, l=float(ts[q]))
+        states = U @ Zc
+        for (i, _t), z in zip(items, states):
+            recorded[(lvl, i)] = z
 
 
 def _to_complex(block):
@@ -453,23 +500,47 @@ def _bilinear_F(x, kappa, EI, a, b):
             + (Ya * d3b + Yb * d3a) * mpmath.mpf(3) / 2 - (Ta * d2b + Tb * d2a) / 2)
 
 
-def _gl_nodes(n):
-    """Gauss–Legendre nodes and weights on [0, 1] at the working precision."""
-    xs, _ = np.polynomial.legendre.leggauss(n)
-    # refine the double-precision nodes by Newton steps on P_n at the working precision
-    nodes, weights = [], []
-    for x0 in xs:
-        x = mpmath.mpf(float(x0))
-        for _ in range(8):
+def gauss_legendre_nodes(digits: int) -> int:
+    """Nodes of a Gauss–Legendre rule exact to ``10**-digits`` on a piece with ``|s| h <= 1``.
+
+    On such a piece the integrand (a product of two states) is a combination
+    of ``exp(c t)``, ``t`` in ``[-1, 1]``, ``|c| <= 1``; the ``n``-point rule's
+    error is at most ``2**(2n+1) (n!)**4 / ((2n+1) ((2n)!)**3)`` times
+    ``max |f^(2n)| <= e``. A further 5 digits cover the combination's
+    coefficients exceeding its values.
+
+    Examples
+    --------
+    >>> gauss_legendre_nodes(15), gauss_legendre_nodes(50)
+    (9, 19)
+    """
+    target = -(digits + 5) * math.log(10)
+    n = 2
+    while ((2 * n + 1) * math.log(2) + 4 * math.lgamma(n + 1) - math.log(2 * n + 1)
+           - 3 * math.lgamma(2 * n + 1) + 1) > target:
+        n += 1
+    return n
+
+
+@functools.lru_cache(maxsize=32)
+def _gl_rule(n: int, prec: int):
+    """Gauss–Legendre nodes and weights on [0, 1] at ``prec`` bits."""
+    with mpmath.workprec(prec):
+        xs, _ = np.polynomial.legendre.leggauss(n)
+        # refine the double-precision nodes by Newton steps on P_n at the working precision
+        nodes, weights = [], []
+        for x0 in xs:
+            x = mpmath.mpf(float(x0))
+            for _ in range(12):
+                p, dp = _legendre(n, x)
+                dx = p / dp
+                x -= dx
+                if abs(dx) < mpmath.eps * 4:
+                    break
             p, dp = _legendre(n, x)
-            dx = p / dp
-            x -= dx
-            if abs(dx) < mpmath.eps * 4:
-                break
-        p, dp = _legendre(n, x)
-        nodes.append((x + 1) / 2)
-        weights.append(1 / ((1 - x * x) * dp * dp))   # 2/((1-x^2)P'^2), halved for [0, 1]
-    return nodes, weights
+            nodes.append((x + 1) / 2)
+            weights.append(1 / ((1 - x * x) * dp * dp))   # 2/((1-x^2)P'^2), halved for [0, 1]
+    return tuple(nodes), tuple(weights)
 
 
 def _legendre(n, x):
@@ -480,40 +551,153 @@ def _legendre(n, x):
     return p1, dp
 
 
-def _segment_gram(seg, lam2, consts, Z0, Z1, real):
-    """``integral over the segment of m Y_i Y_j`` for the columns of ``Z0`` (states at start)."""
-    EI, m, length = consts
-    kappa = -lam2 * m / EI
+def _segment_gram(seg, lam2, consts, Z0, Z1, digits):
+    """``integral over the segment of m Y_i Y_j + rhoI Theta_i Theta_j`` for the columns of
+    ``Z0`` (states at the start; ``Z1`` at the end).
+
+    Euler–Bernoulli segments (on a foundation too) use the closed form
+    ``[F]/(4 kappa)``, ``Y'''' = kappa Y``, unless ``|kappa| l**4`` is so small
+    that it would cancel; every other segment Gauss–Legendre quadrature of
+    the propagated states (:func:`_quadrature_gram`).
+    """
+    if isinstance(seg, EulerBernoulliSegment):
+        EI, m, length = consts[:3]
+        kw = consts[3] if len(consts) > 3 else 0
+        kappa = -(lam2 * m + kw) / EI
+        if abs(kappa) * length**4 >= _CLOSED_FORM_MIN:
+            k = Z0.shape[1]
+            out = np.empty((k, k), dtype=object)
+            zero = mpmath.mpf(0)
+            for i in range(k):
+                for j in range(i, k):
+                    F1 = _bilinear_F(length, kappa, EI, Z1[:, i], Z1[:, j])
+                    F0 = _bilinear_F(zero, kappa, EI, Z0[:, i], Z0[:, j])
+                    out[i, j] = out[j, i] = m * (F1 - F0) / (4 * kappa)
+            return out
+        return _quadrature_gram(seg, lam2, consts, Z0, m, 0, digits)
+    return _quadrature_gram(seg, lam2, consts, Z0, consts[1], consts[5], digits)
+
+
+def _quadrature_gram(seg, lam2, consts, Z0, m, rhoI, digits):
+    """The kinetic-energy Gram matrix of a segment by Gauss–Legendre quadrature.
+
+    The segment is cut into pieces with ``|s| h <= 1``, each integrated by the
+    rule of :func:`gauss_legendre_nodes`; the transfer matrices to the nodes
+    are the same on every piece and are computed once.
+    """
+    length = consts[2]
+    pieces = max(1, math.ceil(_reach(seg, lam2, length)))
+    h = length / pieces
+    nodes, weights = _gl_rule(gauss_legendre_nodes(digits), mpmath.mp.prec)
+    to_nodes = [seg.evaluate_mp(lam2, consts, l=t * h) for t in nodes]
+    step = seg.evaluate_mp(lam2, consts, l=h) if pieces > 1 else None
     k = Z0.shape[1]
-    out = np.empty((k, k), dtype=object)
-    if abs(kappa) * length**4 >= _CLOSED_FORM_MIN:
-        zero = mpmath.mpf(0)
-        for i in range(k):
-            for j in range(i, k):
-                F1 = _bilinear_F(length, kappa, EI, Z1[:, i], Z1[:, j])
-                F0 = _bilinear_F(zero, kappa, EI, Z0[:, i], Z0[:, j])
-                out[i, j] = out[j, i] = m * (F1 - F0) / (4 * kappa)
-        return out
-    nodes, weights = _gl_nodes(_GL_NODES)
-    Ys = []
-    for t in nodes:
-        U = seg.evaluate_mp(lam2, (EI, m, t * length))
-        Ys.append(U[0, :].dot(Z0))
-    for i in range(k):
-        for j in range(i, k):
-            s = sum(w * Y[i] * Y[j] for w, Y in zip(weights, Ys))
-            out[i, j] = out[j, i] = m * length * s
+    out = np.full((k, k), mpmath.mpf(0) * lam2, dtype=object)
+    Z = Z0
+    for p in range(pieces):
+        for U, w in zip(to_nodes, weights):
+            z = U[:2, :].dot(Z)                 # Y and Theta at the node
+            out += (w * h) * (m * np.outer(z[0], z[0])
+                              + (rhoI * np.outer(z[1], z[1]) if rhoI else 0))
+        if p + 1 < pieces:
+            Z = step.dot(Z)
     return out
 
 
 def _null_space(R, mult: int, real: bool):
-    """The right singular vectors of the ``mult`` smallest singular values (columns)."""
+    """A basis (columns, orthonormal) of the near-null space of ``R``: ``mult`` vectors.
+
+    Block inverse iteration: ``X <- orth(R^-1 X)`` twice from fixed pseudo-random
+    columns, with ``R^-1`` applied through an LU factorisation with partial
+    pivoting (a zero pivot replaced by ``eps |R|``, the classical guard of inverse
+    iteration). Near an eigenvalue the ``mult`` smallest singular values of ``R``
+    dominate ``R^-1``, so this spans the space of their right singular vectors, as
+    the singular value decomposition would, at the cost of one LU factorisation
+    (the SVD in mpmath takes seconds once rigid bodies bring their unknowns).
+    Backward stable like the SVD: the vectors are as accurate as the eigenvalue.
+    Falls back to the SVD if the iteration collapses.
+    """
+    n = R.cols
     if R.rows == 0:
         return np.empty((0, mult), dtype=object)
-    _, _, V = (mpmath.svd_r if real else mpmath.svd_c)(R)
-    n = R.cols
     if mult > n:
         raise ComputationError(f"multiplicity {mult} exceeds the size {n} of R")
+    rows = [[R[i, j] for j in range(n)] for i in range(n)]
+    LU, perm = _lu(rows)
+    rng = random.Random(20240607)          # fixed: the shapes are reproducible
+    X = [[mpmath.mpf(rng.uniform(-1, 1)) for _ in range(mult)] for _ in range(n)]
+    for _ in range(2):
+        X = _orthonormal([_lu_solve(LU, perm, [X[i][c] for i in range(n)]) for c in range(mult)],
+                         real)
+        if X is None:
+            return _svd_null_space(R, mult, real)
+        X = [[X[c][i] for c in range(mult)] for i in range(n)]
+    return np.array(X, dtype=object).reshape(n, mult)
+
+
+def _lu(A):
+    """``P A = L U`` with partial pivoting, in place on a copy (rows as lists)."""
+    n = len(A)
+    A = [row[:] for row in A]
+    perm = list(range(n))
+    guard = max((abs(v) for row in A for v in row), default=mpmath.mpf(1)) * mpmath.eps
+    if guard == 0:
+        guard = mpmath.eps
+    for k in range(n):
+        p = max(range(k, n), key=lambda i: abs(A[i][k]))
+        A[k], A[p] = A[p], A[k]
+        perm[k], perm[p] = perm[p], perm[k]
+        if abs(A[k][k]) < guard:
+            # singular to working precision (an exact eigenvalue): perturb the pivot
+            A[k][k] = guard if A[k][k] == 0 else guard * A[k][k] / abs(A[k][k])
+        pivot = A[k][k]
+        for i in range(k + 1, n):
+            f = A[i][k] / pivot
+            if f == 0:
+                continue
+            A[i][k] = f
+            row_i, row_k = A[i], A[k]
+            for j in range(k + 1, n):
+                row_i[j] -= f * row_k[j]
+    return A, perm
+
+
+def _lu_solve(LU, perm, b):
+    n = len(LU)
+    y = [b[perm[i]] for i in range(n)]
+    for i in range(n):
+        row = LU[i]
+        y[i] -= sum((row[j] * y[j] for j in range(i)), mpmath.mpf(0))
+    for i in range(n - 1, -1, -1):
+        row = LU[i]
+        y[i] = (y[i] - sum((row[j] * y[j] for j in range(i + 1, n)), mpmath.mpf(0))) / row[i]
+    return y
+
+
+def _orthonormal(columns, real: bool):
+    """Modified Gram–Schmidt, twice; None if a column depends on the others."""
+    out = []
+    for v in columns:
+        scale = max(abs(x) for x in v)
+        if scale == 0:
+            return None
+        v = [x / scale for x in v]
+        size = mpmath.sqrt(sum(abs(x) ** 2 for x in v))
+        for _ in range(2):
+            for q in out:
+                dot = sum((qi if real else mpmath.conj(qi)) * x for qi, x in zip(q, v))
+                v = [x - dot * qi for x, qi in zip(v, q)]
+        norm = mpmath.sqrt(sum(abs(x) ** 2 for x in v))
+        if norm <= size * mpmath.mpf(10) ** (-(mpmath.mp.dps // 2)):
+            return None
+        out.append([x / norm for x in v])
+    return out
+
+
+def _svd_null_space(R, mult: int, real: bool):
+    """The right singular vectors of the ``mult`` smallest singular values (columns)."""
+    _, _, V = (mpmath.svd_r if real else mpmath.svd_c)(R)
+    n = R.cols
     # singular values come sorted by decreasing size; R = U S V, so R V^H = U S
     out = np.empty((n, mult), dtype=object)
     for c, row in enumerate(range(n - mult, n)):
@@ -580,11 +764,11 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
         lam = mpmath.mpc(eigenvalue.lam) if not real else mpmath.mpc(0, eigenvalue.lam.imag)
         R = ev.R_mp(lam, real=real)
         V = _null_space(R, mult, real)
-        E0 = np.full((4 * walker.n, mult), mpmath.mpf(0), dtype=object)
+        E0 = np.full((walker.size, mult), mpmath.mpf(0), dtype=object)
         for r, c in enumerate(ev.columns):
             E0[c, :] = V[r, :]
         samples = _default_samples(model, points, dps)
-        rec, G = walker.run(lam, E0, samples, real, gram=real)
+        rec, G = walker.run(lam, E0, samples, real, gram=real, digits=digits + 3)
         if real:
             T = _mass_orthonormaliser(G)
         else:
@@ -610,8 +794,22 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
                 beams[beam.name] = BeamShape(beam.name, xs[lvl], z[:, 0], z[:, 1], z[:, 2],
                                              z[:, 3])
             left = tuple(E0[r, c] * sign for r in range(E0.shape[0]))
-            shapes.append(ModeShape(eigenvalue, beams, left, dps, number + c))
+            shapes.append(ModeShape(eigenvalue, beams, left, dps, number + c,
+                                    _body_motion(walker.layout, left, real)))
     return shapes
+
+
+def _body_motion(layout, state, real: bool) -> dict:
+    """Per rigid body, its ``Y`` and ``Theta`` (if it rotates) from the extended state."""
+    out = {}
+    for bl in layout.bodies:
+        motion = {}
+        for var in ("Y", "Theta"):
+            if var in bl.unknowns:
+                value = complex(state[bl.unknowns[var]])
+                motion[var] = value.real if real else value
+        out[bl.body.name] = motion
+    return out
 
 
 def _mass_orthonormaliser(G):

@@ -1,10 +1,14 @@
 """Mode shapes: Y, Theta, M and Q along every beam for the first N modes.
 
-Undamped shapes are real and mass-normalised (sum over the beams of the
-integral of m Y^2 dx = 1); damped shapes are complex, scaled so that the
-largest |Y| is 1. An eigenvalue of multiplicity m gives m independent shapes
-(mass-orthonormal when undamped). In JSON, complex arrays are written as
-{"real": [...], "imag": [...]}.
+Undamped shapes are real and mass-normalised in the kinetic energy (sum
+over the beams of the integral of m Y^2 + rhoI Theta^2 dx, plus M Y^2 + J
+Theta^2 of lumped masses and rigid bodies, = 1); damped shapes are complex,
+scaled so that the largest |Y| is 1. An eigenvalue of multiplicity m gives m
+independent shapes (mass-orthonormal when undamped). In JSON, complex arrays
+are written as {"real": [...], "imag": [...]}; a model with rigid bodies or
+joints also gets "bodies": {NAME: {"Y": Y_c, "Theta": Theta_c}} per mode (the
+deflection of the centre of mass and the rotation, the latter only for a
+body that rotates).
 """
 
 from __future__ import annotations

@@ -3,10 +3,17 @@
 ``Delta(lam)`` and its derivative are evaluated in Arb ball arithmetic
 (``flint.acb``): every operation returns a ball guaranteed to contain the
 exact result, and the model's exact parameters (rationals, ``pi``, square
-roots) are enclosed exactly as well. The transfer matrices use the entire
-functions ``c_j(x)`` of ``x = (beta l)**4``: for ``|x| <= 1`` their series
-with a bound on the tail, otherwise the closed forms in ``nu = x**(1/4)``
-on a branch away from the ball.
+roots) are enclosed exactly as well. The layout is walked on its extended
+state (beams, then the rigid bodies' virtual variables), the stations' exact
+jump entries (springs, masses, bodies, joints) becoming balls. Euler–Bernoulli
+segments use the entire functions ``c_j(x)`` of ``x = (beta l)**4``: for
+``|x| <= 1`` their series with a bound on the tail, otherwise the closed
+forms in ``nu = x**(1/4)`` on a branch away from the ball. Every other
+segment (axial force, Rayleigh, Timoshenko) is ``U = exp(A l)`` by Arb's
+rigorous matrix exponential, ``A`` the exact system matrix, and ``dU/dlam``
+the top-right block of the exponential of ``[[A l, A' l], [0, A l]]``.
+``Delta`` and ``Delta'`` come from one Gaussian elimination with full
+pivoting on the pairs ``(R, R')``.
 
 Proofs, per eigenvalue:
 
@@ -18,14 +25,16 @@ Proofs, per eigenvalue:
 * ``Krawczyk``: for a box ``B`` around an approximation ``z``,
   ``K = z - Y Delta(z) + (1 - Y Delta'(B)) (B - z)`` with ``Y ~ 1/Delta'(z)``;
   ``K`` inside ``B`` proves exactly one simple zero in ``B``, and it lies in
-  ``K``. ``z`` is first polished in mpmath, and ``B`` is taken small enough
-  (about ``10**-(digits lost + 8) |lam|``) for the enclosure of ``Delta'(B)``
-  to be tight.
+  ``K``. ``z`` is first polished by Newton's method, and ``B`` is taken small
+  enough (about ``10**-(digits lost + 8) |lam|``) for the enclosure of
+  ``Delta'(B)`` to be tight.
 * ``count``: an undamped eigenvalue of multiplicity ``m``: the
   Wittrick–Williams count in ball arithmetic (:class:`ArbCount`, every pivot's
   sign proved) differs by exactly ``m`` between the ends of its bracket, so the
   bracket holds ``m`` eigenvalues counted with multiplicity (exactly one
   eigenvalue of multiplicity ``m``, or several that agree to the bracket).
+  Any beam theory; not yet models with rigid bodies or joints (their multiple
+  eigenvalues are reported uncertified, with a note saying why).
 * ``none``: multiple eigenvalues of damped models (``Delta'`` vanishes there)
   are not certified; they are reported with ``"certified": false``.
 
@@ -44,8 +53,8 @@ import sympy as sp
 
 from ..assembly import Interval, Layout
 from ..compile import Evaluator
-from ..elements import STATE
-from ..elements.base import CONJUGATE, LAM
+from ..elements import EulerBernoulliSegment
+from ..elements.base import LAM
 from ..errors import ComputationError
 from ..model import Model
 from ..results import Eigenvalue, Spectrum
@@ -124,6 +133,23 @@ def _acb_exact(z, flint):
         return flint.acb(_arb_exact(z.real, flint), _arb_exact(z.imag, flint))
     z = complex(z)
     return flint.acb(_arb_exact(z.real, flint), _arb_exact(z.imag, flint))
+
+
+def _coefficient_balls(value, flint) -> list:
+    """The coefficients of an exact polynomial in ``lam`` (``lam**0`` first) as arb balls."""
+    value = sp.expand(value)
+    if value == 0:
+        return []
+    return [to_arb(c, flint) for c in reversed(sp.Poly(value, LAM).all_coeffs())]
+
+
+def _poly_acb(coeffs, lam, acb):
+    """A polynomial (coefficient balls, ``lam**0`` first) and its derivative at ``lam``."""
+    value, deriv = acb(0), acb(0)
+    for degree in range(len(coeffs) - 1, -1, -1):        # Horner, derivative alongside
+        deriv = deriv * lam + value
+        value = value * lam + coeffs[degree]
+    return value, deriv
 
 
 # -- Delta and Delta' in ball arithmetic --------------------------------------------------
@@ -205,8 +231,19 @@ class ArbDelta:
         d3 = (c2 - 3 * c3) / (4 * x)
         return [c0, c1, c2, c3], [d0, d1, d2, d3]
 
-    def _segment(self, seg, lam):
-        """Transfer matrix of a segment and its derivative in ``lam`` (4x4 lists of acb)."""
+    def _segment(self, seg, lam, derivative: bool = True):
+        """Transfer matrix of a segment and its derivative in ``lam`` (4x4 lists of acb).
+
+        Euler–Bernoulli segments through the ``c_j`` (:meth:`_segment_eb`), every
+        other theory through the matrix exponential (:meth:`_segment_exp`).
+        Without ``derivative`` the second matrix is None.
+        """
+        if isinstance(seg, EulerBernoulliSegment):
+            U, dU = self._segment_eb(seg, lam)
+            return U, (dU if derivative else None)
+        return self._segment_exp(seg, lam, derivative)
+
+    def _segment_eb(self, seg, lam):
         EI, m, l, kw = self._consts(("seg", id(seg)), (seg.EI, seg.m, seg.l, seg.kw))
         a = m * l ** 4 / EI
         # a Winkler foundation kw: x = -(m lam**2 + kw) l**4 / EI
@@ -226,105 +263,171 @@ class ArbDelta:
         dU = [[v * dx for v in row] for row in dU]
         return U, dU
 
-    def _point(self, element, levels, lam):
-        """``(G, G')`` of a point element on the stacked state, as dicts of entries.
+    def _system(self, seg):
+        """``A(lam) l`` of ``z' = A z`` as exact polynomials in ``lam``: per entry the balls of
+        its coefficients (``lam**0, lam**1, ...``)."""
+        key = ("A", id(seg), self.flint.ctx.prec)
+        polys = self._cache.get(key)
+        if polys is None:
+            A = seg.system_matrix(LAM) * seg.l
+            polys = [[_coefficient_balls(A[i, j], self.flint) for j in range(4)]
+                     for i in range(4)]
+            self._cache[key] = polys
+        return polys
 
-        The transfer matrix across the point is ``I + G``; the element's nodal stiffness
-        ``S(lam) = K0 + lam C + lam**2 M`` (springs, dashpots, masses) enters ``G`` on
-        the force rows conjugate to its displacement freedoms.
+    def _segment_exp(self, seg, lam, derivative: bool):
+        """``U = exp(A l)`` and ``dU/dlam`` of any segment, by Arb's rigorous matrix exponential.
+
+        ``exp([[X, E], [0, X]]) = [[exp X, L(X, E)], [0, exp X]]`` with ``L`` the
+        Fréchet derivative of the exponential; with ``X = A l``, ``E = A' l`` the
+        top-right block is ``dU/dlam``.
         """
-        prec = self.flint.ctx.prec
-        key = ("pt", id(element), prec)
+        acb, acb_mat = self.flint.acb, self.flint.acb_mat
+        polys = self._system(seg)
+        X = [[_poly_acb(p, lam, acb)[0] for p in row] for row in polys]
+        if not derivative:
+            U = acb_mat(X).exp()
+            return [[U[i, j] for j in range(4)] for i in range(4)], None
+        dX = [[_poly_acb(p, lam, acb)[1] for p in row] for row in polys]
+        zero = [acb(0)] * 4
+        big = acb_mat([X[i] + dX[i] for i in range(4)] + [zero + X[i] for i in range(4)]).exp()
+        U = [[big[i, j] for j in range(4)] for i in range(4)]
+        dU = [[big[i, j + 4] for j in range(4)] for i in range(4)]
+        return U, dU
+
+    def _jumps(self, step):
+        """The entries ``(row, col, coefficient balls)`` of a station's ``G`` (cached)."""
+        key = ("G", id(step), self.flint.ctx.prec)
         terms = self._cache.get(key)
         if terms is None:
-            terms = []
-            S = element.stiffness(LAM)
-            for row, (lvl_r, var_r) in enumerate(element.dofs):
-                force, sign = CONJUGATE[var_r]
-                r = 4 * levels[lvl_r] + STATE.index(force)
-                for col, (lvl_c, var_c) in enumerate(element.dofs):
-                    entry = sp.expand(S[row, col])
-                    if entry == 0:
-                        continue
-                    coeffs = sp.Poly(entry, LAM).all_coeffs()[::-1]
-                    cidx = 4 * levels[lvl_c] + STATE.index(var_c)
-                    terms.append((r, cidx, [sign * to_arb(cf, self.flint) for cf in coeffs]))
+            terms = [(row, col, _coefficient_balls(value, self.flint))
+                     for row, col, value in step.terms]
             self._cache[key] = terms
-        G, dG = {}, {}
-        for r, cidx, coeffs in terms:
-            value = self.flint.acb(0)
-            deriv = self.flint.acb(0)
-            power = self.flint.acb(1)
-            for degree, cf in enumerate(coeffs):
-                value += cf * power
-                if degree + 1 < len(coeffs):
-                    deriv += (degree + 1) * coeffs[degree + 1] * power
-                power *= lam
-            G[(r, cidx)] = G.get((r, cidx), 0) + value
-            dG[(r, cidx)] = dG.get((r, cidx), 0) + deriv
-        return G, dG
+        return terms
 
-    def matrices(self, lam):
-        """``(R, R')`` at the ball ``lam`` as ``acb_mat``."""
+    def matrices(self, lam, derivative: bool = True):
+        """``(R, R')`` at the ball ``lam`` as ``acb_mat`` (``R'`` None without ``derivative``).
+
+        Walks the layout's extended state (beams, then the bodies' virtual
+        variables): segments, then at each station ``z -> (I + G) z`` with the
+        exact entries of ``G`` (:attr:`~symtmm.assembly.Station.terms`).
+        """
         self.evaluations += 1
         acb, acb_mat = self.flint.acb, self.flint.acb_mat
-        N = 4 * self.n
         cols = self.layout.columns
-        E = [[acb(1) if i == c else acb(0) for c in cols] for i in range(N)]
-        dE = [[acb(0) for _ in cols] for _ in range(N)]
+        k = len(cols)
+        E = [[acb(1) if i == c else acb(0) for c in cols] for i in range(self.layout.size)]
+        dE = [[acb(0)] * k for _ in range(self.layout.size)] if derivative else None
         for step in self.layout.steps:
             if isinstance(step, Interval):
                 for lvl, seg in step.segments:
-                    U, dU = self._segment(seg, lam)
+                    U, dU = self._segment(seg, lam, derivative)
                     blk = range(4 * lvl, 4 * lvl + 4)
                     old = [E[i] for i in blk]
-                    dold = [dE[i] for i in blk]
+                    dold = [dE[i] for i in blk] if derivative else None
                     for a, i in enumerate(blk):
                         E[i] = [sum((U[a][b] * old[b][j] for b in range(4)), acb(0))
-                                for j in range(len(cols))]
-                        dE[i] = [sum((dU[a][b] * old[b][j] + U[a][b] * dold[b][j]
-                                      for b in range(4)), acb(0)) for j in range(len(cols))]
-            else:
-                # point matrices are I + G with G G' = 0 on a station: they add up
-                jump, djump = {}, {}
-                for element, levels in step.elements:
-                    G, dG = self._point(element, levels, lam)
-                    for key, v in G.items():
-                        jump[key] = jump.get(key, 0) + v
-                    for key, v in dG.items():
-                        djump[key] = djump.get(key, 0) + v
-                newE = [row[:] for row in E]
-                newdE = [row[:] for row in dE]
-                for (r, cidx), v in jump.items():
-                    dv = djump.get((r, cidx), 0)
-                    for j in range(len(cols)):
-                        newE[r][j] += v * E[cidx][j]
-                        newdE[r][j] += v * dE[cidx][j] + dv * E[cidx][j]
-                E, dE = newE, newdE
+                                for j in range(k)]
+                        if derivative:
+                            dE[i] = [sum((dU[a][b] * old[b][j] + U[a][b] * dold[b][j]
+                                          for b in range(4)), acb(0)) for j in range(k)]
+                continue
+            # across a station z -> (I + G) z; rows written are never columns read there
+            for row, col, coeffs in self._jumps(step):
+                v, dv = _poly_acb(coeffs, lam, acb)
+                if derivative:
+                    dE[row] = [dE[row][j] + v * dE[col][j] + dv * E[col][j] for j in range(k)]
+                E[row] = [E[row][j] + v * E[col][j] for j in range(k)]
         rows = self.layout.rows
-        R = acb_mat([E[r] for r in rows])
-        dR = acb_mat([dE[r] for r in rows])
+        R = acb_mat([E[r] for r in rows]) if rows else acb_mat(0, 0)
+        dR = (acb_mat([dE[r] for r in rows]) if rows else acb_mat(0, 0)) if derivative else None
         return R, dR
 
     def value(self, lam):
         """``Delta(lam)``."""
-        R, _ = self.matrices(lam)
-        return R.det() if R.nrows() else self.flint.acb(1)
+        R, _ = self.matrices(lam, derivative=False)
+        if not R.nrows():
+            return self.flint.acb(1)
+        out = _determinant(_rows(R), None, self.flint)
+        return out[0] if out is not None else R.det()
 
     def value_and_derivative(self, lam):
-        """``(Delta(lam), Delta'(lam))``; Jacobi's formula column by column."""
+        """``(Delta(lam), Delta'(lam))`` by one elimination on pairs ``(R, R')``.
+
+        Gaussian elimination with full pivoting carries every entry with its
+        derivative (forward-mode differentiation of ``det R = prod of pivots``):
+        exact calculus on balls, rigorous wherever no pivot but the last contains 0.
+        Jacobi's formula column by column fails at roots whose null vector has zero
+        entries (the opposite modes of symmetric trees and loops leave the trunk and
+        the joints at rest: ``R`` with such a column replaced is singular twice over,
+        and Arb can then only bound its determinant).
+        """
         R, dR = self.matrices(lam)
         n = R.nrows()
         if n == 0:
             return self.flint.acb(1), self.flint.acb(0)
-        delta = R.det()
-        deriv = self.flint.acb(0)
-        for j in range(n):
-            M = self.flint.acb_mat(R)
-            for i in range(n):
-                M[i, j] = dR[i, j]
-            deriv += M.det()
-        return delta, deriv
+        out = _determinant(_rows(R), _rows(dR), self.flint)
+        if out is None:                # a pivot not clear of 0: nothing useful to prove with
+            whole = self.flint.acb(0, 0) + self.flint.acb(self.flint.arb(0, math.inf),
+                                                          self.flint.arb(0, math.inf))
+            return R.det(), whole
+        return out
+
+
+def _rows(M) -> list:
+    """An ``acb_mat`` as a list of rows."""
+    return [[M[i, j] for j in range(M.ncols())] for i in range(M.nrows())]
+
+
+def _determinant(A, dA, flint):
+    """``(det A, d det A)`` of ball matrices ``A`` and ``dA = A'`` (rows), or None.
+
+    Full pivoting on the midpoints' magnitudes; ``dA`` None gives ``(det A, None)``.
+    None when a pivot before the last contains 0 (its sign and size undecided).
+    """
+    n = len(A)
+    A = [row[:] for row in A]
+    dA = [row[:] for row in dA] if dA is not None else None
+    det, ddet = flint.acb(1), flint.acb(0)
+    for k in range(n):
+        best, pi, pj = None, k, k
+        for i in range(k, n):
+            row = A[i]
+            for j in range(k, n):
+                size = row[j].mid().abs_upper()
+                if best is None or size > best:
+                    best, pi, pj = size, i, j
+        if pi != k:
+            A[k], A[pi] = A[pi], A[k]
+            if dA is not None:
+                dA[k], dA[pi] = dA[pi], dA[k]
+            det, ddet = -det, -ddet
+        if pj != k:
+            for M in (A, dA) if dA is not None else (A,):
+                for row in M:
+                    row[k], row[pj] = row[pj], row[k]
+            det, ddet = -det, -ddet
+        p = A[k][k]
+        dp = dA[k][k] if dA is not None else None
+        if dA is not None:
+            ddet = ddet * p + det * dp
+        det = det * p
+        if k == n - 1:
+            break
+        if p.contains(0):
+            return None
+        top, dtop = A[k], (dA[k] if dA is not None else None)
+        for i in range(k + 1, n):
+            f = A[i][k] / p
+            if dA is not None:
+                df = (dA[i][k] - f * dp) / p
+            row = A[i]
+            drow = dA[i] if dA is not None else None
+            for j in range(k + 1, n):
+                row[j] = row[j] - f * top[j]
+                if dA is not None:
+                    drow[j] = drow[j] - df * top[j] - f * dtop[j]
+    return det, (ddet if dA is not None else None)
 
 
 # -- the eigenvalue count in ball arithmetic -----------------------------------------------
@@ -332,9 +435,18 @@ class ArbCount:
     """The Wittrick–Williams count ``J(omega)`` of an undamped model, proved in ball arithmetic.
 
     The dynamic stiffness ``K(omega)`` is assembled as :class:`symtmm.stiffness.StiffnessModel`
-    does (segments short enough that none reaches its clamped-clamped frequency, so
-    ``J = s{K}``), but in Arb balls; ``s{K}`` is the number of negative pivots of
-    ``LDL^T`` (Sylvester's law of inertia), proved when no pivot ball contains 0.
+    does (its nodes, dofs and point elements), but in Arb balls; ``s{K}`` is the
+    number of negative pivots of ``LDL^T`` (Sylvester's law of inertia), proved
+    when no pivot ball contains 0. ``J = s{K}`` needs segments short enough that
+    none reaches a clamped-clamped natural frequency below ``omega_design``: each
+    piece is the beam's own element (any theory, :meth:`symtmm.model.Beam.segment`),
+    and the mesh is refined until every piece is within its ``safe_length``.
+
+    Raises
+    ------
+    ComputationError
+        For a model with rigid bodies or joints (the stiffness formulation has
+        no attachment freedoms yet).
 
     Examples
     --------
@@ -345,19 +457,38 @@ class ArbCount:
     """
 
     def __init__(self, model: Model, omega_design: float):
+        self.flint = require_flint()
+        model = model.require_numeric()
+        if model.bodies:
+            raise ComputationError("the certified eigenvalue count does not handle rigid bodies "
+                                   "or joints yet (the dynamic stiffness has no attachment dofs)")
+        self._mesh(model, float(omega_design))
+        self.arb = ArbDelta(self.sm.model)
+
+    def _mesh(self, model, omega):
+        """The stiffness model, refined until every piece is short enough at ``omega``."""
         from ..stiffness import StiffnessModel
 
-        self.flint = require_flint()
-        self.sm = StiffnessModel(model, omega_design)
-        self.arb = ArbDelta(self.sm.model)
+        self.omega_design = omega
+        design = omega
+        for _ in range(64):
+            sm = StiffnessModel(model, design)
+            beams = sm.model.beams
+            pieces = [beams[b].segment(seg.l) for b, seg, _, _ in sm.segments]
+            if all(p.safe_length(omega * omega) >= float(p.l) * (1 - 1e-12) for p in pieces):
+                self.sm, self.pieces = sm, pieces
+                return
+            design *= 2            # the mesh follows the plain beam's wave number: refine it
+        raise ComputationError(f"no mesh keeps the segments' clamped modes above {omega:.6g} "
+                               "rad/s (a beam buckled under its axial force?)")
 
     def _matrix(self, omega):
         arb = self.flint.arb
         lam = self.flint.acb(0, _arb_exact(omega, self.flint))
         n = self.sm.size
         K = [[arb(0)] * n for _ in range(n)]
-        for (_, seg, _, _), dofs in zip(self.sm.segments, self.sm._seg_dofs):
-            U, _ = self.arb._segment(seg, lam)
+        for seg, dofs in zip(self.pieces, self.sm._seg_dofs):
+            U, _ = self.arb._segment(seg, lam, derivative=False)
             U = [[v.real for v in row] for row in U]       # real on the frequency axis
             _scatter_arb(K, _segment_stiffness_arb(U), dofs)
         for dofs, element in self.sm.point_elements:
@@ -370,6 +501,8 @@ class ArbCount:
 
     def count(self, omega) -> int | None:
         """``J(omega)``, or None if some pivot's sign is not proved at 1000 bits."""
+        if float(omega) > self.omega_design * (1 + 1e-12):
+            self._mesh(self.sm.model, 2.0 * float(omega))
         for bits in (128, 256, 512, 1024):
             with self.flint.ctx.workprec(bits):
                 K = self._matrix(omega)
@@ -447,13 +580,17 @@ class Enclosure:
     real, imag : tuple of mpmath.mpf or None
         ``(lower, upper)`` bounds of the real and imaginary part.
     proof : str
-        ``"exact"``, ``"sign change"``, ``"Krawczyk"`` or ``"none"``.
+        ``"exact"``, ``"sign change"``, ``"Krawczyk"``, ``"count"`` or ``"none"``.
+    note : str
+        Why there is no proof, when that is known (e.g. a multiple eigenvalue
+        of a model the certified count does not handle).
     """
 
     eigenvalue: Eigenvalue
     real: tuple | None
     imag: tuple | None
     proof: str
+    note: str = ""
 
     @property
     def certified(self) -> bool:
@@ -480,7 +617,10 @@ class Enclosure:
     def to_dict(self, digits: int) -> dict:
         """JSON-ready: outward-rounded decimal bounds with ``digits + 3`` digits."""
         if not self.certified:
-            return {"certified": False, "proof": "none"}
+            out = {"certified": False, "proof": "none"}
+            if self.note:
+                out["note"] = self.note
+            return out
         d = digits + 3
         return {"certified": True, "proof": self.proof,
                 "real": [_decimal(self.real[0], d, -1), _decimal(self.real[1], d, +1)],
@@ -572,32 +712,35 @@ class _Certifier:
                 rad = _arb_exact(r, self.flint)
                 box = acb(arb(zc.real, rad), arb(zc.imag, rad))
                 fz, dfz = self.f.value_and_derivative(zc)
-                _, dfB = self.f.value_and_derivative(box)
                 Y = 1 / acb(dfz.mid())
                 Y = acb(Y.mid())
+                _, dfB = self.f.value_and_derivative(box)
                 K = zc - Y * fz + (1 - Y * dfB) * (box - zc)
-                inside = (K.real.lower() > box.real.lower() and K.real.upper() < box.real.upper()
-                          and K.imag.lower() > box.imag.lower()
-                          and K.imag.upper() < box.imag.upper())
-                if inside:
+                if (K.real.lower() > box.real.lower() and K.real.upper() < box.real.upper()
+                        and K.imag.lower() > box.imag.lower()
+                        and K.imag.upper() < box.imag.upper()):
                     return ((_to_mpf(K.real.lower()), _to_mpf(K.real.upper())),
                             (_to_mpf(K.imag.lower()), _to_mpf(K.imag.upper())))
             k += 4
         return None
 
     def _polish(self, lam, extra):
-        """Newton in mpmath to ``10**-(extra)`` relative, at enough digits."""
+        """Newton to ``10**-(extra)`` relative, at enough digits.
+
+        ``Delta`` and ``Delta'`` are the midpoints of the ball evaluation (Arb's
+        determinants are far faster than mpmath's once bodies enlarge ``R``); the
+        proof comes afterwards, from balls around the result.
+        """
         lost = math.ceil(self.ev.digits_lost(complex(lam)))
         dps = lost + extra + 20
-        with mpmath.workdps(dps):
+        with mpmath.workdps(dps), self.flint.ctx.workprec(int(3.33 * dps) + 32):
             z = lam + 0      # (a copy at this precision; mpc(lam) would round an mpc)
-            h = abs(z) * mpmath.mpf(10) ** -(dps // 2)
             tol = abs(z) * mpmath.mpf(10) ** -(extra + 5)
             for _ in range(40):
-                f0 = self.ev.delta_mp(z)
+                f0, d = self.f.value_and_derivative(_acb_exact(z, self.flint))
+                f0, d = _mid_mpc(f0), _mid_mpc(d)
                 if f0 == 0:
                     return z
-                d = (self.ev.delta_mp(z + h) - f0) / h
                 if d == 0:
                     return None
                 step = f0 / d
@@ -616,7 +759,10 @@ class _Certifier:
             if not self.model.damped and e.bracket is not None and lam.real == 0:
                 # an m-fold root: exactly m eigenvalues (with multiplicity) in [lo, hi]
                 lo, hi = sorted(e.bracket)
-                counter = ArbCount(self.model, 1.01 * float(hi))
+                try:
+                    counter = ArbCount(self.model, 1.01 * float(hi))
+                except ComputationError as exc:
+                    return Enclosure(e, None, None, "none", str(exc))
                 below, upto = counter.count(lo), counter.count(hi)
                 self.counts += 2
                 if below is not None and upto is not None and upto - below == e.multiplicity:
@@ -647,6 +793,12 @@ def _exact_mpf(x):
         return x
     with mpmath.workprec(1100):
         return mpmath.mpf(x)
+
+
+def _mid_mpc(ball):
+    """The midpoint of an acb ball as an mpmath number (at the working precision)."""
+    mid = ball.mid()
+    return mpmath.mpc(_to_mpf(mid.real), _to_mpf(mid.imag))
 
 
 def _to_mpf(ball):
