@@ -118,6 +118,7 @@ THEORY_TERMS = 14
 _COMMON = {"lam", "lam2", "D", "E", "R", "logscale"}
 _RESERVED = {
     "c": _COMMON | {"lam_re", "lam_im", "delta_re", "delta_im", "U", "d", "s", "n", "nsub",
+                    "nu", "grown", "w",
                     "t", "j", "NS", "NC", "NU_STEP", "I", "auto", "break", "case", "char",
                     "const", "continue", "default", "do", "double", "else", "enum", "extern",
                     "float", "for", "goto", "if", "inline", "int", "long", "register",
@@ -127,7 +128,7 @@ _RESERVED = {
                     "csin", "conj", "sqrt", "pow", "log", "exp", "ceil", "NAN", "M_PI"},
     # Fortran ignores case: compared in lower case
     "fortran": _COMMON | {"lam_re", "lam_im", "delta_re", "delta_im", "e", "r", "dlt", "tt",
-                          "u", "dd", "nn", "nsub", "it", "ii", "kk", "jj", "s", "dp", "ns",
+                          "u", "dd", "nn", "nsub", "nuv", "wv", "grown", "it", "ii", "kk", "jj", "s", "dp", "ns",
                           "nc", "nu_step", "coef", "cfun", "segment", "steps", "units",
                           "orthonormalise", "det", "abs", "real", "aimag", "cmplx", "sqrt",
                           "exp", "log", "cos", "cosh", "sin", "sinh", "conjg", "sum",
@@ -135,13 +136,13 @@ _RESERVED = {
                           "ieee_arithmetic", "iso_c_binding", "c_double", "c_double_complex",
                           "th", "ifact", "invariants", "wave", "segment_gen", "steps_nu",
                           "units_b"},
-    "octave": _COMMON | {"d", "lm", "idx", "Us", "it", "F", "end", "function", "for", "if",
+    "octave": _COMMON | {"d", "lm", "idx", "Us", "it", "F", "w", "grown", "end", "function", "for", "if",
                          "else", "elseif", "while", "return", "switch", "case", "otherwise",
                          "do", "until", "break", "continue", "global", "persistent", "try",
                          "catch", "i", "j", "pi", "e", "abs", "sqrt", "exp", "log", "cos",
                          "sin", "cosh", "sinh", "zeros", "numel", "size", "det", "qr", "diag",
                          "ceil", "max", "NaN", "Inf", "sum", "complex", "real", "imag"},
-    "julia": _COMMON | {"Us", "it", "begin", "end", "function", "for", "if", "else", "elseif",
+    "julia": _COMMON | {"Us", "it", "w", "grown", "begin", "end", "function", "for", "if", "else", "elseif",
                         "while", "return", "let", "local", "global", "const", "do", "try",
                         "catch", "finally", "struct", "mutable", "module", "using", "import",
                         "export", "quote", "macro", "abstract", "primitive", "type", "in",
@@ -149,11 +150,12 @@ _RESERVED = {
                         "outer", "im", "pi", "abs", "sqrt", "exp", "log", "cos", "sin", "cosh",
                         "sinh", "conj", "zeros", "one", "zero", "size", "ceil", "Int", "max",
                         "NaN", "Float64", "ComplexF64", "transpose", "NTuple"},
-    "python": _COMMON | {"flat", "Us", "F", "np", "n", "out", "sel", "key", "steps", "core"}
+    "python": _COMMON | {"flat", "Us", "F", "np", "n", "out", "sel", "key", "steps", "core",
+                         "grown"}
     | set(keyword.kwlist),
 }
 # numbered locals of the generated code (U1, s0, n2, th0, ...)
-_NUMBERED = re.compile(r"^(?:[Usn]|th)\d+$")
+_NUMBERED = re.compile(r"^(?:[Usn]|th|nu)\d+$")
 
 
 def _float_literal(value) -> str:
@@ -736,21 +738,26 @@ def _emit_c(plan: _Plan) -> str:
     out.append("    double logscale = 0.0" + "".join(
         f" {'+' if sg > 0 else '-'} log(D[{i}])" for sg, i in _logscale_terms(plan)) + ";")
     nseg = max(len(plan.segments), 1)
-    out += [f"    double complex U[{nseg}][4][4];", f"    int nsub[{nseg}];"]
+    out += [f"    double complex U[{nseg}][4][4];", f"    int nsub[{nseg}];",
+            f"    double nu[{nseg}], grown = 0.0;  /* |beta| l per step; since the last QR */"]
     for i, seg in enumerate(plan.segments):
         if seg[0] == "eb":
             _, a, l, EI, s = seg
             lam2s = _shifted(s, p)
             out += ["    {",
-                    f"        nsub[{i}] = symtmm_steps(pow(cabs(-{lam2s} * {p(a)}), 0.25));",
+                    f"        double w = pow(cabs(-{lam2s} * {p(a)}), 0.25);",
+                    f"        nsub[{i}] = symtmm_steps(w);",
                     f"        double n = nsub[{i}];",
+                    f"        nu[{i}] = w / n;",
                     (f"        symtmm_segment({lam2s}, {p(a)} / (n * n * n * n), {p(l)} / n, "
                      f"{p(EI)}, U[{i}]);"),
                     "    }"]
         else:
             _, t, l = seg
             out += ["    {",
-                    f"        nsub[{i}] = symtmm_steps(symtmm_wave(lam2, th{t}) * {p(l)});",
+                    f"        double w = symtmm_wave(lam2, th{t}) * {p(l)};",
+                    f"        nsub[{i}] = symtmm_steps(w);",
+                    f"        nu[{i}] = w / nsub[{i}];",
                     f"        symtmm_segment_gen(lam2, th{t}, {p(l)} / nsub[{i}], U[{i}]);",
                     "    }"]
     if plan.stiff:
@@ -759,9 +766,14 @@ def _emit_c(plan: _Plan) -> str:
         out.append(f"    s[{i}] = {_polynomial(coeffs, p)};")
     for step in plan.steps:
         if step[0] == "seg":
-            out += [f"    for (int t = 0; t < nsub[{step[1]}]; t++) {{",
-                    f"        symtmm_apply(U[{step[1]}], D, E, {4 * step[2]});",
-                    "        logscale += symtmm_orthonormalise(E);", "    }"]
+            k = step[1]
+            out += [f"    for (int t = 0; t < nsub[{k}]; t++) {{",
+                    # orthonormalise only once the columns may have grown by exp(NU_STEP)
+                    f"        if (grown + nu[{k}] > NU_STEP) {{",
+                    "            logscale += symtmm_orthonormalise(E);",
+                    "            grown = 0.0;", "        }",
+                    f"        symtmm_apply(U[{k}], D, E, {4 * step[2]});",
+                    f"        grown += nu[{k}];", "    }"]
         elif step[1]:
             out.append("    for (int j = 0; j < NC; j++) {")
             for row, terms in step[1]:
@@ -1052,6 +1064,7 @@ def _emit_fortran(plan: _Plan) -> str:
             "    complex(dp) :: lam, lam2, e(ns, nc), r(nc, nc), dlt, tt(4, nc)",
             f"    complex(dp) :: u(4, 4, {nseg})",
             "    real(dp) :: dd(ns), logscale",
+            f"    real(dp) :: nuv({nseg}), wv, grown",
             f"    integer :: nsub({nseg}), it, ii, kk"]
     if plan.has_eb:
         out.append("    real(dp) :: nn")
@@ -1089,19 +1102,24 @@ def _emit_fortran(plan: _Plan) -> str:
     out.append("    e = (0.0_dp, 0.0_dp)")
     for j, c in enumerate(plan.columns):
         out.append(f"    e({c + 1}, {j + 1}) = (1.0_dp, 0.0_dp)")
+    out.append("    grown = 0.0_dp")
     out.append("    logscale = 0.0_dp" + "".join(
         f" {'+' if sg > 0 else '-'} log(dd({i + 1}))" for sg, i in _logscale_terms(plan)))
     for i, seg in enumerate(plan.segments):
         if seg[0] == "eb":
             _, a, l, EI, s = seg
             lam2s = _shifted(s, f)
-            out += [f"    nsub({i + 1}) = steps(abs(-{lam2s} * {f(a)})**0.25_dp)",
+            out += [f"    wv = abs(-{lam2s} * {f(a)})**0.25_dp",
+                    f"    nsub({i + 1}) = steps(wv)",
                     f"    nn = real(nsub({i + 1}), kind=dp)",
+                    f"    nuv({i + 1}) = wv / nn",
                     (f"    call segment({lam2s}, {f(a)} / nn**4, {f(l)} / nn, {f(EI)}, "
                      f"u(:, :, {i + 1}))")]
         else:
             _, t, l = seg
-            out += [f"    nsub({i + 1}) = steps(wave(lam2, th(:, {t + 1})) * {f(l)})",
+            out += [f"    wv = wave(lam2, th(:, {t + 1})) * {f(l)}",
+                    f"    nsub({i + 1}) = steps(wv)",
+                    f"    nuv({i + 1}) = wv / real(nsub({i + 1}), kind=dp)",
                     (f"    call segment_gen(lam2, th(:, {t + 1}), {f(l)} / real(nsub({i + 1}), "
                      f"kind=dp), u(:, :, {i + 1}))")]
     for i, coeffs in enumerate(plan.stiff):
@@ -1110,6 +1128,10 @@ def _emit_fortran(plan: _Plan) -> str:
         if step[0] == "seg":
             r0 = 4 * step[2]
             out += [f"    do it = 1, nsub({step[1] + 1})",
+                    f"      if (grown + nuv({step[1] + 1}) > nu_step) then",
+                    "        logscale = logscale + orthonormalise(e)",
+                    "        grown = 0.0_dp",
+                    "      end if",
                     "      do ii = 1, 4",
                     "        tt(ii, :) = (0.0_dp, 0.0_dp)",
                     "        do kk = 1, 4",
@@ -1118,7 +1140,7 @@ def _emit_fortran(plan: _Plan) -> str:
                     "        end do",
                     "      end do",
                     f"      e({r0 + 1}:{r0 + 4}, :) = tt",
-                    "      logscale = logscale + orthonormalise(e)",
+                    f"      grown = grown + nuv({step[1] + 1})",
                     "    end do"]
         elif step[1]:
             out.append("    do jj = 1, nc")
@@ -1273,17 +1295,22 @@ def _emit_octave(plan: _Plan) -> str:
         out.append(f"    E({c + 1}, {j + 1}) = 1;")
     out.append("    logscale = 0" + "".join(
         f" {'+' if sg > 0 else '-'} log(D({i + 1}))" for sg, i in _logscale_terms(plan)) + ";")
+    out.append("    grown = 0;   % |beta| l applied since the last orthonormalisation")
     step = _float_literal(NU_STEP)
     for i, seg in enumerate(plan.segments):
         if seg[0] == "eb":
             _, a, l, EI, s = seg
             lam2s = _shifted(s, p)
-            out += [f"    n{i + 1} = max(1, ceil(abs(-{lam2s} * {p(a)})^0.25 / {step}));",
+            out += [f"    w = abs(-{lam2s} * {p(a)})^0.25;",
+                    f"    n{i + 1} = max(1, ceil(w / {step}));",
+                    f"    nu{i + 1} = w / n{i + 1};",
                     (f"    U{i + 1} = symtmm_segment({lam2s}, {p(a)} / n{i + 1}^4, {p(l)} / "
                      f"n{i + 1}, {p(EI)});")]
         else:
             _, t, l = seg
-            out += [f"    n{i + 1} = max(1, ceil(symtmm_wave(lam2, th{t + 1}) * {p(l)} / {step}));",
+            out += [f"    w = symtmm_wave(lam2, th{t + 1}) * {p(l)};",
+                    f"    n{i + 1} = max(1, ceil(w / {step}));",
+                    f"    nu{i + 1} = w / n{i + 1};",
                     f"    U{i + 1} = symtmm_segment_gen(lam2, th{t + 1}, {p(l)} / n{i + 1});"]
     for i, coeffs in enumerate(plan.stiff):
         out.append(f"    s{i + 1} = {_polynomial(coeffs, p, lam='lm')};")
@@ -1293,9 +1320,13 @@ def _emit_octave(plan: _Plan) -> str:
             blk = f"{r0 + 1}:{r0 + 4}"
             out += [f"    Us = U{st[1] + 1} .* (D({blk}) ./ D({blk}).');",
                     f"    for it = 1:n{st[1] + 1}",
+                    f"      if grown + nu{st[1] + 1} > {step}",
+                    "        [E, F] = qr(E, 0);",
+                    "        logscale = logscale + sum(log(diag(F)));",
+                    "        grown = 0;",
+                    "      end",
                     f"      E({blk}, :) = Us * E({blk}, :);",
-                    "      [E, F] = qr(E, 0);",
-                    "      logscale = logscale + sum(log(diag(F)));",
+                    f"      grown = grown + nu{st[1] + 1};",
                     "    end"]
         else:
             for row, terms in st[1]:
@@ -1503,19 +1534,23 @@ def _emit_julia(plan: _Plan) -> str:
     out.append(f"    E = zeros(ComplexF64, {ns}, {nc})")
     for j, c in enumerate(plan.columns):
         out.append(f"    E[{c + 1}, {j + 1}] = 1")
+    out.append("    grown = 0.0   # |beta| l applied since the last orthonormalisation")
     out.append("    logscale = 0.0" + "".join(
         f" {'+' if sg > 0 else '-'} log(D[{i + 1}])" for sg, i in _logscale_terms(plan)))
     for i, seg in enumerate(plan.segments):
         if seg[0] == "eb":
             _, a, l, EI, s = seg
             lam2s = _shifted(s, p)
-            out += [f"    n{i + 1} = max(1, ceil(Int, abs(-{lam2s} * {p(a)})^0.25 / SYMTMM_NU_STEP))",
+            out += [f"    w = abs(-{lam2s} * {p(a)})^0.25",
+                    f"    n{i + 1} = max(1, ceil(Int, w / SYMTMM_NU_STEP))",
+                    f"    nu{i + 1} = w / n{i + 1}",
                     (f"    U{i + 1} = symtmm_segment({lam2s}, Float64({p(a)}) / n{i + 1}^4, "
                      f"Float64({p(l)}) / n{i + 1}, Float64({p(EI)}))")]
         else:
             _, t, l = seg
-            out += [(f"    n{i + 1} = max(1, ceil(Int, symtmm_wave(lam2, th{t + 1}) * {p(l)} / "
-                     "SYMTMM_NU_STEP))"),
+            out += [f"    w = symtmm_wave(lam2, th{t + 1}) * {p(l)}",
+                    f"    n{i + 1} = max(1, ceil(Int, w / SYMTMM_NU_STEP))",
+                    f"    nu{i + 1} = w / n{i + 1}",
                     (f"    U{i + 1} = symtmm_segment_gen(lam2, th{t + 1}, Float64({p(l)}) / "
                      f"n{i + 1})")]
     for i, coeffs in enumerate(plan.stiff):
@@ -1526,8 +1561,12 @@ def _emit_julia(plan: _Plan) -> str:
             blk = f"{r0 + 1}:{r0 + 4}"
             out += [f"    Us = U{step[1] + 1} .* (D[{blk}] ./ transpose(D[{blk}]))",
                     f"    for it in 1:n{step[1] + 1}",
+                    f"        if grown + nu{step[1] + 1} > SYMTMM_NU_STEP",
+                    "            logscale += symtmm_orthonormalise!(E)",
+                    "            grown = 0.0",
+                    "        end",
                     f"        E[{blk}, :] = Us * E[{blk}, :]",
-                    "        logscale += symtmm_orthonormalise!(E)",
+                    f"        grown += nu{step[1] + 1}",
                     "    end"]
         else:
             for row, terms in step[1]:
@@ -1703,16 +1742,19 @@ def _emit_python(plan: _Plan) -> str:
     body.append("logscale = np.zeros(flat.size, dtype=complex)" + "".join(
         f" {'+' if sg > 0 else '-'} np.log(D[:, {i}])" for sg, i in _logscale_terms(plan)))
     nus = []
+    body.append("grown = 0.0   # |beta| l applied since the last orthonormalisation")
     for i, seg in enumerate(plan.segments):
         body.append(f"n{i} = int(steps[{i}])")
         if seg[0] == "eb":
             _, a, l, EI, s = seg
             lam2s = _shifted(s, p)
             nus.append(f"np.abs(-{lam2s} * {p(a)}) ** 0.25")
+            body.append(f"nu{i} = float(np.max({nus[-1]}, initial=0.0)) / n{i}")
             body.append(f"U{i} = _segment({lam2s}, {p(a)} / n{i}**4, {p(l)} / n{i}, {p(EI)})")
         else:
             _, t, l = seg
             nus.append(f"_wave(lam2, th{t}) * {p(l)}")
+            body.append(f"nu{i} = float(np.max({nus[-1]}, initial=0.0)) / n{i}")
             body.append(f"U{i} = _segment_gen(lam2, th{t}, {p(l)} / n{i})")
     for i, coeffs in enumerate(plan.stiff):
         body.append(f"s{i} = np.broadcast_to({_polynomial(coeffs, p, lam='flat')}, "
@@ -1723,9 +1765,13 @@ def _emit_python(plan: _Plan) -> str:
             blk = f"{r0}:{r0 + 4}"
             body += [f"Us = U{step[1]} * (D[:, {blk}, None] / D[:, None, {blk}])",
                      f"for _ in range(n{step[1]}):",
+                     f"    if grown + nu{step[1]} > _NU_STEP:",
+                     "        E, F = np.linalg.qr(E)",
+                     ("        logscale += np.sum(np.log(np.diagonal(F, axis1=-2, axis2=-1)), "
+                      "axis=-1)"),
+                     "        grown = 0.0",
                      f"    E[:, {blk}, :] = Us @ E[:, {blk}, :]",
-                     "    E, F = np.linalg.qr(E)",
-                     "    logscale += np.sum(np.log(np.diagonal(F, axis1=-2, axis2=-1)), axis=-1)"]
+                     f"    grown += nu{step[1]}"]
         else:
             for row, terms in step[1]:
                 rhs = _jump(terms, lambda i: f"s{i}", lambda c: f"E[:, {c}, :]",
