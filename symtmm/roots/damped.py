@@ -484,8 +484,8 @@ class _Search:
         for factor in (0, 2):
             ev = Evaluator(_scaled_dashpots(self.p.model, factor))
             with mpmath.workdps(dps):
-                zt, _ = self._secant(lambda u, ev=ev: delta_mp(ev, u), z, tol / 10 ** 5, maxsteps=40,
-                                     multiplicity=m)
+                zt, _ = self._secant(lambda u, ev=ev: delta_mp(ev, u), z, tol / 10 ** 5,
+                                     maxsteps=40, multiplicity=m)
             self.p.extra += ev.evaluations
             if zt is None or abs(zt - z) > tol:
                 return False
