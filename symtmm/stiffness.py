@@ -15,10 +15,34 @@ The segment stiffness comes from the segment's own transfer matrix, split
 into displacement and force blocks ``z = [d; f]``, ``d = (Y, Theta)``,
 ``f = (M, Q)``: ``f0 = U12^-1 (d1 - U11 d0)`` and ``f1 = U21 d0 + U22 f0``.
 The end actions conjugate to ``(Y0, Theta0, Y1, Theta1)`` are
-``(Q0, -M0, -Q1, M1)``. Beams are cut into segments with ``beta l <= NU_MAX``
-at the highest frequency asked for: the clamped-clamped segments then have no
-natural frequency below it (``J0 = 0``, first one at ``beta l = 4.730``), and
-no digit is lost to the cancellation that long segments suffer.
+``(Q0, -M0, -Q1, M1)``. This holds for every beam theory of
+:mod:`symtmm.elements.theories` (``Theta`` the rotation of the cross-section,
+``M`` and ``Q`` the actions conjugate to it and to ``Y``), and ``K`` is
+symmetric. Beams are cut at their ends, point elements and attachments, and
+further into pieces that reach none of their own clamped-clamped natural
+frequencies below the highest frequency asked for
+(``segment.safe_length(omega**2)``, rigorous for every theory; an
+Euler–Bernoulli piece keeps ``beta l <= NU_MAX``, below the first
+clamped-clamped root ``beta l = 4.730``), so ``J0 = 0``. Pieces are also kept
+to ``|s| l <= NU_MAX`` for their largest wave number ``s``, so that no digit
+is lost to the growth of long segments.
+
+Rigid bodies (joints are massless ones) enter by master–slave elimination.
+A body has the freedoms ``Y_c`` and, if it rotates, ``Theta_c`` of its
+centre of mass ``xc``; at an attachment at ``x_i`` the beam's ``Y`` is
+``Y_c + (x_i - xc) Theta_c`` and, if the attachment is rigid, its ``Theta`` is
+``Theta_c``; the body adds ``lam**2 diag(M, J)`` on ``(Y_c, Theta_c)``. A
+boundary condition at a beam end attached to a body constrains the body. These
+linear constraints are eliminated exactly (:class:`Mesh`): every freedom is a
+combination of the remaining ones, ``K = T^T K_full T`` is the stiffness of
+the constrained structure, and the count holds for it unchanged (fixing the
+remaining freedoms still clamps every segment). Body freedoms are numbered
+next to the node of their first attachment, which keeps ``K`` banded.
+
+An axial compression above a buckling load makes the static stiffness
+indefinite: eigenvalues ``omega**2 < 0`` (``lam`` real, a growing motion),
+which ``J`` counts below every ``omega``. :meth:`StiffnessModel.unstable_modes`
+counts them.
 """
 
 from __future__ import annotations
@@ -33,10 +57,12 @@ import sympy as sp
 from .assembly import point_elements
 from .elements import EulerBernoulliSegment
 from .elements.base import LAM
+from .errors import ComputationError, ModelError
 from .model import Model
 from .numeric import to_mp
 
-__all__ = ["StiffnessModel", "NU_MAX", "SingularCount", "SINGULAR_DPS"]
+__all__ = ["StiffnessModel", "Mesh", "NU_MAX", "SingularCount", "SINGULAR_DPS",
+           "segment_stiffness", "wave_number_bound"]
 
 #: A count whose pivot stays below the working precision up to this many digits is taken at
 #: an eigenvalue (within 10**-SINGULAR_DPS of it): :class:`SingularCount`.
@@ -52,7 +78,7 @@ class SingularCount(ArithmeticError):
     """
 
 
-#: Largest ``beta l`` of a segment at the design frequency.
+#: Largest ``|s| l`` (``beta l`` for Euler–Bernoulli) of a segment at the design frequency.
 NU_MAX = 2.0
 # Zero-pivot guard: relative size below which a pivot's sign is not trusted in double.
 _DOUBLE_TRUST = 1e-10
@@ -86,6 +112,268 @@ def segment_stiffness(U):
     return np.stack([f0[1], -f0[0], -f1[1], f1[0]])
 
 
+def wave_number_bound(segment, radius: float) -> float:
+    """An upper bound on the largest wave number of ``segment`` for all ``|lam**2| <= radius``.
+
+    From the triangle inequality on the trace ``t`` and determinant ``d`` of the
+    segment's ``G`` (see :mod:`symtmm.elements.theories`); for an Euler–Bernoulli
+    segment ``((m radius + kw) / EI)**(1/4)``.
+
+    Examples
+    --------
+    >>> round(wave_number_bound(EulerBernoulliSegment(1, 1, 1), 16.0), 12)
+    2.0
+    """
+    if isinstance(segment, EulerBernoulliSegment):
+        EI, m, _, kw = segment.constants()
+        return ((m * radius + kw) / EI) ** 0.25
+    EI, m, _, kw, N, rhoI, kGA = segment.constants()
+    if math.isinf(kGA):
+        a, b = 1.0, 0.0
+    else:
+        a, b = kGA / (kGA + N), -1.0 / (kGA + N)
+    c = abs(N * a) + rhoI * radius
+    mu = m * radius + kw
+    t = c / EI + abs(b) * mu
+    d = mu * (a * a + abs(b) * c) / EI
+    return math.sqrt(t / 2 + math.sqrt(t * t / 4 + d))
+
+
+class Mesh:
+    """Nodes, segments and freedoms of a model for a dynamic-stiffness assembly.
+
+    Every beam is cut at its ends, its point elements and the attachments of
+    rigid bodies, then each part into equal pieces no longer than
+    ``piece(beam, segment)`` (``segment`` the part as one element). Each node
+    has the freedoms ``Y`` and ``Theta``, each rigid body ``Y_c`` and (if it
+    rotates) ``Theta_c``. Boundary conditions and attachments are linear
+    constraints among them; they are eliminated exactly, and every freedom
+    becomes a *combination* ``((index, coefficient), ...)`` of the free ones
+    (numbered ``0 .. size - 1`` along ``x``; the empty combination is a fixed
+    freedom).
+
+    Parameters
+    ----------
+    model : Model
+        Resolved and numeric.
+    piece : callable
+        ``piece(beam, segment) -> float``: the longest piece allowed.
+
+    Attributes
+    ----------
+    segments : list
+        ``(beam index, segment, left node, right node)``.
+    segment_places : list
+        Per segment, the combinations of ``(Y0, Theta0, Y1, Theta1)``.
+    point_places : list
+        ``(combinations, element)`` per point element, on the element's ``dofs``.
+    body_places : list
+        ``(combinations, masses)`` per rigid body: ``(Y_c[, Theta_c])`` and
+        ``(M[, J])`` (exact).
+    size, bandwidth : int
+        Number of free freedoms and half-bandwidth of the assembled matrix.
+    rotation_length : list
+        Per free freedom, a length scale if it is a rotation (the longest
+        segment at its node), else None.
+
+    Examples
+    --------
+    A fork: a clamped trunk whose free end is joined rigidly to two branches.
+    The joint's two freedoms replace the three beam ends' six:
+
+    >>> from symtmm.model import Attachment, Beam, Model, RigidBody
+    >>> beams = (Beam("t", 1, 1, 1, left="clamped"), Beam("a", 1, 1, 1, x0=1),
+    ...          Beam("b", 1, 1, 1, x0=1))
+    >>> joint = RigidBody("j", (Attachment("t", 1), Attachment("a", 1), Attachment("b", 1)))
+    >>> mesh = Mesh(Model(beams, bodies=(joint,)), lambda beam, seg: float(seg.l))
+    >>> mesh.size, mesh.segment_places[1]     # (Y0, Theta0) of branch a are the joint's
+    (6, (((0, 1),), ((1, 1),), ((2, 1),), ((3, 1),)))
+    """
+
+    def __init__(self, model: Model, piece):
+        self.model = model
+        self._index = {b.name: i for i, b in enumerate(model.beams)}
+        self._cut(piece)
+        subs = self._eliminate()
+        number = self._number(subs)
+
+        def combo(v):
+            if v not in subs:
+                return ((number[v], sp.Integer(1)),)
+            return tuple(sorted((number[w], c) for w, c in subs[v].items()))
+
+        self.segment_places = [tuple(combo(("n", n, k)) for n in (ia, ib) for k in (0, 1))
+                               for _, _, ia, ib in self.segments]
+        self.point_places = []
+        for x, el in point_elements(model):
+            at = [self._node(name, x) for name in el.beams]
+            self.point_places.append(
+                (tuple(combo(("n", at[lvl], 0 if var == "Y" else 1)) for lvl, var in el.dofs), el))
+        self.body_places = []
+        for bi, body in enumerate(model.bodies):
+            ks = (0, 1) if body.rotates else (0,)
+            masses = (body.M, body.J)[:len(ks)]
+            self.body_places.append((tuple(combo(("b", bi, k)) for k in ks), masses))
+        self.bandwidth = 0
+        for places in (self.segment_places + [p for p, _ in self.point_places]
+                       + [p for p, _ in self.body_places]):
+            live = [i for c in places for i, _ in c]
+            if live:
+                self.bandwidth = max(self.bandwidth, max(live) - min(live))
+
+    def _node(self, beam_name: str, x) -> int:
+        return self._beam_nodes[self._index[beam_name]][sp.nsimplify(x)]
+
+    def _cut(self, piece):
+        """Nodes along every beam and the segments between them."""
+        model = self.model
+        points_el = point_elements(model)
+        self._nodes = []                 # (x float, beam index) per node
+        self._node_length = []           # the longest segment at each node
+        self.segments = []
+        self._beam_nodes = []            # per beam: exact x -> node
+        for b_idx, beam in enumerate(model.beams):
+            required = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
+            required += [a.x for body in model.bodies for a in body.attachments
+                         if a.beam == beam.name]
+            xs = sorted({sp.nsimplify(x) for x in required}, key=float)
+            points = [xs[0]]
+            for xa, xb in itertools.pairwise(xs):
+                length = xb - xa
+                longest = piece(beam, beam.segment(length))
+                n_sub = max(1, math.ceil(float(length) / longest - 1e-9))
+                points += [xa + length * sp.Rational(k, n_sub) for k in range(1, n_sub + 1)]
+            ids = list(range(len(self._nodes), len(self._nodes) + len(points)))
+            self._nodes += [(float(x), b_idx) for x in points]
+            self._node_length += [0.0] * len(points)
+            self._beam_nodes.append(dict(zip(points, ids)))
+            for (xa, ia), (xb, ib) in zip(zip(points, ids), zip(points[1:], ids[1:])):
+                self.segments.append((b_idx, beam.segment(xb - xa), ia, ib))
+                for i in (ia, ib):
+                    self._node_length[i] = max(self._node_length[i], float(xb - xa))
+
+    def _number(self, subs) -> dict:
+        """Number the free freedoms along ``x``; a body's next to its first attachment's node.
+
+        Sets :attr:`size` and :attr:`rotation_length`; returns freedom -> index.
+        """
+        nodes, index = self._nodes, self._index
+        place = {}
+        for node, (x, b_idx) in enumerate(nodes):
+            for k in (0, 1):
+                place[("n", node, k)] = (x, b_idx, node, k)
+        body_node = []
+        for bi, body in enumerate(self.model.bodies):
+            first = min(body.attachments, key=lambda a: (float(a.x), index[a.beam]))
+            node = self._node(first.beam, first.x)
+            body_node.append(node)
+            for k in (0, 1) if body.rotates else (0,):
+                place[("b", bi, k)] = nodes[node] + (node, 2 + 2 * bi + k)
+        free = sorted((v for v in place if v not in subs), key=place.get)
+        self.size = len(free)
+        self.rotation_length = [
+            None if v[2] == 0 else
+            self._node_length[v[1] if v[0] == "n" else body_node[v[1]]] or 1.0 for v in free]
+        return {v: i for i, v in enumerate(free)}
+
+    def _constraints(self) -> list:
+        """``(body name or None, {freedom: coefficient})``: every ``sum = 0`` to eliminate.
+
+        Attachments first (``Y - Y_c - (x - xc) Theta_c``, and ``Theta - Theta_c`` when
+        rigid), then the boundary conditions (a freedom that is zero).
+        """
+        constraints = []
+        for bi, body in enumerate(self.model.bodies):
+            for att in body.attachments:
+                node = self._node(att.beam, att.x)
+                d = sp.nsimplify(att.x - body.xc)
+                c = {("n", node, 0): sp.Integer(1), ("b", bi, 0): sp.Integer(-1)}
+                if body.rotates and d != 0:
+                    c[("b", bi, 1)] = -d
+                constraints.append((body.name, c))
+                if not att.hinged:
+                    constraints.append((body.name, {("n", node, 1): sp.Integer(1),
+                                                    ("b", bi, 1): sp.Integer(-1)}))
+        for beam, nodes in zip(self.model.beams, self._beam_nodes):
+            ends = sorted(nodes, key=float)
+            for x, bc in ((ends[0], beam.left), (ends[-1], beam.right)):
+                for k in _BC_DOFS_REMOVED[bc]:
+                    constraints.append((None, {("n", nodes[x], k): sp.Integer(1)}))
+        return constraints
+
+    def _eliminate(self) -> dict:
+        """Eliminate the constraints: ``{freedom: {free freedom: exact coefficient}}``.
+
+        Constraints are taken in turn, each with the current eliminations
+        substituted; a node freedom goes first (a slave, coefficient 1), then a
+        body's ``Y_c``, then its ``Theta_c``. :attr:`pivot_product` is the product
+        of the squared coefficients of the freedoms eliminated:
+        ``det R = det K * prod det U12 * pivot_product``. A constraint reduced to
+        ``0 = 0`` means a body held more times than it has freedoms (e.g. joining
+        two clamped ends): its reactions are statically indeterminate and
+        ``det R`` vanishes for every ``lam``; that model is refused.
+        """
+        constraints = self._constraints()
+        subs: dict = {}
+        self.pivot_product = sp.Integer(1)
+        for name, constraint in constraints:
+            expr: dict = {}
+            for v, c in constraint.items():
+                for w, cw in (subs[v] if v in subs else {v: sp.Integer(1)}).items():
+                    expr[w] = expr.get(w, 0) + c * cw
+            expr = {w: c for w, c in expr.items() if c != 0}
+            if not expr:
+                # (boundary conditions come after the attachments: a redundant one falls
+                # on a node held by a body)
+                body = name or next(n for n, c in constraints if n and set(c) & set(constraint))
+                raise ModelError("held more times than it has freedoms (statically "
+                                 "indeterminate: its reactions are not determined and the "
+                                 "characteristic determinant vanishes identically)",
+                                 field=f"body '{body}'.attach", source=self.model.source)
+            pivot = min(expr, key=lambda v: (v[0] == "b", v[2], v[1]))
+            cp = expr.pop(pivot)
+            self.pivot_product *= cp**2
+            value = {w: -c / cp for w, c in expr.items()}
+            for ex in subs.values():
+                if pivot in ex:
+                    c = ex.pop(pivot)
+                    for w, cw in value.items():
+                        ex[w] = ex.get(w, 0) + c * cw
+                        if ex[w] == 0:
+                            del ex[w]
+            subs[pivot] = value
+        return subs
+
+
+def _scatter(K, local, places):
+    """Add ``T^T local T`` into ``K``: ``places[i]`` is local freedom ``i`` as a combination."""
+    for i, ci in enumerate(places):
+        for gi, ai in ci:
+            row = K[gi]
+            for j, cj in enumerate(places):
+                value = local[i][j]
+                for gj, aj in cj:
+                    row[gj] += ai * aj * value
+
+
+def _count_piece(segment, omega2: float) -> float:
+    """The longest piece of ``segment`` for the count up to ``omega2``.
+
+    None of its clamped-clamped natural frequencies lies below ``omega``
+    (``J0 = 0``), and its largest wave number ``s`` keeps ``|s| l <= NU_MAX``.
+    """
+    if isinstance(segment, EulerBernoulliSegment):
+        return segment.safe_length(omega2, nu_max=NU_MAX)
+    longest = segment.safe_length(omega2)
+    s = float(np.max(segment.wave_number(np.array(-omega2))))
+    return min(longest, NU_MAX / s) if s > 0 else longest
+
+
+def _lam_numpy(lam2: float) -> complex:
+    """``lam`` with ``lam**2 = lam2``: ``i omega`` below zero, real above."""
+    return 1j * math.sqrt(-lam2) if lam2 <= 0 else complex(math.sqrt(lam2))
+
+
 class StiffnessModel:
     """Global dynamic stiffness of an undamped model, valid up to ``omega_design``.
 
@@ -94,7 +382,13 @@ class StiffnessModel:
     model : Model
         Numeric and undamped.
     omega_design : float
-        Highest circular frequency at which :meth:`count` will be asked.
+        Highest circular frequency at which :meth:`count` will be asked (a
+        higher one rebuilds the mesh).
+
+    Attributes
+    ----------
+    mesh : Mesh
+        Segments and the combinations of free freedoms they act on.
 
     Examples
     --------
@@ -102,6 +396,13 @@ class StiffnessModel:
     >>> sm = StiffnessModel(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 100.0)
     >>> [sm.count(w) for w in (1.0, 10.0, 40.0, 90.0)]   # roots at (n pi)^2: 9.87, 39.5, 88.8
     [0, 1, 2, 3]
+
+    A Timoshenko beam (``omega**2`` the smaller root of a quadratic, about 9.1 here):
+
+    >>> t = Beam("t", 1, 1, 1, left="pinned", right="pinned", theory="timoshenko",
+    ...          rhoI="1/100", kGA=100)
+    >>> [StiffnessModel(Model((t,)), 20.0).count(w) for w in (9.0, 9.2)]
+    [0, 1]
     """
 
     def __init__(self, model: Model, omega_design: float):
@@ -114,90 +415,83 @@ class StiffnessModel:
         self._build()
 
     def _build(self):
-        beams = self.model.beams
-        points_el = point_elements(self.model)
-        nodes = []        # (x float, beam index, exact x)
-        self.segments = []  # (beam index, segment, left node id, right node id)
-        beam_nodes = []
-        for b_idx, beam in enumerate(beams):
-            required = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
-            xs = sorted({sp.nsimplify(x) for x in required}, key=float)
-            points = [xs[0]]
-            mu = (float(beam.m) / float(beam.EI)) ** 0.25 * math.sqrt(self.omega_design)
-            for xa, xb in itertools.pairwise(xs):
-                n_sub = max(1, math.ceil(mu * float(xb - xa) / NU_MAX))
-                points += [xa + (xb - xa) * sp.Rational(k, n_sub) for k in range(1, n_sub + 1)]
-            ids = []
-            for x in points:
-                ids.append(len(nodes))
-                nodes.append((float(x), b_idx, x))
-            beam_nodes.append(dict(zip(points, ids)))
-            for (xa, ia), (xb, ib) in zip(zip(points, ids), zip(points[1:], ids[1:])):
-                self.segments.append((b_idx, EulerBernoulliSegment(beam.EI, beam.m, xb - xa, beam.kw),
-                                      ia, ib))
-        removed = {}
-        for b_idx, beam in enumerate(beams):
-            first, last = beam_nodes[b_idx][min(beam_nodes[b_idx], key=float)], \
-                beam_nodes[b_idx][max(beam_nodes[b_idx], key=float)]
-            removed[(first, "left")] = _BC_DOFS_REMOVED[beam.left]
-            removed[(last, "right")] = _BC_DOFS_REMOVED[beam.right]
-        # Number the dofs in order of x so that the matrix is banded.
-        order = sorted(range(len(nodes)), key=lambda i: (nodes[i][0], nodes[i][1]))
-        self.dof = {}
-        n = 0
-        for node in order:
-            gone = set(removed.get((node, "left"), ())) | set(removed.get((node, "right"), ()))
-            for k in (0, 1):
-                if k not in gone:
-                    self.dof[(node, k)] = n
-                    n += 1
-        self.size = n
-        self.points = []
-        self.point_elements = []    # (dofs, element): the exact stiffness, for ball arithmetic
-        index = {b.name: i for i, b in enumerate(beams)}
-        for x, el in points_el:
-            x = sp.nsimplify(x)
-            node_ids = [beam_nodes[index[name]][x] for name in el.beams]
-            dofs = [self.dof.get((node_ids[lvl], 0 if var == "Y" else 1))
-                    for lvl, var in el.dofs]
+        omega2 = self.omega_design ** 2
+        mesh = self.mesh = Mesh(self.model, lambda beam, seg: _count_piece(seg, omega2))
+        self.size = mesh.size
+        self.bandwidth = mesh.bandwidth
+        self.segments = mesh.segments
+        # segments of equal constants share one matrix: grouped by their exact key
+        self._kinds: dict = {}
+        groups: dict = {}
+        for (_, seg, _, _), places in zip(mesh.segments, mesh.segment_places):
+            self._kinds.setdefault(seg.key, seg)
+            groups.setdefault(seg.key, []).append(places)
+        # double precision: per kind, flat indices into K, into the local 4x4 and coefficients
+        self._seg_groups = []
+        for key, group in groups.items():
+            flat_k, flat_l, coef = [], [], []
+            for places in group:
+                for i, ci in enumerate(places):
+                    for j, cj in enumerate(places):
+                        for gi, ai in ci:
+                            for gj, aj in cj:
+                                flat_k.append(gi * self.size + gj)
+                                flat_l.append(4 * i + j)
+                                coef.append(float(ai * aj))
+            seg = self._kinds[key]
+            self._seg_groups.append((key, seg, seg.constants(), group, np.array(flat_k, dtype=int),
+                                     np.array(flat_l, dtype=int), np.array(coef)))
+        self._points = []
+        for places, el in mesh.point_places:
             S = el.stiffness(LAM)
-            self.points.append((dofs, sp.lambdify(LAM, S, "numpy"), sp.lambdify(LAM, S, "mpmath")))
-            self.point_elements.append((dofs, el))
-        self._seg_dofs = [[self.dof.get((ia, 0)), self.dof.get((ia, 1)),
-                           self.dof.get((ib, 0)), self.dof.get((ib, 1))]
-                          for _, _, ia, ib in self.segments]
-        self._seg_consts = [(float(s.EI), float(s.m), float(s.l), float(s.kw))
-                            for _, s, _, _ in self.segments]
-        self._segment_kind = {c: seg for c, (_, seg, _, _) in zip(self._seg_consts, self.segments)}
-        self._mp_consts: dict = {}
-        self.bandwidth = 0
-        for dofs in self._seg_dofs + [p[0] for p in self.points]:
-            live = [d for d in dofs if d is not None]
-            if live:
-                self.bandwidth = max(self.bandwidth, max(live) - min(live))
+            self._points.append((places, _float_places(places), sp.lambdify(LAM, S, "numpy"),
+                                 sp.lambdify(LAM, S, "mpmath")))
+        self._bodies = [(places, _float_places(places), masses)
+                        for places, masses in mesh.body_places]
+        self._mp_cache: dict = {}
 
     def _ensure(self, omega: float):
         if omega > self.omega_design * (1 + 1e-12):
             self.omega_design = 2.0 * omega
             self._build()
 
+    @property
+    def point_elements(self) -> list:
+        """``(dofs, element)`` per point element, ``dofs`` free indices or None (fixed).
+
+        Only for models whose freedoms are not combinations (no rigid bodies);
+        :attr:`mesh` holds the general form.
+        """
+        return [(_plain_dofs(places), el) for places, el in self.mesh.point_places]
+
+    @property
+    def _seg_dofs(self) -> list:
+        """Per segment, the free indices of ``(Y0, Theta0, Y1, Theta1)`` or None (fixed).
+
+        Only without rigid bodies (see :attr:`point_elements`).
+        """
+        return [_plain_dofs(places) for places in self.mesh.segment_places]
+
     # -- double precision -----------------------------------------------------------
     def matrix(self, omega: float) -> np.ndarray:
         """``K(omega)`` in double precision (dense)."""
         self._ensure(omega)
-        K = np.zeros((self.size, self.size))
-        lam2 = np.array(-omega * omega)
-        # segments of equal properties share their matrix: evaluate each kind once
-        cache: dict = {}
-        for dofs, consts in zip(self._seg_dofs, self._seg_consts):
-            D = cache.get(consts)
-            if D is None:
-                D = segment_stiffness(self._segment_kind[consts].evaluate_numpy(lam2, consts).real)
-                cache[consts] = D
-            _scatter(K, D, dofs)
-        for dofs, f_np, _ in self.points:
-            S = np.real(np.asarray(f_np(1j * omega), dtype=complex))
-            _scatter(K, S, dofs)
+        return self._matrix(-float(omega) ** 2)
+
+    def _matrix(self, lam2: float) -> np.ndarray:
+        """``K`` at ``lam**2 = lam2`` (``-omega**2``; positive: a real, growing ``lam``)."""
+        n = self.size
+        K = np.zeros(n * n)
+        lam2_np = np.array(lam2, dtype=complex)
+        for _, seg, consts, _, flat_k, flat_l, coef in self._seg_groups:
+            D = segment_stiffness(seg.evaluate_numpy(lam2_np, consts).real).reshape(16)
+            np.add.at(K, flat_k, D[flat_l] * coef)
+        K = K.reshape(n, n)
+        lam = _lam_numpy(lam2)
+        for _, places, f_np, _ in self._points:
+            _scatter(K, np.real(np.asarray(f_np(lam), dtype=complex)), places)
+        for _, places, masses in self._bodies:
+            _scatter(K, np.diag([float(m) * lam2 for m in masses]), places)
         return K
 
     def count(self, omega: float, dps: int | None = None) -> int:
@@ -208,47 +502,102 @@ class StiffnessModel:
         redone with mpmath at ``dps`` digits (default 30), raising the
         precision until every pivot is clear of zero.
         """
+        self._ensure(float(omega))
+        return self._count(omega, dps)
+
+    def _count(self, omega, dps=None, sign=-1) -> int:
+        """The count at ``lam**2 = sign * omega**2`` (``sign = +1``: a real ``lam``)."""
         self.evaluations += 1
         if dps is None:
-            negative = _banded_inertia(self.matrix(omega), self.bandwidth)
+            negative = _banded_inertia(self._matrix(sign * float(omega) ** 2), self.bandwidth)
             if negative is not None:
                 return negative
             dps = 30
         while True:
             with mpmath.workdps(dps):
-                result = self._count_mp(mpmath.mpf(omega) if not isinstance(omega, mpmath.mpf)
-                                        else omega)
+                w = omega if isinstance(omega, mpmath.mpf) else mpmath.mpf(omega)
+                result = self._count_mp(sign * w * w)
             if result is not None:
                 return result
             if dps >= SINGULAR_DPS:
                 raise SingularCount(f"K({omega}) is singular to {dps} digits: an eigenvalue")
             dps *= 2
 
+    def unstable_modes(self, rigid: int, omega_ref: float) -> int:
+        """Number of eigenvalues with ``omega**2 < 0``: modes buckled by an axial compression.
+
+        ``J`` extends to ``omega**2 < 0`` (``K`` at the real ``lam = w`` counts the
+        eigenvalues below ``-w**2``; the segments' clamped-clamped ones all lie
+        above zero). Without rigid-body modes this is the count of the static
+        ``K(0)``. With ``rigid`` of them (``omega = 0`` exactly), the counts at
+        ``omega**2 = -w**2`` and ``+w**2`` must differ by ``rigid`` alone, for a
+        ``w`` from ``1e-3 omega_ref`` down, so that no eigenvalue near zero is
+        taken for a buckled or a rigid one.
+
+        Examples
+        --------
+        >>> from symtmm.model import Beam, Model
+        >>> pp = Beam("b", 1, 1, 1, left="pinned", right="pinned", N="-25")  # N_cr = pi**2
+        >>> StiffnessModel(Model((pp,)), 10.0).unstable_modes(0, 1.0)       # 4 pi**2 > 25
+        1
+        """
+        if rigid == 0:
+            try:
+                return self._count(mpmath.mpf(0), dps=None)
+            except SingularCount:
+                pass
+        w = 1e-3 * float(omega_ref)
+        for _ in range(6):
+            try:
+                below, above = self._count(w, sign=+1), self.count(w)
+            except SingularCount:
+                below = above = None
+            if below is not None and above - below == rigid:
+                return below
+            w *= 1e-3
+        raise ComputationError("cannot tell whether the axial compression is above a buckling "
+                               f"load: eigenvalues with |omega| below {w * 1e3:.3g} rad/s besides "
+                               "the rigid-body modes")
+
     def matrix_mp(self, omega) -> list:
         """``K(omega)`` at the current mpmath precision, as a list of rows."""
         self._ensure(float(omega))
+        return self._matrix_mp(-omega * omega)
+
+    def _mp_places(self, places):
+        key = (id(places), mpmath.mp.prec)
+        out = self._mp_cache.get(key)
+        if out is None:
+            dps = mpmath.mp.dps
+            out = self._mp_cache[key] = tuple(tuple((g, mpmath.mpf(1) if c == 1 else to_mp(c, dps))
+                                                    for g, c in combo) for combo in places)
+        return out
+
+    def _matrix_mp(self, lam2) -> list:
         n = self.size
-        K = [[mpmath.mpf(0)] * n for _ in range(n)]
-        lam2 = -omega * omega
-        cache: dict = {}
-        for dofs, kind in zip(self._seg_dofs, self._seg_consts):
-            D = cache.get(kind)
-            if D is None:
-                seg = self._segment_kind[kind]
-                key = (kind, mpmath.mp.prec)
-                consts = self._mp_consts.get(key)
-                if consts is None:
-                    consts = tuple(to_mp(v, mpmath.mp.dps) for v in seg.key)
-                    self._mp_consts[key] = consts
-                D = cache[kind] = segment_stiffness(seg.evaluate_mp(lam2, consts))
-            _scatter(K, D, dofs)
-        for dofs, _, f_mp in self.points:
-            S = f_mp(mpmath.mpc(0, omega))
+        zero = mpmath.mpf(0)
+        K = [[zero] * n for _ in range(n)]
+        for key, seg, _, group, _, _, _ in self._seg_groups:
+            ck = ("consts", key, mpmath.mp.prec)
+            consts = self._mp_cache.get(ck)
+            if consts is None:
+                consts = self._mp_cache[ck] = seg.constants_mp(mpmath.mp.dps)
+            D = segment_stiffness(seg.evaluate_mp(lam2, consts))
+            for places in group:
+                _scatter(K, D, self._mp_places(places))
+        lam = mpmath.mpc(0, mpmath.sqrt(-lam2)) if lam2 <= 0 else mpmath.sqrt(lam2)
+        for places, _, _, f_mp in self._points:
+            S = f_mp(lam)
             S = [[mpmath.re(S[i, j]) for j in range(S.cols)] for i in range(S.rows)]
-            _scatter(K, np.array(S, dtype=object), dofs)
+            _scatter(K, S, self._mp_places(places))
+        for places, _, masses in self._bodies:
+            diag = [to_mp(m, mpmath.mp.dps) * lam2 for m in masses]
+            local = [[diag[i] if i == j else zero for j in range(len(diag))]
+                     for i in range(len(diag))]
+            _scatter(K, local, self._mp_places(places))
         return K
 
-    def _count_mp(self, omega):
+    def _count_mp(self, lam2):
         """Negative pivots of banded LDL^T; None if a pivot is too small to trust.
 
         Without pivoting, a small pivot makes the entries it updates grow, and
@@ -256,7 +605,7 @@ class StiffnessModel:
         is trusted only if it exceeds ``n`` times the largest entry met so far
         times the working precision (with 10 digits to spare).
         """
-        K = self.matrix_mp(omega)
+        K = self._matrix_mp(lam2)
         n, b = self.size, self.bandwidth
         # the largest entry lies on the band: scan only that
         grow = max((abs(K[i][j]) for i in range(n) for j in range(i, min(n, i + b + 1))),
@@ -282,6 +631,21 @@ class StiffnessModel:
                         row_i[j] -= f * row_k[j]
                         grow = max(grow, abs(row_i[j]))
         return negative
+
+
+def _float_places(places) -> tuple:
+    return tuple(tuple((g, float(c)) for g, c in combo) for combo in places)
+
+
+def _plain_dofs(places) -> list:
+    """Free index or None per local freedom; refuses combinations (rigid bodies)."""
+    out = []
+    for combo in places:
+        if len(combo) > 1 or (combo and combo[0][1] != 1):
+            raise NotImplementedError("freedoms of a model with rigid bodies are combinations: "
+                                      "use StiffnessModel.mesh")
+        out.append(combo[0][0] if combo else None)
+    return out
 
 
 def _banded_inertia(K: np.ndarray, band: int) -> int | None:
@@ -312,13 +676,3 @@ def _banded_inertia(K: np.ndarray, band: int) -> int | None:
             K[k + 1:top, k + 1:top] -= np.outer(row, row) / pivot
             grow = max(grow, float(np.max(np.abs(K[k + 1:top, k + 1:top]))))
     return negative
-
-
-def _scatter(K, local, dofs):
-    for i, di in enumerate(dofs):
-        if di is None:
-            continue
-        for j, dj in enumerate(dofs):
-            if dj is None:
-                continue
-            K[di][dj] += local[i][j] if isinstance(K, list) else local[i, j]

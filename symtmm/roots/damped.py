@@ -69,7 +69,7 @@ from ..results import Eigenvalue, Spectrum, decimal_string
 from .bracket import SEPARATION_DIGITS, anderson_bjorck, bracket_done
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
 from .dynamic_stiffness import DynamicStiffness
-from .undamped import omega_scale, rigid_body_modes
+from .undamped import _first_guess, check_stable, delta_mp, omega_scale, rigid_body_modes
 
 __all__ = ["SIGMA_FACTOR", "count_in_rectangle", "default_sigma_max", "solve_damped"]
 
@@ -99,8 +99,7 @@ def default_sigma_max(omega_max: float) -> float:
 
 def _reference_frequency(model: Model) -> float:
     """Half the lowest pinned-pinned frequency of any beam: the scale near ``lam = 0``."""
-    return 0.5 * min(math.pi ** 2 * math.sqrt(float(b.EI) / float(b.m)) / float(b.L) ** 2
-                     for b in model.beams)
+    return 0.5 * _first_guess(model)
 
 
 def _scaled_dashpots(model: Model, factor) -> Model:
@@ -127,7 +126,10 @@ class _Problem:
         self.model = model
         self.ev = Evaluator(model)
         self.ds = DynamicStiffness(model, lam_max)
-        self.mu_L = [(float(b.m) / float(b.EI), float(b.L)) for b in model.beams]
+        # per beam, what its wave number at |lam| comes from: (m/EI) for a plain beam,
+        # else the segment (Rayleigh, Timoshenko, axial force)
+        self.waves = [(None if b.plain else b.segment(b.L), float(b.m) / float(b.EI),
+                       float(b.L)) for b in model.beams]
         self.lam_ref = _reference_frequency(model)
         self.extra = 0   # evaluations of auxiliary models
         self.mp_fallbacks = 0
@@ -141,7 +143,11 @@ class _Problem:
 
     def spacing(self, z) -> float:
         a = max(abs(z), self.lam_ref)
-        return 0.3 * a / (1.0 + sum((mu * a * a) ** 0.25 * L for mu, L in self.mu_L))
+        total = 0.0
+        for seg, mu, L in self.waves:
+            k = (mu * a * a) ** 0.25 if seg is None else float(np.max(seg.wave_number(-a * a)))
+            total += k * L
+        return 0.3 * a / (1.0 + total)
 
     def min_step(self, z) -> float:
         return 1e-10 * max(abs(z), self.lam_ref)
@@ -167,7 +173,7 @@ class _Problem:
         values = []
         for dps in (base, base + 10)[:2 if check else 1]:
             with mpmath.workdps(dps):
-                d = self.ev.delta_mp(_mpc(z) if origin is None else origin + _mpc(z))
+                d = delta_mp(self.ev, _mpc(z) if origin is None else origin + _mpc(z))
                 if d == 0:
                     return None
                 values.append((float(mpmath.log(abs(d))), float(mpmath.arg(d))))
@@ -180,7 +186,7 @@ class _Problem:
         return None
 
     def delta_mp(self, z):
-        return self.ev.delta_mp(z)
+        return delta_mp(self.ev, z)
 
 
 class _MPFunction:
@@ -478,8 +484,8 @@ class _Search:
         for factor in (0, 2):
             ev = Evaluator(_scaled_dashpots(self.p.model, factor))
             with mpmath.workdps(dps):
-                zt, _ = self._secant(ev.delta_mp, z, tol / 10 ** 5, maxsteps=40,
-                                     multiplicity=m)
+                zt, _ = self._secant(lambda u, ev=ev: delta_mp(ev, u), z, tol / 10 ** 5,
+                                     maxsteps=40, multiplicity=m)
             self.p.extra += ev.evaluations
             if zt is None or abs(zt - z) > tol:
                 return False
@@ -628,11 +634,6 @@ def count_in_rectangle(model: Model, re_min: float, re_max: float, im_min: float
         raise ComputationError(str(exc)) from None
 
 
-def _first_guess(model: Model) -> float:
-    return min(math.pi ** 2 * math.sqrt(float(b.EI) / float(b.m)) / float(b.L) ** 2
-               for b in model.beams)
-
-
 def _search_region(model, omega_max, sigma_max, digits):
     """``(search, counted cells, evaluations spent on attempts given up)``."""
     lam_ref = _reference_frequency(model)
@@ -695,7 +696,8 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         raise ValueError("digits must be positive")
     model = model.require_numeric()
     start = time.perf_counter()
-    evaluations = 0
+    rigid = rigid_body_modes(model)
+    evaluations = check_stable(model, rigid)
     if omega_max is not None:
         W = float(omega_max)
         S = default_sigma_max(W) if sigma_max is None else float(sigma_max)
@@ -717,7 +719,6 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
             W *= 2.0
             if W > 1e12:
                 raise ComputationError(f"fewer than {count} eigenvalues below |lam| = 1e12")
-    rigid = rigid_body_modes(model)
     search.zero_order = rigid
     singles, clusters = search.isolate(cells, _TINY)
     eigen = [search.single(rect, center) for rect, center in singles]

@@ -1,27 +1,36 @@
 """``Delta(lam)`` in double precision without cancellation, for complex ``lam``.
 
 The transfer-matrix determinant ``Delta = det R`` cancels about
-``sum |beta| L / ln 10`` digits (entries of a segment matrix grow like
-``exp(|beta| l)``), so double precision cannot follow its phase at high
-frequencies or strong damping. The same function can be written as a product
-of well-conditioned factors. Cut every beam into short segments with
-``|beta| l <= NU_MAX = 3`` over the whole region of interest and assemble the
-exact dynamic stiffness matrix ``K(lam)`` of the structure (segment
-stiffnesses from the segment transfer matrices, springs and dashpots
-``k + c lam`` added on the displacement freedoms, boundary freedoms removed).
+``sum |s| L / ln 10`` digits (entries of a segment matrix grow like
+``exp(|s| l)``, ``s`` the largest wave number: ``beta`` of an Euler–Bernoulli
+beam), so double precision cannot follow its phase at high frequencies or
+strong damping. The same function can be written as a product of
+well-conditioned factors. Cut every beam into short segments with
+``|s| l <= NU_MAX = 3`` over the whole region of interest (a bound from the
+segment's coefficients, :func:`symtmm.stiffness.wave_number_bound`) and
+assemble the exact dynamic stiffness matrix ``K(lam)`` of the structure
+(:class:`symtmm.stiffness.Mesh`: segment stiffnesses from the segment transfer
+matrices, springs and dashpots ``k + c lam`` and masses added on their
+freedoms, boundary conditions and rigid bodies eliminated as constraints).
 Then
 
-    Delta(lam) = det K(lam) * prod_s det U12_s(lam)
+    Delta(lam) = det K(lam) * prod_s det U12_s(lam) * P
 
 where ``U12_s`` is the upper-right 2x2 block of segment ``s``'s transfer
-matrix (it maps end forces to end displacements). The factors ``det U12_s``
-vanish only at the clamped-clamped natural frequencies of a segment,
-``(beta l)**4 = 500.56...`` (real and positive: the clamped-clamped segment
-is self-adjoint), well outside ``|beta l|**4 <= 81``. ``K`` is well
+matrix (it maps end forces to end displacements) and ``P`` the product of the
+squared coefficients of the freedoms the constraints eliminated (1 unless a
+body is held at two points, :attr:`Mesh.pivot_product`). The factors
+``det U12_s`` vanish only at the clamped-clamped natural frequencies of a
+segment, ``lam**2 = -omega**2`` real (the clamped-clamped segment is
+self-adjoint with a positive mass): for an Euler–Bernoulli segment at
+``(beta l)**4 = 500.56...``, well outside ``|beta l|**4 <= 81``; a segment of
+another theory is also kept shorter than :meth:`BeamSegment.safe_length` at
+``|lam|max**2``, which puts them all beyond ``|lam|max``. ``K`` is well
 conditioned away from eigenvalues: rotations enter as ``l Theta`` so that
-every entry scales like ``EI / l**3``, and the segments are not shorter
-than they need to be. The identity is checked against the
-transfer-matrix evaluator in ``tests/test_damped.py``.
+every entry scales like ``EI / l**3``, and the segments are not shorter than
+they need to be. The identity is checked against the transfer-matrix
+evaluator in ``tests/test_damped.py`` and, with bodies and beam theories, in
+``tests/test_theories_solve.py``.
 
 Values are returned as logarithms, ``(log|Delta|, arg Delta)``, so that
 neither the exponential growth nor the size of ``K`` can overflow.
@@ -29,7 +38,6 @@ neither the exponential growth nor the size of ``K`` can overflow.
 
 from __future__ import annotations
 
-import itertools
 import math
 
 import numpy as np
@@ -37,20 +45,36 @@ import sympy as sp
 from scipy.linalg.lapack import zgbcon as _zgbcon
 from scipy.linalg.lapack import zgbtrf as _zgbtrf
 
-from ..assembly import point_elements
 from ..elements import EulerBernoulliSegment
 from ..elements.base import LAM
 from ..model import Model
+from ..stiffness import Mesh, wave_number_bound
 
 __all__ = ["NU_MAX", "DynamicStiffness"]
 
-#: Largest ``|beta| l`` of a segment anywhere in the region of interest.
+#: Largest ``|s| l`` (``|beta| l``) of a segment anywhere in the region of interest.
 NU_MAX = 3.0
 #: A value is trusted when ``size * eps * cond(K)``, a bound on the relative error of
 #: the determinant, is below this (the error of its phase in radians).
 _TRUST = 1e-2
 
 _BC_DOFS_REMOVED = {"free": (), "clamped": (0, 1), "pinned": (0,), "sliding": (1,)}
+
+
+def _damped_piece(segment, radius: float) -> float:
+    """The longest piece of ``segment`` for ``|lam|**2 <= radius``.
+
+    Its largest wave number keeps ``|s| l <= NU_MAX`` everywhere there
+    (:func:`symtmm.stiffness.wave_number_bound`), and its clamped-clamped
+    natural frequencies lie beyond ``sqrt(radius)``: ``det U12`` has no zero in
+    the region (for an Euler–Bernoulli piece, ``NU_MAX < 4.730`` says so).
+    """
+    s = wave_number_bound(segment, radius)
+    length = float(segment.l)
+    longest = length if s * length <= NU_MAX else NU_MAX / s
+    if not isinstance(segment, EulerBernoulliSegment):
+        longest = min(longest, segment.safe_length(radius))
+    return longest
 
 
 def segment_stiffness_batch(U: np.ndarray) -> np.ndarray:
@@ -93,7 +117,7 @@ class DynamicStiffness:
         Numeric.
     lam_max : float
         Largest ``|lam|`` at which the function will be evaluated; beams are
-        cut so that ``|beta| l <= NU_MAX`` there. Larger ``|lam|`` raise
+        cut so that ``|s| l <= NU_MAX`` there. Larger ``|lam|`` raise
         ``ValueError``.
 
     Attributes
@@ -120,66 +144,14 @@ class DynamicStiffness:
         self._build()
 
     def _build(self):
-        beams = self.model.beams
-        points_el = point_elements(self.model)
-        nodes = []          # (x float, beam index)
-        node_len = []       # a length scale for the rotation freedom of each node
-        segments = []       # (segment, left node, right node)
-        beam_nodes = []
-        for b_idx, beam in enumerate(beams):
-            required = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
-            xs = sorted({sp.nsimplify(x) for x in required}, key=float)
-            # |beta|**4 <= (m |lam|**2 + kw) / EI: a foundation enters the bound
-            mu = ((float(beam.m) * self.lam_max**2 + float(beam.kw)) / float(beam.EI)) ** 0.25
-            points = [xs[0]]
-            for xa, xb in itertools.pairwise(xs):
-                n_sub = max(1, math.ceil(mu * float(xb - xa) / NU_MAX))
-                points += [xa + (xb - xa) * sp.Rational(k, n_sub) for k in range(1, n_sub + 1)]
-            ids = []
-            for x in points:
-                ids.append(len(nodes))
-                nodes.append((float(x), b_idx))
-                node_len.append(0.0)
-            beam_nodes.append(dict(zip(points, ids)))
-            for (xa, ia), (xb, ib) in zip(zip(points, ids), zip(points[1:], ids[1:])):
-                seg = EulerBernoulliSegment(beam.EI, beam.m, xb - xa, beam.kw)
-                segments.append((seg, ia, ib))
-                for i in (ia, ib):
-                    node_len[i] = max(node_len[i], float(xb - xa))
-        removed: dict = {}
-        for b_idx, beam in enumerate(beams):
-            ends = sorted(beam_nodes[b_idx], key=float)
-            removed.setdefault(beam_nodes[b_idx][ends[0]], set()).update(
-                _BC_DOFS_REMOVED[beam.left])
-            removed.setdefault(beam_nodes[b_idx][ends[-1]], set()).update(
-                _BC_DOFS_REMOVED[beam.right])
-        # banded numbering: by x, then by beam
-        order = sorted(range(len(nodes)), key=lambda i: nodes[i])
-        dof, scale = {}, []
-        for node in order:
-            for k in (0, 1):
-                if k not in removed.get(node, ()):
-                    dof[(node, k)] = len(scale)
-                    # l * Theta is a length like Y: with it, all entries of K scale as EI/l^3
-                    scale.append(1.0 if k == 0 else 1.0 / (node_len[node] or 1.0))
-        self.size = n = len(scale)
+        radius = self.lam_max ** 2
+        mesh = self.mesh = Mesh(self.model, lambda beam, seg: _damped_piece(seg, radius))
+        self.size = n = mesh.size
+        # l * Theta is a length like Y: with it, all entries of K scale as EI/l^3
+        scale = [1.0 if length is None else 1.0 / length for length in mesh.rotation_length]
         self._scale = np.array(scale)
-        pairs = []
-        for seg, ia, ib in segments:
-            d = [dof.get((ia, 0)), dof.get((ia, 1)), dof.get((ib, 0)), dof.get((ib, 1))]
-            pairs += [abs(a - b) for a in d for b in d if a is not None and b is not None]
-        index = {b.name: i for i, b in enumerate(beams)}
-        # point elements: S(lam) = K0 + lam C + lam**2 M on their freedoms
-        point_places = []
-        for x, el in points_el:
-            x = sp.nsimplify(x)
-            ds = [dof.get((beam_nodes[index[el.beams[lv]]][x], 0 if var == "Y" else 1))
-                  for lv, var in el.dofs]
-            live = [d for d in ds if d is not None]
-            pairs += [abs(a - b) for a in live for b in live]
-            point_places.append((ds, el.stiffness(LAM)))
-        #: half-bandwidth of K (dofs are numbered along x, so K is banded)
-        self.band = band = max(pairs, default=0)
+        #: half-bandwidth of K (freedoms are numbered along x, so K is banded)
+        self.band = band = mesh.bandwidth
         # LAPACK band storage with room for the fill-in of row interchanges:
         # K[i, j] lives at row 2 band + i - j of column j; stored per point as (n, rows)
         self._rows = rows = 3 * band + 1
@@ -189,37 +161,45 @@ class DynamicStiffness:
 
         # log det of the scaling S in K_scaled = S K S
         self._log_scale = 2.0 * float(np.sum(np.log(self._scale)))
-        # segments grouped by their constants: identical segments are evaluated once
+        # constraints eliminated with a coefficient other than 1 (a body held twice)
+        self._log_pivots = math.log(float(mesh.pivot_product))
+        # segments grouped by their constants: identical segments are evaluated once; per
+        # group, K[targets] += W @ D (D the flattened 4x4 segment stiffness): a freedom that
+        # is a combination spreads its entries over several targets
         groups: dict = {}
-        for seg, ia, ib in segments:
-            key = seg.key
-            dofs = [dof.get((ia, 0)), dof.get((ia, 1)), dof.get((ib, 0)), dof.get((ib, 1))]
-            local = [i for i, d in enumerate(dofs) if d is not None]
-            flat_k = [at(dofs[i], dofs[j]) for i in local for j in local]
-            flat_l = [4 * i + j for i in local for j in local]
-            sc = np.array([scale[dofs[i]] * scale[dofs[j]] for i in local for j in local])
-            g = groups.setdefault(key, {"seg": seg, "places": []})
-            g["places"].append((np.array(flat_k), np.array(flat_l), sc))
+        for (_, seg, _, _), places in zip(mesh.segments, mesh.segment_places):
+            g = groups.setdefault(seg.key, {"seg": seg, "count": 0, "weights": {}})
+            g["count"] += 1
+            for i, ci in enumerate(places):
+                for j, cj in enumerate(places):
+                    for gi, ai in ci:
+                        for gj, aj in cj:
+                            row = g["weights"].setdefault(at(gi, gj), np.zeros(16))
+                            row[4 * i + j] += float(ai * aj) * scale[gi] * scale[gj]
         self._groups = []
-        for key, g in groups.items():
-            consts = tuple(float(v) for v in key)
-            self._groups.append((g["seg"], consts, g["places"]))
-        self.segment_count = len(segments)
-        # springs, dashpots, masses: K0 + c lam + M lam**2, fixed patterns on their freedoms
+        for g in groups.values():
+            targets = np.array(sorted(g["weights"]), dtype=int)
+            W = np.array([g["weights"][t] for t in targets]).reshape(len(targets), 16)
+            self._groups.append((g["seg"], g["seg"].constants(), g["count"], targets, W))
+        self.segment_count = len(mesh.segments)
+        # springs, dashpots, masses, bodies: K0 + c lam + M lam**2, fixed patterns
         pattern_k = np.zeros(n * rows)
         pattern_c = np.zeros(n * rows)
         pattern_m = np.zeros(n * rows)
-        for ds, S in point_places:
-            for i, di in enumerate(ds):
-                for j, dj in enumerate(ds):
-                    if di is None or dj is None:
-                        continue
+        local = [(places, el.stiffness(LAM)) for places, el in mesh.point_places]
+        local += [(places, sp.diag(*[mass * LAM**2 for mass in masses]))
+                  for places, masses in mesh.body_places]
+        for places, S in local:
+            for i, ci in enumerate(places):
+                for j, cj in enumerate(places):
                     coeffs = sp.Poly(sp.expand(S[i, j]), LAM).all_coeffs()[::-1]
                     if len(coeffs) > 3:
                         raise ValueError("point element of degree > 2 in lam")
-                    sc = scale[di] * scale[dj]
-                    for pattern, cf in zip((pattern_k, pattern_c, pattern_m), coeffs):
-                        pattern[at(di, dj)] += float(cf) * sc
+                    for gi, ai in ci:
+                        for gj, aj in cj:
+                            sc = float(ai * aj) * scale[gi] * scale[gj]
+                            for pattern, cf in zip((pattern_k, pattern_c, pattern_m), coeffs):
+                                pattern[at(gi, gj)] += float(cf) * sc
         self._pattern_k = pattern_k
         self._pattern_c = pattern_c
         self._pattern_m = pattern_m
@@ -247,13 +227,11 @@ class DynamicStiffness:
             KT += self._pattern_m[:, None] * (lam * lam)[None, :]
         log_u12 = np.zeros(N, dtype=complex)
         lam2 = lam * lam
-        for seg, consts, places in self._groups:
+        for seg, consts, count, targets, W in self._groups:
             U = seg.evaluate_numpy(lam2, consts)
             u12 = U[:, 0, 2] * U[:, 1, 3] - U[:, 0, 3] * U[:, 1, 2]
-            log_u12 += len(places) * np.log(u12)
-            DT = segment_stiffness_batch(U).reshape(N, 16).T
-            for flat_k, flat_l, sc in places:
-                KT[flat_k] += DT[flat_l] * sc[:, None]
+            log_u12 += count * np.log(u12)
+            KT[targets] += W @ segment_stiffness_batch(U).reshape(N, 16).T
         return np.ascontiguousarray(KT.T).reshape(N, n, self._rows), log_u12
 
     def matrix(self, lam) -> np.ndarray:
@@ -308,7 +286,7 @@ class DynamicStiffness:
             rcond, _ = _zgbcon(b, b, lu, ipiv, anorm[p])
             # the relative error of det(K) is about n eps cond(K)
             trusted[p] = rcond > 0 and n * eps / rcond < _TRUST
-        logabs = logabs - self._log_scale + log_u12.real
+        logabs = logabs - self._log_scale + log_u12.real + self._log_pivots
         phase = np.angle(np.exp(1j * (phase + log_u12.imag)))   # in (-pi, pi]
         return logabs, phase, trusted
 

@@ -31,6 +31,7 @@ from __future__ import annotations
 import itertools
 import math
 import time
+from dataclasses import replace
 
 import mpmath
 import numpy as np
@@ -44,7 +45,7 @@ from ..results import Eigenvalue, Spectrum
 from ..stiffness import SingularCount, StiffnessModel
 from .bracket import SEPARATION_DIGITS, anderson_bjorck, bracket_done
 
-__all__ = ["solve_undamped", "rigid_body_modes", "omega_scale"]
+__all__ = ["solve_undamped", "rigid_body_modes", "check_stable", "omega_scale"]
 
 #: Relative width below which a double-precision count is not asked to split a bracket.
 _DOUBLE_WIDTH = 1e-11
@@ -54,7 +55,14 @@ MAX_DPS = 3000
 
 
 def rigid_body_modes(model: Model) -> int:
-    """Number of rigid-body (zero-frequency) modes: the nullity of the exact ``R(0)``.
+    """Number of rigid-body (zero-frequency) modes: the nullity of ``R(0)``.
+
+    Exact rank over the rationals when ``R(0)`` is rational (Euler–Bernoulli,
+    Rayleigh and Timoshenko beams without axial force or foundation: the
+    segments' static transfer matrices are polynomial; rigid bodies add
+    rational entries). An axial force or a foundation makes ``R(0)``
+    transcendental: its nullity is then decided numerically at two precisions
+    (:meth:`Evaluator.nullity_at_zero`).
 
     Examples
     --------
@@ -63,11 +71,16 @@ def rigid_body_modes(model: Model) -> int:
     2
     >>> rigid_body_modes(Model((Beam("b", 1, 1, 1, left="pinned", right="free"),)))
     1
+
+    A tension resists turning about the pin (the end force ``-N Y'`` must vanish):
+
+    >>> rigid_body_modes(Model((Beam("b", 1, 1, 1, left="pinned", right="free", N=3),)))
+    0
     """
-    if any(b.kw != 0 for b in model.beams):
-        # R(0) is transcendental on a foundation: decide the rank numerically
-        return Evaluator(model.require_numeric()).nullity_at_zero()
-    R = boundary_matrix(model.require_numeric(), lam=sp.Integer(0))
+    model = model.require_numeric()
+    if any(b.kw != 0 or b.N != 0 for b in model.beams):
+        return Evaluator(model).nullity_at_zero()
+    R = boundary_matrix(model, lam=sp.Integer(0))
     if R.shape[1] == 0:
         return 0
     # exact elimination in the smallest domain holding the entries (the rationals for
@@ -79,17 +92,94 @@ def rigid_body_modes(model: Model) -> int:
     return R.shape[1] - dm.rank()
 
 
+def check_stable(model: Model, rigid: int, sm: StiffnessModel | None = None) -> int:
+    """Raise :class:`ComputationError` if an axial compression has buckled the model.
+
+    Above a buckling load the static stiffness is indefinite: eigenvalues with
+    ``lam**2 > 0`` (real ``lam``, a motion growing without bound), which the
+    search for natural frequencies would not report. Only a compressed beam
+    can cause them; dashpots do not change the static stiffness. ``sm`` is the
+    stiffness model to count with (default: one of ``model`` without dashpots).
+    Returns the number of counts spent when ``sm`` was not given (else 0).
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> pp = Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned", N=-15)   # N_cr = pi**2
+    >>> check_stable(Model((pp,)), 0)
+    Traceback (most recent call last):
+    ...
+    symtmm.errors.ComputationError: axial compression above a buckling load: 1 mode with lam**2 > 0
+    """
+    model = model.require_numeric()
+    if not any(b.N < 0 for b in model.beams):
+        return 0
+    own = sm is None
+    if own:
+        undamped = replace(model, springs=tuple(replace(s, c=0) for s in model.springs))
+        sm = StiffnessModel(undamped, _first_guess(model))
+    k = sm.unstable_modes(rigid, _first_guess(model))
+    if k:
+        raise ComputationError(f"axial compression above a buckling load: {k} mode"
+                               f"{'s' if k > 1 else ''} with lam**2 > 0")
+    return sm.evaluations if own else 0
+
+
+def delta_mp(ev: Evaluator, lam, real: bool = False):
+    """``ev.delta_mp(lam, real)``, with 0 where mpmath's determinant fails on a singular matrix.
+
+    ``mpmath.det`` returns 0 for a matrix it finds singular, except when a whole
+    pivot column is exactly zero (mirrored beams at an eigenvalue cancel exactly):
+    its pivot search then raises ``TypeError``. That is the same verdict, and the
+    callers treat an exact 0 as "no sign here, look again with more digits".
+    """
+    try:
+        return ev.delta_mp(lam, real)
+    except TypeError:
+        return mpmath.mpf(0)
+
+
 def omega_scale(model: Model):
     """``(name, sqrt(EI/(m L^4)))`` of the first beam: ``omega = Omega**2 * scale``."""
     b = model.resolved().beams[0]
     return b.name, sp.sqrt(b.EI / (b.m * b.L**4))
 
 
+def _pinned_omega2(beam) -> float:
+    """``omega**2`` of the first pinned-pinned mode of ``beam`` in its own theory.
+
+    With ``q = (pi/L)**2``: ``(EI q**2 + N q + kw) / (m + rhoI q)`` rigid in shear;
+    a Timoshenko beam's is the smaller root of
+    ``(a1 - m w)(a2 - rhoI w) = kGA**2 q``, ``a1 = (kGA + N) q + kw``, ``a2 = EI q + kGA``.
+    """
+    EI, m, L = float(beam.EI), float(beam.m), float(beam.L)
+    N, rhoI, kw = float(beam.N), float(beam.rhoI), float(beam.kw)
+    q = (math.pi / L) ** 2
+    if beam.kGA is None:
+        return (EI * q * q + N * q + kw) / (m + rhoI * q)
+    kGA = float(beam.kGA)
+    a1, a2 = (kGA + N) * q + kw, EI * q + kGA
+    c0 = a1 * a2 - kGA * kGA * q
+    if rhoI == 0:
+        return c0 / (a2 * m)
+    b = a1 * rhoI + a2 * m
+    disc = max(b * b - 4 * m * rhoI * c0, 0.0)
+    return 2 * c0 / (b + math.sqrt(disc))      # the smaller root, without cancellation
+
+
 def _first_guess(model: Model) -> float:
-    """A frequency of the order of the lowest natural frequency."""
+    """A frequency of the order of the lowest natural frequency.
+
+    The lowest first pinned-pinned frequency of the beams, each in its own
+    theory; a beam compressed beyond that mode's buckling load gives its
+    Euler–Bernoulli value instead.
+    """
     best = math.inf
     for b in model.resolved().beams:
-        best = min(best, math.pi**2 * math.sqrt(float(b.EI) / float(b.m)) / float(b.L) ** 2)
+        w2 = _pinned_omega2(b)
+        if not w2 > 0:
+            w2 = float(b.EI) / float(b.m) * (math.pi / float(b.L)) ** 4
+        best = min(best, math.sqrt(w2))
     return best
 
 
@@ -221,8 +311,8 @@ class _Search:
             pad = 1e-9 * narrow[1]
             narrow = (max(float(a), narrow[0] - pad), min(float(b), narrow[1] + pad))
         while True:
-            dps = (max(self.digits, resolved) + math.ceil(self.ev.digits_lost(float(b))) + 10
-                   + extra)
+            dps = (max(self.digits, resolved) + math.ceil(self.ev.digits_lost(1j * float(b)))
+                   + 10 + extra)
             if dps > MAX_DPS:
                 raise ComputationError(
                     f"cannot reach {self.digits} digits for the root near {float(b):.6g} rad/s "
@@ -242,12 +332,12 @@ class _Search:
             extra += max(10, dps // 2)
 
     def _f(self, omega):
-        value = self.ev.delta_omega_mp(omega)
+        value = delta_mp(self.ev, mpmath.mpc(0, omega), real=True)
         if value == 0:
             # mpmath.det returns an exact 0 for a matrix singular at the working
             # precision: that is no sign, so look again with more digits
             with mpmath.workdps(2 * mpmath.mp.dps):
-                value = self.ev.delta_omega_mp(omega)
+                value = delta_mp(self.ev, mpmath.mpc(0, omega), real=True)
         return value
 
     def _bracket_refine(self, a, b):
@@ -312,7 +402,6 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         raise ValueError("model is damped: use the damped solver")
     start = time.perf_counter()
     rigid = rigid_body_modes(model)
-
     if omega_max is not None:
         hi = float(omega_max)
         if hi < 0:
@@ -321,6 +410,8 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     else:
         hi = _first_guess(model)
         search = _Search(model, digits, hi, rigid)
+    check_stable(model, rigid, search.sm)
+    if omega_max is None:
         while rigid < count:
             hi, c_hi = search.count_off(hi, 2 * hi)
             if c_hi >= count:
