@@ -849,8 +849,10 @@ def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=N
     """Frequencies extrapolated from nested meshes, with an error estimate.
 
     The meshes ``refine = 1, 2, 4, ...`` (``levels`` of them) halve every
-    element; assuming the error ``C h**rate``, Richardson's extrapolation of
-    the last two removes its leading term.
+    element. The error of these elements is a series ``C4 h**4 + C6 h**6 + ...``
+    in the element size (even powers: the elements are symmetric), so Romberg's
+    scheme removes one term per mesh: Richardson's extrapolation with ``2**rate``,
+    then ``2**(rate + 2)``, and so on.
 
     Parameters
     ----------
@@ -859,7 +861,7 @@ def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=N
     count : int
         Number of lowest frequencies.
     rate : float, optional
-        The convergence order of the error in ``omega`` (4 for these elements).
+        The order of the leading error term in ``omega`` (4 for these elements).
     levels : int, optional
         Number of meshes, at least 3 (the observed rate needs three).
 
@@ -867,11 +869,11 @@ def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=N
     -------
     dict
         ``"omega"`` the extrapolated frequencies; ``"error"`` an estimate of
-        their error (the change of the extrapolation from the previous pair of
-        meshes, plus a rounding floor of ``1e-12 omega``); ``"rate"`` the observed
-        order ``log2(d1/d2)`` of the differences between the last three meshes
-        per mode (nan where they vanish); ``"raw"`` the frequencies on each mesh
-        (levels x count); ``"zero"`` which modes are rigid-body zeros.
+        their error (the last correction of the scheme, which bounds it while the
+        series converges, plus a rounding floor of ``1e-12 omega``); ``"rate"`` the
+        observed order ``log2(d1/d2)`` of the differences between the last three
+        meshes per mode (nan where they vanish); ``"raw"`` the frequencies on each
+        mesh (levels x count); ``"zero"`` which modes are rigid-body zeros.
 
     Examples
     --------
@@ -879,20 +881,25 @@ def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=N
     >>> beam = dict(name="a", EI=1.0, m=1.0, L=1.0, x0=0.0, left="clamped", right="free")
     >>> out = fe_converged([beam], [], 8, count=2)
     >>> Omega = np.array([1.87510406871196, 4.69409113297418])    # cos x cosh x = -1
-    >>> print(np.round(out["omega"] / Omega**2, 9), np.round(out["rate"], 1))
+    >>> print(np.round(out["omega"] / Omega**2, 11), np.round(out["rate"], 1))
     [1. 1.] [4. 4.]
+    >>> bool(np.all(np.abs(out["omega"] / Omega**2 - 1) < out["error"] / out["omega"]))
+    True
     """
     levels = _check_positive_int(levels, "levels")
     if levels < 3:
         raise ValueError(f"levels must be at least 3, got {levels!r}")
     raw = np.array([fe_frequencies(beams, springs, elements_per_beam, count, masses, bodies,
                                    refine=2**j) for j in range(levels)])
-    factor = 2.0**rate
-    extrapolated = (factor * raw[1:] - raw[:-1]) / (factor - 1.0)
+    column = raw
+    for j in range(levels - 1):
+        factor = 2.0 ** (rate + 2 * j)
+        previous, column = column, (factor * column[1:] - column[:-1]) / (factor - 1.0)
+    best = column[-1]
+    error = np.abs(best - previous[-1]) + 1e-12 * np.abs(best)
     d1, d2 = raw[-3] - raw[-2], raw[-2] - raw[-1]
     with np.errstate(divide="ignore", invalid="ignore"):
         observed = np.where((d1 > 0) & (d2 > 0), np.log2(d1 / d2), np.nan)
-    error = np.abs(extrapolated[-1] - extrapolated[-2]) + 1e-12 * np.abs(extrapolated[-1])
     zero = raw[-1] == 0.0
-    return {"omega": np.where(zero, 0.0, extrapolated[-1]), "error": np.where(zero, 0.0, error),
+    return {"omega": np.where(zero, 0.0, best), "error": np.where(zero, 0.0, error),
             "rate": observed, "raw": raw, "zero": zero}
