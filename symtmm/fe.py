@@ -35,21 +35,20 @@ Rigid bodies
     ``Theta`` unless the attachment is hinged. A joint of beam ends (a tree, a
     closed loop) is a massless body whose attachments share one ``x``.
 
-The element
-    One two-node element serves every theory: the interdependent interpolation
-    element (IIE) of Reddy, whose shape functions solve the static
-    Timoshenko equations without load (``psi`` quadratic, ``Y`` cubic, the
-    shear strain ``Y' - psi`` constant). With ``g = EI/kGA`` and ``s`` along
-    the element::
-
-        psi = b0 + b1 s + b2 s**2,   Y = a0 + (b0 - 2 g b2) s + b1 s**2/2 + b2 s**3/3
-
-    For ``g = 0`` (rigid in shear) these are the cubic Hermite functions with
-    ``psi = Y'``. Element matrices integrate the energy exactly (4-point Gauss),
-    so axial force gives the consistent geometric stiffness and ``rhoI`` the
-    consistent rotary-inertia matrix. Both are conforming Rayleigh-Ritz models:
-    frequencies converge from above (unless ``N < 0`` makes the stiffness
-    indefinite) at rate ``h**4``; :func:`fe_converged` extrapolates.
+Elements
+    Rigid in shear, cubic Hermite elements (``Y`` and ``Y'`` at the nodes).
+    Shear-flexible, two-node mixed elements with ``Y`` cubic and ``psi``
+    quadratic: the nodal ``Y, psi`` interpolated linearly plus three internal
+    bubble dofs per element; they contain every static solution (condensed,
+    the stiffness is the exact Timoshenko one) and the shear strain ``Y' -
+    psi`` can vanish, so they do not lock. (The interdependent interpolation
+    element, four dofs with ``Y' - psi`` constant per element, converges only
+    as ``h**2`` in frequency.) Element matrices integrate the energy exactly
+    (4-point Gauss), so axial force gives the consistent geometric stiffness and
+    ``rhoI`` the consistent rotary-inertia matrix. Both are conforming
+    Rayleigh-Ritz models: the frequencies are upper bounds (also under
+    compression) and converge as ``h**4``; :func:`fe_converged` extrapolates.
+    Dofs without mass (``psi`` where ``rhoI = 0``) are condensed statically.
 
 Constraints
     Boundary conditions and the bodies' attachments are homogeneous linear
@@ -125,8 +124,6 @@ def _nonnegative_float(value, what):
     return number
 
 
-_finite_float = _number
-
 
 def _require_keys(item, keys, what):
     if not isinstance(item, Mapping):
@@ -172,14 +169,14 @@ def _normalise_beams(beams):
         EI = _positive_float(beam["EI"], f"EI of {what}")
         kGA = beam.get("kGA")
         kGA = None if kGA is None else _positive_float(kGA, f"kGA of {what}")
-        N = _finite_float(beam.get("N", 0.0) or 0.0, f"N of {what}")
+        N = _number(beam.get("N", 0.0) or 0.0, f"N of {what}")
         if kGA is not None and kGA + N <= 0.0:
             raise ValueError(f"N of {what}: the compression must stay below kGA (kGA + N > 0)")
         parsed[name] = {
             "EI": EI,
             "m": _positive_float(beam["m"], f"m of {what}"),
             "L": _positive_float(beam["L"], f"L of {what}"),
-            "x0": _finite_float(beam["x0"], f"x0 of {what}"),
+            "x0": _number(beam["x0"], f"x0 of {what}"),
             "left": _boundary_condition(beam["left"], f"the left end of {what}"),
             "right": _boundary_condition(beam["right"], f"the right end of {what}"),
             "kw": _nonnegative_float(beam.get("kw", 0.0) or 0.0, f"kw of {what}"),
@@ -234,9 +231,9 @@ def _normalise_springs(springs, beams):
             raise ValueError(f"{what} connects ground to ground")
         if name_a == name_b:
             raise ValueError(f"{what} connects beam {name_a!r} to itself")
-        x = _finite_float(spring["x"], f"x of {what}")
+        x = _number(spring["x"], f"x of {what}")
         k = _nonnegative_float(spring["k"], f"k of {what}")
-        c = _finite_float(spring.get("c", 0.0) or 0.0, f"c of {what}")
+        c = _number(spring.get("c", 0.0) or 0.0, f"c of {what}")
         if c != 0.0:
             raise ValueError(f"{what} has a dashpot c={spring['c']!r}; the FE model is undamped")
         kind = spring.get("kind", "translational")
@@ -257,7 +254,7 @@ def _normalise_masses(masses, beams):
         what = f"mass #{index}"
         _require_keys(mass, ("beam", "x", "M"), what)
         name = _known_beam(mass["beam"], beams, what)
-        x = _finite_float(mass["x"], f"x of {what}")
+        x = _number(mass["x"], f"x of {what}")
         _check_on_beam(x, name, beams[name], what)
         parsed.append((name, x, _nonnegative_float(mass["M"], f"M of {what}"),
                        _nonnegative_float(mass.get("J", 0.0) or 0.0, f"J of {what}")))
@@ -278,7 +275,7 @@ def _normalise_bodies(bodies, beams):
         for point in raw:
             _require_keys(point, ("beam", "x"), f"an attachment of {what}")
             name = _known_beam(point["beam"], beams, f"an attachment of {what}")
-            x = _finite_float(point["x"], f"x of an attachment of {what}")
+            x = _number(point["x"], f"x of an attachment of {what}")
             _check_on_beam(x, name, beams[name], f"an attachment of {what}")
             hinged = point.get("hinged", False)
             if not isinstance(hinged, (bool, np.bool_)):
@@ -290,7 +287,7 @@ def _normalise_bodies(bodies, beams):
         M = _nonnegative_float(body.get("M", 0.0) or 0.0, f"M of {what}")
         J = _nonnegative_float(body.get("J", 0.0) or 0.0, f"J of {what}")
         xc = body.get("xc")
-        xc = attach[0][1] if xc is None else _finite_float(xc, f"xc of {what}")
+        xc = attach[0][1] if xc is None else _number(xc, f"xc of {what}")
         # The rotation is a dof of its own unless nothing feels or fixes it (a pin joint).
         rotates = J != 0.0 or any(not h or x != xc for _, x, h in attach)
         parsed.append({"attach": attach, "M": M, "J": J, "xc": xc, "rotates": rotates,
