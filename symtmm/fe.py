@@ -1,21 +1,62 @@
-"""Cubic-Hermite finite-element model of parallel beams joined by springs.
+"""Finite-element model of beam systems: an independent reference for the exact solver.
 
-This module is an independent reference for the exact solver: it shares no
-code with the rest of :mod:`symtmm` and depends only on numpy and scipy, so
-that agreement between the two is meaningful evidence of correctness.
+This module shares no code with the rest of :mod:`symtmm` and depends only on
+numpy and scipy, so that agreement between the two is meaningful evidence of
+correctness. Its input is plain dicts.
 
-The system is a set of parallel Euler--Bernoulli beams, each described by a
-dict with keys ``name``, ``EI``, ``m`` (mass per unit length), ``L``, ``x0``
-(global coordinate of the left end), ``left`` and ``right`` (boundary
-conditions ``"free"``, ``"clamped"``, ``"pinned"`` or ``"sliding"``).  Linear
-springs act on the transverse displacement and are dicts with keys
-``between`` (a pair of beam names, one of which may be ``"ground"``), ``x``
-(global coordinate) and ``k``; an optional dashpot ``c`` must be zero because
-the model is undamped.
+Beams
+    Dicts with keys ``name``, ``EI``, ``m`` (mass per unit length), ``L``,
+    ``x0`` (global coordinate of the left end), ``left`` and ``right``
+    (boundary conditions ``"free"``, ``"clamped"``, ``"pinned"`` or
+    ``"sliding"``), and optionally ``kw`` (Winkler foundation), ``N`` (axial
+    force, tension positive), ``rhoI`` (rotary inertia per unit length) and
+    ``kGA`` (shear stiffness; absent or None for a beam rigid in shear). The
+    energy per unit length is the one of :mod:`symtmm.elements.theories`::
 
-Each beam is discretised with standard two-node Hermite elements (dofs
-``Y`` and ``Y'`` at every node) and consistent mass matrices, so computed
-frequencies converge from above at rate ``h**4``.
+        strain   (EI psi'**2 + kGA (Y' - psi)**2 + N Y'**2 + kw Y**2) / 2
+        kinetic  (m Y_t**2 + rhoI psi_t**2) / 2
+
+    with ``psi = Y'`` when ``kGA`` is None. Each node carries ``Y`` and
+    ``Theta`` (``Y'``, or ``psi`` for a shear-flexible beam).
+Springs
+    Dicts with keys ``between`` (a pair of beam names, one of which may be
+    ``"ground"``), ``x`` (global coordinate) and ``k``; ``kind`` is
+    ``"translational"`` (default, on ``Y``) or ``"rotational"`` (on
+    ``Theta``); an optional dashpot ``c`` must be zero (the model is undamped).
+Masses
+    Dicts with keys ``beam``, ``x``, ``M`` and optionally ``J`` (rotary
+    inertia acting on ``Theta``).
+Rigid bodies
+    Dicts with keys ``attach`` (a list of dicts ``{"beam", "x", "hinged"}``,
+    ``hinged`` optional and False by default) and optionally ``name``, ``M``,
+    ``J`` (about the centre of mass) and ``xc`` (the centre of mass, default
+    the first attachment's ``x``). The body moves as ``Y(x) = Y_c + (x - xc)
+    Theta_c``; at each attachment the beam's ``Y`` is the body's, and so is its
+    ``Theta`` unless the attachment is hinged. A joint of beam ends (a tree, a
+    closed loop) is a massless body whose attachments share one ``x``.
+
+Elements
+    Rigid in shear, cubic Hermite elements (``Y`` and ``Y'`` at the nodes).
+    Shear-flexible, two-node mixed elements with ``Y`` cubic and ``psi``
+    quadratic: the nodal ``Y, psi`` interpolated linearly plus three internal
+    bubble dofs per element; they contain every static solution (condensed,
+    the stiffness is the exact Timoshenko one) and the shear strain ``Y' -
+    psi`` can vanish, so they do not lock. (The interdependent interpolation
+    element, four dofs with ``Y' - psi`` constant per element, converges only
+    as ``h**2`` in frequency.) Element matrices integrate the energy exactly
+    (4-point Gauss), so axial force gives the consistent geometric stiffness and
+    ``rhoI`` the consistent rotary-inertia matrix. Both are conforming
+    Rayleigh-Ritz models: the frequencies are upper bounds (also under
+    compression) and converge as ``h**4``; :func:`fe_converged` extrapolates.
+    Dofs without mass (``psi`` where ``rhoI = 0``) are condensed statically.
+
+Constraints
+    Boundary conditions and the bodies' attachments are homogeneous linear
+    constraints ``C u = 0`` on the nodal dofs and the bodies' ``Y_c,
+    Theta_c``; the model is reduced to a basis of their null space (master-slave
+    elimination): dofs not named by any constraint are kept as they are, the
+    others are replaced by an orthonormal basis of the constraints' null space
+    among them.
 """
 
 from __future__ import annotations
@@ -27,11 +68,11 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import scipy.linalg
 
-__all__ = ["fe_frequencies", "fe_matrices"]
+__all__ = ["fe_frequencies", "fe_matrices", "fe_converged"]
 
 GROUND = "ground"
 
-# Which local dofs (0 = Y, 1 = Y') each boundary condition removes.
+# Which local dofs (0 = Y, 1 = Theta) each boundary condition removes.
 _CONSTRAINED_DOFS = {
     "free": (),
     "clamped": (0, 1),
@@ -39,7 +80,9 @@ _CONSTRAINED_DOFS = {
     "sliding": (1,),
 }
 
-# Relative tolerance used to decide whether a spring lies on a beam and
+_SPRING_KINDS = {"translational": 0, "rotational": 1}
+
+# Relative tolerance used to decide whether a point lies on a beam and
 # whether two mesh points coincide; it absorbs rounding in user coordinates
 # such as ``x0 + L`` without merging genuinely distinct positions.
 _POSITION_RTOL = 1e-9
@@ -49,22 +92,15 @@ _POSITION_RTOL = 1e-9
 # exact zeros (rigid-body modes).
 _ZERO_EIGENVALUE_FACTOR = 100.0
 
+# 4-point Gauss-Legendre integrates polynomials of degree 7 exactly: Y**2 is of degree 6.
+_GAUSS_X, _GAUSS_W = np.polynomial.legendre.leggauss(4)
+
 
 # ---------------------------------------------------------------------------
 # Input validation
 # ---------------------------------------------------------------------------
 
-def _positive_float(value, what):
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{what} must be a number, got {value!r}") from None
-    if not math.isfinite(number) or number <= 0.0:
-        raise ValueError(f"{what} must be finite and positive, got {value!r}")
-    return number
-
-
-def _finite_float(value, what):
+def _number(value, what):
     try:
         number = float(value)
     except (TypeError, ValueError):
@@ -74,12 +110,35 @@ def _finite_float(value, what):
     return number
 
 
+def _positive_float(value, what):
+    number = _number(value, what)
+    if number <= 0.0:
+        raise ValueError(f"{what} must be finite and positive, got {value!r}")
+    return number
+
+
+def _nonnegative_float(value, what):
+    number = _number(value, what)
+    if number < 0.0:
+        raise ValueError(f"{what} must be non-negative, got {value!r}")
+    return number
+
+
+
 def _require_keys(item, keys, what):
     if not isinstance(item, Mapping):
         raise ValueError(f"{what} must be a dict, got {type(item).__name__}")
     missing = [key for key in keys if key not in item]
     if missing:
         raise ValueError(f"{what} is missing key(s) {', '.join(map(repr, missing))}")
+
+
+def _list_of(items, what):
+    if items is None:
+        return []
+    if isinstance(items, (Mapping, str)) or not isinstance(items, Sequence):
+        raise ValueError(f"{what} must be a list of dicts")
+    return list(items)
 
 
 def _boundary_condition(value, what):
@@ -107,13 +166,24 @@ def _normalise_beams(beams):
             raise ValueError(f"{GROUND!r} is reserved for springs to ground and cannot name a beam")
         if name in parsed:
             raise ValueError(f"duplicate beam name {name!r}")
+        EI = _positive_float(beam["EI"], f"EI of {what}")
+        kGA = beam.get("kGA")
+        kGA = None if kGA is None else _positive_float(kGA, f"kGA of {what}")
+        N = _number(beam.get("N", 0.0) or 0.0, f"N of {what}")
+        if kGA is not None and kGA + N <= 0.0:
+            raise ValueError(f"N of {what}: the compression must stay below kGA (kGA + N > 0)")
         parsed[name] = {
-            "EI": _positive_float(beam["EI"], f"EI of {what}"),
+            "EI": EI,
             "m": _positive_float(beam["m"], f"m of {what}"),
             "L": _positive_float(beam["L"], f"L of {what}"),
-            "x0": _finite_float(beam["x0"], f"x0 of {what}"),
+            "x0": _number(beam["x0"], f"x0 of {what}"),
             "left": _boundary_condition(beam["left"], f"the left end of {what}"),
             "right": _boundary_condition(beam["right"], f"the right end of {what}"),
+            "kw": _nonnegative_float(beam.get("kw", 0.0) or 0.0, f"kw of {what}"),
+            "N": N,
+            "rhoI": _nonnegative_float(beam.get("rhoI", 0.0) or 0.0, f"rhoI of {what}"),
+            # shear flexibility EI/kGA: 0 for a beam rigid in shear (psi = Y')
+            "g": 0.0 if kGA is None else EI / kGA,
         }
     return parsed
 
@@ -131,8 +201,14 @@ def _check_on_beam(x, name, beam, what):
         )
 
 
+def _known_beam(name, beams, what):
+    if not isinstance(name, str) or name not in beams:
+        raise ValueError(f"{what} refers to unknown beam name {name!r}")
+    return name
+
+
 def _normalise_springs(springs, beams):
-    """Validate spring dicts and return (name_a, name_b_or_None, x, k) tuples."""
+    """Validate spring dicts and return (name_a, name_b_or_None, x, k, dof) tuples."""
     if springs is None:
         return []
     if isinstance(springs, Mapping) or not isinstance(springs, Sequence):
@@ -149,44 +225,94 @@ def _normalise_springs(springs, beams):
             # A ground spring is symmetric; accept the ground on either side.
             name_a, name_b = name_b, name_a
         for name in (name_a, name_b):
-            if name != GROUND and name not in beams:
-                raise ValueError(f"{what} refers to unknown beam name {name!r}")
+            if name != GROUND:
+                _known_beam(name, beams, what)
         if name_a == GROUND:
             raise ValueError(f"{what} connects ground to ground")
         if name_a == name_b:
             raise ValueError(f"{what} connects beam {name_a!r} to itself")
-        x = _finite_float(spring["x"], f"x of {what}")
-        k = _finite_float(spring["k"], f"k of {what}")
-        if k < 0.0:
-            raise ValueError(f"k of {what} must be non-negative, got {spring['k']!r}")
-        c = _finite_float(spring.get("c", 0.0) or 0.0, f"c of {what}")
+        x = _number(spring["x"], f"x of {what}")
+        k = _nonnegative_float(spring["k"], f"k of {what}")
+        c = _number(spring.get("c", 0.0) or 0.0, f"c of {what}")
         if c != 0.0:
             raise ValueError(f"{what} has a dashpot c={spring['c']!r}; the FE model is undamped")
+        kind = spring.get("kind", "translational")
+        if kind not in _SPRING_KINDS:
+            raise ValueError(f"kind of {what} must be 'translational' or 'rotational', "
+                             f"got {kind!r}")
         for name in (name_a, name_b):
             if name != GROUND:
                 _check_on_beam(x, name, beams[name], what)
-        parsed.append((name_a, None if name_b == GROUND else name_b, x, k))
+        parsed.append((name_a, None if name_b == GROUND else name_b, x, k, _SPRING_KINDS[kind]))
     return parsed
 
 
-def _check_elements_per_beam(elements_per_beam):
-    if isinstance(elements_per_beam, bool) or not isinstance(elements_per_beam, (int, np.integer)):
-        raise ValueError(f"elements_per_beam must be an integer, got {elements_per_beam!r}")
-    if elements_per_beam < 1:
-        raise ValueError(f"elements_per_beam must be at least 1, got {elements_per_beam!r}")
-    return int(elements_per_beam)
+def _normalise_masses(masses, beams):
+    """Validate mass dicts and return (beam, x, M, J) tuples."""
+    parsed = []
+    for index, mass in enumerate(_list_of(masses, "masses")):
+        what = f"mass #{index}"
+        _require_keys(mass, ("beam", "x", "M"), what)
+        name = _known_beam(mass["beam"], beams, what)
+        x = _number(mass["x"], f"x of {what}")
+        _check_on_beam(x, name, beams[name], what)
+        parsed.append((name, x, _nonnegative_float(mass["M"], f"M of {what}"),
+                       _nonnegative_float(mass.get("J", 0.0) or 0.0, f"J of {what}")))
+    return parsed
+
+
+def _normalise_bodies(bodies, beams):
+    """Validate body dicts: ``{"attach": [(beam, x, hinged)], "M", "J", "xc", "rotates"}``."""
+    parsed = []
+    for index, body in enumerate(_list_of(bodies, "bodies")):
+        what = f"body #{index}"
+        _require_keys(body, ("attach",), what)
+        what = f"body {body.get('name', index)!r}"
+        raw = body["attach"]
+        if isinstance(raw, (Mapping, str)) or not isinstance(raw, Sequence) or not raw:
+            raise ValueError(f"'attach' of {what} must be a non-empty list of dicts")
+        attach = []
+        for point in raw:
+            _require_keys(point, ("beam", "x"), f"an attachment of {what}")
+            name = _known_beam(point["beam"], beams, f"an attachment of {what}")
+            x = _number(point["x"], f"x of an attachment of {what}")
+            _check_on_beam(x, name, beams[name], f"an attachment of {what}")
+            hinged = point.get("hinged", False)
+            if not isinstance(hinged, (bool, np.bool_)):
+                raise ValueError(f"'hinged' of an attachment of {what} must be True or False")
+            if any(n == name and abs(x - x2) <= _position_tolerance(beams[name])
+                   for n, x2, _ in attach):
+                raise ValueError(f"{what} is attached twice to beam {name!r} at x={x!r}")
+            attach.append((name, x, bool(hinged)))
+        M = _nonnegative_float(body.get("M", 0.0) or 0.0, f"M of {what}")
+        J = _nonnegative_float(body.get("J", 0.0) or 0.0, f"J of {what}")
+        xc = body.get("xc")
+        xc = attach[0][1] if xc is None else _number(xc, f"xc of {what}")
+        # The rotation is a dof of its own unless nothing feels or fixes it (a pin joint).
+        rotates = J != 0.0 or any(not h or x != xc for _, x, h in attach)
+        parsed.append({"attach": attach, "M": M, "J": J, "xc": xc, "rotates": rotates,
+                       "what": what})
+    return parsed
+
+
+def _check_positive_int(value, what):
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{what} must be an integer, got {value!r}")
+    if value < 1:
+        raise ValueError(f"{what} must be at least 1, got {value!r}")
+    return int(value)
 
 
 # ---------------------------------------------------------------------------
 # Mesh
 # ---------------------------------------------------------------------------
 
-def _required_points(beam, spring_positions):
-    """Sorted beam ends and spring positions, merging near-duplicates."""
+def _required_points(beam, positions):
+    """Sorted beam ends and required positions, merging near-duplicates."""
     left, right = beam["x0"], beam["x0"] + beam["L"]
     tol = _position_tolerance(beam)
     # Snap to the ends so that rounding never creates a sliver element there.
-    inner = [x for x in spring_positions if left + tol < x < right - tol]
+    inner = [x for x in positions if left + tol < x < right - tol]
     points = [left]
     for x in sorted(inner):
         if x - points[-1] > tol:
@@ -195,14 +321,19 @@ def _required_points(beam, spring_positions):
     return np.array(points)
 
 
-def _beam_nodes(beam, spring_positions, elements_per_beam):
-    """Node coordinates: required points plus equal subdivisions in between."""
-    points = _required_points(beam, spring_positions)
+def _beam_nodes(beam, positions, elements_per_beam, refine):
+    """Node coordinates: required points plus equal subdivisions in between.
+
+    ``refine`` splits every element of the base mesh into that many equal ones,
+    so meshes ``refine = 1, 2, 4`` are nested and their element sizes halve
+    exactly (Richardson extrapolation needs that).
+    """
+    points = _required_points(beam, positions)
     pieces = []
     for start, stop in itertools.pairwise(points):
         # Share the element budget in proportion to length so the mesh stays
-        # roughly uniform whatever the spring layout.
-        count = max(1, round(elements_per_beam * (stop - start) / beam["L"]))
+        # roughly uniform whatever the layout of the points.
+        count = refine * max(1, round(elements_per_beam * (stop - start) / beam["L"]))
         pieces.append(np.linspace(start, stop, count + 1)[:-1])
     pieces.append(points[-1:])
     return np.concatenate(pieces)
@@ -213,43 +344,134 @@ def _nearest_node(nodes, x):
 
 
 # ---------------------------------------------------------------------------
-# Element matrices and assembly
+# The elements: cubic Hermite (rigid in shear), cubic/quadratic mixed (Timoshenko)
 # ---------------------------------------------------------------------------
 
-def _element_stiffness(EI, lengths):
-    """Hermite beam stiffness for each element length, shape (n, 4, 4)."""
+def _element_dofs(beam):
+    """Local dofs of an element: 4 nodal ones, plus 3 internal ones when shear-flexible."""
+    return 4 if beam["g"] == 0.0 else 7
+
+
+def _fields(beam, values, l, s):
+    """``(Y, Y', psi, psi')`` at the local coordinates ``s`` from an element's local values.
+
+    ``values`` are ``(Y0, Theta0, Y1, Theta1)`` and, shear-flexible, the internal
+    ``(w2, w3, p2)``; arrays broadcasting with ``l`` and ``s``. Both elements are
+    written through differences of nodal values (a chord ``(Y1 - Y0)/l``, rotations
+    relative to it) so that the curvature of a smooth mode on a fine mesh is not lost
+    to cancellation.
+
+    Rigid in shear: the cubic Hermite ``Y`` with ``psi = Y'``. Shear-flexible: ``Y``
+    cubic and ``psi`` quadratic, each the linear interpolation of its nodal values
+    plus hierarchical bubbles ``xi (1 - xi)``, ``xi (1 - xi)(1 - 2 xi)`` (``xi = s/l``);
+    the shear strain ``Y' - psi`` can vanish exactly (no shear locking), and the
+    element's error in ``omega`` is ``O(h**4)`` like Hermite's. (The
+    interdependent interpolation element, four dofs with ``Y' - psi`` constant per
+    element, only reaches ``O(h**2)`` in frequency.)
+    """
+    w0, t0, w1, t1 = values[:4]
+    chord = (w1 - w0) / l
+    if beam["g"] == 0.0:
+        u1, u2 = t0 - chord, t1 - chord
+        b2 = 3.0 * (u1 + u2) / (l * l)
+        b1 = (-4.0 * u1 - 2.0 * u2) / l
+        dY = t0 + b1 * s + b2 * s * s
+        return (w0 + t0 * s + b1 * s * s / 2.0 + b2 * s**3 / 3.0, dY, dY,
+                b1 + 2.0 * b2 * s)
+    w2, w3, p2 = values[4:]
+    xi = s / l
+    bubble, bubble3 = xi * (1.0 - xi), xi * (1.0 - xi) * (1.0 - 2.0 * xi)
+    Y = w0 + (w1 - w0) * xi + w2 * bubble + w3 * bubble3
+    dY = chord + (w2 * (1.0 - 2.0 * xi) + w3 * (1.0 - 6.0 * xi + 6.0 * xi * xi)) / l
+    psi = t0 + (t1 - t0) * xi + p2 * bubble
+    dpsi = ((t1 - t0) + p2 * (1.0 - 2.0 * xi)) / l
+    return Y, dY, psi, dpsi
+
+
+def _gauss(l):
+    """Gauss points and weights on elements of lengths ``l`` (shape (..., 4))."""
+    l = np.asarray(l)[..., None]
+    return l * (1.0 + _GAUSS_X) / 2.0, l * _GAUSS_W / 2.0
+
+
+def _energy_densities(beam, fields):
+    """Twice the strain and the kinetic energy densities (``omega**2`` factored out)."""
+    Y, dY, psi, dpsi = fields
+    strain = beam["EI"] * dpsi**2 + beam["N"] * dY**2 + beam["kw"] * Y**2
+    if beam["g"] != 0.0:
+        strain = strain + beam["EI"] / beam["g"] * (dY - psi) ** 2
+    return strain, beam["m"] * Y**2 + beam["rhoI"] * psi**2
+
+
+def _element_matrices(beam, lengths):
+    """Stiffness and mass of each element, shape (n, d, d), local dofs as in :func:`_fields`.
+
+    The energy integrated exactly (4-point Gauss; the integrands are polynomials of
+    degree 6 at most) on the local unit vectors: the bilinear forms of ``K = EI
+    psi'psi' + kGA gamma gamma + N Y'Y' + kw Y Y`` and ``M = m Y Y + rhoI psi psi``
+    (``gamma = Y' - psi``).
+    """
+    d = _element_dofs(beam)
+    unit = np.eye(d)[None, :, :, None]              # (1, d unit vectors, d values, 1)
+    s, w = _gauss(lengths)                          # (n, 4)
     l = lengths[:, None, None]
-    base = np.array([
-        [12.0, 6.0, -12.0, 6.0],
-        [6.0, 4.0, -6.0, 2.0],
-        [-12.0, -6.0, 12.0, -6.0],
-        [6.0, 2.0, -6.0, 4.0],
-    ])
-    # Rows/columns of rotation dofs carry one extra power of l each.
-    power = np.array([0, 1, 0, 1])
-    return EI / l**3 * base * l ** (power[:, None] + power[None, :])
+    fields = _fields(beam, [unit[:, :, i] for i in range(d)], l, s[:, None, :])
+    fields = [np.broadcast_to(f, (len(lengths), d, len(_GAUSS_W))) for f in fields]
+    Y, dY, psi, dpsi = fields
+
+    def gram(f, coefficient):
+        return coefficient * np.einsum("nig,njg,ng->nij", f, f, w)
+
+    K = gram(dpsi, beam["EI"]) + gram(dY, beam["N"]) + gram(Y, beam["kw"])
+    if beam["g"] != 0.0:
+        K = K + gram(dY - psi, beam["EI"] / beam["g"])
+    M = gram(Y, beam["m"]) + gram(psi, beam["rhoI"])
+    return K, M
 
 
-def _element_mass(m, lengths):
-    """Consistent Hermite beam mass for each element length, shape (n, 4, 4)."""
+def _beam_strain_energy(beam, lengths, local):
+    """Twice the strain energy of each column of the elements' local values.
+
+    ``local`` has shape (elements, d, modes). Sums of squares of fields computed
+    from differences of nodal values (see :func:`_fields`): every term keeps its
+    relative accuracy on a fine mesh.
+    """
+    s, w = _gauss(lengths)
     l = lengths[:, None, None]
-    base = np.array([
-        [156.0, 22.0, 54.0, -13.0],
-        [22.0, 4.0, 13.0, -3.0],
-        [54.0, 13.0, 156.0, -22.0],
-        [-13.0, -3.0, -22.0, 4.0],
-    ])
-    power = np.array([0, 1, 0, 1])
-    return m * l / 420.0 * base * l ** (power[:, None] + power[None, :])
+    values = [local[:, i, :, None] for i in range(local.shape[1])]   # (n, modes, 1)
+    strain, _ = _energy_densities(beam, _fields(beam, values, l, s[:, None, :]))
+    return np.einsum("nmg,ng->m", strain, w)
 
 
-def _assemble_beam(K, M, beam, nodes, first_dof):
+# ---------------------------------------------------------------------------
+# Assembly and constraints
+# ---------------------------------------------------------------------------
+
+def _beam_element_dofs(beam, nodes, first_dof):
+    """Global dof of each element's local dofs, shape (elements, d).
+
+    A beam's dofs are ``Y, Theta`` of each node, then the internal ones of each element.
+    """
+    n = len(nodes) - 1
+    dofs = first_dof + 2 * np.arange(n)[:, None] + np.arange(4)[None, :]
+    if _element_dofs(beam) == 4:
+        return dofs
+    internal = first_dof + 2 * len(nodes) + 3 * np.arange(n)[:, None] + np.arange(3)[None, :]
+    return np.hstack([dofs, internal])
+
+
+def _beam_dof_count(beam, nodes):
+    return 2 * len(nodes) + (_element_dofs(beam) - 4) * (len(nodes) - 1)
+
+
+def _assemble_beam(K, M, beam, nodes, element_dofs):
     lengths = np.diff(nodes)
-    element_dofs = first_dof + 2 * np.arange(len(lengths))[:, None] + np.arange(4)[None, :]
-    rows = np.repeat(element_dofs, 4, axis=1)
-    cols = np.tile(element_dofs, (1, 4))
-    np.add.at(K, (rows, cols), _element_stiffness(beam["EI"], lengths).reshape(len(lengths), 16))
-    np.add.at(M, (rows, cols), _element_mass(beam["m"], lengths).reshape(len(lengths), 16))
+    d = element_dofs.shape[1]
+    rows = np.repeat(element_dofs, d, axis=1)
+    cols = np.tile(element_dofs, (1, d))
+    Ke, Me = _element_matrices(beam, lengths)
+    np.add.at(K, (rows, cols), Ke.reshape(len(lengths), d * d))
+    np.add.at(M, (rows, cols), Me.reshape(len(lengths), d * d))
 
 
 def _add_spring(K, dof_a, dof_b, k):
@@ -260,67 +482,120 @@ def _add_spring(K, dof_a, dof_b, k):
         K[dof_b, dof_a] -= k
 
 
-def _constrained_dofs(beam, first_dof, n_nodes):
+def _boundary_constraints(beam, first_dof, n_nodes):
     last_node_dof = first_dof + 2 * (n_nodes - 1)
     dofs = [first_dof + local for local in _CONSTRAINED_DOFS[beam["left"]]]
     dofs += [last_node_dof + local for local in _CONSTRAINED_DOFS[beam["right"]]]
-    return dofs
+    return [{dof: 1.0} for dof in dofs]
 
 
-def _build(beams, springs, elements_per_beam):
-    """Validate input, mesh, assemble and eliminate constrained dofs.
+def _reduction(constraints, total):
+    """Basis ``T`` (total x n) of the null space of the constraints, and the kept dofs.
 
-    Returns ``(K, M, dof_info, energy_terms)``; ``energy_terms`` lists the
-    beam elements and springs in reduced dof numbering so that strain energy
-    can be evaluated without forming ``K`` (see :func:`_strain_energy`).
+    Dofs no constraint names are kept as they are (the first columns, in order);
+    the named ones are replaced by an orthonormal basis of the constraints' null
+    space among them (the last columns). Returns ``(T, kept)``, ``kept[i]`` the
+    column of dof ``i`` or -1.
+    """
+    involved = sorted({dof for row in constraints for dof in row})
+    free = np.setdiff1d(np.arange(total), involved)
+    basis = np.zeros((len(involved), 0))
+    if involved:
+        position = {dof: i for i, dof in enumerate(involved)}
+        C = np.zeros((len(constraints), len(involved)))
+        for r, row in enumerate(constraints):
+            for dof, value in row.items():
+                C[r, position[dof]] += value
+        basis = scipy.linalg.null_space(C)
+    T = np.zeros((total, len(free) + basis.shape[1]))
+    T[free, np.arange(len(free))] = 1.0
+    if involved:
+        T[np.asarray(involved), len(free):] = basis
+    kept = np.full(total, -1)
+    kept[free] = np.arange(len(free))
+    return T, kept
+
+
+def _build(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1):
+    """Validate input, mesh, assemble and reduce by the constraints.
+
+    Returns ``(K, M, dof_info, energy_terms)``; ``energy_terms`` lists what
+    :func:`_strain_energy` needs to evaluate the strain energy without ``K``.
     """
     beams = _normalise_beams(beams)
     springs = _normalise_springs(springs, beams)
-    elements_per_beam = _check_elements_per_beam(elements_per_beam)
+    masses = _normalise_masses(masses, beams)
+    bodies = _normalise_bodies(bodies, beams)
+    elements_per_beam = _check_positive_int(elements_per_beam, "elements_per_beam")
+    refine = _check_positive_int(refine, "refine")
 
-    nodes = {}
-    first_dof = {}
-    total = 0
+    nodes, first_dof, total = {}, {}, 0
     for name, beam in beams.items():
-        positions = [x for a, b, x, _ in springs if name in (a, b)]
-        nodes[name] = _beam_nodes(beam, positions, elements_per_beam)
+        positions = [x for a, b, x, _, _ in springs if name in (a, b)]
+        positions += [x for n, x, _, _ in masses if n == name]
+        positions += [x for body in bodies for n, x, _ in body["attach"] if n == name]
+        nodes[name] = _beam_nodes(beam, positions, elements_per_beam, refine)
         first_dof[name] = total
-        total += 2 * len(nodes[name])
+        total += _beam_dof_count(beam, nodes[name])
+    body_dofs = []
+    for body in bodies:
+        body_dofs.append((total, total + 1 if body["rotates"] else None))
+        total += 2 if body["rotates"] else 1
 
     K = np.zeros((total, total))
     M = np.zeros((total, total))
-    constrained = []
+    constraints = []
+    element_dofs = {}
     for name, beam in beams.items():
-        _assemble_beam(K, M, beam, nodes[name], first_dof[name])
-        constrained += _constrained_dofs(beam, first_dof[name], len(nodes[name]))
+        element_dofs[name] = _beam_element_dofs(beam, nodes[name], first_dof[name])
+        _assemble_beam(K, M, beam, nodes[name], element_dofs[name])
+        constraints += _boundary_constraints(beam, first_dof[name], len(nodes[name]))
 
-    def displacement_dof(name, x):
-        return first_dof[name] + 2 * _nearest_node(nodes[name], x)
+    def node_dof(name, x, local):
+        return first_dof[name] + 2 * _nearest_node(nodes[name], x) + local
 
     spring_dofs = []
-    for name_a, name_b, x, k in springs:
-        dof_a = displacement_dof(name_a, x)
-        dof_b = None if name_b is None else displacement_dof(name_b, x)
+    for name_a, name_b, x, k, local in springs:
+        dof_a = node_dof(name_a, x, local)
+        dof_b = None if name_b is None else node_dof(name_b, x, local)
         _add_spring(K, dof_a, dof_b, k)
         spring_dofs.append((dof_a, dof_b, k))
+    for name, x, mass, inertia in masses:
+        M[node_dof(name, x, 0), node_dof(name, x, 0)] += mass
+        M[node_dof(name, x, 1), node_dof(name, x, 1)] += inertia
+    for body, (yc, tc) in zip(bodies, body_dofs):
+        M[yc, yc] += body["M"]
+        if tc is not None:
+            M[tc, tc] += body["J"]
+        for name, x, hinged in body["attach"]:
+            # Y_beam - Y_c - (x - xc) Theta_c = 0, and Theta_beam - Theta_c = 0 unless hinged
+            row = {node_dof(name, x, 0): 1.0, yc: -1.0}
+            if tc is not None and x != body["xc"]:
+                row[tc] = -(x - body["xc"])
+            constraints.append(row)
+            if not hinged:
+                constraints.append({node_dof(name, x, 1): 1.0, tc: -1.0})
 
-    # Constraints are homogeneous, so eliminating rows/columns is exact.
-    keep = np.ones(total, dtype=bool)
-    keep[constrained] = False
-    new_index = np.full(total, -1)
-    new_index[keep] = np.arange(int(keep.sum()))
-    dofs = {
-        name: new_index[first_dof[name] : first_dof[name] + 2 * len(nodes[name])].reshape(-1, 2)
-        for name in beams
+    T, kept = _reduction(constraints, total)
+    K = T.T @ K @ T
+    M = T.T @ M @ T
+    # symmetrise: the products above are symmetric only to rounding
+    K, M = (K + K.T) / 2.0, (M + M.T) / 2.0
+    info = {
+        "nodes": nodes,
+        "dofs": {name: kept[first_dof[name]: first_dof[name] + 2 * len(nodes[name])]
+                 .reshape(-1, 2) for name in beams},
+        "n_dofs": T.shape[1],
+        "full_dofs": {name: first_dof[name] + np.arange(2 * len(nodes[name])).reshape(-1, 2)
+                      for name in beams},
+        "body_dofs": body_dofs,
+        "transform": T,
     }
-    K = K[np.ix_(keep, keep)]
-    M = M[np.ix_(keep, keep)]
-    info = {"nodes": nodes, "dofs": dofs, "n_dofs": int(keep.sum())}
     energy_terms = {
-        "beams": [(beam["EI"], np.diff(nodes[name]), dofs[name]) for name, beam in beams.items()],
-        "springs": [
-            (new_index[a], -1 if b is None else new_index[b], k) for a, b, k in spring_dofs
-        ],
+        "beams": [(beam, np.diff(nodes[name]), element_dofs[name])
+                  for name, beam in beams.items()],
+        "springs": spring_dofs,
+        "T": T,
     }
     return K, M, info, energy_terms
 
@@ -329,30 +604,19 @@ def _build(beams, springs, elements_per_beam):
 # Eigenvalues
 # ---------------------------------------------------------------------------
 
-def _nodal_values(vectors, dofs):
-    """Gather nodal values of each column of `vectors`; removed dofs are 0."""
-    padded = np.vstack([vectors, np.zeros((1, vectors.shape[1]))])
-    # Index -1 selects the appended zero row, i.e. a constrained dof.
-    return padded[dofs[:, 0]], padded[dofs[:, 1]]
-
-
 def _strain_energy(energy_terms, vectors):
     """Twice the strain energy, ``v.T K v``, of each column without using K.
 
     For smooth modes on a fine mesh ``K v`` suffers cancellation of order
-    ``h**-4``; writing the element energy in terms of the rotations relative
-    to the chord slope keeps every term non-negative and the result accurate.
+    ``h**-4``; summing element energies written as squares of fields computed
+    from differences keeps every term accurate.
     """
+    full = energy_terms["T"] @ vectors
     energy = np.zeros(vectors.shape[1])
-    for EI, lengths, dofs in energy_terms["beams"]:
-        Y, T = _nodal_values(vectors, dofs)
-        chord = (Y[1:] - Y[:-1]) / lengths[:, None]
-        u1, u2 = T[:-1] - chord, T[1:] - chord
-        # EI * integral of the (linear) curvature squared over a Hermite element.
-        energy += np.sum(4.0 * EI / lengths[:, None] * (u1 * u1 + u1 * u2 + u2 * u2), axis=0)
-    padded = np.vstack([vectors, np.zeros((1, vectors.shape[1]))])
+    for beam, lengths, dofs in energy_terms["beams"]:
+        energy += _beam_strain_energy(beam, lengths, full[dofs])
     for dof_a, dof_b, k in energy_terms["springs"]:
-        stretch = padded[dof_a] - padded[dof_b]
+        stretch = full[dof_a] - (0.0 if dof_b is None else full[dof_b])
         energy += k * stretch * stretch
     return energy
 
@@ -363,6 +627,33 @@ def _zero_threshold(K, M):
     return _ZERO_EIGENVALUE_FACTOR * np.finfo(float).eps * ratio
 
 
+def _condensed(K, M):
+    """Eliminate the dofs without mass (``psi`` of a beam with ``rhoI = 0``) statically.
+
+    Returns ``(K_c, M_c, expand)``: the problem on the dofs with mass, and the map
+    from its eigenvectors to all dofs (``u_b = -K_bb**-1 K_ba u_a``). Exact: a
+    massless dof is in equilibrium at every instant.
+    """
+    massless = np.all(M == 0.0, axis=1)
+    if not massless.any():
+        return K, M, lambda vectors: vectors
+    a, b = ~massless, massless
+    try:
+        factor = scipy.linalg.cho_factor(K[np.ix_(b, b)])
+    except np.linalg.LinAlgError:
+        raise ValueError("some motion has neither mass nor stiffness (a massless mechanism)") \
+            from None
+    X = scipy.linalg.cho_solve(factor, K[np.ix_(b, a)])
+    Kc = K[np.ix_(a, a)] - K[np.ix_(a, b)] @ X
+
+    def expand(vectors):
+        out = np.zeros((len(massless), vectors.shape[1]))
+        out[a] = vectors
+        out[b] = -X @ vectors
+        return out
+    return (Kc + Kc.T) / 2.0, M[np.ix_(a, a)], expand
+
+
 def _refined_eigenvalues(K, M, energy_terms, subset):
     """Eigenvalues ``omega**2`` with rigid-body modes exactly zero.
 
@@ -371,56 +662,77 @@ def _refined_eigenvalues(K, M, energy_terms, subset):
     each computed eigenvector, with the energy evaluated accurately, has only
     second-order error in the eigenvector and restores the lowest modes.
     """
-    eigenvalues, vectors = scipy.linalg.eigh(K, M, subset_by_index=subset)
-    rigid = eigenvalues < _zero_threshold(K, M)
+    Kc, Mc, expand = _condensed(K, M)
+    try:
+        eigenvalues, vectors = scipy.linalg.eigh(Kc, Mc, subset_by_index=subset)
+    except np.linalg.LinAlgError:
+        raise ValueError("the mass matrix is singular: some motion has no inertia "
+                         "(a massless body free to move?)") from None
+    threshold = _zero_threshold(Kc, Mc)
+    if np.any(eigenvalues < -threshold):
+        raise ValueError(f"the model is unstable (omega**2 = {eigenvalues[0]:.6g} < 0): "
+                         "an axial compression above the buckling load?")
+    rigid = eigenvalues < threshold
+    vectors = expand(vectors)
     mass = np.einsum("ij,ij->j", vectors, M @ vectors)
     quotients = _strain_energy(energy_terms, vectors) / mass
-    return np.sort(np.where(rigid, 0.0, quotients))
+    return np.sort(np.where(rigid, 0.0, np.maximum(quotients, 0.0)))
 
 
 # ---------------------------------------------------------------------------
 # Public API
 # ---------------------------------------------------------------------------
 
-def fe_matrices(beams, springs, elements_per_beam):
+def fe_matrices(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1):
     """Assemble the finite-element stiffness and mass matrices.
 
     Parameters
     ----------
     beams : list of dict
         Beams with keys ``name``, ``EI``, ``m``, ``L``, ``x0``, ``left`` and
-        ``right``; boundary conditions are ``"free"``, ``"clamped"``
-        (``Y = Y' = 0``), ``"pinned"`` (``Y = 0``) or ``"sliding"``
-        (``Y' = 0``).
+        ``right``, optionally ``kw``, ``N``, ``rhoI``, ``kGA`` (see the module
+        docstring); boundary conditions are ``"free"``, ``"clamped"`` (``Y =
+        Theta = 0``), ``"pinned"`` (``Y = 0``) or ``"sliding"`` (``Theta = 0``).
     springs : list of dict or None
         Springs with keys ``between`` (pair of beam names, either may be
         ``"ground"``), ``x`` (global coordinate on every connected beam,
-        possibly at a beam end) and ``k`` (stiffness, non-negative).  An
-        optional ``c`` must be zero; other keys are ignored.
+        possibly at a beam end) and ``k`` (stiffness, non-negative); optional
+        ``kind`` (``"translational"`` or ``"rotational"``). An optional ``c``
+        must be zero; other keys are ignored.
     elements_per_beam : int
         Approximate number of elements per beam.  Every beam gets nodes at
-        its ends and at each of its spring positions; the intervals in
-        between are split into equal elements, their number proportional to
+        its ends and at each point where something acts on it; the intervals
+        in between are split into equal elements, their number proportional to
         the interval length and at least one.
+    masses : list of dict, optional
+        Lumped masses ``{"beam", "x", "M", "J"}`` (``J`` optional).
+    bodies : list of dict, optional
+        Rigid bodies ``{"attach": [{"beam", "x", "hinged"}, ...], "M", "J", "xc"}``
+        (all but ``attach`` optional).
+    refine : int, optional
+        Split every element of that mesh into ``refine`` equal elements.
 
     Returns
     -------
     K, M : numpy.ndarray
         Dense symmetric stiffness and mass matrices of the constrained
-        system, shape ``(n, n)``.  ``M`` is positive definite; ``K`` is
-        positive semi-definite.
+        system, shape ``(n, n)``.
     dof_info : dict
         ``"nodes"`` maps each beam name to its node coordinates (global
         ``x``); ``"dofs"`` maps each beam name to an integer array of shape
         ``(n_nodes, 2)`` giving the row of ``K``/``M`` holding ``Y`` and
-        ``Y'`` at each node, or ``-1`` where a boundary condition removed the
-        dof; ``"n_dofs"`` is ``n``.
+        ``Theta`` at each node, or ``-1`` where a boundary condition removed the
+        dof or a body's constraint made it a combination of others;
+        ``"n_dofs"`` is ``n``. ``"transform"`` is ``T`` with ``u = T q`` from
+        the reduced dofs ``q`` to all dofs ``u`` (the beams' nodal dofs, rows
+        ``"full_dofs"``, then each body's ``Y_c`` and ``Theta_c``, rows
+        ``"body_dofs"``, None where the body does not rotate).
 
     Raises
     ------
     ValueError
-        On malformed beams or springs, an unknown boundary condition or beam
-        name, a spring outside a beam it connects, or a non-zero dashpot.
+        On malformed input, an unknown boundary condition or beam name, a
+        point outside its beam, or a non-zero dashpot.
 
     Examples
     --------
@@ -431,17 +743,28 @@ def fe_matrices(beams, springs, elements_per_beam):
     ((8, 8), 8)
     >>> info["dofs"]["a"][0].tolist()  # Y removed at the pinned left end
     [-1, 0]
+
+    A rigid joint of two beam ends leaves one Y and one Theta of the three nodes'
+    (the two ends and the joint's own):
+
+    >>> a = dict(beam, name="a", left="clamped", right="free")
+    >>> b = dict(beam, name="b", x0=1.0, left="free", right="free")
+    >>> joint = {"attach": [{"beam": "a", "x": 1.0}, {"beam": "b", "x": 1.0}]}
+    >>> K, M, info = fe_matrices([a, b], [], 4, bodies=[joint])
+    >>> info["n_dofs"]      # 2 * (5 + 5) + 2 dofs, 2 at the clamp, 4 tied by the joint
+    16
     """
-    K, M, info, _ = _build(beams, springs, elements_per_beam)
+    K, M, info, _ = _build(beams, springs, elements_per_beam, masses, bodies, refine)
     return K, M, info
 
 
-def fe_frequencies(beams, springs, elements_per_beam, count=None):
+def fe_frequencies(beams, springs, elements_per_beam, count=None, masses=None, bodies=None,
+                   refine=1):
     """Natural circular frequencies of the finite-element model.
 
     Parameters
     ----------
-    beams, springs, elements_per_beam
+    beams, springs, elements_per_beam, masses, bodies, refine
         As for :func:`fe_matrices`.
     count : int, optional
         Number of lowest frequencies to return; all of them by default.
@@ -451,13 +774,16 @@ def fe_frequencies(beams, springs, elements_per_beam, count=None):
     numpy.ndarray
         Natural circular frequencies ``omega`` (rad/s) in ascending order.
         Rigid-body modes appear as exact zeros: eigenvalues ``omega**2``
-        that are negative or within rounding noise of zero are set to 0.
+        within rounding noise of zero are set to 0.
 
     Raises
     ------
     ValueError
-        On invalid input (see :func:`fe_matrices`) or if ``count`` is not an
-        integer between 1 and the number of degrees of freedom.
+        On invalid input (see :func:`fe_matrices`), if ``count`` is not an
+        integer between 1 and the number of degrees of freedom, if some motion
+        has no mass (singular mass matrix) or if the model is unstable (an
+        eigenvalue ``omega**2`` clearly below zero, e.g. a beam buckled by
+        compression).
 
     Notes
     -----
@@ -492,17 +818,85 @@ def fe_frequencies(beams, springs, elements_per_beam, count=None):
     >>> free = dict(beam, left="free", right="free")
     >>> print(np.round(fe_frequencies([free], [], 20, count=3), 2))
     [ 0.    0.   22.37]
+
+    A tension ``N`` raises ``omega**2`` of the pinned-pinned beam by ``N (n pi)**2``:
+
+    >>> taut = dict(beam, N=10.0)
+    >>> print(np.round(fe_frequencies([taut], [], 20, count=1) ** 2 - np.pi**4, 3))
+    [98.696]
     """
-    K, M, info, energy_terms = _build(beams, springs, elements_per_beam)
-    n = info["n_dofs"]
+    K, M, _, energy_terms = _build(beams, springs, elements_per_beam, masses, bodies, refine)
+    n = int(np.count_nonzero(np.any(M != 0.0, axis=1)))     # dofs with mass: the modes
     if count is None:
         subset = None
     else:
         if isinstance(count, bool) or not isinstance(count, (int, np.integer)):
             raise ValueError(f"count must be an integer, got {count!r}")
         if not 1 <= count <= n:
-            raise ValueError(f"count must be between 1 and the number of dofs ({n}), got {count!r}")
+            raise ValueError(f"count must be between 1 and the number of modes ({n}), "
+                             f"got {count!r}")
         subset = (0, int(count) - 1)
     if n == 0:
         return np.zeros(0)
     return np.sqrt(_refined_eigenvalues(K, M, energy_terms, subset))
+
+
+def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=None,
+                 rate=4, levels=3):
+    """Frequencies extrapolated from nested meshes, with an error estimate.
+
+    The meshes ``refine = 1, 2, 4, ...`` (``levels`` of them) halve every
+    element. The error of these elements is a series ``C4 h**4 + C6 h**6 + ...``
+    in the element size (even powers: the elements are symmetric), so Romberg's
+    scheme removes one term per mesh: Richardson's extrapolation with ``2**rate``,
+    then ``2**(rate + 2)``, and so on.
+
+    Parameters
+    ----------
+    beams, springs, elements_per_beam, masses, bodies
+        As for :func:`fe_matrices` (the coarsest mesh).
+    count : int
+        Number of lowest frequencies.
+    rate : float, optional
+        The order of the leading error term in ``omega`` (4 for these elements).
+    levels : int, optional
+        Number of meshes, at least 3 (the observed rate needs three).
+
+    Returns
+    -------
+    dict
+        ``"omega"`` the extrapolated frequencies; ``"error"`` an estimate of
+        their error (the last correction of the scheme, which bounds it while the
+        series converges, plus a rounding floor of ``1e-12 omega``); ``"rate"`` the
+        observed order ``log2(d1/d2)`` of the differences between the last three
+        meshes per mode (nan where they vanish); ``"raw"`` the frequencies on each
+        mesh (levels x count); ``"zero"`` which modes are rigid-body zeros.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> beam = dict(name="a", EI=1.0, m=1.0, L=1.0, x0=0.0, left="clamped", right="free")
+    >>> out = fe_converged([beam], [], 8, count=2)
+    >>> Omega = np.array([1.87510406871196, 4.69409113297418])    # cos x cosh x = -1
+    >>> print(np.round(out["omega"] / Omega**2, 11), np.round(out["rate"], 1))
+    [1. 1.] [4. 4.]
+    >>> bool(np.all(np.abs(out["omega"] / Omega**2 - 1) < out["error"] / out["omega"]))
+    True
+    """
+    levels = _check_positive_int(levels, "levels")
+    if levels < 3:
+        raise ValueError(f"levels must be at least 3, got {levels!r}")
+    raw = np.array([fe_frequencies(beams, springs, elements_per_beam, count, masses, bodies,
+                                   refine=2**j) for j in range(levels)])
+    column = raw
+    for j in range(levels - 1):
+        factor = 2.0 ** (rate + 2 * j)
+        previous, column = column, (factor * column[1:] - column[:-1]) / (factor - 1.0)
+    best = column[-1]
+    error = np.abs(best - previous[-1]) + 1e-12 * np.abs(best)
+    d1, d2 = raw[-3] - raw[-2], raw[-2] - raw[-1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        observed = np.where((d1 > 0) & (d2 > 0), np.log2(d1 / d2), np.nan)
+    zero = raw[-1] == 0.0
+    return {"omega": np.where(zero, 0.0, best), "error": np.where(zero, 0.0, error),
+            "rate": observed, "raw": raw, "zero": zero}
