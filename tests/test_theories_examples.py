@@ -62,28 +62,7 @@ def test_example_delta_vanishes_at_the_fe_frequencies(examples_dir, name):
     assert_delta_vanishes_at(model, converged(model, COUNT, EXAMPLES[name]))
 
 
-_NOT_COUNTED = ("the eigenvalue count that isolates the roots (symtmm/stiffness.py) does not "
-                "handle {} yet: symtmm solve stops with a failed computation")
-SOLVE_PENDING = {
-    "timoshenko_beam": (ComputationError, _NOT_COUNTED.format("Timoshenko segments")),
-    "rayleigh_axial_force": (ComputationError, (
-        "rigid_body_modes ranks the exact R(0), and BeamSegment.transfer_matrix(0) is nan "
-        "under an axial force (sinh(sqrt(r) l)/sqrt(r) at r = 0): three spurious zero modes, "
-        "then the count (symtmm/stiffness.py, which ignores N and rhoI) brackets no root")),
-    "rigid_body_on_beam": (ComputationError, _NOT_COUNTED.format("rigid bodies")),
-    "fork_tree": (ComputationError, _NOT_COUNTED.format("joints")),
-    "closed_loop": (ComputationError, _NOT_COUNTED.format("joints")),
-    "hinge_joint": (ComputationError, _NOT_COUNTED.format("joints")),
-}
-
-
-def _pending(name):
-    raises, reason = SOLVE_PENDING[name]
-    return pytest.param(name, marks=pytest.mark.xfail(strict=True, raises=raises,
-                                                      reason=reason))
-
-
-@pytest.mark.parametrize("name", [_pending(n) for n in EXAMPLES])
+@pytest.mark.parametrize("name", list(EXAMPLES))
 def test_example_solves_and_agrees_with_fe(examples_dir, name, capsys):
     path = examples_dir / f"{name}.toml"
     code = main(["solve", str(path), "--count", str(COUNT), "--json", "--digits", "10"])

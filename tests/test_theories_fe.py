@@ -28,7 +28,6 @@ from scipy.optimize import brentq
 
 from symtmm.compile import Evaluator
 from symtmm.elements import BeamSegment
-from symtmm.errors import ComputationError
 from symtmm.fe import fe_converged, fe_frequencies, fe_matrices
 from symtmm.model import Attachment, Beam, Model, RigidBody, Spring
 from symtmm.solve import solve
@@ -404,13 +403,6 @@ def test_delta_vanishes_at_the_fe_frequencies(name):
     assert_delta_vanishes_at(model, converged(model, COUNT))
 
 
-COUNT_NOT_READY = ("the eigenvalue count that isolates the roots (symtmm/stiffness.py) does "
-                   "not handle beam theories or bodies yet: solve raises ComputationError "
-                   "(no root in a bracket the count claims, or no point off an eigenvalue "
-                   "near omega = 0)")
-
-
-@pytest.mark.xfail(strict=True, raises=ComputationError, reason=COUNT_NOT_READY)
 @pytest.mark.parametrize("name", list(COUPLED))
 def test_solver_agrees_with_converged_fe(name):
     model = COUPLED[name]
@@ -418,9 +410,6 @@ def test_solver_agrees_with_converged_fe(name):
                                rtol=1e-6)
 
 
-@pytest.mark.xfail(strict=True, reason="BeamSegment.transfer_matrix divides sinh(sqrt(r) l) by "
-                   "sqrt(r) with r = 0 when m lam**2 + kw = 0 and N != 0 (e.g. lam = 0 under "
-                   "axial force): the exact matrix is nan")
 def test_exact_transfer_matrix_where_a_wave_number_vanishes():
     import sympy as sp
     seg = BeamSegment(1, 1, 1, N=2)

@@ -154,9 +154,12 @@ class BeamSegment(FieldElement):
         t, d = self.invariants(lam2)
         l = self.l
         disc = sp.simplify(t**2 / 4 - d)
-        r = sp.Symbol("r")
-        F0 = sp.Lambda(r, sp.cosh(sp.sqrt(r) * l))
-        F1 = sp.Lambda(r, sp.sinh(sp.sqrt(r) * l) / sp.sqrt(r))
+        def F0(r):
+            return sp.cosh(sp.sqrt(r) * l)
+
+        def F1(r):
+            # sinh(s l)/s is l at s = 0 (a wave number vanishes: lam = 0 under axial force)
+            return l if r == 0 else sp.sinh(sp.sqrt(r) * l) / sp.sqrt(r)
         if disc == 0:
             r0 = sp.simplify(t / 2)
             if r0 == 0:
