@@ -357,9 +357,21 @@ class Evaluator:
         return mpmath.matrix(E[self.rows, :].tolist())
 
     def delta_mp(self, lam, real: bool = False):
-        """``Delta(lam)`` at the current mpmath working precision."""
+        """``Delta(lam)`` at the current mpmath working precision.
+
+        ``mpmath.det`` returns 0 for a matrix it finds singular, except when a
+        whole pivot column is exactly zero (mirrored beams at an eigenvalue cancel
+        exactly): its pivot search then raises ``TypeError``. That is the same
+        verdict, 0; callers read an exact 0 as "no sign here, look again with
+        more digits".
+        """
         R = self.R_mp(lam, real)
-        return mpmath.det(R) if R.rows > 0 else mpmath.mpf(1)
+        if R.rows == 0:
+            return mpmath.mpf(1)
+        try:
+            return mpmath.det(R)
+        except TypeError:
+            return mpmath.mpf(0)
 
     def nullity_at_zero(self, dps: int = 60) -> int:
         """Dimension of the null space of ``R(0)``, decided at two precisions.

@@ -69,7 +69,7 @@ from ..results import Eigenvalue, Spectrum, decimal_string
 from .bracket import SEPARATION_DIGITS, anderson_bjorck, bracket_done
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
 from .dynamic_stiffness import DynamicStiffness
-from .undamped import _first_guess, check_stable, delta_mp, omega_scale, rigid_body_modes
+from .undamped import _first_guess, check_stable, omega_scale, rigid_body_modes
 
 __all__ = ["SIGMA_FACTOR", "count_in_rectangle", "default_sigma_max", "solve_damped"]
 
@@ -173,7 +173,7 @@ class _Problem:
         values = []
         for dps in (base, base + 10)[:2 if check else 1]:
             with mpmath.workdps(dps):
-                d = delta_mp(self.ev, _mpc(z) if origin is None else origin + _mpc(z))
+                d = self.ev.delta_mp(_mpc(z) if origin is None else origin + _mpc(z))
                 if d == 0:
                     return None
                 values.append((float(mpmath.log(abs(d))), float(mpmath.arg(d))))
@@ -186,7 +186,7 @@ class _Problem:
         return None
 
     def delta_mp(self, z):
-        return delta_mp(self.ev, z)
+        return self.ev.delta_mp(z)
 
 
 class _MPFunction:
@@ -484,7 +484,7 @@ class _Search:
         for factor in (0, 2):
             ev = Evaluator(_scaled_dashpots(self.p.model, factor))
             with mpmath.workdps(dps):
-                zt, _ = self._secant(lambda u, ev=ev: delta_mp(ev, u), z, tol / 10 ** 5,
+                zt, _ = self._secant(ev.delta_mp, z, tol / 10 ** 5,
                                      maxsteps=40, multiplicity=m)
             self.p.extra += ev.evaluations
             if zt is None or abs(zt - z) > tol:

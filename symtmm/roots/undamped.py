@@ -125,20 +125,6 @@ def check_stable(model: Model, rigid: int, sm: StiffnessModel | None = None) -> 
     return sm.evaluations if own else 0
 
 
-def delta_mp(ev: Evaluator, lam, real: bool = False):
-    """``ev.delta_mp(lam, real)``, with 0 where mpmath's determinant fails on a singular matrix.
-
-    ``mpmath.det`` returns 0 for a matrix it finds singular, except when a whole
-    pivot column is exactly zero (mirrored beams at an eigenvalue cancel exactly):
-    its pivot search then raises ``TypeError``. That is the same verdict, and the
-    callers treat an exact 0 as "no sign here, look again with more digits".
-    """
-    try:
-        return ev.delta_mp(lam, real)
-    except TypeError:
-        return mpmath.mpf(0)
-
-
 def omega_scale(model: Model):
     """``(name, sqrt(EI/(m L^4)))`` of the first beam: ``omega = Omega**2 * scale``."""
     b = model.resolved().beams[0]
@@ -332,12 +318,12 @@ class _Search:
             extra += max(10, dps // 2)
 
     def _f(self, omega):
-        value = delta_mp(self.ev, mpmath.mpc(0, omega), real=True)
+        value = self.ev.delta_mp(mpmath.mpc(0, omega), real=True)
         if value == 0:
             # mpmath.det returns an exact 0 for a matrix singular at the working
             # precision: that is no sign, so look again with more digits
             with mpmath.workdps(2 * mpmath.mp.dps):
-                value = delta_mp(self.ev, mpmath.mpc(0, omega), real=True)
+                value = self.ev.delta_mp(mpmath.mpc(0, omega), real=True)
         return value
 
     def _bracket_refine(self, a, b):
