@@ -33,10 +33,10 @@ from test_theories_modes import (
 
 from symtmm.cli import main
 from symtmm.compile import Evaluator
-from symtmm.errors import ComputationError
 from symtmm.model import Beam, Model
 from symtmm.modelfile import loads
 from symtmm.results import Eigenvalue, Spectrum
+from symtmm.solve import solve
 
 flint = pytest.importorskip("flint")
 from symtmm.roots.certified import ArbCount, ArbDelta, certify
@@ -168,12 +168,9 @@ def test_tip_body_enclosures_contain_the_frequency_equation_roots():
             assert enc.proof == "Krawczyk" and enc.contains(mpmath.mpc(0, ref)), ref
 
 
-def test_count_with_bodies_says_it_cannot():
-    model = loads(FORK)
-    with pytest.raises(ComputationError, match="rigid bodies or joints"):
-        ArbCount(model, 10.0)
-    # a multiple eigenvalue of a model with bodies: three identical branches, the opposite
-    # family (each branch clamped-free, trunk at rest) is double; reported as not certified
+def test_a_double_root_of_a_fork_with_three_branches_is_certified():
+    # three identical branches: the opposite family (each branch clamped-free, the trunk
+    # at rest) is double; the ball count over the joint's constraints proves it
     branch = 'name = "{}"\nEI = "1/3"\nm = "1/3"\nL = 0.75\nx0 = 1\nleft = "free"\nright = "free"\n'
     text = ('[[beam]]\nname = "trunk"\nEI = 1\nm = 1\nL = 1\nleft = "clamped"\nright = "free"\n'
             + "".join("[[beam]]\n" + branch.format(n) for n in ("b1", "b2", "b3"))
@@ -184,8 +181,13 @@ def test_count_with_bodies_says_it_cannot():
         w = (cantilever_betas(1)[0] / mpmath.mpf("0.75")) ** 2
         double = Eigenvalue(mpmath.mpc(0, w), 2, 12, (float(w) * (1 - 1e-9), float(w) * (1 + 1e-9)))
     (enc,) = certify(three, spectrum([double], digits=12))
-    assert enc.proof == "none" and "rigid bodies" in enc.note
-    assert enc.to_dict(12)["note"] == enc.note
+    assert enc.proof == "count" and enc.contains(mpmath.mpc(0, w))
+    # and a bracket beside it holds no eigenvalue: the count does not prove it
+    with mpmath.workdps(40):
+        beside = Eigenvalue(mpmath.mpc(0, w * 1.01), 2, 12,
+                            (float(w) * 1.005, float(w) * 1.015))
+    (enc,) = certify(three, spectrum([beside], digits=12))
+    assert enc.proof == "none"
 
 
 # -- command line ------------------------------------------------------------------------------
@@ -226,3 +228,28 @@ def test_a_ball_too_wide_to_decide_a_pivot_says_nothing_rather_than_something_wr
         exact = ev.delta_mp(mpmath.mpc(0, 20))
     assert value.contains(flint.acb(exact.real, exact.imag))
     assert deriv.contains(flint.acb(10**30, -10**30))             # no claim on Delta'
+
+
+def test_double_roots_of_two_forks_are_certified_by_the_count():
+    """Two identical uncoupled forks (a clamped trunk joined rigidly to two branches
+    EI/2, m/2): every eigenvalue twice. In-phase branches: one clamped-free beam of
+    length 1 (omega = nu**2); opposite branches: a clamped-free branch of length 1/2
+    (omega = 4 nu**2), nu from cos nu cosh nu = -1."""
+    from symtmm.model import Attachment, RigidBody
+
+    beams, bodies = [], []
+    for f in "pq":
+        beams += [Beam(f"{f}t", EI=1, m=1, L="1/2", left="clamped", right="free"),
+                  Beam(f"{f}u", EI="1/2", m="1/2", L="1/2", x0="1/2"),
+                  Beam(f"{f}d", EI="1/2", m="1/2", L="1/2", x0="1/2")]
+        bodies.append(RigidBody(f"{f}j", tuple(Attachment(f"{f}{b}", "1/2")
+                                                for b in "tud")))
+    model = Model(tuple(beams), bodies=tuple(bodies))
+    spectrum = solve(model, count=6, digits=12)
+    assert [e.multiplicity for e in spectrum] == [2, 2, 2]
+    enclosures = certify(model, spectrum)
+    assert [e.proof for e in enclosures] == ["count"] * 3
+    with mpmath.workdps(40):
+        nu = [mpmath.findroot(lambda x: mpmath.cos(x) + mpmath.sech(x), g) for g in (1.9, 4.7)]
+        refs = sorted([nu[0] ** 2, nu[1] ** 2, 4 * nu[0] ** 2])
+        assert all(e.contains(mpmath.mpc(0, r)) for e, r in zip(enclosures, refs))

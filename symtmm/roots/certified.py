@@ -33,8 +33,8 @@ Proofs, per eigenvalue:
   sign proved) differs by exactly ``m`` between the ends of its bracket, so the
   bracket holds ``m`` eigenvalues counted with multiplicity (exactly one
   eigenvalue of multiplicity ``m``, or several that agree to the bracket).
-  Any beam theory; not yet models with rigid bodies or joints (their multiple
-  eigenvalues are reported uncertified, with a note saying why).
+  Any beam theory, rigid bodies and joints (as :class:`symtmm.stiffness.Mesh`
+  eliminates their constraints, with exact coefficients).
 * ``none``: multiple eigenvalues of damped models (``Delta'`` vanishes there)
   are not certified; they are reported with ``"certified": false``.
 
@@ -439,14 +439,11 @@ class ArbCount:
     number of negative pivots of ``LDL^T`` (Sylvester's law of inertia), proved
     when no pivot ball contains 0. ``J = s{K}`` needs segments short enough that
     none reaches a clamped-clamped natural frequency below ``omega_design``: each
-    piece is the beam's own element (any theory, :meth:`symtmm.model.Beam.segment`),
-    and the mesh is refined until every piece is within its ``safe_length``.
+    piece is the beam's own element (any theory), within its ``safe_length``, as
+    :class:`symtmm.stiffness.Mesh` cuts it.
 
-    Raises
-    ------
-    ComputationError
-        For a model with rigid bodies or joints (the stiffness formulation has
-        no attachment freedoms yet).
+    Rigid bodies and joints enter as :class:`symtmm.stiffness.Mesh` eliminates
+    them: every freedom a combination of the free ones, with exact coefficients.
 
     Examples
     --------
@@ -458,45 +455,37 @@ class ArbCount:
 
     def __init__(self, model: Model, omega_design: float):
         self.flint = require_flint()
-        model = model.require_numeric()
-        if model.bodies:
-            raise ComputationError("the certified eigenvalue count does not handle rigid bodies "
-                                   "or joints yet (the dynamic stiffness has no attachment dofs)")
-        self._mesh(model, float(omega_design))
-        self.arb = ArbDelta(self.sm.model)
+        self._mesh(model.require_numeric(), float(omega_design))
 
     def _mesh(self, model, omega):
-        """The stiffness model, refined until every piece is short enough at ``omega``."""
+        """The stiffness model's mesh for the count up to ``omega`` (pieces short enough)."""
         from ..stiffness import StiffnessModel
 
         self.omega_design = omega
-        design = omega
-        for _ in range(64):
-            sm = StiffnessModel(model, design)
-            beams = sm.model.beams
-            pieces = [beams[b].segment(seg.l) for b, seg, _, _ in sm.segments]
-            if all(p.safe_length(omega * omega) >= float(p.l) * (1 - 1e-12) for p in pieces):
-                self.sm, self.pieces = sm, pieces
-                return
-            design *= 2            # the mesh follows the plain beam's wave number: refine it
-        raise ComputationError(f"no mesh keeps the segments' clamped modes above {omega:.6g} "
-                               "rad/s (a beam buckled under its axial force?)")
+        self.sm = StiffnessModel(model, omega)
+        self.arb = ArbDelta(self.sm.model)
 
     def _matrix(self, omega):
         arb = self.flint.arb
         lam = self.flint.acb(0, _arb_exact(omega, self.flint))
+        w = _arb_exact(omega, self.flint)
+        mesh = self.sm.mesh
         n = self.sm.size
         K = [[arb(0)] * n for _ in range(n)]
-        for seg, dofs in zip(self.pieces, self.sm._seg_dofs):
+        for (_, seg, _, _), places in zip(mesh.segments, mesh.segment_places):
             U, _ = self.arb._segment(seg, lam, derivative=False)
             U = [[v.real for v in row] for row in U]       # real on the frequency axis
-            _scatter_arb(K, _segment_stiffness_arb(U), dofs)
-        for dofs, element in self.sm.point_elements:
+            _scatter_arb(K, _segment_stiffness_arb(U), places, self.flint)
+        for places, element in mesh.point_places:
             S = element.stiffness(LAM).xreplace({LAM: sp.I * sp.Symbol("w", real=True)})
-            w = _arb_exact(omega, self.flint)
             local = [[_poly_arb(sp.re(sp.expand(S[i, j])), w, self.flint)
                       for j in range(S.cols)] for i in range(S.rows)]
-            _scatter_arb(K, local, dofs)
+            _scatter_arb(K, local, places, self.flint)
+        for places, masses in mesh.body_places:
+            # a rigid body adds lam**2 diag(M, J) = -omega**2 diag(M, J) on (Y_c, Theta_c)
+            local = [[-(w * w) * to_arb(mass, self.flint) if i == j else arb(0)
+                      for j in range(len(masses))] for i, mass in enumerate(masses)]
+            _scatter_arb(K, local, places, self.flint)
         return K
 
     def count(self, omega) -> int | None:
@@ -532,13 +521,15 @@ def _segment_stiffness_arb(U):
     return [f0[1], [-v for v in f0[0]], [-v for v in f1[1]], f1[0]]
 
 
-def _scatter_arb(K, local, dofs):
-    for i, di in enumerate(dofs):
-        if di is None:
-            continue
-        for j, dj in enumerate(dofs):
-            if dj is not None:
-                K[di][dj] = K[di][dj] + local[i][j]
+def _scatter_arb(K, local, places, flint):
+    """Add ``T^T local T``: ``places[i]`` is local freedom ``i`` as ``((index, exact), ...)``."""
+    for i, ci in enumerate(places):
+        for gi, ai in ci:
+            ai = to_arb(ai, flint)
+            for j, cj in enumerate(places):
+                value = local[i][j]
+                for gj, aj in cj:
+                    K[gi][gj] = K[gi][gj] + ai * to_arb(aj, flint) * value
 
 
 def _poly_arb(expr, w, flint):
