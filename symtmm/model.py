@@ -482,6 +482,37 @@ class Model:
                 seen.add((att.beam, x))
             for attr in ("M", "J"):
                 _check_sign(self.value(getattr(body, attr)), f"{where}.{attr}", allow_zero=True)
+            self._check_supports(body, resolved)
+
+    def _check_supports(self, body: RigidBody, resolved: dict) -> None:
+        """A body held by supported beam ends no more times than it has freedoms.
+
+        A boundary condition at a beam end attached to a body supports the body
+        (a pinned trunk end pins the joint). Two supports fixing the same freedom
+        leave the reactions undetermined and ``Delta`` zero for every ``lam``.
+        """
+        rows = []
+        for att in body.attachments:
+            beam, x = resolved[att.beam], self.value(att.x)
+            for end, bc in ((beam.x0, beam.left), (beam.x1, beam.right)):
+                d = x - end
+                if not (d.is_number and d == 0):
+                    continue
+                zero = BOUNDARY_CONDITIONS[bc]
+                arm = self.value(att.x - body.xc)
+                if "Y" in zero:
+                    rows.append([1, arm if body.rotates else 0])
+                if "Theta" in zero and not att.hinged:
+                    rows.append([0, 1])
+        if not rows:
+            return
+        matrix = sp.Matrix(rows) if body.rotates else sp.Matrix(rows)[:, 0]
+        if any(not v.is_number for v in matrix):
+            return
+        if matrix.rank() < len(rows):
+            raise ModelError("held by more supported beam ends than it has freedoms: the "
+                             "reactions are not determined (leave all but one end free)",
+                             field=f"body '{body.name}'.attach")
 
     # -- parameters -----------------------------------------------------------------
     @cached_property

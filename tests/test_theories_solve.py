@@ -35,9 +35,11 @@ from reference import classical_roots
 from symtmm import Beam, ComputationError, Model, ModelError, Spring
 from symtmm.compile import Evaluator
 from symtmm.model import Attachment, Mass, RigidBody
+from symtmm.modelfile import loads
 from symtmm.roots.damped import count_in_rectangle, solve_damped
 from symtmm.roots.dynamic_stiffness import DynamicStiffness
 from symtmm.roots.undamped import rigid_body_modes, solve_undamped
+from symtmm.solve import solve
 from symtmm.stiffness import StiffnessModel, segment_stiffness
 
 DPS = 45
@@ -571,3 +573,28 @@ def test_random_models_count_agrees_with_roots_found(model):
     rigid = sum(e.multiplicity for e in spectrum if e.omega == 0)
     nonzero = sum(e.multiplicity for e in spectrum if e.omega != 0)
     assert count_in_rectangle(model, -0.3, 0.3, -top, top) == 2 * nonzero + 2 * rigid
+
+
+def test_a_supported_end_supports_the_joint_two_span_beam():
+    """Two spans joined rigidly over a pin (the first span's end is pinned, the joint holds
+    it): antisymmetric modes are pinned-pinned spans (Omega = n pi), symmetric ones
+    pinned-clamped spans (tan nu = tanh nu)."""
+    text = ('[[beam]]\nname = "a"\nEI = 1\nm = 1\nL = 1\nleft = "pinned"\nright = "pinned"\n'
+            '[[beam]]\nname = "b"\nEI = 1\nm = 1\nL = 1\nx0 = 1\nleft = "free"\n'
+            'right = "pinned"\n[[joint]]\nends = ["a.right", "b.left"]\n')
+    spectrum = solve(loads(text), count=6, digits=15)
+    with mpmath.workdps(40):
+        pc = [mpmath.findroot(lambda x: mpmath.tan(x) - mpmath.tanh(x), g) for g in (3.93, 7.07,
+                                                                                   10.21)]
+        refs = sorted([(n * mpmath.pi) ** 2 for n in (1, 2, 3)] + [nu**2 for nu in pc])
+        for e, ref in zip(spectrum, refs):
+            assert e.multiplicity == 1
+            assert abs(e.omega - ref) < mpmath.mpf(10) ** -14 * ref
+
+
+def test_two_supports_on_one_joint_are_refused():
+    text = ('[[beam]]\nname = "a"\nEI = 1\nm = 1\nL = 1\nleft = "pinned"\nright = "pinned"\n'
+            '[[beam]]\nname = "b"\nEI = 1\nm = 1\nL = 1\nx0 = 1\nleft = "pinned"\n'
+            'right = "pinned"\n[[joint]]\nends = ["a.right", "b.left"]\n')
+    with pytest.raises(ModelError, match="more supported beam ends than it has freedoms"):
+        loads(text)
