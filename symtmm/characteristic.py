@@ -1070,6 +1070,8 @@ class _Writer:
         self.known = self._known_factors()
         self._trig_cache: dict = {}
         self._rest_ring = None
+        self._outer_cache: dict = {}
+        self._collected: dict = {}
 
     def _known_factors(self) -> dict:
         """Polynomials in Omega that are functions of one wave's ``a, b``: written so."""
@@ -1146,6 +1148,9 @@ class _Writer:
         return m, groups
 
     def _outer(self, rest):
+        cached = self._outer_cache.get(rest)
+        if cached is not None:
+            return cached
         out = self.Omega ** rest[0]
         k = 1
         for _, e in self.outer:
@@ -1154,6 +1159,7 @@ class _Writer:
         for _, e in self.scaled:
             out /= e ** rest[k]
             k += 1
+        self._outer_cache[rest] = out
         return out
 
     def atoms_form(self, groups) -> sp.Expr:
@@ -1186,7 +1192,7 @@ class _Writer:
                      for m, c in ring.terms(f).items()}) ** int(e) for f, e in parts])
         return factored if sp.count_ops(factored) < sp.count_ops(expr) else expr
 
-    def collected_forms(self, groups) -> tuple[sp.Expr, sp.Expr]:
+    def collected_forms(self, groups, harmonic_terms=None) -> tuple[sp.Expr, sp.Expr]:
         """The atoms and the harmonic form, each function with one coefficient.
 
         The forms above group by the outer factor (powers of ``Omega``, wave
@@ -1199,13 +1205,19 @@ class _Writer:
         for rest, inner in groups.items():
             for mon, cf in inner.items():
                 atoms.setdefault(mon, {})[rest] = Fraction(int(cf.p), int(cf.q))
-            for key, v in self._harmonic_terms(inner).items():
+            parts = (harmonic_terms or {}).get(rest) or self._harmonic_terms(inner)
+            for key, v in parts.items():
                 harmonic.setdefault(key, {})[rest] = v
-        a = sp.Add(*[self._coefficient(c) * sp.Mul(*[x ** k for x, k in zip(self.atoms, mon) if k])
-                     for mon, c in atoms.items()])
-        h = sp.Add(*[self._coefficient(c) * self._harmonic_function(key)
-                     for key, c in harmonic.items()])
-        return a, h
+        key = ("collected", tuple(sorted(groups)), id(groups))
+        if self._collected.get("key") != key:
+            self._collected = {"key": key}
+        cache = self._collected
+        if "a" not in cache:
+            cache["a"] = sp.Add(*[self._coefficient(c) * sp.Mul(
+                *[x ** k for x, k in zip(self.atoms, mon) if k]) for mon, c in atoms.items()])
+            cache["h"] = sp.Add(*[self._coefficient(c) * self._harmonic_function(k)
+                                  for k, c in harmonic.items()])
+        return cache["a"], cache["h"]
 
     def _harmonic_function(self, key) -> sp.Expr:
         (tk, tf), (hk, hf) = key
@@ -1234,37 +1246,11 @@ class _Writer:
                     acc[key] = acc.get(key, 0) + scale * vt * vh
         return {k: Fraction(v, den << top) for k, v in acc.items() if v != 0}
 
-    def harmonic_form(self, groups) -> sp.Expr:
-        total = []
-        G = self.alg.groups
-        for rest, inner in groups.items():
-            # integer arithmetic on a common denominator den * 2**top
-            expanded = []
-            for mon, cf in inner.items():
-                trig = tuple(mon[4 * g + i] for g in range(G) for i in (0, 1))
-                hyp = tuple(mon[4 * g + i] for g in range(G) for i in (2, 3))
-                ht, st = self._harmonics(trig, False)
-                hh, sh = self._harmonics(hyp, True)
-                expanded.append((cf, ht, hh, st + sh))
-            den = math.lcm(*[int(cf.q) for cf, *_ in expanded])
-            top = max(s for *_, s in expanded)
-            acc: dict = {}
-            for cf, ht, hh, shift in expanded:
-                scale = int(cf.p) * (den // int(cf.q)) << (top - shift)
-                for kt, vt in ht.items():
-                    for kh, vh in hh.items():
-                        key = (kt, kh)
-                        acc[key] = acc.get(key, 0) + scale * vt * vh
-            parts = []
-            for ((tk, tf), (hk, hf)), v in acc.items():
-                if v == 0:
-                    continue
-                v = Fraction(v, den << top)
-                st, t = self._function(tk, tf, False) if any(tf) else (1, sp.Integer(1))
-                sh, h = self._function(hk, hf, True) if any(hf) else (1, sp.Integer(1))
-                parts.append(st * sh * sp.Rational(v.numerator, v.denominator) * t * h)
-            total.append(self._outer(rest) * sp.Add(*parts))
-        return sp.Add(*total)
+    def harmonic_form(self, groups, terms=None) -> sp.Expr:
+        terms = terms or {rest: self._harmonic_terms(inner) for rest, inner in groups.items()}
+        return sp.Add(*[self._outer(rest) * sp.Add(*[
+            sp.Rational(v.numerator, v.denominator) * self._harmonic_function(key)
+            for key, v in parts.items()]) for rest, parts in terms.items()])
 
     def best(self, poly):
         """``(m, expr, ratio)`` with ``poly = ratio * Omega**m * expr``; the shortest form."""
@@ -1273,9 +1259,18 @@ class _Writer:
             form, ratio = self.known[key]
             return 0, form, ratio
         m, groups = self.split(poly)
-        forms = [self.harmonic_form(groups), self.atoms_form(groups)]
+        harmonic = {rest: self._harmonic_terms(inner) for rest, inner in groups.items()}
+        # SymPy is slow on long sums: the forms are built only if their number of terms
+        # is near the least; SymPy's count of operations chooses among those
+        estimate = [sum(len(v) for v in harmonic.values()), sum(len(v) for v in groups.values())]
+        builders = [lambda: self.harmonic_form(groups, harmonic), lambda: self.atoms_form(groups)]
         if len(groups) > 1:
-            forms += self.collected_forms(groups)[::-1]
+            estimate += [len({k for v in harmonic.values() for k in v}) + len(groups),
+                         len({k for v in groups.values() for k in v}) + len(groups)]
+            builders += [lambda: self.collected_forms(groups, harmonic)[0],
+                         lambda: self.collected_forms(groups, harmonic)[1]]
+        low = min(estimate)
+        forms = [build() for build, n in zip(builders, estimate) if n <= 1.5 * low]
         sizes = [sp.count_ops(f) for f in forms]
         return m, forms[sizes.index(min(sizes))], sp.Integer(1)
 # --------------------------------------------------------------------------------------
@@ -1453,7 +1448,9 @@ def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation
     if problem.waves and not any(_is_plain(b) for b in problem.layout.model.beams):
         # no plain beam: the frequency left in the coefficients is the model's variable
         back = {Om: Omega_of_var}
-        out_factors = [(_tidy(f.xreplace(back)), e) for f, e in out_factors]
+        c_poly, out_factors = _polynomials_in(variable, [(_tidy(f.xreplace(back)), e)
+                                                         for f, e in out_factors])
+        constant *= c_poly
         scale = Omega_of_var ** power
         power = 0
     else:
@@ -1505,6 +1502,29 @@ def _merge_factors(factors, Om):
             else:
                 merged[base] = merged.get(base, 0) + p * e
     return constant, int(power), [(b, int(e)) for b, e in merged.items() if e != 0]
+
+
+def _polynomials_in(variable, factors):
+    """Factors that are polynomials in ``variable`` only, multiplied and factored again in it.
+
+    Factored in ``Omega ~ sqrt(omega)``, ``omega**2 - c`` splits into
+    ``(k omega - sqrt(c)) (k omega + sqrt(c))``: refactored it is whole again.
+    """
+    plain, rest = [], []
+    for f, e in factors:
+        (plain if f.free_symbols <= {variable} and f.is_polynomial(variable) else rest).append(
+            (f, e))
+    if len(plain) < 2:
+        return sp.Integer(1), factors
+    out, constant = [], sp.Integer(1)
+    for sign in (1, -1):
+        product = sp.Mul(*[f ** (e * sign) for f, e in plain if e * sign > 0])
+        if product == 1:
+            continue
+        c, parts = sp.factor_list(sp.expand(product), variable)
+        constant *= c**sign
+        out += [(f, sign * int(e)) for f, e in parts]
+    return constant, rest + out
 
 
 def _tidy(expr: sp.Expr) -> sp.Expr:
