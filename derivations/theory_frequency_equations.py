@@ -39,6 +39,7 @@ Run: ``python derivations/theory_frequency_equations.py``.
 
 import json
 import random
+from itertools import pairwise
 
 import mpmath
 import sympy as sp
@@ -78,8 +79,8 @@ P_t = sp.Poly(sp.expand(Mk.det()).subs(k, sp.sqrt(s_)), s_).as_expr()
 P_r = sp.expand(sp.simplify(eq_r.subs(Y, ex).doit() / ex)).subs(k, sp.sqrt(s_))
 # psi = ratio(s) * Y' on each exponential, from the second equation
 ratio = sp.simplify(sp.solve(lin[1], B_)[0] / (A_ * k))
-assert not ratio.has(k) or sp.simplify(ratio - ratio.subs(k, -k)) == 0
-ratio = sp.simplify(ratio.subs(k**2, s_)) if ratio.has(k) else ratio
+ratio = sp.simplify(ratio.subs(k**2, s_))
+assert not ratio.has(k)
 # P is quadratic in s; the Euler-Bernoulli limit (kGA -> oo, rhoI = 0) is EI s**2 - N s + kw - m w2
 assert sp.degree(P_t, s_) == 2 and sp.degree(P_r, s_) == 2
 assert sp.expand(P_r - (EI * s_**2 - (N - rhoI * w2) * s_ + kw - m * w2)) == 0
@@ -221,9 +222,10 @@ def derived(model):
                        "mpmath"), out
 
 
-def vanishes(fn, w, rel=mpmath.mpf(10) ** -20):
-    """``fn(w) ~ 0`` against its size a percent away."""
+def vanishes(fn, w, digits=20):
+    """``fn(w) ~ 0`` (``digits`` below its size a percent away)."""
     w = mpmath.mpf(w)
+    rel = mpmath.mpf(10) ** -digits
     near = max(abs(fn(w * 1.01)), abs(fn(w * 0.99)))
     return abs(fn(w)) < rel * near and near > 0
 
@@ -277,7 +279,7 @@ with mpmath.workdps(40):
     grid = [mpmath.mpf(i) / 4 for i in range(1, 200)]
     signs = [(g, huang(g)) for g in grid]
     roots = [mpmath.findroot(huang, (u, v), solver="anderson")
-             for (u, fu), (v, fv) in zip(signs, signs[1:]) if fu * fv < 0]
+             for (u, fu), (v, fv) in pairwise(signs) if fu * fv < 0]
     assert len(roots) >= 3
     for w in roots[:4]:
         assert vanishes(fn, w), w

@@ -1067,6 +1067,11 @@ class _Writer:
             if grp.wave is not None:
                 wave = p.waves[grp.wave]
                 self.scaled += [(4 * g + 1, wave.b), (4 * g + 3, wave.a)]
+        # one divisor per wave number (Sn of every segment of a kind divides by the same b)
+        by_symbol: dict = {}
+        for idx, symbol in self.scaled:
+            by_symbol.setdefault(symbol, []).append(idx)
+        self.divisors = list(by_symbol.items())
         self.known = self._known_factors()
         self._trig_cache: dict = {}
         self._rest_ring = None
@@ -1143,7 +1148,7 @@ class _Writer:
         groups: dict = {}
         for mon, cf in terms.items():
             rest = (omega(mon) - m,) + tuple(mon[i] for i, _ in self.outer) + tuple(
-                mon[i] for i, _ in self.scaled)
+                sum(mon[i] for i in idx) for _, idx in self.divisors)
             groups.setdefault(rest, {})[mon[:alg.w]] = _rational(cf)
         return m, groups
 
@@ -1156,7 +1161,7 @@ class _Writer:
         for _, e in self.outer:
             out *= e ** rest[k]
             k += 1
-        for _, e in self.scaled:
+        for e, _ in self.divisors:
             out /= e ** rest[k]
             k += 1
         self._outer_cache[rest] = out
