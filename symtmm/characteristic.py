@@ -850,7 +850,8 @@ def _perm_sign(perm) -> int:
     return sign
 
 
-#: Terms of an unreduced determinant beyond which it is reduced before factoring.
+#: Terms of an unreduced determinant beyond which it is reduced before factoring (models
+#: with beams other than plain Euler-Bernoulli ones; plain ones are always factored first).
 _FACTOR_UNREDUCED = 30000
 
 _IDENTICALLY_ZERO = ("the characteristic determinant vanishes identically "
@@ -904,9 +905,9 @@ def _factorise(alg: _Algebra, R):
         if not alg.ring.can_factor:  # pragma: no cover
             first = [(det, 1)]
         else:
-            if len(alg.ring.terms(det)) > _FACTOR_UNREDUCED:
-                # too long to factor as it is (it grows fast with Timoshenko beams): the
-                # normal form is far shorter, at the price of products it may hide
+            if alg.problem.waves and len(alg.ring.terms(det)) > _FACTOR_UNREDUCED:
+                # too long to factor as it is (with the waves' Dl, iq it takes minutes):
+                # the normal form is far shorter, at the price of products it may hide
                 det = alg.reduce(det)
             content, first = alg.ring.factor(det)
             constant *= _rational(content)
@@ -1267,13 +1268,34 @@ class _Writer:
         harmonic = {rest: self._harmonic_terms(inner) for rest, inner in groups.items()}
         # SymPy is slow on long sums: the forms are built only if their number of terms
         # is near the least; SymPy's count of operations chooses among those
-        estimate = [sum(len(v) for v in harmonic.values()), sum(len(v) for v in groups.values())]
+        def outer(rest):
+            return sum(1 for e in rest if e)
+
+        def atom_ops(mon):
+            return 1 + int(sum(mon))
+
+        def harmonic_ops(key):
+            (_, tf), (_, hf) = key
+            return 1 + any(tf) + any(hf)
+
+        estimate = [sum(outer(r) + sum(map(harmonic_ops, v)) for r, v in harmonic.items()),
+                    sum(outer(r) + sum(map(atom_ops, v)) for r, v in groups.items())]
         builders = [lambda: self.harmonic_form(groups, harmonic), lambda: self.atoms_form(groups)]
         if len(groups) > 1:
-            estimate += [len({k for v in harmonic.values() for k in v}) + len(groups),
-                         len({k for v in groups.values() for k in v}) + len(groups)]
-            builders += [lambda: self.collected_forms(groups, harmonic)[0],
-                         lambda: self.collected_forms(groups, harmonic)[1]]
+            by_key: dict = {}
+            for r, v in harmonic.items():
+                for key in v:
+                    by_key.setdefault(key, []).append(r)
+            by_mon: dict = {}
+            for r, v in groups.items():
+                for mon in v:
+                    by_mon.setdefault(mon, []).append(r)
+            estimate += [sum(harmonic_ops(k) + sum(1 + outer(r) for r in rs)
+                             for k, rs in by_key.items()),
+                         sum(atom_ops(k) + sum(1 + outer(r) for r in rs)
+                             for k, rs in by_mon.items())]
+            builders += [lambda: self.collected_forms(groups, harmonic)[1],
+                         lambda: self.collected_forms(groups, harmonic)[0]]
         low = min(estimate)
         forms = [build() for build, n in zip(builders, estimate) if n <= 1.5 * low]
         sizes = [sp.count_ops(f) for f in forms]
