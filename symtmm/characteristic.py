@@ -59,7 +59,9 @@ multilevel models tractable:
 2. ``c, s, ch, sh = cos, sin, cosh, sinh`` of each distinct argument
    ``beta_j l`` are independent variables of a polynomial ring over the
    rationals (with ``W = 1/Omega``, ``Omega`` and the symbolic parameters),
-   reduced with ``s**2 = 1 - c**2`` and ``sh**2 = ch**2 - 1``. The other beams
+   reduced with ``s**2 = 1 - c**2`` and ``sh**2 = ch**2 - 1``. An
+   Euler–Bernoulli beam on a foundation (``a = b``) is scaled the same way
+   with its own ``b`` (and ``1/b``) in place of ``beta``. The other beams
    bring per segment ``c = cos(b l)``, ``Sn = sin(b l)/b``, ``ch = cosh(a l)``,
    ``Sh = sinh(a l)/a`` and per kind of beam ``Dl = a**2 + b**2`` and ``iq =
    1/Dl**2``: with ``a**2 = (t + Dl)/2``, ``b**2 = (Dl - t)/2`` and
@@ -321,6 +323,10 @@ class _Wave:
     iq: sp.Dummy = field(default_factory=lambda: sp.Dummy("iq"))
     t_ring: sp.Expr = None     # t and disc in W (set with the ring's generators)
     disc_ring: sp.Expr = None
+    #: Euler-Bernoulli on a foundation: the state is scaled by diag(1, b, EI b**2, EI b**3)
+    #: as a plain beam's, the atoms are those of b l and ``Wb = 1/b`` a generator
+    scaled: bool = False
+    Wb: sp.Dummy = field(default_factory=lambda: sp.Dummy("Wb", positive=True))
 
     @property
     def disc(self) -> sp.Expr:
@@ -362,6 +368,11 @@ class _Problem:
     def in_ring(self, expr) -> sp.Expr:
         """``expr`` in Omega written for the ring (``Omega -> 1/W``)."""
         return sp.expand(sp.sympify(expr).xreplace({OMEGA_DIMLESS: 1 / _W}))
+
+
+def _is_founded(beam) -> bool:
+    """Euler–Bernoulli on a foundation without axial force: ``a = b``, scaled like plain."""
+    return beam.theory == "euler-bernoulli" and beam.N == 0 and beam.kw != 0
 
 
 def _is_plain(beam) -> bool:
@@ -432,10 +443,15 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
         else:
             a_sym, b_sym = _wave_symbols(b.name, taken)
             taken |= {a_sym.name, b_sym.name}
-            waves.append(_Wave(b.name, t, d, b_sym if t == 0 else a_sym, b_sym, b))
+            waves.append(_Wave(b.name, t, d, b_sym if t == 0 else a_sym, b_sym, b,
+                               scaled=_is_founded(b)))
             k = len(waves) - 1
         level_wave[j] = k
-        D += [sp.Integer(1)] * 4
+        if waves[k].scaled:
+            bk = waves[k].b
+            D += [sp.Integer(1), bk, b.EI * bk**2, b.EI * bk**3]
+        else:
+            D += [sp.Integer(1)] * 4
     units = layout.units
     D_ext = [D[4 * lvl + STATE.index(var)] for lvl, var in units]
     groups: list = []
@@ -464,7 +480,8 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
         for row, col, value in step.terms:
             # masses (lam**2) enter undamped models too: lam**2 = -Omega**4/(mu_1 L_1)**4
             v = sp.sympify(value).xreplace({LAM: lam_of_Omega}) * D_ext[col] / D_ext[row]
-            entries[(row, col)] = sp.expand(sp.powsimp(sp.expand(v)).xreplace({Om: 1 / _W}))
+            entries[(row, col)] = sp.expand(sp.powsimp(sp.expand(v)).xreplace(
+                {Om: 1 / _W, **{w.b: 1 / w.Wb for w in waves if w.scaled}}))
         steps.append(("point", entries))
     prefactor = sp.powsimp(sp.Mul(*[D_ext[i] for i in layout.rows])
                            / sp.Mul(*[D_ext[i] for i in layout.columns]))
@@ -475,31 +492,34 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
     for kind, data in steps:
         if kind == "segments":
             for lvl, g in data:
-                if groups[g].wave is not None and (g, lvl) not in problem.matrices:
+                wave = groups[g].wave
+                if wave is not None and not waves[wave].scaled and (g, lvl) not in problem.matrices:
                     problem.matrices[(g, lvl)] = _wave_matrix(problem, g, lvl)
     # every expression the ring must hold: radicals become symbols, the rest generators
     slots = [(kind, data, key) for kind, data in steps if kind == "point" for key in data]
     point_exprs = [data[key] for _, data, key in slots]
     matrix_exprs = [e for U in problem.matrices.values() for row in U for e in row]
-    rule_exprs = [problem.in_ring(e) for w in waves for e in (w.t, w.disc)]
+    general = [w for w in waves if not w.scaled]
+    rule_exprs = [problem.in_ring(e) for w in general for e in (w.t, w.disc)]
     exprs, roots = _canonical_radicals(point_exprs + matrix_exprs + rule_exprs)
     for (_, data, key), e in zip(slots, exprs):
         data[key] = e
-    for i, w in enumerate(waves):
-        w.t_ring, w.disc_ring = exprs[len(exprs) - 2 * len(waves) + 2 * i:][:2]
+    for i, w in enumerate(general):
+        w.t_ring, w.disc_ring = exprs[len(exprs) - 2 * len(general) + 2 * i:][:2]
     it = iter(exprs[len(point_exprs):len(point_exprs) + len(matrix_exprs)])
     for U in problem.matrices.values():
         for row in U:
             row[:] = [next(it) for _ in row]
     known = {_W} | {d for grp in groups for d in grp.dummies} | {
-        s for w in waves for s in (w.Dl, w.iq)}
+        s for w in general for s in (w.Dl, w.iq)} | {w.Wb for w in waves if w.scaled}
     extra = []
     nonzero = [e for e in exprs if e != 0]
     if nonzero:
         _, info = sp.parallel_poly_from_expr(nonzero + [_W], domain=sp.QQ)
         extra = [g for g in info["gens"] if g not in known]
     for g in extra:
-        if g.free_symbols & ({Om} | known - {_W}) or not (g.is_Symbol or g.is_Pow or g == sp.I):
+        allowed = {_W} | {w.Wb for w in waves if w.scaled}
+        if g.free_symbols & ({Om} | known - allowed) or not (g.is_Symbol or g.is_Pow or g == sp.I):
             raise ComputationError(f"unexpected term {g} in the transfer matrices")
     problem.extra = extra
     problem.relations = roots
@@ -524,16 +544,25 @@ class _Algebra:
         self.problem = problem
         self.groups = len(problem.groups)
         names, symbols = [], []
+        def plain_like(grp):
+            return grp.wave is None or problem.waves[grp.wave].scaled
+
         for g, grp in enumerate(problem.groups):
-            kinds = ("c", "s", "ch", "sh") if grp.wave is None else ("c", "Sn", "ch", "Sh")
+            kinds = ("c", "s", "ch", "sh") if plain_like(grp) else ("c", "Sn", "ch", "Sh")
             names += [f"{k}{g}" for k in kinds]
             symbols += list(grp.dummies)
         self.w = len(names)
         names.append("W")
         symbols.append(_W)
-        self.wave_index = []
+        self.wave_index = {}     # general waves: k -> (Dl, iq)
+        self.scaled_index = {}   # founded waves: k -> Wb
         for k, wave in enumerate(problem.waves):
-            self.wave_index.append((len(names), len(names) + 1))
+            if wave.scaled:
+                self.scaled_index[k] = len(names)
+                names.append(f"Wb{k}")
+                symbols.append(wave.Wb)
+                continue
+            self.wave_index[k] = (len(names), len(names) + 1)
             names += [f"Dl{k}", f"iq{k}"]
             symbols += [wave.Dl, wave.iq]
         self.extra_index = {}
@@ -546,21 +575,27 @@ class _Algebra:
         self.nvars = len(names)
         # Omega = 1/W as a generator of its own (masses, waves); W * Omega -> 1 in reduce
         self.inv_w = self.extra_index.get(1 / _W)
+        # pairs (W, 1/W) that cancel: Omega's and each founded wave's
+        self.inverse_pairs = [(self.w, self.inv_w)] if self.inv_w is not None else []
+        for k, idx in self.scaled_index.items():
+            inv = self.extra_index.get(1 / problem.waves[k].Wb)
+            if inv is not None:
+                self.inverse_pairs.append((idx, inv))
         G = self.ring.gens
         half = self.ring.coefficient(sp.Rational(1, 2))
         self.rules = []   # (variable, power q, replacement of x**q); applied in this order
         self.N = {}
         for g, grp in enumerate(problem.groups):
             c, s, ch, sh = G[4 * g:4 * g + 4]
-            if grp.wave is None:
+            if plain_like(grp):
                 self.rules += [(4 * g + 1, 2, 1 - c * c), (4 * g + 3, 2, ch * ch - 1)]
                 S, T, U, V = (ch + c) * half, (sh + s) * half, (ch - c) * half, (sh - s) * half
                 self.N[g] = [[S, T, U, V], [V, S, T, U], [U, V, S, T], [T, U, V, S]]
             else:
                 A, B = self.wave_squares(grp.wave)
                 self.rules += [(4 * g, 2, 1 - B * s * s), (4 * g + 2, 2, 1 + A * sh * sh)]
-        for k, wave in enumerate(problem.waves):
-            self.rules.append((self.wave_index[k][0], 2, self.from_expr(wave.disc_ring)))
+        for k, (dl, _) in self.wave_index.items():
+            self.rules.append((dl, 2, self.from_expr(problem.waves[k].disc_ring)))
         for e, idx in self.extra_index.items():
             if e == sp.I:
                 self.rules.append((idx, 2, self.ring.one * -1))
@@ -617,12 +652,11 @@ class _Algebra:
             while p.degrees()[idx] >= q:
                 quo, rem = divmod(p, gens[idx] ** q)
                 p = rem + repl * quo
-        iw = self.inv_w
-        if iw is not None:
-            wv = gens[iw] * gens[self.w]
+        for w, iw in self.inverse_pairs:
+            wv = gens[iw] * gens[w]
             while True:
                 deg = p.degrees()
-                if not (deg[iw] and deg[self.w]):
+                if not (deg[iw] and deg[w]):
                     break
                 quo, rem = divmod(p, wv)
                 if quo == 0:
@@ -645,22 +679,19 @@ class _Algebra:
             for e, part in buckets.items():
                 out = out + ring.from_dict(part) * self._power(r, e)
             p = out
-        iw = self.inv_w
-        if iw is None:
-            return p
-        terms = ring.terms(p)
-        if not any(m[iw] and m[self.w] for m in terms):
-            return p
-        out: dict = {}
-        for m, cf in terms.items():
-            if m[iw] and m[self.w]:
-                k = min(m[iw], m[self.w])
-                m = list(m)
-                m[iw] -= k
-                m[self.w] -= k
-                m = tuple(m)
-            out[m] = out.get(m, 0) + cf
-        return ring.from_dict({m: c for m, c in out.items() if c != 0})
+        for w, iw in self.inverse_pairs:
+            terms = ring.terms(p)
+            out: dict = {}
+            for m, cf in terms.items():
+                if m[iw] and m[w]:
+                    k = min(m[iw], m[w])
+                    m = list(m)
+                    m[iw] -= k
+                    m[w] -= k
+                    m = tuple(m)
+                out[m] = out.get(m, 0) + cf
+            p = ring.from_dict({m: c for m, c in out.items() if c != 0})
+        return p
 
     def boundary_matrix(self) -> list:
         """The scaled ``R`` as a list of rows of polynomials (entries reduced)."""
@@ -700,7 +731,7 @@ class _Algebra:
         """
         ring = self.ring
         out = []
-        for k, (_, iq) in enumerate(self.wave_index):
+        for k, (_, iq) in self.wave_index.items():
             terms = ring.terms(p)
             K = max((m[iq] for m in terms), default=0)
             if not K:
@@ -938,8 +969,8 @@ def _regroup_discriminants(alg: _Algebra, found: dict, add) -> sp.Rational:
     constant = sp.Integer(1)
     if not ring.can_factor:  # pragma: no cover - depends on the installation
         return constant
-    for wave in alg.problem.waves:
-        disc = alg.from_expr(wave.disc_ring)
+    for k in alg.wave_index:
+        disc = alg.from_expr(alg.problem.waves[k].disc_ring)
         _, parts = ring.factor(disc)
         pieces, mono = [], []
         for h, m in parts:
@@ -1042,6 +1073,8 @@ class _Writer:
         for grp in p.groups:
             if grp.wave is None:
                 trig = hyp = (Omega, grp.arg)
+            elif p.waves[grp.wave].scaled:
+                trig = hyp = (p.waves[grp.wave].b, grp.arg)
             else:
                 wave = p.waves[grp.wave]
                 trig, hyp = (wave.b, grp.arg), (wave.a, grp.arg)
@@ -1051,13 +1084,18 @@ class _Writer:
                            sp.cosh(sp.Mul(*hyp)), sp.sinh(sp.Mul(*hyp))]
         # what each variable beyond the atoms and W stands for: ("Omega", 1) for 1/W
         self.outer: list = []
-        for k, (dl, iq) in enumerate(alg.wave_index):
+        for k, (dl, iq) in alg.wave_index.items():
             wave = p.waves[k]
             self.outer += [(dl, wave.a**2 + wave.b**2), (iq, (wave.a**2 + wave.b**2) ** -2)]
+        for k, idx in alg.scaled_index.items():
+            self.outer.append((idx, 1 / p.waves[k].b))
         for e, idx in alg.extra_index.items():
             if idx == alg.inv_w:
                 continue
-            if e in p.relations:
+            if e.is_Pow and e.exp == -1 and e.base in {w.Wb for w in p.waves if w.scaled}:
+                (wave,) = [w for w in p.waves if w.scaled and w.Wb == e.base]
+                self.outer.append((idx, wave.b))
+            elif e in p.relations:
                 base, Q = p.relations[e]
                 self.outer.append((idx, base ** sp.Rational(1, Q)))
             else:
@@ -1065,7 +1103,7 @@ class _Writer:
         # Sn = sin(b l)/b and Sh = sinh(a l)/a: the divisions go outside
         self.scaled = []
         for g, grp in enumerate(p.groups):
-            if grp.wave is not None:
+            if grp.wave is not None and not p.waves[grp.wave].scaled:
                 wave = p.waves[grp.wave]
                 self.scaled += [(4 * g + 1, wave.b), (4 * g + 3, wave.a)]
         # one divisor per wave number (Sn of every segment of a kind divides by the same b)
@@ -1083,6 +1121,8 @@ class _Writer:
         """Polynomials in Omega that are functions of one wave's ``a, b``: written so."""
         alg, out = self.alg, {}
         for wave in alg.problem.waves:
+            if wave.scaled:
+                continue
             a, b = wave.a, wave.b
             pairs = [(wave.disc, (a**2 + b**2) ** 2), (wave.d, -(a**2) * b**2)]
             if not wave.t.is_number:
@@ -1446,9 +1486,10 @@ def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation
     constant, factors = _factorise(alg, R)
     Om = OMEGA_DIMLESS
     writer = _Writer(alg, Om)
-    pre_c, pre_p = _split_power(problem.prefactor, Om)
+    founded = [w.b for w in problem.waves if w.scaled]
+    pre_c, pre_p, pre_b = _split_powers(problem.prefactor, Om, founded)
     power = pre_p
-    out_factors = []
+    out_factors = [(bk, p) for bk, p in pre_b.items() if p]
     frequency_symbols = [s for w in problem.waves for s in (w.a, w.b)]
     for poly, e in factors:
         m, expr, ratio = writer.best(poly)
@@ -1571,6 +1612,18 @@ def _wave_definitions(problem: _Problem, lam) -> dict:
         out[wave.a] = sp.sqrt(t / 2 + root)
         out[wave.b] = sp.sqrt(-t / 2 + root)
     return out
+
+
+def _split_powers(expr, x, others):
+    """``expr = c * x**p * prod(y**q)`` over ``others``: ``(c, p, {y: q})``."""
+    expr = sp.powsimp(sp.expand_power_base(sp.sympify(expr), force=True))
+    powers = {}
+    for y in others:
+        c, q = expr.as_coeff_exponent(y)
+        powers[y] = int(q)
+        expr = c
+    c, p = _split_power(expr, x)
+    return c, p, powers
 
 
 def _split_power(expr, x):
