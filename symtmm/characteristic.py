@@ -1519,6 +1519,8 @@ def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation
         c_poly, out_factors = _polynomials_in(variable, [(_tidy(f.xreplace(back)), e)
                                                          for f, e in out_factors])
         constant *= c_poly
+        c_disc, out_factors = _discriminants_back(problem, lam, variable, out_factors)
+        constant *= c_disc
         scale = Omega_of_var ** power
         power = 0
     else:
@@ -1570,6 +1572,31 @@ def _merge_factors(factors, Om):
             else:
                 merged[base] = merged.get(base, 0) + p * e
     return constant, int(power), [(b, int(e)) for b, e in merged.items() if e != 0]
+
+
+def _discriminants_back(problem: _Problem, lam, variable, factors):
+    """A polynomial factor in ``variable`` proportional to ``t**2 - 4 d`` of a wave is
+    ``(a**2 + b**2)**2``: written so, it cancels against the denominators."""
+    constant, out = sp.Integer(1), []
+    discs = []
+    for wave in problem.waves:
+        if wave.scaled:
+            continue
+        t, d = _wave_segment(wave.beam).invariants(sp.expand(lam**2))
+        discs.append((sp.expand(t**2 - 4 * d), wave.a**2 + wave.b**2))
+    for f, e in factors:
+        for disc, form in discs:
+            if f.free_symbols <= {variable} | disc.free_symbols and f.has(variable):
+                ratio = sp.simplify(f / disc)
+                if ratio.is_number and ratio != 0:
+                    constant *= ratio**e
+                    f, e = form, 2 * e
+                    break
+        out.append((f, e))
+    merged: dict = {}
+    for f, e in out:
+        merged[f] = merged.get(f, 0) + e
+    return constant, [(f, e) for f, e in merged.items() if e != 0]
 
 
 def _polynomials_in(variable, factors):
