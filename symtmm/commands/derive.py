@@ -6,6 +6,12 @@ dropped; the power of Omega keeps the roots at zero (rigid-body modes);
 repeated factors expose multiple roots. Parameters without a value stay
 symbols; --symbolic NAME keeps a parameter symbolic although the file gives
 it a value (that value then only orders cuts such as x1 and 1 - x1).
+
+Beams with a Winkler foundation, an axial force, rotary inertia or shear
+(Rayleigh, Timoshenko) are written in their wave numbers a_<beam>
+(hyperbolic) and b_<beam> (trigonometric), each defined in the variable
+(printed, and in JSON under "definitions"); Delta in the variable alone has
+them substituted.
 """
 
 from __future__ import annotations
@@ -42,8 +48,10 @@ def run(args) -> int:
         if model.title:
             print(model.title)
         print(f"Delta({eq.variable}) = {eq.delta}")
-        print(f"  with Omega = {eq.Omega}:")
-        print(f"Delta(Omega) = {eq.delta_Omega}")
-        print(f"  det R = ({eq.constant_Omega}) * Delta(Omega); {eq.count_ops()} operations, "
+        names = ", ".join(str(s) for s in eq.definitions) or "Omega"
+        print("  with " + ("; ".join(f"{s} = {v}" for s, v in eq.definitions.items())
+                           or f"Omega = {eq.Omega}") + ":")
+        print(f"Delta({names}) = {eq.delta_Omega}")
+        print(f"  det R = ({eq.constant_Omega}) * Delta({names}); {eq.count_ops()} operations, "
               f"{len(eq.factors)} factor(s), {eq.seconds:.2f} s")
     return 0
