@@ -14,6 +14,7 @@ import mpmath
 import numpy as np
 import pytest
 import scipy.linalg
+import sympy as sp
 
 from symtmm.characteristic import characteristic_equation
 from symtmm.codegen import generate
@@ -157,11 +158,24 @@ right = "pinned"
         loads(base + 'kw = "-K"\n')
 
 
-def test_derive_refuses_a_foundation():
-    with pytest.raises(ModelError, match="kw"):
-        characteristic_equation(_pp(5))
-    # without foundation it still works
-    characteristic_equation(_pp(0))
+def test_derive_on_a_foundation_vanishes_at_the_closed_form():
+    """Pinned-pinned on a foundation: omega_n**2 = (EI (n pi/L)**4 + kw)/m, from the
+    JSON's delta (a SymPy string in omega) parsed back."""
+    import json
+
+    EI, m, L, kw = 2, 3, 1, 500
+    data = json.loads(characteristic_equation(_pp(kw, EI, m, L)).to_json())
+    assert data["variable"] == "omega"
+    omega = sp.Symbol("omega", positive=True)
+    delta = sp.sympify(data["delta"], locals={"omega": omega})
+    assert delta.free_symbols == {omega}
+    with mpmath.workdps(40):
+        for n in (1, 2, 3):
+            w = mpmath.sqrt((EI * (n * mpmath.pi / L) ** 4 + kw) / m)
+            at = abs(complex(sp.N(delta.subs(omega, sp.Float(w, 40)), 40)))
+            near = abs(complex(sp.N(delta.subs(omega, sp.Float(w * (1 + mpmath.mpf(10) ** -6),
+                                                               40)), 40)))
+            assert at < 1e-20 * near
 
 
 def test_generated_python_vanishes_at_closed_form():
