@@ -185,18 +185,28 @@ def _mp_reference(ev, lams, digits=40):
     return np.array(values), np.array(cond)
 
 
+_AGREE_REFERENCES: dict = {}
+
+
+def _agree_reference(name):
+    """The probes of a model and their 40-digit references, computed once for all languages."""
+    if name not in _AGREE_REFERENCES:
+        model, symbolic = MODELS[name]
+        values = {"K": "40", "x1": "0.2"} if symbolic else {}
+        ev = Evaluator(_reference_model(model, symbolic, values))
+        lams = _lams(np.random.default_rng(7), n=60, scale=20.0)
+        _AGREE_REFERENCES[name] = (lams, [float(values[p]) for p in symbolic],
+                                   *_mp_reference(ev, lams))
+    return _AGREE_REFERENCES[name]
+
+
 @pytest.mark.parametrize("lang", ["c", "fortran", "python"])
 @pytest.mark.parametrize("name", list(MODELS))
 def test_agrees_with_mpmath(lang, name, compiled):
     """Real, imaginary and complex lam up to Omega ~ 4.5 per beam, against 40 digits."""
-    model, symbolic = MODELS[name]
     delta = _callable(lang, name, compiled)
-    values = {"K": "40", "x1": "0.2"} if symbolic else {}
-    ev = Evaluator(_reference_model(model, symbolic, values))
-    lams = _lams(np.random.default_rng(7), n=60, scale=20.0)
-    params = [float(values[p]) for p in symbolic]
+    lams, params, ref, cond = _agree_reference(name)
     got = delta(lams, *params)
-    ref, cond = _mp_reference(ev, lams)
     rel = np.abs(got - ref) / np.abs(ref)
     bound = 1e-13 * (cond + 100)
     assert np.all(rel <= bound), (lams[np.argmax(rel / bound)], np.max(rel / bound))
