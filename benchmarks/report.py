@@ -343,15 +343,31 @@ def _speed_phrase(ratio: float, other: str) -> str:
     return out + (", within the noise of a shared machine)" if abs(ratio - 1) < 0.1 else ")")
 
 
+_ROUTINES = {"delta_mpmath": "evaluations of Delta in mpmath",
+             "delta_double": "double-precision evaluations of Delta, one point per call",
+             "count": "Wittrick-Williams counts (a banded LDL^T of the dynamic stiffness each)",
+             "rigid_body_modes": "the exact rank of R(0)"}
+
+
 def _why_slow(p) -> str:
-    r = p["routines"]
-    mp, dbl = r["delta_mpmath"], r["delta_double"]
-    per_mp = mp["seconds"] / max(mp["calls"], 1) * 1e3
-    per_dbl = dbl["seconds"] / max(dbl["calls"], 1) * 1e3
-    return (f"its evaluations are expensive: {mp['calls']} are in mpmath at {_g(per_mp)} ms "
-            f"each ({_pct(mp['share'])} of its time), and its {dbl['calls']} double-precision "
-            f"ones are made one point per call at {_g(per_dbl)} ms each ({_pct(dbl['share'])}), "
-            "while fmin1d evaluates whole grids in one vectorised call")
+    """Why a search with few evaluations still takes longer: its costliest routines.
+
+    Examples
+    --------
+    >>> r = {"count": {"calls": 10, "seconds": 0.2, "share": 0.9},
+    ...      "delta_mpmath": {"calls": 0, "seconds": 0.0, "share": 0.0}}
+    >>> _why_slow({"routines": r})[:60]
+    'its evaluations are expensive: 10 Wittrick-Williams counts ('
+    """
+    used = sorted((v["share"], k) for k, v in p["routines"].items() if v["calls"])
+    parts = []
+    for share, key in reversed(used):
+        s = p["routines"][key]
+        if share >= 0.1 or not parts:
+            parts.append(f"{s['calls']} {_ROUTINES.get(key, key)} at "
+                         f"{_g(s['seconds'] / s['calls'] * 1e3)} ms each ({_pct(share)} of its time)")
+    return ("its evaluations are expensive: " + ", ".join(parts)
+            + ", while fmin1d evaluates whole grids in one vectorised call")
 
 
 def _evaluator_findings_text(ev) -> list:
@@ -543,7 +559,7 @@ def render(r: dict) -> str:
             "python benchmarks/run.py --from-json run.json -o docs/benchmarks.md",
             "python benchmarks/run.py --sections evaluator    # one section",
             "```", "",
-            ("cxroots is optional (`pip install cxroots`); without it its rows read "
+            ("cxroots is optional (`pip install cxroots`, or the `bench` extra); without it its rows read "
              "\"not installed\". The generated C needs gcc. The time each section took is in "
              "the machine section below."), ""]
     out += _machine(r)
