@@ -79,6 +79,20 @@ def test_exact_multiple_roots_are_one_eigenvalue_correctly_rounded():
     assert [e.to_dict()["imag"] for e in spectrum] == [_rounded(r, 26) for r in refs]
 
 
+@pytest.mark.parametrize("copies", [2, 3])
+def test_exact_multiple_roots_come_with_a_bracket_narrower_than_the_separation(copies):
+    """Identical uncoupled beams: each (n pi)**2, of multiplicity ``copies``, in a bracket
+    of relative width at most 10**-(D + 22) that holds the closed-form value."""
+    beams = tuple(Beam(n, **pp) for n in "abc"[:copies])
+    spectrum = solve(Model(beams), count=4 * copies, digits=15)
+    assert [e.multiplicity for e in spectrum] == [copies] * 4
+    with mpmath.workdps(80):
+        for n, e in enumerate(spectrum, 1):
+            lo, hi = (mpmath.mpf(v) for v in e.bracket)
+            assert lo < (n * mpmath.pi) ** 2 <= hi
+            assert (hi - lo) / hi <= mpmath.mpf(10) ** -37
+
+
 def test_a_count_exactly_at_an_eigenvalue_moves_off_it():
     # EI = 1/pi**4 puts the first pinned-pinned frequency at 1.0 rad/s exactly, where
     # the search counts first; the count is not defined there

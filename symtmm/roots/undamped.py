@@ -17,7 +17,11 @@
    rounding to the same ``D`` digits, is then checked at 15 more digits:
    ``Delta`` must still change sign strictly across it, or the precision is
    raised and the refinement repeated.
-4. **Clusters.** Brackets holding several roots are bisected with the count
+4. **Clusters.** A bracket holding ``k`` roots is first tried as one exact
+   ``k``-fold root: ``|Delta|**(1/k)`` is a V about it, whose vertex, found in a
+   few steps, gives a bracket of width ``10**-(D + 2 + SEPARATION_DIGITS)`` that
+   two counts in mpmath then prove to hold all ``k``. Otherwise (distinct close
+   roots) brackets are bisected with the count
    in mpmath until each holds one root (then step 3) or is narrower than
    ``10**-(D + 2 + SEPARATION_DIGITS)`` relative with both ends printing the
    same ``D`` digits: the roots it holds agree to ``D + SEPARATION_DIGITS``
@@ -245,6 +249,13 @@ class _Search:
             a, ca = self.count_off(a, b, dps=dps)
             cb = ca + k
             tol = mpmath.mpf(10) ** (-resolution)
+            zoomed = self._zoom(a, b, k, resolution)
+            if zoomed is not None:
+                lo, hi = zoomed
+                # the proof: two counts, as at the end of the bisection below
+                if (bracket_done(lo, hi, self.digits) and self.count_off(lo, a, dps=dps)
+                        == (lo, ca) and self.count_off(hi, b, dps=dps) == (hi, cb)):
+                    return [(lo, hi, k)]
             out, stack = [], [(a, ca, b, cb)]
             while stack:
                 a, ca, b, cb = stack.pop()
@@ -258,6 +269,42 @@ class _Search:
                 stack.append((mid, cm, b, cb))
                 stack.append((a, ca, mid, cm))
             return out
+
+    def _zoom(self, a, b, k, resolution):
+        """A guess for an exact ``k``-fold root in ``(a, b)``, or None.
+
+        Near a ``k``-fold root ``Delta ~ C (omega - omega0)**k``, so ``|Delta|**(1/k)``
+        is a symmetric V about ``omega0``: the V through two points either side of
+        it puts its vertex at ``(a f(b) + b f(a)) / (f(a) + f(b))``, with an error
+        of second order in the bracket. A few such steps in enough precision for
+        ``|Delta|`` to keep its digits ``10**-resolution`` from the root give the
+        bracket ``omega0 (1 -+ 10**-resolution / 2)``. Nothing is concluded here: the
+        caller proves the bracket with two counts, and bisects as before when the
+        roots are not one multiple root (distinct close roots, a poor guess). Two
+        counts replace the ~3.3 counts per digit of a bisection to the same width.
+        """
+        dps = k * resolution + math.ceil(self.ev.digits_lost(1j * float(b))) + 20
+        if dps > MAX_DPS:
+            return None
+        with mpmath.workdps(dps):
+            half = mpmath.mpf(10) ** (-resolution) / 2
+            lo, hi = mpmath.mpf(a), mpmath.mpf(b)
+            f_lo, f_hi = (abs(self._f(w)) ** (mpmath.mpf(1) / k) for w in (lo, hi))
+            for _ in range(8):
+                if not f_lo + f_hi > 0:
+                    return None
+                slope = (f_lo + f_hi) / (hi - lo)
+                guess = (lo * f_hi + hi * f_lo) / (f_lo + f_hi)
+                f_guess = abs(self._f(guess)) ** (mpmath.mpf(1) / k)
+                # |omega0 - guess| ~ f(guess) / slope: a bracket twice that wide
+                reach = 2 * f_guess / slope
+                if reach <= half * guess / 4:
+                    return guess * (1 - half), guess * (1 + half)
+                lo, hi = guess - reach, guess + reach
+                if not a <= lo < hi <= b:
+                    return None
+                f_lo, f_hi = (abs(self._f(w)) ** (mpmath.mpf(1) / k) for w in (lo, hi))
+        return None
 
     # -- refinement --------------------------------------------------------------------
     def _double_bracket(self, a: float, b: float):
