@@ -371,8 +371,10 @@ def _why_slow(p) -> str:
     if p["routines"].get("count", {}).get("share", 0) > 0.5:
         # the clusters of exact multiple roots: see symtmm.roots.undamped, step 4
         out += ("; counts dominate where roots are multiple: Delta's sign cannot tell m "
-                "coincident roots apart, so each cluster is bisected on counts until it is "
-                "narrower than 10^-(D+22) relative, about 3.3 counts per digit")
+                "coincident roots apart, so each cluster is isolated by bisection on counts "
+                "down to double-precision width (about 3.3 counts per digit) and then proved "
+                "by two counts in high precision at the ends of a bracket of relative width "
+                "10^-(D+22)")
     return out
 
 
