@@ -89,14 +89,18 @@ def _method_rows(case) -> list:
                    "spurious", "found/ref.", "digits"], rows)
 
 
+#: the routines a profile times, in the order they are reported
+_ROUTINES = {"delta_mpmath": "mpmath evaluations of Delta",
+             "delta_double": "double-precision evaluations of Delta",
+             "count": "Wittrick-Williams counts",
+             "rigid_body_modes": "the exact rank of R(0)"}
+
+
 def _profile_sentence(p) -> str:
     """Where a profiled default solve spent its time, in one sentence."""
     r = p["routines"]
     parts = []
-    for key, what in (("delta_mpmath", "mpmath evaluations of Delta"),
-                      ("delta_double", "double-precision evaluations of Delta"),
-                      ("count", "Wittrick-Williams counts"),
-                      ("rigid_body_modes", "the exact rank of R(0)")):
+    for key, what in _ROUTINES.items():
         s = r[key]
         if s["calls"]:
             per = s["seconds"] / s["calls"] * 1e3
@@ -343,12 +347,6 @@ def _speed_phrase(ratio: float, other: str) -> str:
     return out + (", within the noise of a shared machine)" if abs(ratio - 1) < 0.1 else ")")
 
 
-_ROUTINES = {"delta_mpmath": "evaluations of Delta in mpmath",
-             "delta_double": "double-precision evaluations of Delta, one point per call",
-             "count": "Wittrick-Williams counts (a banded LDL^T of the dynamic stiffness each)",
-             "rigid_body_modes": "the exact rank of R(0)"}
-
-
 def _why_slow(p) -> str:
     """Why a search with few evaluations still takes longer: its costliest routines.
 
@@ -356,8 +354,8 @@ def _why_slow(p) -> str:
     --------
     >>> r = {"count": {"calls": 10, "seconds": 0.2, "share": 0.9},
     ...      "delta_mpmath": {"calls": 0, "seconds": 0.0, "share": 0.0}}
-    >>> _why_slow({"routines": r})[:60]
-    'its evaluations are expensive: 10 Wittrick-Williams counts ('
+    >>> _why_slow({"routines": r})[:72]
+    'its evaluations are expensive: 10 Wittrick-Williams counts at 20 ms each'
     """
     used = sorted((v["share"], k) for k, v in p["routines"].items() if v["calls"])
     parts = []

@@ -129,13 +129,6 @@ class Evaluator:
             consts = self._cache[key] = seg.constants()
         return consts
 
-    def _consts_mp(self, seg):
-        key = (id(seg), mpmath.mp.prec)
-        consts = self._cache.get(key)
-        if consts is None:
-            consts = self._cache[key] = seg.constants_mp(mpmath.mp.dps)
-        return consts
-
     # -- precision ------------------------------------------------------------------
     def wave_numbers(self, lam) -> np.ndarray:
         """Per beam, a bound on the largest wave number ``|beta|`` at ``lam`` (1/length)."""
@@ -347,7 +340,7 @@ class Evaluator:
         for kind, items in self._steps:
             if kind == "segments":
                 for lvl, seg in items:
-                    U = seg.evaluate_mp(lam2, self._consts_mp(seg))
+                    U = seg.evaluate_mp(lam2, seg.mp_constants())
                     blk = slice(4 * lvl, 4 * lvl + 4)
                     E[blk, :] = U.dot(E[blk, :])
             else:

@@ -74,6 +74,14 @@ def _check_sign(expr: sp.Expr, field_name: str, allow_zero: bool) -> None:
                          field=field_name)
 
 
+def _check_inside(x: sp.Expr, beam, field_name: str) -> None:
+    """``x`` lies on ``beam`` (ends included), where both are numbers."""
+    inside = [(x - beam.x0), (beam.x1 - x)]
+    if all(d.is_number for d in inside) and any(d.is_negative for d in inside):
+        raise ModelError(f"x = {x} lies outside beam '{beam.name}' [{beam.x0}, {beam.x1}]",
+                         field=field_name)
+
+
 @dataclass(frozen=True)
 class Beam:
     """An Euler–Bernoulli beam (one level).
@@ -439,11 +447,7 @@ class Model:
             for end in (spring.a, spring.b):
                 if end == GROUND:
                     continue
-                beam = resolved[end]
-                inside = [(x - beam.x0), (beam.x1 - x)]
-                if all(d.is_number for d in inside) and any(d.is_negative for d in inside):
-                    raise ModelError(f"x = {x} lies outside beam '{end}' "
-                                     f"[{beam.x0}, {beam.x1}]", field=f"{where}.x")
+                _check_inside(x, resolved[end], f"{where}.x")
             for attr in ("k", "c"):
                 _check_sign(self.value(getattr(spring, attr)), f"{where}.{attr}", allow_zero=True)
         for mass in self.masses:
@@ -452,11 +456,7 @@ class Model:
                 raise ModelError("expected a Mass", field="mass")
             if mass.beam not in names:
                 raise ModelError(f"unknown beam '{mass.beam}'", field=f"{where}.beam")
-            x, beam = self.value(mass.x), resolved[mass.beam]
-            inside = [(x - beam.x0), (beam.x1 - x)]
-            if all(d.is_number for d in inside) and any(d.is_negative for d in inside):
-                raise ModelError(f"x = {x} lies outside beam '{mass.beam}' "
-                                 f"[{beam.x0}, {beam.x1}]", field=f"{where}.x")
+            _check_inside(self.value(mass.x), resolved[mass.beam], f"{where}.x")
             for attr in ("M", "J"):
                 _check_sign(self.value(getattr(mass, attr)), f"{where}.{attr}", allow_zero=True)
         body_names = set()
@@ -471,11 +471,8 @@ class Model:
             for att in body.attachments:
                 if att.beam not in names:
                     raise ModelError(f"unknown beam '{att.beam}'", field=f"{where}.attach")
-                x, beam = self.value(att.x), resolved[att.beam]
-                inside = [(x - beam.x0), (beam.x1 - x)]
-                if all(d.is_number for d in inside) and any(d.is_negative for d in inside):
-                    raise ModelError(f"x = {x} lies outside beam '{att.beam}' "
-                                     f"[{beam.x0}, {beam.x1}]", field=f"{where}.attach")
+                x = self.value(att.x)
+                _check_inside(x, resolved[att.beam], f"{where}.attach")
                 if (att.beam, x) in seen:
                     raise ModelError(f"attached twice to beam '{att.beam}' at x = {x}",
                                      field=f"{where}.attach")

@@ -341,13 +341,6 @@ class _Walker:
                 self._body_inertia.append((bl.unknowns["Theta"], bl.body.J))
         self._cache: dict = {}
 
-    def _consts(self, seg):
-        key = (id(seg), mpmath.mp.prec)
-        consts = self._cache.get(key)
-        if consts is None:
-            consts = self._cache[key] = seg.constants_mp(mpmath.mp.dps)
-        return consts
-
     def _exact(self, value):
         key = ("x", value, mpmath.mp.prec)
         out = self._cache.get(key)
@@ -397,7 +390,7 @@ class _Walker:
                 xs, xe = self._exact(step.x_start), self._exact(step.x_end)
                 xsf, xef = float(xs), float(xe)
                 for lvl, seg in step.segments:
-                    consts = self._consts(seg)
+                    consts = seg.mp_constants()
                     blk = slice(4 * lvl, 4 * lvl + 4)
                     record(lvl, xs, "-+")          # a beam's left end without a station
                     inside = [(i, x) for i, (x, _s) in enumerate(samples[lvl])

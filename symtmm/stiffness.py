@@ -578,11 +578,7 @@ class StiffnessModel:
         zero = mpmath.mpf(0)
         K = [[zero] * n for _ in range(n)]
         for key, seg, _, group, _, _, _ in self._seg_groups:
-            ck = ("consts", key, mpmath.mp.prec)
-            consts = self._mp_cache.get(ck)
-            if consts is None:
-                consts = self._mp_cache[ck] = seg.constants_mp(mpmath.mp.dps)
-            D = segment_stiffness(seg.evaluate_mp(lam2, consts))
+            D = segment_stiffness(seg.evaluate_mp(lam2, seg.mp_constants()))
             for places in group:
                 _scatter(K, D, self._mp_places(places))
         lam = mpmath.mpc(0, mpmath.sqrt(-lam2)) if lam2 <= 0 else mpmath.sqrt(lam2)

@@ -135,6 +135,16 @@ def _caller(lib, nparams):
     return delta
 
 
+def _generated(lang, source, tmp_path, nparams=0):
+    """The generated ``symtmm_delta`` as a Python callable: the module run, or the
+    C or Fortran built and called through ctypes."""
+    if lang == "python":
+        ns: dict = {}
+        exec(source, ns)  # noqa: S102 - the generated module
+        return ns["symtmm_delta"]
+    return _caller(_build(lang, source, tmp_path), nparams)
+
+
 @pytest.fixture(scope="module")
 def compiled(tmp_path_factory):
     cache = {}
@@ -223,13 +233,7 @@ def test_high_modes_of_a_clamped_beam_match_the_closed_form(lang, tmp_path):
     from symtmm.model import Beam, Model
 
     model = Model((Beam("b", 1, 1, 1, left="clamped", right="clamped"),))
-    src = generate(model, lang)
-    if lang == "python":
-        ns: dict = {}
-        exec(src, ns)  # noqa: S102 - the generated module
-        delta = ns["symtmm_delta"]
-    else:
-        delta = _caller(_build(lang, src, tmp_path), 0)
+    delta = _generated(lang, generate(model, lang), tmp_path)
     Om = np.linspace(20.1, 120.3, 41)
     with mpmath.workdps(120):
         exact = np.array([complex((1 - mpmath.cos(o) * mpmath.cosh(o)) / (2 * o**4))
@@ -259,13 +263,7 @@ def test_high_modes_of_the_paper_example_match_mpmath(lang, compiled):
 def test_vanishes_at_closed_form_roots(lang, tmp_path):
     """Three uncoupled pinned-pinned beams: Delta = 0 at omega = (n pi)**2 (triple roots)."""
     model = load(EXAMPLES + "paper_ex2_three_pp.toml")
-    src = generate(model, lang)
-    if lang == "python":
-        ns: dict = {}
-        exec(src, ns)  # noqa: S102 - the generated module
-        delta = ns["symtmm_delta"]
-    else:
-        delta = _caller(_build(lang, src, tmp_path), 0)
+    delta = _generated(lang, generate(model, lang), tmp_path)
     ev = Evaluator(model)
     for n in (1, 2, 3):
         lam = np.array([1j * (n * np.pi) ** 2])
@@ -288,13 +286,7 @@ def test_vanishes_at_computed_eigenvalues(lang, case, compiled, tmp_path):
         spectrum = solve(model, count=8, digits=16)
     else:
         model = load(EXAMPLES + "paper_ex4_damped.toml")
-        src = generate(model, lang)
-        if lang == "python":
-            ns: dict = {}
-            exec(src, ns)  # noqa: S102 - the generated module
-            delta = ns["symtmm_delta"]
-        else:
-            delta = _caller(_build(lang, src, tmp_path), 0)
+        delta = _generated(lang, generate(model, lang), tmp_path)
         spectrum = solve(model, omega_max=700, digits=16)
     assert len(spectrum.eigenvalues) >= 6
     for eig in spectrum.eigenvalues:
@@ -317,12 +309,9 @@ def test_names_that_mean_something_to_a_language_are_renamed(tmp_path):
     lams = _lams(np.random.default_rng(5), n=10, scale=8.0)
     ref = ev.delta(lams)
     args = (3.0, 2.0, 1.0, 0.5)
-    for lang in ("c", "fortran"):
-        got = _caller(_build(lang, generate(model, lang, symbolic), tmp_path), 4)(lams, *args)
+    for lang in ("c", "fortran", "python"):
+        got = _generated(lang, generate(model, lang, symbolic), tmp_path, 4)(lams, *args)
         assert np.max(np.abs(got / ref - 1)) < 1e-12, lang
-    ns: dict = {}
-    exec(generate(model, "python", symbolic), ns)  # noqa: S102 - the generated module
-    assert np.max(np.abs(ns["symtmm_delta"](lams, *args) / ref - 1)) < 1e-12
     assert "double p_I" in generate(model, "c", symbolic)
     assert "p_E" in generate(model, "fortran", symbolic)
     assert "p_end::Float64" in generate(model, "julia", symbolic)

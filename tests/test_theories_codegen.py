@@ -35,7 +35,7 @@ import mpmath
 import numpy as np
 import pytest
 from reference import classical_roots
-from test_codegen import _build, _caller, _lams, _mp_reference
+from test_codegen import _generated, _lams, _mp_reference
 
 from symtmm.cli import main
 from symtmm.codegen import generate
@@ -196,14 +196,10 @@ def evaluator(tmp_path_factory):
             _, symbolic, _ = MODELS[name]
             src = generate(_model(name), lang, symbolic)
             workdir = tmp_path_factory.mktemp(f"{lang}_{name}")
-            if lang == "python":
-                ns: dict = {}
-                exec(src, ns)  # noqa: S102 - the generated module
-                cache[(name, lang)] = ns["symtmm_delta"]
-            elif lang == "octave":
+            if lang == "octave":
                 cache[(name, lang)] = _octave_caller(src, workdir)
             else:
-                cache[(name, lang)] = _caller(_build(lang, src, workdir), len(symbolic))
+                cache[(name, lang)] = _generated(lang, src, workdir, len(symbolic))
         return cache[(name, lang)]
 
     return get
@@ -516,7 +512,7 @@ def test_cli_writes_a_timoshenko_evaluator(tmp_path):
     model.write_text(TIMOSHENKO)
     out = tmp_path / "delta.c"
     assert main(["codegen", str(model), "--lang", "c", "--symbolic", "kGA", "-o", str(out)]) == 0
-    delta = _caller(_build("c", out.read_text(), tmp_path), 1)
+    delta = _generated("c", out.read_text(), tmp_path, 1)
     omega = _timoshenko_pp(**TIMOSHENKO_VALUES, modes=1)[0]
     _assert_roots(delta, [1j * omega], 40.0)
 
@@ -531,12 +527,8 @@ def test_parameters_named_like_the_new_routines_are_renamed(tmp_path):
     args = (0.02, 2.0, 5.0, 40.0)
     lams = _probes("names")[:20]
     ref = Evaluator(model).delta(lams)
-    for lang in COMPILED:
-        src = generate(model, lang, symbolic)
-        got = _caller(_build(lang, src, tmp_path), 4)(lams, *args)
+    for lang in (*COMPILED, "python"):
+        got = _generated(lang, generate(model, lang, symbolic), tmp_path, 4)(lams, *args)
         assert np.max(np.abs(got / ref - 1)) < 1e-12, lang
-    ns: dict = {}
-    exec(generate(model, "python", symbolic), ns)  # noqa: S102 - the generated module
-    assert np.max(np.abs(ns["symtmm_delta"](lams, *args) / ref - 1)) < 1e-12
     assert "double p_th0" in generate(model, "c", symbolic)
     assert "p_wave" in generate(model, "fortran", symbolic)

@@ -273,19 +273,21 @@ class DynamicStiffness:
 
     def _log_delta(self, lam):
         AB, log_u12 = self.band_matrix(lam)
+        factor = self._banded_log_det if _zgbtrf is not None else self._dense_log_det
+        logabs, phase, trusted = factor(AB)
+        logabs = logabs - self._log_scale + log_u12.real + self._log_pivots
+        phase = np.angle(np.exp(1j * (phase + log_u12.imag)))   # in (-pi, pi]
+        return logabs, phase, trusted
+
+    def _banded_log_det(self, AB):
+        """``(log|det K|, arg det K, trusted)`` by LAPACK's banded LU and condition estimate."""
         b, n = self.band, self.size
         eps = np.finfo(float).eps
-        logabs = np.empty(lam.size)
-        phase = np.empty(lam.size)
-        trusted = np.empty(lam.size, dtype=bool)
-        if _zgbtrf is None:
-            logabs, phase, trusted = self._dense_log_det(AB)
-            logabs = logabs - self._log_scale + log_u12.real + self._log_pivots
-            phase = np.angle(np.exp(1j * (phase + log_u12.imag)))
-            return logabs, phase, trusted
+        N = AB.shape[0]
+        logabs, phase, trusted = np.empty(N), np.empty(N), np.empty(N, dtype=bool)
         # 1-norm of each K: largest column sum
         anorm = np.abs(AB).sum(axis=2).max(axis=1)
-        for p in range(lam.size):
+        for p in range(N):
             # banded LU with partial pivoting (LAPACK), then the 1-norm condition estimate
             lu, ipiv, info = _zgbtrf(AB[p].T, b, b)
             diag = lu[2 * b]
@@ -298,8 +300,6 @@ class DynamicStiffness:
             rcond, _ = _zgbcon(b, b, lu, ipiv, anorm[p])
             # the relative error of det(K) is about n eps cond(K)
             trusted[p] = rcond > 0 and n * eps / rcond < _TRUST
-        logabs = logabs - self._log_scale + log_u12.real + self._log_pivots
-        phase = np.angle(np.exp(1j * (phase + log_u12.imag)))   # in (-pi, pi]
         return logabs, phase, trusted
 
     def _dense_log_det(self, AB):

@@ -288,14 +288,19 @@ class _Search:
             return None
         with mpmath.workdps(dps):
             half = mpmath.mpf(10) ** (-resolution) / 2
+            power = mpmath.mpf(1) / k
+
+            def v(w):      # the V: |Delta|**(1/k)
+                return abs(self._f(w)) ** power
+
             lo, hi = mpmath.mpf(a), mpmath.mpf(b)
-            f_lo, f_hi = (abs(self._f(w)) ** (mpmath.mpf(1) / k) for w in (lo, hi))
+            f_lo, f_hi = v(lo), v(hi)
             for _ in range(8):
                 if not f_lo + f_hi > 0:
                     return None
                 slope = (f_lo + f_hi) / (hi - lo)
                 guess = (lo * f_hi + hi * f_lo) / (f_lo + f_hi)
-                f_guess = abs(self._f(guess)) ** (mpmath.mpf(1) / k)
+                f_guess = v(guess)
                 # |omega0 - guess| ~ f(guess) / slope: a bracket twice that wide
                 reach = 2 * f_guess / slope
                 if reach <= half * guess / 4:
@@ -303,7 +308,7 @@ class _Search:
                 lo, hi = guess - reach, guess + reach
                 if not a <= lo < hi <= b:
                     return None
-                f_lo, f_hi = (abs(self._f(w)) ** (mpmath.mpf(1) / k) for w in (lo, hi))
+                f_lo, f_hi = v(lo), v(hi)
         return None
 
     # -- refinement --------------------------------------------------------------------
