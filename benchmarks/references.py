@@ -446,39 +446,33 @@ def _sign_change_cells(layout, count: int, step: float, limit: float) -> list:
     return cells[:count]
 
 
-def _bisect_double(layout, a: float, b: float, rel: float = 1e-14) -> tuple:
-    """The cell ``(a, b)`` halved on the double-precision determinant to ``rel``."""
-    fa = _numpy_det(layout, a)[0]
-    while b - a > rel * b:
-        c = 0.5 * (a + b)
-        fc = _numpy_det(layout, c)[0]
-        if fc == 0:
-            return c, c
-        if (fc > 0) == (fa > 0):
-            a, fa = c, fc
-        else:
-            b = c
-    return a, b
-
-
 def _polish_cell(layout, a: float, b: float, dps: int):
     """The root in the grid cell ``(a, b)`` at ``dps`` digits, checked.
 
-    Narrowed in double precision, then the secant method in mpmath; the result
-    must lie in the cell and the determinant must change sign strictly across
-    ``Omega (1 -+ 10**(8 - dps))`` at ``dps + 20`` digits.
+    Everything that decides the result is done in mpmath: the cell's sign change
+    is confirmed there, the root is found by a bracketing method that cannot
+    leave the cell (Anderson-Bjorck, in mpmath), 20 digits above ``dps`` for the
+    cancellation in the determinant, and the determinant must change sign
+    strictly across ``Omega (1 -+ 10**(8 - dps))`` at ``dps + 20`` digits. The
+    double-precision grid only proposes the cell, so the value is the same on
+    every machine whatever the last bits of its floating-point rounding (a
+    double-precision narrowing once landed exactly on a zero of the rounded
+    determinant on one machine and sent the secant method out of the cell).
     """
-    lo, hi = _bisect_double(layout, a, b)
-    with mpmath.workdps(dps):
-        x0 = mpmath.mpf((lo + hi) / 2)
-        root = mpmath.findroot(lambda z: _mp_det(layout, z), (x0, x0 * (1 + mpmath.mpf(1e-12))),
-                               solver="secant", verify=False)
+    with mpmath.workdps(dps + 20):
+        lo, hi = mpmath.mpf(a), mpmath.mpf(b)
+        f_lo, f_hi = _mp_det(layout, lo), _mp_det(layout, hi)
+        if f_lo == 0 or f_hi == 0 or (f_lo > 0) == (f_hi > 0):
+            raise ArithmeticError(f"no sign change over ({a}, {b}) at {dps + 20} digits")
+        root = mpmath.findroot(lambda z: _mp_det(layout, z), (lo, hi), solver="anderson",
+                               verify=False)
     with mpmath.workdps(dps + 20):
         eps = mpmath.mpf(10) ** (8 - dps) * root
         f_lo, f_hi = _mp_det(layout, root - eps), _mp_det(layout, root + eps)
     if not (a < root < b) or f_lo == 0 or f_hi == 0 or (f_lo > 0) == (f_hi > 0):
         raise ArithmeticError(f"the root in ({a}, {b}) is not confirmed at {dps} digits")
-    return root
+    with mpmath.workdps(dps):
+        return +root
 
 
 def global_matrix_omegas(beams, springs, count: int, L=1, dps: int = 40, step: float = 1e-3,
