@@ -47,17 +47,16 @@ counts them.
 
 from __future__ import annotations
 
-import itertools
 import math
 
 import mpmath
 import numpy as np
 import sympy as sp
 
-from .assembly import point_elements
 from .elements import EulerBernoulliSegment
 from .elements.base import LAM
-from .errors import ComputationError, ModelError
+from .errors import ComputationError
+from .mesh import Mesh
 from .model import Model
 from .numeric import to_mp
 
@@ -83,7 +82,6 @@ NU_MAX = 2.0
 # Zero-pivot guard: relative size below which a pivot's sign is not trusted in double.
 _DOUBLE_TRUST = 1e-10
 
-_BC_DOFS_REMOVED = {"free": (), "clamped": (0, 1), "pinned": (0,), "sliding": (1,)}
 
 
 def segment_stiffness(U):
@@ -137,212 +135,6 @@ def wave_number_bound(segment, radius: float) -> float:
     t = c / EI + abs(b) * mu
     d = mu * (a * a + abs(b) * c) / EI
     return math.sqrt(t / 2 + math.sqrt(t * t / 4 + d))
-
-
-class Mesh:
-    """Nodes, segments and freedoms of a model for a dynamic-stiffness assembly.
-
-    Every beam is cut at its ends, its point elements and the attachments of
-    rigid bodies, then each part into equal pieces no longer than
-    ``piece(beam, segment)`` (``segment`` the part as one element). Each node
-    has the freedoms ``Y`` and ``Theta``, each rigid body ``Y_c`` and (if it
-    rotates) ``Theta_c``. Boundary conditions and attachments are linear
-    constraints among them; they are eliminated exactly, and every freedom
-    becomes a *combination* ``((index, coefficient), ...)`` of the free ones
-    (numbered ``0 .. size - 1`` along ``x``; the empty combination is a fixed
-    freedom).
-
-    Parameters
-    ----------
-    model : Model
-        Resolved and numeric.
-    piece : callable
-        ``piece(beam, segment) -> float``: the longest piece allowed.
-
-    Attributes
-    ----------
-    segments : list
-        ``(beam index, segment, left node, right node)``.
-    segment_places : list
-        Per segment, the combinations of ``(Y0, Theta0, Y1, Theta1)``.
-    point_places : list
-        ``(combinations, element)`` per point element, on the element's ``dofs``.
-    body_places : list
-        ``(combinations, masses)`` per rigid body: ``(Y_c[, Theta_c])`` and
-        ``(M[, J])`` (exact).
-    size, bandwidth : int
-        Number of free freedoms and half-bandwidth of the assembled matrix.
-    rotation_length : list
-        Per free freedom, a length scale if it is a rotation (the longest
-        segment at its node), else None.
-
-    Examples
-    --------
-    A fork: a clamped trunk whose free end is joined rigidly to two branches.
-    The joint's two freedoms replace the three beam ends' six:
-
-    >>> from symtmm.model import Attachment, Beam, Model, RigidBody
-    >>> beams = (Beam("t", 1, 1, 1, left="clamped"), Beam("a", 1, 1, 1, x0=1),
-    ...          Beam("b", 1, 1, 1, x0=1))
-    >>> joint = RigidBody("j", (Attachment("t", 1), Attachment("a", 1), Attachment("b", 1)))
-    >>> mesh = Mesh(Model(beams, bodies=(joint,)), lambda beam, seg: float(seg.l))
-    >>> mesh.size, mesh.segment_places[1]     # (Y0, Theta0) of branch a are the joint's
-    (6, (((0, 1),), ((1, 1),), ((2, 1),), ((3, 1),)))
-    """
-
-    def __init__(self, model: Model, piece):
-        self.model = model
-        self._index = {b.name: i for i, b in enumerate(model.beams)}
-        self._cut(piece)
-        subs = self._eliminate()
-        number = self._number(subs)
-
-        def combo(v):
-            if v not in subs:
-                return ((number[v], sp.Integer(1)),)
-            return tuple(sorted((number[w], c) for w, c in subs[v].items()))
-
-        self.segment_places = [tuple(combo(("n", n, k)) for n in (ia, ib) for k in (0, 1))
-                               for _, _, ia, ib in self.segments]
-        self.point_places = []
-        for x, el in point_elements(model):
-            at = [self._node(name, x) for name in el.beams]
-            self.point_places.append(
-                (tuple(combo(("n", at[lvl], 0 if var == "Y" else 1)) for lvl, var in el.dofs), el))
-        self.body_places = []
-        for bi, body in enumerate(model.bodies):
-            ks = (0, 1) if body.rotates else (0,)
-            masses = (body.M, body.J)[:len(ks)]
-            self.body_places.append((tuple(combo(("b", bi, k)) for k in ks), masses))
-        self.bandwidth = 0
-        for places in (self.segment_places + [p for p, _ in self.point_places]
-                       + [p for p, _ in self.body_places]):
-            live = [i for c in places for i, _ in c]
-            if live:
-                self.bandwidth = max(self.bandwidth, max(live) - min(live))
-
-    def _node(self, beam_name: str, x) -> int:
-        return self._beam_nodes[self._index[beam_name]][sp.nsimplify(x)]
-
-    def _cut(self, piece):
-        """Nodes along every beam and the segments between them."""
-        model = self.model
-        points_el = point_elements(model)
-        self._nodes = []                 # (x float, beam index) per node
-        self._node_length = []           # the longest segment at each node
-        self.segments = []
-        self._beam_nodes = []            # per beam: exact x -> node
-        for b_idx, beam in enumerate(model.beams):
-            required = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
-            required += [a.x for body in model.bodies for a in body.attachments
-                         if a.beam == beam.name]
-            xs = sorted({sp.nsimplify(x) for x in required}, key=float)
-            points = [xs[0]]
-            for xa, xb in itertools.pairwise(xs):
-                length = xb - xa
-                longest = piece(beam, beam.segment(length))
-                n_sub = max(1, math.ceil(float(length) / longest - 1e-9))
-                points += [xa + length * sp.Rational(k, n_sub) for k in range(1, n_sub + 1)]
-            ids = list(range(len(self._nodes), len(self._nodes) + len(points)))
-            self._nodes += [(float(x), b_idx) for x in points]
-            self._node_length += [0.0] * len(points)
-            self._beam_nodes.append(dict(zip(points, ids)))
-            for (xa, ia), (xb, ib) in zip(zip(points, ids), zip(points[1:], ids[1:])):
-                self.segments.append((b_idx, beam.segment(xb - xa), ia, ib))
-                for i in (ia, ib):
-                    self._node_length[i] = max(self._node_length[i], float(xb - xa))
-
-    def _number(self, subs) -> dict:
-        """Number the free freedoms along ``x``; a body's next to its first attachment's node.
-
-        Sets :attr:`size` and :attr:`rotation_length`; returns freedom -> index.
-        """
-        nodes, index = self._nodes, self._index
-        place = {}
-        for node, (x, b_idx) in enumerate(nodes):
-            for k in (0, 1):
-                place[("n", node, k)] = (x, b_idx, node, k)
-        body_node = []
-        for bi, body in enumerate(self.model.bodies):
-            first = min(body.attachments, key=lambda a: (float(a.x), index[a.beam]))
-            node = self._node(first.beam, first.x)
-            body_node.append(node)
-            for k in (0, 1) if body.rotates else (0,):
-                place[("b", bi, k)] = nodes[node] + (node, 2 + 2 * bi + k)
-        free = sorted((v for v in place if v not in subs), key=place.get)
-        self.size = len(free)
-        self.rotation_length = [
-            None if v[2] == 0 else
-            self._node_length[v[1] if v[0] == "n" else body_node[v[1]]] or 1.0 for v in free]
-        return {v: i for i, v in enumerate(free)}
-
-    def _constraints(self) -> list:
-        """``(body name or None, {freedom: coefficient})``: every ``sum = 0`` to eliminate.
-
-        Attachments first (``Y - Y_c - (x - xc) Theta_c``, and ``Theta - Theta_c`` when
-        rigid), then the boundary conditions (a freedom that is zero).
-        """
-        constraints = []
-        for bi, body in enumerate(self.model.bodies):
-            for att in body.attachments:
-                node = self._node(att.beam, att.x)
-                d = sp.nsimplify(att.x - body.xc)
-                c = {("n", node, 0): sp.Integer(1), ("b", bi, 0): sp.Integer(-1)}
-                if body.rotates and d != 0:
-                    c[("b", bi, 1)] = -d
-                constraints.append((body.name, c))
-                if not att.hinged:
-                    constraints.append((body.name, {("n", node, 1): sp.Integer(1),
-                                                    ("b", bi, 1): sp.Integer(-1)}))
-        for beam, nodes in zip(self.model.beams, self._beam_nodes):
-            ends = sorted(nodes, key=float)
-            for x, bc in ((ends[0], beam.left), (ends[-1], beam.right)):
-                for k in _BC_DOFS_REMOVED[bc]:
-                    constraints.append((None, {("n", nodes[x], k): sp.Integer(1)}))
-        return constraints
-
-    def _eliminate(self) -> dict:
-        """Eliminate the constraints: ``{freedom: {free freedom: exact coefficient}}``.
-
-        Constraints are taken in turn, each with the current eliminations
-        substituted; a node freedom goes first (a slave, coefficient 1), then a
-        body's ``Y_c``, then its ``Theta_c``. :attr:`pivot_product` is the product
-        of the squared coefficients of the freedoms eliminated:
-        ``det R = det K * prod det U12 * pivot_product``. A constraint reduced to
-        ``0 = 0`` means a body held more times than it has freedoms (e.g. joining
-        two clamped ends): its reactions are statically indeterminate and
-        ``det R`` vanishes for every ``lam``; that model is refused.
-        """
-        constraints = self._constraints()
-        subs: dict = {}
-        self.pivot_product = sp.Integer(1)
-        for name, constraint in constraints:
-            expr: dict = {}
-            for v, c in constraint.items():
-                for w, cw in (subs[v] if v in subs else {v: sp.Integer(1)}).items():
-                    expr[w] = expr.get(w, 0) + c * cw
-            expr = {w: c for w, c in expr.items() if c != 0}
-            if not expr:
-                # (boundary conditions come after the attachments: a redundant one falls
-                # on a node held by a body)
-                body = name or next(n for n, c in constraints if n and set(c) & set(constraint))
-                raise ModelError("held more times than it has freedoms (statically "
-                                 "indeterminate: its reactions are not determined and the "
-                                 "characteristic determinant vanishes identically)",
-                                 field=f"body '{body}'.attach", source=self.model.source)
-            pivot = min(expr, key=lambda v: (v[0] == "b", v[2], v[1]))
-            cp = expr.pop(pivot)
-            self.pivot_product *= cp**2
-            value = {w: -c / cp for w, c in expr.items()}
-            for ex in subs.values():
-                if pivot in ex:
-                    c = ex.pop(pivot)
-                    for w, cw in value.items():
-                        ex[w] = ex.get(w, 0) + c * cw
-                        if ex[w] == 0:
-                            del ex[w]
-            subs[pivot] = value
-        return subs
 
 
 def _scatter(K, local, places):

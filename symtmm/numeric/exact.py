@@ -1,4 +1,4 @@
-"""Converting exact SymPy values to numbers of a given precision."""
+"""Converting exact SymPy values to numbers of a given precision (the ambient mpmath one)."""
 
 from __future__ import annotations
 

@@ -1,0 +1,14 @@
+"""The numeric kernel: one implementation over several arithmetics.
+
+* :mod:`~symtmm.numeric.arith`: the arithmetics (double batches, mpmath at an
+  explicit precision, Arb balls);
+* :mod:`~symtmm.numeric.segments`: transfer matrices of beam segments;
+* :mod:`~symtmm.numeric.plan`: a model compiled for the dynamic-stiffness kernel;
+* :mod:`~symtmm.numeric.stiffness`: segment stiffness, assembly, banded LDL^T;
+* :mod:`~symtmm.numeric.transfer`: the transfer-matrix walk along the layout;
+* :mod:`~symtmm.numeric.exact`: exact SymPy values as numbers.
+"""
+
+from .exact import to_float, to_mp
+
+__all__ = ["to_mp", "to_float"]

@@ -1,0 +1,571 @@
+"""The arithmetics the numeric kernel is written against.
+
+The kernel (:mod:`symtmm.numeric.segments`, :mod:`symtmm.numeric.stiffness`,
+:mod:`symtmm.numeric.transfer`) is written once, on numpy arrays, in the manner
+of mpmath's contexts and numpy.polynomial's ``object`` path. What the arrays
+hold depends on the arithmetic passed in:
+
+* :class:`Batch`: ``float64``/``complex128``; a leading axis carries many
+  eigenvalues at once, so one call pays for a whole batch of points;
+* :class:`MP`: numbers of a private mpmath context at an explicit precision
+  (``object`` arrays); the ambient ``mpmath.mp`` precision is never read;
+* :class:`Ball`: python-flint's ``arb``/``acb`` balls (``object`` arrays): every
+  result is a ball guaranteed to contain the exact value.
+
+Operators (``+ - * /``) and numpy's indexing and broadcasting work the same on
+all three; everything else the kernel needs is a method of the arithmetic: exact
+model values as numbers (:meth:`~Arithmetic.exact`), elementwise functions,
+upper bounds of magnitudes (to choose step counts), the trust a pivot's sign
+deserves (:meth:`~Arithmetic.decide`) and, for balls, a rigorous truncation
+error (:meth:`~Arithmetic.widen`). Exact values are converted once per
+arithmetic and precision (:func:`memo`).
+
+Examples
+--------
+>>> import numpy as np, sympy as sp
+>>> ar = MP(100)
+>>> x = ar.exact(sp.pi / 3) * np.ones(2, dtype=object)
+>>> print(ar.cos(x)[0])
+0.5
+>>> Batch().decide(np.array([1e-3, 1e-14]), np.array([1.0, 1.0]), 10)[1].tolist()
+[True, False]
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import mpmath
+import numpy as np
+import sympy as sp
+from mpmath import libmp
+
+from ..errors import ComputationError
+
+__all__ = ["Arithmetic", "Batch", "MP", "Ball", "ball_available", "memo", "DOUBLE"]
+
+
+class Arithmetic:
+    """What every arithmetic provides to the kernel (see the module docstring).
+
+    Attributes
+    ----------
+    name : str
+        ``"double"``, ``"mp"`` or ``"ball"``.
+    prec : int
+        Working precision in bits.
+    rigorous : bool
+        Results are enclosures (balls), not approximations.
+    key : tuple
+        Identifies the arithmetic and its precision (for :func:`memo`).
+    """
+
+    name = "?"
+    prec = 53
+    rigorous = False
+
+    @property
+    def key(self) -> tuple:
+        return (self.name, self.prec)
+
+    @property
+    def digits(self) -> int:
+        """Decimal digits of the working precision."""
+        return int(self.prec * math.log10(2))
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        return False
+
+    def cached(self, key, build):
+        """``build()`` once per arithmetic (tables of constants the kernel reuses)."""
+        cache = self.__dict__.setdefault("_cache", {})
+        hit = cache.get(key)
+        if hit is None:
+            with self:
+                hit = cache[key] = build()
+        return hit
+
+    # -- numbers ---------------------------------------------------------------------
+    def exact(self, value):
+        """An exact real SymPy value as a number of this arithmetic (converted once)."""
+        value = sp.sympify(value)
+        return self.cached(("exact", value), lambda: self._convert(value))
+
+    def _convert(self, value):
+        raise NotImplementedError
+
+    def number(self, z):
+        """A Python or mpmath number (``lam``, a sample point) as a number here."""
+        raise NotImplementedError
+
+    def array(self, values, shape=None) -> np.ndarray:
+        """Numbers (already of this arithmetic) as an array."""
+        out = np.empty(len(values), dtype=object)
+        out[:] = list(values)
+        return out if shape is None else out.reshape(shape)
+
+    def zeros(self, shape, like=None) -> np.ndarray:
+        """An array of zeros (of the kind of ``like``'s numbers: real or complex)."""
+        raise NotImplementedError
+
+    # -- functions -----------------------------------------------------------------
+    def sqrt(self, x):
+        raise NotImplementedError
+
+    def cos(self, x):
+        raise NotImplementedError
+
+    def cosh(self, x):
+        raise NotImplementedError
+
+    def sin(self, x):
+        raise NotImplementedError
+
+    def sinh(self, x):
+        raise NotImplementedError
+
+    def root4(self, x):
+        """A fourth root of every element (any branch: callers use even functions of it)."""
+        raise NotImplementedError
+
+    def real(self, x):
+        """Real parts."""
+        raise NotImplementedError
+
+    def upper(self, x) -> np.ndarray:
+        """Float upper bounds of ``|x|`` elementwise (to choose series lengths and steps)."""
+        raise NotImplementedError
+
+    def is_complex(self, x) -> bool:
+        raise NotImplementedError
+
+    # -- trust -----------------------------------------------------------------------
+    def decide(self, pivot, scale, n: int):
+        """``(sign, decided)`` of pivots: the sign (+1/-1) and whether it can be trusted.
+
+        ``scale`` bounds the entries met so far in the elimination (rounding errors
+        grow with them); ``n`` is the order of the matrix. Complex pivots get sign 0.
+        """
+        raise NotImplementedError
+
+    #: whether :meth:`decide` needs ``scale`` (balls carry their own error)
+    needs_scale = True
+
+    def widen(self, x, radius):
+        """``x`` with ``radius`` (an exact rational: a truncation error) added to its
+        uncertainty; a no-op but for balls, whose enclosures must contain it."""
+        return x
+
+    def series_terms(self, log2_bound) -> int:
+        """The smallest ``K >= 2`` with ``log2_bound(K)`` below ``-(prec + 4)``: terms of a
+        series whose tail beyond ``K`` terms is below the working precision."""
+        k = 2
+        while log2_bound(k) > -(self.prec + 4):
+            k += 1
+        return k
+
+    # -- leaving the arithmetic --------------------------------------------------------
+    def to_mpmath(self, x):
+        """An element as a global mpmath number, unrounded (midpoints of balls)."""
+        raise NotImplementedError
+
+    def to_complex(self, x) -> np.ndarray:
+        """Elementwise complex128 (approximations)."""
+        return np.vectorize(lambda v: complex(self.to_mpmath(v)), otypes=[complex])(x)
+
+    def log_abs_arg(self, x):
+        """``(log|x|, arg x)`` as float arrays (``-inf`` where ``x`` is 0)."""
+        raise NotImplementedError
+
+
+def _ufunc(fn):
+    """``fn`` applied elementwise to object arrays (numpy's frompyfunc, array in, array out)."""
+    f = np.frompyfunc(fn, 1, 1)
+
+    def apply(x):
+        out = f(x)
+        return out if isinstance(out, np.ndarray) else np.array(out, dtype=object)
+    return apply
+
+
+class Batch(Arithmetic):
+    """Double precision on numpy ``float64``/``complex128`` arrays, vectorised over points.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> Batch().root4(np.array([16.0, -16.0]))
+    array([2.        +0.j        , 1.41421356+1.41421356j])
+    """
+
+    name = "double"
+    prec = 53
+    #: a pivot below this fraction of the entries met so far has an untrusted sign
+    TRUST = 1e-10
+
+    def _convert(self, value):
+        return float(value)
+
+    def number(self, z):
+        return complex(z)
+
+    def array(self, values, shape=None):
+        out = np.asarray(values)
+        return out if shape is None else out.reshape(shape)
+
+    def zeros(self, shape, like=None):
+        dtype = complex if like is not None and np.iscomplexobj(like) else float
+        return np.zeros(shape, dtype=dtype)
+
+    sqrt = staticmethod(np.sqrt)
+    cos = staticmethod(np.cos)
+    cosh = staticmethod(np.cosh)
+    sin = staticmethod(np.sin)
+    sinh = staticmethod(np.sinh)
+    real = staticmethod(np.real)
+
+    def root4(self, x):
+        return np.asarray(x, dtype=complex) ** 0.25
+
+    def upper(self, x):
+        return np.abs(x)
+
+    def is_complex(self, x):
+        return np.iscomplexobj(x)
+
+    def decide(self, pivot, scale, n):
+        if np.iscomplexobj(pivot):
+            return np.zeros(pivot.shape, dtype=np.int8), np.abs(pivot) > self.TRUST * scale
+        sign = np.where(pivot < 0, -1, 1).astype(np.int8)
+        return sign, np.abs(pivot) > self.TRUST * scale
+
+    def to_mpmath(self, x):
+        return mpmath.mpmathify(complex(x))
+
+    def to_complex(self, x):
+        return np.asarray(x, dtype=complex)
+
+    def log_abs_arg(self, x):
+        with np.errstate(divide="ignore"):
+            return np.log(np.abs(x)), np.angle(x)
+
+
+#: The double-precision arithmetic (it has no state).
+DOUBLE = Batch()
+
+
+@functools.lru_cache(maxsize=64)
+def _mp_context(prec: int) -> mpmath.MPContext:
+    ctx = mpmath.MPContext()
+    ctx.prec = prec
+    return ctx
+
+
+class MP(Arithmetic):
+    """mpmath numbers of a private context at ``prec`` bits, in ``object`` arrays.
+
+    The context is the arithmetic's own (``mpmath.MPContext``), so neither the
+    ambient ``mpmath.mp`` precision nor another thread's choice affects it.
+
+    Parameters
+    ----------
+    prec : int
+        Working precision in bits (``MP.from_digits(d)`` for decimal digits).
+    """
+
+    name = "mp"
+
+    def __init__(self, prec: int):
+        self.prec = int(prec)
+        self.ctx = _mp_context(self.prec)
+        ctx = self.ctx
+        self.sqrt = _ufunc(ctx.sqrt)
+        self.cos = _ufunc(ctx.cos)
+        self.cosh = _ufunc(ctx.cosh)
+        self.sin = _ufunc(ctx.sin)
+        self.sinh = _ufunc(ctx.sinh)
+        self.real = _ufunc(ctx.re)
+        self._abs = np.frompyfunc(lambda v: float(abs(v)), 1, 1)
+
+    @classmethod
+    def from_digits(cls, digits: int) -> MP:
+        """The arithmetic of ``digits`` decimal digits."""
+        return cls(math.ceil(digits * math.log2(10)) + 4)
+
+    def _convert(self, value):
+        ctx = self.ctx
+        if value.is_Rational:
+            return ctx.make_mpf(libmp.from_rational(int(value.p), int(value.q), self.prec,
+                                                    libmp.round_nearest))
+        if not value.is_number or value.is_real is False:
+            raise ComputationError(f"not a real number: {value}")
+        digits = self.digits + 15
+        approx = sp.N(value, digits)
+        return ctx.mpf(approx._to_mpmath(self.prec + 60))
+
+    def number(self, z):
+        ctx = self.ctx
+        if isinstance(z, (mpmath.mpc, complex)):
+            return ctx.mpc(z)
+        return ctx.mpf(z)
+
+    def zeros(self, shape, like=None):
+        complex_ = like is not None and self.is_complex(like)
+        zero = self.ctx.mpc(0) if complex_ else self.ctx.mpf(0)
+        out = np.empty(shape, dtype=object)
+        out.fill(zero)
+        return out
+
+    def root4(self, x):
+        ctx = self.ctx
+        return _ufunc(lambda v: ctx.root(ctx.mpc(v), 4))(x)
+
+    def upper(self, x):
+        return self._abs(x).astype(float) * (1 + 1e-14)
+
+    def is_complex(self, x):
+        flat = np.asarray(x).reshape(-1)
+        return bool(flat.size) and any(isinstance(v, self.ctx.mpc) for v in flat)
+
+    def decide(self, pivot, scale, n):
+        pivot = np.asarray(pivot, dtype=object)
+        limit = float(n + 1) * 2.0 ** (40 - self.prec)
+        mag = self._abs(pivot).astype(float)
+        decided = mag > limit * np.asarray(scale, dtype=float)
+        if self.is_complex(pivot):
+            return np.zeros(pivot.shape, dtype=np.int8), decided
+        sign = np.where(np.array([v < 0 for v in pivot.reshape(-1)], dtype=bool)
+                        .reshape(pivot.shape), -1, 1).astype(np.int8)
+        return sign, decided
+
+    def to_mpmath(self, x):
+        if isinstance(x, self.ctx.mpc):
+            return mpmath.mp.make_mpc((x.real._mpf_, x.imag._mpf_))
+        return mpmath.mp.make_mpf(self.ctx.mpf(x)._mpf_)
+
+    def log_abs_arg(self, x):
+        ctx = self.ctx
+        flat = np.asarray(x, dtype=object).reshape(-1)
+        la = np.array([float(ctx.log(abs(v))) if v != 0 else -np.inf for v in flat])
+        ph = np.array([float(ctx.arg(v)) if v != 0 else 0.0 for v in flat])
+        return la.reshape(np.shape(x)), ph.reshape(np.shape(x))
+
+
+def ball_available() -> bool:
+    """Whether python-flint (Arb ball arithmetic) can be imported."""
+    try:
+        import flint  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+class Ball(Arithmetic):
+    """Arb ball arithmetic (python-flint) at ``prec`` bits, in ``object`` arrays.
+
+    python-flint keeps one working precision for the process; the kernel runs
+    inside ``with ar:``, which sets it for the duration and restores it.
+
+    Examples
+    --------
+    >>> import numpy as np, sympy as sp
+    >>> ar = Ball(128)
+    >>> with ar:
+    ...     x = ar.cos(np.array([ar.exact(sp.pi)], dtype=object))[0]
+    >>> x.contains(-1), x.rad() < 1e-30
+    (True, True)
+    """
+
+    name = "ball"
+    rigorous = True
+    needs_scale = False
+
+    def __init__(self, prec: int):
+        try:
+            import flint
+        except ImportError:
+            raise ComputationError("ball arithmetic needs python-flint: "
+                                   "pip install 'symtmm[certified]'") from None
+        self.flint = flint
+        self.prec = int(prec)
+        self._saved: list = []
+        self.sqrt = _ufunc(lambda v: v.sqrt())
+        self.cos = _ufunc(lambda v: v.cos())
+        self.cosh = _ufunc(lambda v: v.cosh())
+        self.sin = _ufunc(lambda v: v.sin())
+        self.sinh = _ufunc(lambda v: v.sinh())
+        self.real = _ufunc(lambda v: v.real if isinstance(v, flint.acb) else v)
+        self._upper = np.frompyfunc(lambda v: float(v.abs_upper()), 1, 1)
+
+    @classmethod
+    def from_digits(cls, digits: int) -> Ball:
+        return cls(math.ceil(digits * math.log2(10)) + 4)
+
+    def __enter__(self):
+        self._saved.append(self.flint.ctx.prec)
+        self.flint.ctx.prec = self.prec
+        return self
+
+    def __exit__(self, *exc):
+        self.flint.ctx.prec = self._saved.pop()
+        return False
+
+    def _convert(self, value):
+        return to_arb(value, self.flint)
+
+    def number(self, z):
+        flint = self.flint
+        if isinstance(z, (flint.arb, flint.acb)):
+            return z
+        if isinstance(z, (mpmath.mpc, complex)):
+            z = mpmath.mpc(z) if isinstance(z, complex) else z
+            return flint.acb(_arb_exact(z.real, flint), _arb_exact(z.imag, flint))
+        return _arb_exact(z, flint)
+
+    def zeros(self, shape, like=None):
+        complex_ = like is not None and self.is_complex(like)
+        zero = self.flint.acb(0) if complex_ else self.flint.arb(0)
+        out = np.empty(shape, dtype=object)
+        out.fill(zero)
+        return out
+
+    def root4(self, x):
+        flint = self.flint
+        half = None
+
+        def root(v):
+            nonlocal half
+            v = flint.acb(v)
+            # a branch whose cut (the negative axis) is away from the ball: the c_j that
+            # use the root are even functions of it, so any fourth root serves
+            if v.mid().real >= 0:
+                return v.root(4)
+            if half is None:
+                half = flint.arb(2).sqrt() / 2
+            return (-v).root(4) * flint.acb(half, half)
+        return _ufunc(root)(x)
+
+    def upper(self, x):
+        return self._upper(x).astype(float)
+
+    def is_complex(self, x):
+        flat = np.asarray(x).reshape(-1)
+        return bool(flat.size) and any(isinstance(v, self.flint.acb) for v in flat)
+
+    def decide(self, pivot, scale, n):
+        flat = np.asarray(pivot, dtype=object).reshape(-1)
+        decided = np.array([not v.contains(0) for v in flat], dtype=bool)
+        if any(isinstance(v, self.flint.acb) for v in flat):
+            sign = np.zeros(flat.size, dtype=np.int8)
+        else:
+            sign = np.array([-1 if v < 0 else 1 for v in flat], dtype=np.int8)
+        return sign.reshape(np.shape(pivot)), decided.reshape(np.shape(pivot))
+
+    def widen(self, x, radius):
+        flint = self.flint
+        with self:
+            r = flint.arb(0, self.exact(radius))       # a ball about 0 holding the bound
+
+        def add(v):
+            if isinstance(v, flint.acb):
+                return v + flint.acb(r, r)
+            return v + r
+        return _ufunc(add)(x)
+
+    def to_mpmath(self, x):
+        flint = self.flint
+        if isinstance(x, flint.acb):
+            return mpmath.mp.make_mpc((_mpf_of(x.real.mid()), _mpf_of(x.imag.mid())))
+        return mpmath.mp.make_mpf(_mpf_of(x.mid()))
+
+    def log_abs_arg(self, x):
+        flat = np.asarray(x, dtype=object).reshape(-1)
+        la = np.array([float(abs(v).mid().log()) if not v.contains(0) else -np.inf
+                       for v in flat])
+        ph = np.array([float(self.flint.acb(v).arg().mid()) for v in flat])
+        return la.reshape(np.shape(x)), ph.reshape(np.shape(x))
+
+
+def _mpf_of(exact_arb):
+    """The ``_mpf_`` tuple of an exact arb (a midpoint), unrounded."""
+    man, exp = exact_arb.man_exp()
+    man = int(man)
+    if man == 0:
+        return libmp.fzero
+    return libmp.from_man_exp(man, int(exp))
+
+
+def _arb_exact(x, flint):
+    """An mpmath ``mpf`` (or int/float) as an exact arb (no rounding on the way)."""
+    if not isinstance(x, mpmath.mpf):
+        with mpmath.workprec(1100):     # ints and floats are exact at this precision
+            x = mpmath.mpf(x)
+    sign, man, exp, _ = x._mpf_
+    if man == 0:
+        return flint.arb(0)
+    value = flint.arb(flint.fmpz(int(man))) * flint.arb(2) ** int(exp)
+    return -value if sign else value
+
+
+def to_arb(expr, flint):
+    """An exact real SymPy number as an arb ball (at flint's working precision).
+
+    Integers, rationals, ``pi``, sums, products and rational powers: everything
+    a model file can write.
+
+    Examples
+    --------
+    >>> import flint
+    >>> with flint.ctx.workprec(100):
+    ...     b = to_arb(sp.sqrt(2) * sp.pi / 3, flint)
+    >>> b.contains(flint.arb("1.48096098"))
+    False
+    >>> abs(float(b.mid()) - 1.4809609793861218) < 1e-15
+    True
+    """
+    arb = flint.arb
+    expr = sp.sympify(expr)
+    if expr.is_Integer:
+        return arb(flint.fmpz(int(expr)))
+    if expr.is_Rational:
+        return arb(flint.fmpq(int(expr.p), int(expr.q)))
+    if expr is sp.pi:
+        return arb.pi()
+    if expr.is_Add:
+        total = arb(0)
+        for term in expr.args:
+            total += to_arb(term, flint)
+        return total
+    if expr.is_Mul:
+        prod = arb(1)
+        for factor in expr.args:
+            prod *= to_arb(factor, flint)
+        return prod
+    if expr.is_Pow:
+        base, exp = expr.args
+        b = to_arb(base, flint)
+        if exp.is_Integer:
+            return b ** int(exp)
+        if exp.is_Rational:
+            root = b.sqrt() if exp.q == 2 else b ** arb(flint.fmpq(1, int(exp.q)))
+            return root ** int(exp.p)
+    raise ComputationError(f"cannot enclose {expr} in ball arithmetic")
+
+
+def memo(owner, ar: Arithmetic, name: str, build):
+    """``build()`` computed once per arithmetic and precision, kept on ``owner``.
+
+    Plans keep their constants converted to each arithmetic they are evaluated in
+    (floats, mpmath numbers at a precision, balls at a precision).
+    """
+    store = owner.__dict__.setdefault("_memo", {})
+    key = (name,) + ar.key
+    hit = store.get(key)
+    if hit is None:
+        with ar:
+            hit = store[key] = build()
+    return hit

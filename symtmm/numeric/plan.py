@@ -1,0 +1,299 @@
+"""A model compiled once for the dynamic-stiffness kernel.
+
+:class:`StiffnessPlan` is the one artefact the numeric layer evaluates: the
+mesh of the model (:class:`symtmm.stiffness.Mesh`: nodes at beam ends, point
+elements and attachments, every beam cut into pieces short enough for the
+frequency range, rigid bodies and boundary conditions eliminated as exact
+constraints), its freedoms renumbered for a narrow band, and tables that say
+where every number goes:
+
+* the distinct segment **kinds** (equal constants, equal matrices: the pieces of
+  one span share one) with their exact constants, each family evaluated by
+  :mod:`symtmm.numeric.segments`;
+* a **scatter** of every segment's 4x4 stiffness, every point element's
+  polynomial ``K0 + C lam + M lam**2`` and every body's inertia into the upper
+  band of ``K``: ``(target, source, exact coefficient)`` triples, pre-sorted by
+  target, so that assembly is one gather, one multiplication and one segmented
+  sum in any arithmetic;
+* a diagonal **scaling** by powers of two (exact in every arithmetic) that gives
+  the static ``K`` a diagonal near 1 whatever the units, and the exact constant
+  of the determinant identity ``det R = det K * prod det U12 * P``
+  (:mod:`symtmm.roots.dynamic_stiffness`).
+
+The exact tables are converted once per arithmetic and precision
+(:meth:`StiffnessPlan.tables`).
+
+Cost. One assembly costs ``O(segments)``; the banded ``LDL^T`` costs
+``O(n b**2)`` with ``n`` freedoms and half-bandwidth ``b``. The freedoms are
+numbered by reverse Cuthill–McKee on the freedom graph when that narrows the
+band: a beam's freedoms then come together and a spring only joins the freedoms
+of the two beams it touches, so a chain of ``N`` levels has ``b`` independent of
+``N`` and the whole evaluation is linear in the size of the model.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+
+import numpy as np
+import sympy as sp
+
+from ..elements import EulerBernoulliSegment
+from ..elements.base import LAM
+from .arith import DOUBLE, Arithmetic
+from .segments import eb_constants, theory_constants
+
+__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "rcm_order"]
+
+#: Largest ``|s| l`` of a piece (``beta l`` for Euler–Bernoulli) anywhere in the plan's range:
+#: below the first clamped-clamped root ``beta l = 4.730``, so no piece has a
+#: clamped-clamped eigenvalue in the range (``J0 = 0``, ``det U12 != 0``), and no
+#: digit is lost to the growth of long pieces.
+NU_MAX = 3.0
+
+
+def piece_length(segment, radius: float, nu_max: float = NU_MAX) -> float:
+    """The longest piece of ``segment`` for ``|lam|**2 <= radius``.
+
+    Its largest wave number keeps ``|s| l <= nu_max`` there, and (for theories
+    other than Euler–Bernoulli) its clamped-clamped natural frequencies lie above
+    ``sqrt(radius)`` (:meth:`~symtmm.elements.theories.BeamSegment.safe_length`).
+    """
+    from ..stiffness import wave_number_bound
+    s = wave_number_bound(segment, radius)
+    length = float(segment.l)
+    longest = length if s * length <= nu_max else nu_max / s
+    if not isinstance(segment, EulerBernoulliSegment):
+        longest = min(longest, segment.safe_length(radius))
+    return longest
+
+
+def rcm_order(size: int, cliques) -> list:
+    """A reverse Cuthill–McKee order of ``size`` freedoms coupled within each clique.
+
+    Returns ``order`` with ``order[new] = old``. Each connected part starts from a
+    pseudo-peripheral freedom (the far end of a breadth-first search from one of
+    least degree), which keeps the levels, and so the band, narrow.
+
+    Examples
+    --------
+    A path numbered 0, 2, 4, 1, 3 along its length comes back as a path:
+
+    >>> order = rcm_order(5, [(0, 2), (2, 4), (4, 1), (1, 3)])
+    >>> max(abs(order.index(a) - order.index(b)) for a, b in [(0, 2), (2, 4), (4, 1), (1, 3)])
+    1
+    """
+    adj = [set() for _ in range(size)]
+    for clique in cliques:
+        for a in clique:
+            adj[a].update(clique)
+    for a in range(size):
+        adj[a].discard(a)
+    degree = [len(s) for s in adj]
+    seen = [False] * size
+    order: list = []
+
+    def bfs(start):
+        levels, dist = [start], {start: 0}
+        queue = deque([start])
+        while queue:
+            v = queue.popleft()
+            for w in sorted(adj[v], key=degree.__getitem__):
+                if w not in dist:
+                    dist[w] = dist[v] + 1
+                    levels.append(w)
+                    queue.append(w)
+        return levels, dist
+
+    for root in sorted(range(size), key=degree.__getitem__):
+        if seen[root]:
+            continue
+        part, dist = bfs(root)
+        far = max(part, key=lambda v: (dist[v], -degree[v]))
+        part, _ = bfs(far)
+        for v in part:
+            seen[v] = True
+        order += part[::-1]
+    return order
+
+
+def _bandwidth(pairs, position) -> int:
+    return max((abs(position[a] - position[b]) for a, b in pairs), default=0)
+
+
+def _kind(seg) -> tuple:
+    """``(family, exact constants)`` of a segment: equal kinds have equal matrices."""
+    if isinstance(seg, EulerBernoulliSegment):
+        return ("eb", (seg.EI, seg.m, seg.l, seg.kw))
+    a, b, cN, _ = seg.coefficients(sp.Integer(0))
+    return ("theory", (seg.EI, a, b, cN, seg.rhoI, seg.m, seg.kw, seg.l))
+
+
+class StiffnessPlan:
+    """The dynamic stiffness of a numeric model, compiled for ``|lam|**2 <= radius``.
+
+    Parameters
+    ----------
+    model : Model
+        Numeric (every parameter with a value).
+    radius : float
+        Largest ``|lam|**2`` at which the plan is evaluated: pieces are cut for it.
+    nu_max : float
+        Largest ``|s| l`` of a piece over that range (see :data:`NU_MAX`).
+
+    Attributes
+    ----------
+    n, band : int
+        Order of ``K`` and its half-bandwidth.
+    mesh : symtmm.stiffness.Mesh
+    kinds : list
+        ``(family, exact constants)`` of the distinct segments, ``"eb"`` ones first.
+    multiplicity : numpy.ndarray
+        How many segments of the mesh share each kind.
+    log_constant : float
+        ``log`` of the determinant identity's constant (powers of two and ``P``).
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Spring, Model
+    >>> m = Model((Beam("a", 1, 1, 1, left="clamped"), Beam("b", 1, 1, 1, left="pinned",
+    ...            right="pinned")), (Spring("a", "b", "1/2", 10),))
+    >>> plan = StiffnessPlan(m.require_numeric(), 100.0)
+    >>> plan.n, plan.band, len(plan.kinds)
+    (8, 3, 1)
+    """
+
+    def __init__(self, model, radius: float, nu_max: float = NU_MAX):
+        from ..mesh import Mesh
+        self.model = model
+        self.radius = float(radius)
+        self.damped = model.damped
+        mesh = self.mesh = Mesh(model, lambda beam, seg: piece_length(seg, self.radius, nu_max))
+        n = self.n = mesh.size
+        cliques = ([[g for c in places for g, _ in c] for places in mesh.segment_places]
+                   + [[g for c in places for g, _ in c] for places, _ in mesh.point_places]
+                   + [[g for c in places for g, _ in c] for places, _ in mesh.body_places])
+        pairs = [(a, b) for cl in cliques for a in cl for b in cl if a < b]
+        order = rcm_order(n, cliques)
+        position = [0] * n
+        for new, old in enumerate(order):
+            position[old] = new
+        if _bandwidth(pairs, position) >= _bandwidth(pairs, list(range(n))):
+            position = list(range(n))       # along x is as narrow already
+        self.position = position
+        b = self.band = _bandwidth(pairs, position)
+        self.width = w = b + 1
+
+        # segment kinds: "eb" first, then "theory"
+        kinds: dict = {}
+        member_kind = []
+        for _, seg, _, _ in mesh.segments:
+            k = _kind(seg)
+            kinds.setdefault(k, None)
+            member_kind.append(k)
+        ordered = sorted(kinds, key=lambda k: k[0] != "eb")
+        index = {k: i for i, k in enumerate(ordered)}
+        self.kinds = ordered
+        self.multiplicity = np.bincount([index[k] for k in member_kind], minlength=len(ordered))
+
+        triples: list = []          # (target, source, coefficient); source: see tables()
+
+        def scatter(places, local):
+            # local(i, j) -> list of (source, exact coefficient) for K[i, j] of the element
+            for i, ci in enumerate(places):
+                for j, cj in enumerate(places):
+                    for gi, ai in ci:
+                        for gj, aj in cj:
+                            r, c = position[gi], position[gj]
+                            if r > c:
+                                continue            # the upper band only (K is symmetric)
+                            for source, coef in local(i, j):
+                                triples.append((r * w + c - r, source, ai * aj * coef))
+
+        for k, places in zip(member_kind, mesh.segment_places):
+            base = 16 * index[k]
+            scatter(places, lambda i, j, base=base: [(("D", base + 4 * i + j), 1)])
+        S_points = []
+        for places, element in mesh.point_places:
+            S = element.stiffness(LAM)
+            S_points.append((places, S))
+        for places, masses in mesh.body_places:
+            S_points.append((places, sp.diag(*[mass * LAM**2 for mass in masses])))
+        for places, S in S_points:
+            polys = [[sp.Poly(sp.expand(S[i, j]), LAM).all_coeffs()[::-1]
+                      for j in range(S.cols)] for i in range(S.rows)]
+            if any(len(p) > 3 for row in polys for p in row):
+                raise ValueError("a point element of degree > 2 in lam")
+            scatter(places, lambda i, j, polys=polys: [(("lam", p), cf) for p, cf in
+                                                         enumerate(polys[i][j]) if cf != 0])
+        # scaling by powers of two: a static diagonal near 1 (units of any size)
+        diag = self._static_diagonal(triples, ordered)
+        self.exponent = [0 if not (d > 0 and math.isfinite(d)) else -round(math.log2(d) / 2)
+                         for d in diag]
+        e = self.exponent
+        self._triples = []
+        for target, source, coef in triples:
+            r = target // w
+            c = r + target % w
+            self._triples.append((target, source, sp.sympify(coef) * sp.Integer(2) ** (e[r] + e[c])))
+        self._triples.sort(key=lambda t: t[0])
+        self.log_constant = (math.log(float(mesh.pivot_product))
+                             - 2.0 * math.log(2.0) * sum(e))
+        self.pivot_product = mesh.pivot_product
+
+    def _static_diagonal(self, triples, kinds) -> list:
+        """The diagonal of the unscaled ``K`` at ``lam = 0`` (floats)."""
+        from .segments import transfer_matrices
+        from .stiffness import segment_stiffness
+        n, w = self.n, self.width
+        if not kinds:
+            D = np.zeros((1, 0, 4, 4))
+        else:
+            U = transfer_matrices(DOUBLE, self._kind_tables(DOUBLE, kinds), np.zeros(1))
+            D, _ = segment_stiffness(U)
+        flat = np.real(D).reshape(-1)
+        diag = [0.0] * n
+        for target, source, coef in triples:
+            if target % w:
+                continue
+            kind, idx = source
+            if kind == "D":
+                diag[target // w] += float(coef) * float(flat[idx])
+            elif idx == 0:
+                diag[target // w] += float(coef)
+        return [abs(d) for d in diag]
+
+    @staticmethod
+    def _kind_tables(ar: Arithmetic, kinds) -> list:
+        eb = [c for f, c in kinds if f == "eb"]
+        th = [c for f, c in kinds if f == "theory"]
+        out = []
+        if eb:
+            out.append(("eb", eb_constants(ar, eb)))
+        if th:
+            out.append(("theory", theory_constants(ar, th)))
+        return out
+
+    def tables(self, ar: Arithmetic) -> dict:
+        """The plan's numbers in ``ar`` (converted once per arithmetic and precision).
+
+        ``kinds`` (constants per family for :func:`~symtmm.numeric.segments.transfer_matrices`),
+        ``source`` (into the concatenation of the segments' flattened stiffnesses and
+        the point elements' ``lam**0, lam**1, lam**2`` columns), ``coef``,
+        ``starts`` and ``targets`` (of the segmented sum).
+        """
+        from .arith import memo
+        return memo(self, ar, "tables", lambda: self._tables(ar))
+
+    def _tables(self, ar: Arithmetic) -> dict:
+        nd = 16 * len(self.kinds)
+        col = {("lam", 0): nd, ("lam", 1): nd + 1, ("lam", 2): nd + 2}
+        source = np.array([s[1] if s[0] == "D" else col[s] for _, s, _ in self._triples],
+                          dtype=int)
+        coef = ar.array([ar.exact(c) for _, _, c in self._triples])
+        targets = np.array([t for t, _, _ in self._triples], dtype=int)
+        starts = np.concatenate([[0], np.nonzero(np.diff(targets))[0] + 1]).astype(int) \
+            if targets.size else np.zeros(0, dtype=int)
+        return {"kinds": self._kind_tables(ar, self.kinds), "source": source, "coef": coef,
+                "targets": targets[starts] if targets.size else targets, "starts": starts}

@@ -1,0 +1,259 @@
+"""Transfer matrices of beam segments, for many eigenvalues and many segments at once.
+
+Two families, each written once for every arithmetic (:mod:`symtmm.numeric.arith`):
+
+* **Euler–Bernoulli** (:func:`eb_matrices`): the entire functions
+  ``c_j(x) = sum_k x**k / (4k+j)!`` of ``x = -(m lam**2 + kw) l**4 / EI``
+  (:mod:`symtmm.elements.beam`): their series below ``|x| = 1`` (with a rigorous
+  tail for balls), the closed forms in ``nu = x**(1/4)`` above, and for a real
+  ``x <= -1`` (a foundation stiffer than the inertia) the real forms in
+  ``s = (-x/4)**(1/4)``, so that real arithmetic stays real;
+* **any other theory** (:func:`theory_matrices`: axial force, Rayleigh,
+  Timoshenko): ``exp(A l)`` from the series of ``alpha, beta`` in ``(t, d)``
+  (trace and determinant of ``G = B C``, :mod:`symtmm.elements.theories`) on a
+  piece ``h = l / 2**j`` with ``max|r| h**2 <= 1/2``, then ``j`` doublings.
+
+Arrays: ``lam2`` has shape ``(B,)`` (points), every constant shape ``(S,)``
+(segments); results have shape ``(B, S, 4, 4)`` in the state order
+``[Y, Theta, M, Q]``.
+
+Examples
+--------
+>>> import numpy as np
+>>> from symtmm.numeric.arith import DOUBLE
+>>> consts = eb_constants(DOUBLE, [(1, 1, 1, 0)])        # EI, m, l, kw
+>>> U = eb_matrices(DOUBLE, consts, np.array([0.0, -np.pi**4]))
+>>> U.shape, float(U[0, 0, 0, 3].real)                    # static: l**3 / (6 EI)
+((2, 1, 4, 4), 0.16666666666666666)
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import sympy as sp
+
+from .arith import Arithmetic
+
+__all__ = ["eb_constants", "eb_matrices", "theory_constants", "theory_matrices",
+           "transfer_matrices", "stack_matrix"]
+
+
+def stack_matrix(rows) -> np.ndarray:
+    """A nested list of equally shaped arrays as one array with two trailing axes."""
+    return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
+
+
+def _log2_inverse_factorial(n: int) -> float:
+    """``log2(1/n!)`` (no overflow for large ``n``)."""
+    return -math.lgamma(n + 1) / math.log(2)
+
+
+def _inverse_factorials(ar: Arithmetic, n: int) -> list:
+    """``1/k!`` for ``k < n`` in the arithmetic (exact rationals converted once)."""
+    return ar.cached(("1/k!", n),
+                     lambda: [ar.exact(sp.Rational(1, math.factorial(k))) for k in range(n)])
+
+
+# -- Euler–Bernoulli --------------------------------------------------------------------
+def eb_constants(ar: Arithmetic, segments) -> dict:
+    """Constant arrays for :func:`eb_matrices` from ``(EI, m, l, kw)`` per segment (exact).
+
+    ``A = m l**4 / EI`` and ``F = kw l**4 / EI`` give ``x = -(A lam**2 + F)``.
+    """
+    cols = {"EI": [], "l": [], "A": [], "F": []}
+    for EI, m, l, kw in segments:
+        EI, m, l, kw = (sp.sympify(v) for v in (EI, m, l, kw))
+        cols["EI"].append(ar.exact(EI))
+        cols["l"].append(ar.exact(l))
+        cols["A"].append(ar.exact(m * l**4 / EI))
+        cols["F"].append(ar.exact(kw * l**4 / EI))
+    return {k: ar.array(v) for k, v in cols.items()}
+
+
+def _c_series(ar: Arithmetic, x):
+    """``c_0..c_3`` by their series, for ``|x| < 1`` elementwise (``x`` flat)."""
+    # 1/(4K)! below the precision; consecutive terms shrink at least 2x for |x| <= 1,
+    # so the tail beyond K is at most twice the first omitted term
+    K = ar.series_terms(lambda k: _log2_inverse_factorial(4 * k))
+    inv = _inverse_factorials(ar, 4 * K + 4)
+    out = []
+    for j in range(4):
+        acc = inv[4 * (K - 1) + j] + 0 * x
+        for k in range(K - 2, -1, -1):
+            acc = acc * x + inv[4 * k + j]
+        out.append(ar.widen(acc, sp.Rational(2, math.factorial(4 * K + j))))
+    return out
+
+
+def _c_closed(ar: Arithmetic, x):
+    """``c_0..c_3`` by their closed forms in ``nu = x**(1/4)`` (``x`` flat, ``|x| >= 1``)."""
+    nu = ar.root4(x)
+    ch, co, sh, si = ar.cosh(nu), ar.cos(nu), ar.sinh(nu), ar.sin(nu)
+    nu2 = nu * nu
+    return [(ch + co) / 2, (sh + si) / (2 * nu), (ch - co) / (2 * nu2), (sh - si) / (2 * nu2 * nu)]
+
+
+def _c_negative(ar: Arithmetic, x):
+    """``c_0..c_3`` of a real ``x <= -1`` in real functions: ``x = -4 s**4``, ``nu = s (1 + i)``."""
+    s = ar.root4(-x / 4)
+    s = ar.real(s)
+    ch, co, sh, si = ar.cosh(s), ar.cos(s), ar.sinh(s), ar.sin(s)
+    s2 = s * s
+    return [ch * co, (ch * si + sh * co) / (2 * s), sh * si / (2 * s2),
+            (ch * si - sh * co) / (4 * s2 * s)]
+
+
+def c_functions(ar: Arithmetic, x) -> list:
+    """``c_0..c_3`` of every element of ``x`` (any shape), each piece by its best form."""
+    shape = np.shape(x)
+    flat = np.asarray(x).reshape(-1)
+    big = ar.upper(flat) >= 1.0
+    out = [ar.zeros(flat.shape, like=flat) for _ in range(4)]
+    small = ~big
+    if small.any():
+        for o, v in zip(out, _c_series(ar, flat[small])):
+            o[small] = v
+    if big.any():
+        xb = flat[big]
+        if ar.is_complex(xb):
+            parts = [(np.ones(xb.shape, dtype=bool), _c_closed(ar, xb))]
+        else:
+            positive = np.array([v > 0 for v in xb], dtype=bool)
+            parts = []
+            if positive.any():
+                parts.append((positive, [ar.real(c) for c in _c_closed(ar, xb[positive])]))
+            if (~positive).any():
+                parts.append((~positive, _c_negative(ar, xb[~positive])))
+        idx = np.nonzero(big)[0]
+        for mask, values in parts:
+            for o, v in zip(out, values):
+                o[idx[mask]] = v
+    return [o.reshape(shape) for o in out]
+
+
+def eb_matrices(ar: Arithmetic, consts: dict, lam2) -> np.ndarray:
+    """Transfer matrices ``(B, S, 4, 4)`` of Euler–Bernoulli segments at ``lam2`` ``(B,)``."""
+    lam2 = np.asarray(lam2)[:, None]
+    EI, l, A, F = consts["EI"], consts["l"], consts["A"], consts["F"]
+    x = -(lam2 * A + F)
+    c0, c1, c2, c3 = c_functions(ar, x)
+    l2 = l * l
+    l3 = l2 * l
+    return stack_matrix([
+        [c0, l * c1, l2 * c2 / EI, l3 * c3 / EI],
+        [x * c3 / l, c0, l * c1 / EI, l2 * c2 / EI],
+        [EI * x * c2 / l2, EI * x * c3 / l, c0, l * c1],
+        [EI * x * c1 / l3, EI * x * c2 / l2, x * c3 / l, c0],
+    ])
+
+
+# -- other theories ----------------------------------------------------------------------
+def theory_constants(ar: Arithmetic, segments) -> dict:
+    """Constant arrays for :func:`theory_matrices` from ``(EI, a, b, cN, rhoI, m, kw, l)``.
+
+    ``c = cN + rhoI lam**2`` and ``mu = m lam**2 + kw`` (see
+    :meth:`symtmm.elements.theories.BeamSegment.coefficients`).
+    """
+    names = ("EI", "a", "b", "cN", "rhoI", "m", "kw", "l")
+    cols = {k: [] for k in names}
+    for values in segments:
+        for k, v in zip(names, values):
+            cols[k].append(ar.exact(v))
+    return {k: ar.array(v) for k, v in cols.items()}
+
+
+def _series(ar, t, d, h):
+    """``(alpha0, beta0, alpha1, beta1)`` of ``F0, F1`` at length ``h``, by the series in ``(t, d)``.
+
+    ``q_k = p_k h**(2(k-1))`` with ``p_k = (r1**k - r2**k)/(r1 - r2)``:
+    ``q_0 = 0``, ``q_1 = 1``, ``q_k = T q_(k-1) - D q_(k-2)`` (``T = t h**2``, ``D = d h**4``);
+    ``beta0 = h**2 sum q_k/(2k)!``, ``alpha0 = 1 - D sum q_(k-1)/(2k)!`` and likewise with
+    ``(2k+1)!`` for ``F1``. With ``max|r| h**2 <= 1``, ``|q_k| <= k``: the tails beyond ``K``
+    are below ``2K/(2K)!`` and ``2K/(2K+1)!`` (consecutive bounds shrink at least 2x).
+    """
+    K = ar.series_terms(lambda k: math.log2(k) + _log2_inverse_factorial(2 * k))
+    inv = _inverse_factorials(ar, 2 * K + 2)
+    T, D = t * h * h, d * h ** 4
+    q_prev, q = 0 * T, 1 + 0 * T
+    s0b, s0a, s1b, s1a = 0 * T, 0 * T, 0 * T, 0 * T
+    for k in range(1, K):
+        s0b = s0b + q * inv[2 * k]
+        s0a = s0a + q_prev * inv[2 * k]
+        s1b = s1b + q * inv[2 * k + 1]
+        s1a = s1a + q_prev * inv[2 * k + 1]
+        q_prev, q = q, T * q - D * q_prev
+    even = sp.Rational(2 * K, math.factorial(2 * K))
+    odd = sp.Rational(2 * K, math.factorial(2 * K + 1))
+    s0b, s0a = ar.widen(s0b, even), ar.widen(s0a, even)
+    s1b, s1a = ar.widen(s1b, odd), ar.widen(s1a, odd)
+    return (1 - D * s0a, h * h * s0b, h * (1 - D * s1a), h * h * h * s1b)
+
+
+def _double(coef, t, d):
+    """``F0, F1`` at twice the length: ``F0(2h) = 2 F0**2 - I``, ``F1(2h) = 2 F0 F1``."""
+    a0, b0, a1, b1 = coef
+    return (2 * (a0 * a0 - d * b0 * b0) - 1, 2 * (2 * a0 * b0 + t * b0 * b0),
+            2 * (a0 * a1 - d * b0 * b1), 2 * (a0 * b1 + a1 * b0 + t * b0 * b1))
+
+
+def _assemble(coef, a, b, c, mu, EI) -> np.ndarray:
+    """``U`` in the order ``[Y, Theta, M, Q]`` from ``alpha, beta`` of ``F0`` and ``F1``.
+
+    ``G = B C`` on ``(Y, M)``, ``G' = C B`` on ``(Theta, Q)``; ``U = [[F0(G), B F1(G')],
+    [C F1(G), F0(G')]]`` with ``B = [[a, b], [c, a]]``, ``C = [[0, 1/EI], [-mu, 0]]``.
+    """
+    a0, b0, a1, b1 = coef
+    g00, g01, g10, g11 = -b * mu, a / EI, -a * mu, c / EI          # G on (Y, M)
+    p00, p01, p10, p11 = c / EI, a / EI, -mu * a, -mu * b          # G' on (Theta, Q)
+    h00, h01, h10, h11 = a1 + b1 * p00, b1 * p01, b1 * p10, a1 + b1 * p11   # F1(G')
+    k00, k01, k10, k11 = a1 + b1 * g00, b1 * g01, b1 * g10, a1 + b1 * g11   # F1(G)
+    return stack_matrix([
+        [a0 + b0 * g00, a * h00 + b * h10, b0 * g01, a * h01 + b * h11],
+        [k10 / EI, a0 + b0 * p00, k11 / EI, b0 * p01],
+        [b0 * g10, c * h00 + a * h10, a0 + b0 * g11, c * h01 + a * h11],
+        [-mu * k00, b0 * p10, -mu * k01, a0 + b0 * p11],
+    ])
+
+
+def theory_matrices(ar: Arithmetic, consts: dict, lam2) -> np.ndarray:
+    """Transfer matrices ``(B, S, 4, 4)`` of general beam segments at ``lam2`` ``(B,)``."""
+    lam2 = np.asarray(lam2)[:, None]
+    EI, a, b, l = consts["EI"], consts["a"], consts["b"], consts["l"]
+    c = consts["cN"] + consts["rhoI"] * lam2
+    mu = consts["m"] * lam2 + consts["kw"]
+    t = c / EI - b * mu
+    d = mu * (a * a - b * c) / EI
+    # rho >= max|r|, the eigenvalues of G: pieces h with rho h**2 <= 1/2 (a margin for
+    # the float rounding of this bound), the same number of doublings over the batch
+    tu, du = ar.upper(t), ar.upper(d)
+    rho = tu / 2 + np.sqrt(tu * tu / 4 + du)
+    grow = np.sqrt(2.0 * np.max(rho, axis=0, initial=0.0)) * ar.upper(l)
+    steps = np.where(grow > 1.0, np.ceil(np.log2(np.maximum(grow, 1.0))), 0).astype(int)
+    U = None
+    for j in np.unique(steps):
+        cols = np.nonzero(steps == j)[0]
+        sub = slice(None) if len(cols) == steps.size else cols
+        coef = _series(ar, t[:, sub], d[:, sub], l[sub] * (0.5 ** int(j)))
+        for _ in range(int(j)):
+            coef = _double(coef, t[:, sub], d[:, sub])
+        part = _assemble(coef, a[sub], b[sub], c[:, sub], mu[:, sub], EI[sub])
+        if U is None:
+            if len(cols) == steps.size:
+                return part
+            U = np.empty((part.shape[0], steps.size, 4, 4), dtype=part.dtype)
+        U[:, cols] = part
+    return U
+
+
+def transfer_matrices(ar: Arithmetic, kinds, lam2) -> np.ndarray:
+    """``(B, S, 4, 4)`` for segment kinds ``[(family, constants), ...]`` in order.
+
+    ``family`` is ``"eb"`` or ``"theory"``; each family's segments are evaluated together.
+    """
+    parts = []
+    for family, consts in kinds:
+        fn = eb_matrices if family == "eb" else theory_matrices
+        parts.append(fn(ar, consts, lam2))
+    return parts[0] if len(parts) == 1 else np.concatenate(parts, axis=1)

@@ -1,0 +1,241 @@
+"""The dynamic-stiffness kernel: segment stiffness, assembly, banded ``LDL^T``.
+
+Written once for every arithmetic of :mod:`symtmm.numeric.arith` and vectorised
+over a leading axis of points:
+
+* :func:`segment_stiffness`: a segment's 4x4 dynamic stiffness from its transfer
+  matrix, split into displacement and force blocks ``z = [d; f]``, ``d = (Y,
+  Theta)``, ``f = (M, Q)``: ``f0 = U12^-1 (d1 - U11 d0)``, ``f1 = U21 d0 + U22 f0``,
+  the end actions ``(Q0, -M0, -Q1, M1)`` conjugate to ``(Y0, Theta0, Y1, Theta1)``;
+* :func:`assemble`: the upper band of the scaled global ``K(lam)`` from a
+  :class:`~symtmm.numeric.plan.StiffnessPlan`;
+* :func:`factor`: ``LDL^T`` without pivoting on the band, keeping every pivot
+  with its sign and whether that sign can be trusted.
+
+The sign test follows the backward error of ``LDL^T`` (Higham, *Accuracy and
+Stability of Numerical Algorithms*, 2nd ed., thm. 10.? for Cholesky; the same
+argument for ``LDL^T``): the computed factors are exact for ``K + E`` with
+``|E| <= c u |L||D||L^T|``, whose diagonal at ``k`` is ``|K_kk| + sum_p
+|K^(p)_pk|**2 / |d_p|``. That sum is kept per freedom as the elimination goes
+(``O(b)`` work per pivot), and a pivot's sign is trusted when the pivot exceeds
+it by the arithmetic's margin (:meth:`~symtmm.numeric.arith.Arithmetic.decide`);
+balls decide by themselves (a pivot ball holding 0 is undecided).
+
+What the factorisation gives (:class:`Factors`):
+
+* the **count** of negative pivots, which by Sylvester's law of inertia is the
+  number of negative eigenvalues of ``K(omega)``: with no piece reaching a
+  clamped-clamped eigenvalue (``J0 = 0``), the Wittrick–Williams count of the
+  model's natural frequencies below ``omega``;
+* ``Delta(lam) = det K * prod det U12 * P`` (equal to ``det R`` of the transfer
+  formulation): a product of pivots, in logarithms for doubles.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .arith import Arithmetic
+from .segments import stack_matrix, transfer_matrices
+
+__all__ = ["segment_stiffness", "assemble", "factor", "Factors", "dense"]
+
+
+def _mul(X, Y):
+    """Product of 2x2 matrices given as nested lists of arrays."""
+    return [[X[i][0] * Y[0][k] + X[i][1] * Y[1][k] for k in range(2)] for i in range(2)]
+
+
+def segment_stiffness(U):
+    """``(D, det U12)``: dynamic stiffness ``(..., 4, 4)`` of segments from ``U`` ``(..., 4, 4)``.
+
+    Rows are the end actions ``(Q0, -M0, -Q1, M1)``, columns ``(Y0, Theta0, Y1, Theta1)``.
+
+    Examples
+    --------
+    >>> from symtmm.elements import EulerBernoulliSegment
+    >>> U = EulerBernoulliSegment(1, 1, 1).evaluate_numpy(np.array(0.0)).real
+    >>> D, _ = segment_stiffness(U)
+    >>> np.round(D, 12)    # the static beam stiffness matrix
+    array([[ 12.,   6., -12.,   6.],
+           [  6.,   4.,  -6.,   2.],
+           [-12.,  -6.,  12.,  -6.],
+           [  6.,   2.,  -6.,   4.]])
+    """
+    def block(r, c):
+        return [[U[..., r + i, c + k] for k in range(2)] for i in range(2)]
+    U11, U12, U21, U22 = block(0, 0), block(0, 2), block(2, 0), block(2, 2)
+    det = U12[0][0] * U12[1][1] - U12[0][1] * U12[1][0]
+    inv = [[U12[1][1] / det, -U12[0][1] / det], [-U12[1][0] / det, U12[0][0] / det]]
+    A = [[-v for v in row] for row in _mul(inv, U11)]     # f0 = A d0 + inv d1
+    C = [[a + b for a, b in zip(r1, r2)] for r1, r2 in zip(U21, _mul(U22, A))]
+    E = _mul(U22, inv)                                     # f1 = C d0 + E d1
+    f0 = [A[i] + inv[i] for i in range(2)]                 # rows M0, Q0
+    f1 = [C[i] + E[i] for i in range(2)]                   # rows M1, Q1
+    return stack_matrix([f0[1], [-v for v in f0[0]], [-v for v in f1[1]], f1[0]]), det
+
+
+def assemble(plan, ar: Arithmetic, lam2, lam=None):
+    """``(K, det U12)``: the scaled ``K`` in upper band storage ``(B, n, b + 1)`` at ``lam2``.
+
+    ``K[p, r, j]`` is ``K(lam_p)[r, r + j]``. ``det U12`` has one column per segment kind.
+    ``lam`` (the eigenvalue itself) is needed only when the model has dashpots.
+    """
+    t = plan.tables(ar)
+    lam2 = np.asarray(lam2)
+    B = lam2.shape[0]
+    if t["kinds"]:
+        U = transfer_matrices(ar, t["kinds"], lam2)
+        D, det12 = segment_stiffness(U)
+        D = D.reshape(B, -1)
+    else:
+        D = ar.zeros((B, 0), like=lam2)
+        det12 = ar.zeros((B, 0), like=lam2)
+    if lam is None:
+        if plan.damped:
+            raise ValueError("a damped model needs lam, not only lam**2")
+        lam_col = ar.zeros((B, 1), like=lam2)
+    else:
+        lam_col = np.asarray(lam)[:, None]
+    V = np.concatenate([D, np.ones((B, 1), dtype=D.dtype if D.dtype == object else float),
+                        lam_col, lam2[:, None]], axis=1)
+    n, w = plan.n, plan.width
+    K = ar.zeros((B, n * w), like=V)
+    if t["source"].size:
+        vals = V[:, t["source"]] * t["coef"]
+        K[:, t["targets"]] = np.add.reduceat(vals, t["starts"], axis=1)
+    return K.reshape(B, n, w), det12
+
+
+def _update_maps(w: int):
+    """Index arrays of the rank-one update of ``LDL^T`` on the upper band (half-bandwidth ``b``).
+
+    Pivot ``k`` updates ``K[k + i, k + j] -= K[k, k + i] K[k, k + j] / K[k, k]`` for
+    ``1 <= i <= j <= b``: in band storage, row ``k + i``, column ``j - i``.
+    """
+    pairs = [(i, j) for i in range(1, w) for j in range(i, w)]
+    rows = np.array([i for i, _ in pairs], dtype=int)
+    cols = np.array([j - i for i, j in pairs], dtype=int)
+    fi = np.array([i - 1 for i, _ in pairs], dtype=int)
+    fj = np.array([j - 1 for _, j in pairs], dtype=int)
+    return rows, cols, fi, fj
+
+
+@dataclass(frozen=True)
+class Factors:
+    """``LDL^T`` of ``K`` at a batch of points, and what follows from it.
+
+    Attributes
+    ----------
+    pivots : numpy.ndarray
+        ``(B, n)``: the ``D`` of ``LDL^T`` (of the scaled ``K``).
+    signs : numpy.ndarray
+        ``(B, n)``: their signs (0 for complex ``K``).
+    decided : numpy.ndarray
+        ``(B, n)``: whether each sign (or, complex, the pivot's distance from 0) is trusted.
+    det12 : numpy.ndarray
+        ``(B, kinds)``: ``det U12`` of every segment kind.
+    """
+
+    plan: object
+    ar: Arithmetic
+    pivots: np.ndarray
+    signs: np.ndarray
+    decided: np.ndarray
+    det12: np.ndarray
+
+    @property
+    def trusted(self) -> np.ndarray:
+        """Per point: every pivot decided."""
+        return np.all(self.decided, axis=1)
+
+    def counts(self) -> np.ndarray:
+        """Per point the number of negative eigenvalues of ``K``, ``-1`` where undecided."""
+        negative = np.sum(self.signs < 0, axis=1)
+        return np.where(self.trusted, negative, -1)
+
+    def log_delta(self):
+        """``(log|Delta|, arg Delta)`` per point as floats (``arg`` in ``(-pi, pi]``)."""
+        ar = self.ar
+        la, ph = ar.log_abs_arg(self.pivots)
+        la12, ph12 = ar.log_abs_arg(self.det12)
+        mult = self.plan.multiplicity
+        logabs = la.sum(axis=1) + (la12 * mult).sum(axis=1) + self.plan.log_constant
+        phase = ph.sum(axis=1) + (ph12 * mult).sum(axis=1)
+        return logabs, np.angle(np.exp(1j * phase))
+
+    def delta(self) -> np.ndarray:
+        """``Delta`` per point as numbers of the arithmetic (mpmath numbers or balls)."""
+        ar, plan = self.ar, self.plan
+        with ar:
+            const = ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
+            out = []
+            for p in range(self.pivots.shape[0]):
+                value = const
+                for v in self.pivots[p]:
+                    value = value * v
+                for v, m in zip(self.det12[p], plan.multiplicity):
+                    value = value * v ** int(m)
+                out.append(value)
+        return ar.array(out)
+
+
+def factor(plan, ar: Arithmetic, lam2, lam=None) -> Factors:
+    """``LDL^T`` of ``K(lam)`` at the points ``lam2`` ``(B,)`` (``lam`` with dashpots).
+
+    Without pivoting: the pivots are those of the leading principal minors, so
+    their signs give the inertia (Sylvester). A pivot whose sign is not trusted is
+    replaced by 1 to carry on with the other points; that point's results are
+    marked undecided.
+    """
+    with ar:
+        K, det12 = assemble(plan, ar, lam2, lam)
+        return _ldl(plan, ar, K, det12)
+
+
+def _ldl(plan, ar: Arithmetic, K, det12) -> Factors:
+    B, n, w = K.shape
+    if n == 0:
+        return Factors(plan, ar, ar.zeros((B, 0), like=K), np.zeros((B, 0), dtype=np.int8),
+                       np.ones((B, 0), dtype=bool), det12)
+    # in place on a copy padded with zero rows: afterwards row k holds d_k and d_k L[k+j, k]
+    Kb = np.concatenate([K, ar.zeros((B, w, w), like=K)], axis=1)
+    rows, cols, fi, fj = _update_maps(w)
+    exact_zero_possible = Kb.dtype == object and not ar.rigorous
+    with np.errstate(all="ignore"):
+        for k in range(n):
+            piv = Kb[:, k, 0]
+            if exact_zero_possible:
+                zero = np.array([v == 0 for v in piv], dtype=bool)
+                if zero.any():              # (mpmath refuses to divide by an exact 0)
+                    piv = piv.copy()
+                    piv[zero] = ar.exact(1)
+            if w > 1:
+                row = Kb[:, k, 1:]
+                f = row / piv[:, None]
+                Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
+        pivots = Kb[:, :n, 0]
+        # the diagonal of |L||D||L^T| bounds what rounding can do to each pivot
+        scale = ar.upper(K[:, :, 0]).astype(float)
+        mag = ar.upper(pivots).astype(float)
+        for j in range(1, w):
+            if n > j:
+                r = ar.upper(Kb[:, :n - j, j]).astype(float)
+                scale[:, j:] += r * r / np.maximum(mag[:, :n - j], 1e-300)
+    signs, decided = ar.decide(pivots, scale, n)
+    # a pivot after an undecided one is meaningless: the point is undecided from there on
+    decided = np.logical_and.accumulate(decided, axis=1)
+    return Factors(plan, ar, pivots, signs, decided, det12)
+
+
+def dense(plan, K) -> np.ndarray:
+    """The symmetric ``(B, n, n)`` matrices of a band ``K`` ``(B, n, b + 1)`` (for checks)."""
+    B, n, w = K.shape
+    out = np.zeros((B, n, n), dtype=K.dtype)
+    for r in range(n):
+        for j in range(min(w, n - r)):
+            out[:, r, r + j] = K[:, r, j]
+            out[:, r + j, r] = K[:, r, j]
+    return out
