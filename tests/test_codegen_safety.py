@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import sympy as sp
 
 from symtmm.codegen import LANGUAGES, generate
 from symtmm.compile import Evaluator
@@ -355,3 +356,242 @@ def test_command_line_writes_inert_headers(lang, tmp_path):
     head, _ = _split_header(out.read_text(), lang)
     assert all(_inert(line, lang) for line in head)
     assert any("symtmm_pwn" in line for line in head)  # shown, as data
+
+
+# --- parameter names -------------------------------------------------------------------
+
+# Names that mean something to a language or to the generated code: keywords, builtins,
+# macros, the code's locals and globals, case twins for Fortran.
+COLLIDING_NAMES = [
+    "complex", "float", "int", "range", "len", "sum", "min", "max", "abs", "sqrt", "exp",
+    "log", "np", "numpy", "I", "J", "E", "e", "K", "k", "end", "function", "lam", "lam2",
+    "lam_re", "delta_re", "pi", "i", "j", "D", "R", "U", "U1", "th0", "nu1", "s0", "core",
+    "steps", "logscale", "grown", "NS", "NU_STEP", "NAN", "M_PI", "HUGE_VAL", "linux",
+    "unix", "double", "void", "register", "restrict", "dp", "ns", "real", "cmplx",
+    "module", "contains", "intent", "value", "zeros", "Int", "Float64", "im", "nargin",
+    "ans", "varargin", "True", "None", "lambda", "def", "if", "in", "p_I", "symtmm_delta",
+    "_hidden", "x" * 80,
+]
+# Names a symbol built in Python can have and a model file cannot.
+HOSTILE_NAMES = ["K */ int symtmm_pwn(void){return 1;} /*", "a\nb", "x y", "Träger",
+                 "=# run(`id`) #=", "c; system('id')"]
+
+
+def _named_model(names, values=None):
+    """One beam whose ground spring has k = sum (i + 1) P_i / n; the first P also in EI.
+
+    Each parameter enters with its own weight, so that arguments passed in the
+    wrong order give another Delta. ``values`` (exact) substitute the symbols.
+    """
+    symbols = [sp.Symbol(n) if n == "I" else sp.Symbol(n, positive=True) for n in names]
+    terms = values if values is not None else symbols
+    k = sum((i + 1) * t for i, t in enumerate(terms)) / len(terms)
+    return Model((Beam("a", EI=1 + terms[0] / 10, m=1, L=1, left="pinned", right="pinned"),),
+                 (Spring("a", "ground", x="3/10", k=k),), title="names")
+
+
+def _values(n):
+    return [sp.Rational(100 + 37 * i, 100) for i in range(n)]
+
+
+@pytest.fixture(scope="module")
+def named_case():
+    names = COLLIDING_NAMES + HOSTILE_NAMES
+    values = _values(len(names))
+    model = _named_model(names)
+    reference = _reference(_named_model(names, values))
+    # arguments come in the alphabetical order of the parameters' names
+    order = sorted(range(len(names)), key=lambda i: names[i])
+    assert list(model.free_symbols) == [names[i] for i in order]
+    return model, [float(values[i]) for i in order], reference
+
+
+def _signature_args(src: str, lang: str) -> list:
+    pattern = {"c": r"void symtmm_delta\(([^)]*)\)", "python": r"def symtmm_delta\(([^)]*)\)",
+               "octave": r"function d = symtmm_delta\(([^)]*)\)",
+               "julia": r"function symtmm_delta\(([^)]*)\)",
+               "fortran": r"subroutine symtmm_delta\(([^)]*)\)"}[lang]
+    text = re.sub(r"&\s*\n\s*", "", re.search(pattern, src, re.S).group(1))
+    args = [a.strip().split()[-1].split("::")[0].lstrip("*") for a in text.split(",")]
+    return {"c": args[2:-2], "fortran": args[2:-2]}.get(lang, args[1:])
+
+
+@pytest.mark.parametrize("lang", LANGUAGES)
+def test_arguments_are_distinct_safe_identifiers(lang, named_case):
+    model, _, _ = named_case
+    src = generate(model, lang)
+    args = _signature_args(src, lang)
+    assert len(args) == len(model.free_symbols)
+    folded = [a.lower() if lang == "fortran" else a for a in args]
+    assert len(set(folded)) == len(folded)
+    assert all(re.fullmatch(r"[A-Za-z][A-Za-z_0-9]{0,62}", a) for a in args), args
+    head, _ = _split_header(src, lang)
+    # the comments' text, with wrapped lines joined
+    header = re.sub(r"\s+", " ", " ".join(re.sub(r"^\s*[*!%#]", "", ln) for ln in head))
+    for name, arg in zip(model.free_symbols, args):
+        if arg != name:      # every renamed argument is listed with its parameter
+            assert f"{arg} (parameter " in header
+    # C, Fortran, Octave and Python call complex(...) or declare complex; Julia does not
+    assert ("p_complex (parameter complex)" in header) == (lang != "julia")
+    assert all(_inert(line, lang) for line in head)
+
+
+@pytest.mark.parametrize("lang", ["c", "fortran"])
+def test_compiled_arguments_with_colliding_names_evaluate_delta(lang, named_case, tmp_path):
+    model, args, reference = named_case
+    lib = _compile_shared(lang, generate(model, lang), tmp_path)
+    got = _call(lib, len(args))(LAMS, *args)
+    assert np.max(np.abs(got / reference - 1)) < 1e-12
+
+
+def test_python_arguments_with_colliding_names_evaluate_delta(named_case):
+    model, args, reference = named_case
+    namespace: dict = {}
+    exec(generate(model, "python"), namespace)  # noqa: S102 - the generated module
+    got = namespace["symtmm_delta"](LAMS, *args)
+    assert np.max(np.abs(got / reference - 1)) < 1e-12
+    # keyword arguments: a parameter keeps its name unless that name is taken
+    src = generate(_named_model(["K", "x1"]), "python")
+    assert "def symtmm_delta(lam, K, x1):" in src
+
+
+def test_octave_arguments_with_colliding_names_evaluate_delta(named_case, tmp_path):
+    octave = shutil.which("octave-cli") or shutil.which("octave")
+    if octave is None:
+        pytest.skip("Octave is not installed")
+    model, args, reference = named_case
+    (tmp_path / "symtmm_delta.m").write_text(generate(model, "octave"))
+    lam = "[" + ", ".join(f"complex({float(z.real)!r}, {float(z.imag)!r})" for z in LAMS) + "]"
+    call = ", ".join([lam] + [repr(a) for a in args])
+    proc = subprocess.run([octave, "--no-gui", "--quiet", "--no-window-system", "--eval",
+                           f"d = symtmm_delta({call}); printf('%.17g %.17g\\n', "
+                           "[real(d); imag(d)])"],
+                          check=False, capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    got = np.array([complex(*map(float, ln.split())) for ln in proc.stdout.split("\n")
+                    if ln.strip()])
+    assert np.max(np.abs(got / reference - 1)) < 1e-12
+
+
+# Julia's keywords (the manual's list, Julia 1.11) and names of Base the generated code
+# calls: checked on the text, and run when julia is installed.
+JULIA_KEYWORDS = {"baremodule", "begin", "break", "catch", "const", "continue", "do", "else",
+                  "elseif", "end", "export", "false", "finally", "for", "function", "global",
+                  "if", "import", "let", "local", "macro", "module", "public", "quote",
+                  "return", "struct", "true", "try", "using", "while", "abstract", "mutable",
+                  "primitive", "type", "where", "in", "isa", "outer"}
+
+
+def test_julia_arguments_with_colliding_names(named_case, tmp_path):
+    model, args, reference = named_case
+    src = generate(model, "julia")
+    names = _signature_args(src, "julia")
+    assert not set(names) & JULIA_KEYWORDS
+    body = src[src.index("function symtmm_delta("):]
+    body = re.sub(r"#[^\n]*", "", body[body.index("\n"):])
+    for used in ("abs", "exp", "log", "zeros", "max", "ceil", "Int", "Float64", "ComplexF64",
+                 "transpose", "lam", "lam2", "D", "E"):
+        assert used in re.findall(r"\b\w+\b", body) and used not in names
+    julia = shutil.which("julia")
+    if julia is None:
+        return
+    (tmp_path / "delta.jl").write_text(src)
+    call = ", ".join(repr(a) for a in args)
+    lines = "; ".join(f"d = symtmm_delta(ComplexF64({float(z.real)!r}, {float(z.imag)!r}), "
+                      f"{call}); println(real(d), \" \", imag(d))" for z in LAMS)
+    proc = subprocess.run([julia, "--startup-file=no", "-e", f'include("delta.jl"); {lines}'],
+                          check=False, capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    got = np.array([complex(*map(float, ln.split())) for ln in proc.stdout.split("\n")
+                    if ln.strip()])
+    assert np.max(np.abs(got / reference - 1)) < 1e-12
+
+
+def test_c_names_avoid_every_macro_of_the_included_headers(tmp_path):
+    """The object-like macros <complex.h> and <math.h> define, as gcc sees them, strict
+    and GNU: a parameter with such a name (linux, M_PI, HUGE_VALF, CMPLX) is renamed."""
+    from symtmm.codegen import _argument_names
+
+    compiler = shutil.which("gcc") or shutil.which("cc")
+    if compiler is None:
+        pytest.skip("no C compiler")
+    (tmp_path / "h.c").write_text("#include <complex.h>\n#include <math.h>\n")
+    macros = set()
+    for flags in (["-std=c99"], ["-std=gnu99"], ["-std=gnu11", "-D_GNU_SOURCE"]):
+        out = subprocess.run([compiler, *flags, "-dM", "-E", str(tmp_path / "h.c")],
+                             check=True, capture_output=True, text=True).stdout
+        macros |= {m for m in re.findall(r"^#define (\w+)", out, re.M) if not m.startswith("_")}
+    assert {"I", "complex", "NAN", "linux"} <= macros
+    kept = [m for m in sorted(macros) if _argument_names([m], "c") == [m]]
+    assert kept == []
+
+
+def test_python_names_avoid_every_builtin_and_keyword():
+    import builtins
+    import keyword
+
+    from symtmm.codegen import _argument_names
+
+    names = sorted(n for n in dir(builtins) if n[:1].islower()) + keyword.kwlist
+    kept = [n for n in names if _argument_names([n], "python") == [n]]
+    assert kept == []
+
+
+def test_octave_names_avoid_every_keyword():
+    from symtmm.codegen import _argument_names
+
+    octave = shutil.which("octave-cli") or shutil.which("octave")
+    if octave is None:
+        pytest.skip("Octave is not installed")
+    proc = subprocess.run([octave, "--no-gui", "--quiet", "--eval",
+                           "k = iskeyword(); printf('%s\\n', k{:});"],
+                          check=False, capture_output=True, text=True, timeout=120)
+    keywords = [k for k in proc.stdout.split() if k]
+    assert "endfunction" in keywords
+    kept = [k for k in keywords if _argument_names([k], "octave") == [k]]
+    assert kept == []
+
+
+NAMES_FILE = """
+[parameters]
+complex = 2
+int = 3
+range = 0.5
+end = 1.5
+I = 4
+E = 1.25
+lam = 7
+np = 0.75
+[[beam]]
+name = "a"
+EI = "E"
+m = "np + end/3"
+L = 1
+left = "pinned"
+right = "pinned"
+[[spring]]
+between = ["a", "ground"]
+x = "range/2"
+k = "complex*int + I*lam"
+"""
+
+
+def test_command_line_python_with_builtin_names_evaluates_delta(tmp_path):
+    """The report: parameters called complex, int, range ... broke the generated Python."""
+    from symtmm.modelfile import loads
+
+    path = tmp_path / "names.toml"
+    path.write_text(NAMES_FILE)
+    out = tmp_path / "delta.py"
+    symbolic = "complex,int,range,end,I,E,lam,np"
+    proc = subprocess.run([sys.executable, "-m", "symtmm", "codegen", str(path), "--lang",
+                           "python", "--symbolic", symbolic, "-o", str(out)],
+                          check=False, capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    model = loads(NAMES_FILE)
+    spec = importlib.util.spec_from_file_location("names_delta", out)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    values = {n: float(model.parameters[n]) for n in sorted(symbolic.split(","))}
+    got = module.symtmm_delta(LAMS, *values.values())
+    assert np.max(np.abs(got / _reference(model) - 1)) < 1e-12
