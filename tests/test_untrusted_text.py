@@ -138,3 +138,102 @@ def test_any_text_becomes_safe(text):
     assert re.fullmatch(r"[\x20-\x7e]*", out)
     for seq in COMMENT_BREAKERS:
         assert seq not in out
+
+
+# --- strings given to the Python API ---------------------------------------------------
+
+
+def _never_sympify(monkeypatch):
+    """Make any sympify of a string fail loudly (sympify hands strings to parse_expr)."""
+    import sympy.parsing.sympy_parser as sympy_parser
+
+    def refuse(*args, **kwargs):
+        raise AssertionError(f"a string reached sympify: {args[:1]!r}")
+
+    monkeypatch.setattr(sympy_parser, "parse_expr", refuse)
+
+
+def _beam_model(**parameters):
+    from symtmm.model import Beam, Model
+
+    return Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                 parameters=parameters or {"K": 3, "k": "2*K"})
+
+
+@pytest.mark.parametrize("text", ["__import__('os').system('touch symtmm_payload_ran')",
+                                  "__import__(os)", "lambda: 1", "K.__class__", "open('x')",
+                                  "1 if K else 2", "[K]", "K; K", "K\n+1e400**1e400"])
+def test_model_value_reads_strings_with_the_restricted_parser(text, tmp_path, monkeypatch):
+    from symtmm.errors import ModelError
+
+    monkeypatch.chdir(tmp_path)
+    _never_sympify(monkeypatch)
+    model = _beam_model()
+    with pytest.raises(ModelError) as info:
+        model.value(text)
+    assert "\n" not in str(info.value)
+    assert not (tmp_path / "symtmm_payload_ran").exists()
+
+
+def test_model_value_of_strings_and_numbers_is_exact(monkeypatch):
+    import sympy as sp
+
+    from symtmm.errors import ModelError
+
+    _never_sympify(monkeypatch)
+    model = _beam_model()
+    assert model.value("k/4 + 0.5") == 2
+    assert model.value("sqrt(K**2)*pi") == 3 * sp.pi
+    assert model.value(0.3) == sp.Rational(3, 10)
+    assert model.value(7) == 7
+    with pytest.raises(ModelError):
+        model.value(True)
+    with pytest.raises(ModelError):
+        model.value(object())
+
+
+def test_mode_coordinates_given_as_strings_never_reach_sympify(monkeypatch, tmp_path):
+    from symtmm.errors import ModelError
+    from symtmm.modes import evaluate_mode, shapes_at
+    from symtmm.solve import solve
+
+    model = _beam_model(K=1)
+    (shape,) = shapes_at(model, solve(model, count=1)[0], points=3)
+    monkeypatch.chdir(tmp_path)
+    _never_sympify(monkeypatch)
+    exact = evaluate_mode(model, shape, "b", ["1/4"])
+    assert exact[0, 0] == pytest.approx(evaluate_mode(model, shape, "b", [0.25])[0, 0])
+    with pytest.raises(ModelError):
+        evaluate_mode(model, shape, "b", ["__import__('os').system('touch symtmm_payload_ran')"])
+    assert not (tmp_path / "symtmm_payload_ran").exists()
+
+
+# --- names in models -------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("kind", ["parameter", "beam", "body"])
+def test_a_name_ending_in_a_newline_is_invalid(kind):
+    """A name matched with "$" could end in a newline and split messages in two."""
+    from symtmm.errors import ModelError
+    from symtmm.model import Attachment, Beam, RigidBody
+
+    with pytest.raises(ModelError) as info:
+        if kind == "parameter":
+            _beam_model(**{"K\n": 1})
+        elif kind == "beam":
+            Beam("a\n", EI=1, m=1, L=1)
+        else:
+            RigidBody("r\n", (Attachment("a", 0),))
+    assert "\n" not in str(info.value) and "\\n" in str(info.value)
+
+
+@pytest.mark.parametrize("name", ["pi", "sqrt"])
+def test_parameters_cannot_take_the_names_expressions_reserve(name):
+    """k = "pi" means pi: a parameter called pi would be silently ignored."""
+    from symtmm.errors import ModelError
+    from symtmm.modelfile import loads
+
+    text = (f"[parameters]\n{name} = 3\n[[beam]]\nname = 'a'\nEI = 1\nm = 1\nL = 1\n"
+            "left = 'pinned'\nright = 'pinned'\n")
+    with pytest.raises(ModelError, match=f"parameters.{name}: '{name}' means {name}"):
+        loads(text, source="m.toml")
