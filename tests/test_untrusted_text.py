@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import itertools
 import re
+import subprocess
+import sys
 
 import pytest
 from hypothesis import given, settings
@@ -237,3 +239,139 @@ def test_parameters_cannot_take_the_names_expressions_reserve(name):
             "left = 'pinned'\nright = 'pinned'\n")
     with pytest.raises(ModelError, match=f"parameters.{name}: '{name}' means {name}"):
         loads(text, source="m.toml")
+
+
+# --- the terminal ----------------------------------------------------------------------
+
+ANSI_TITLE = "two beams \x1b[2J\x1b[31mRED\x1b]0;pwned\x07\nfake line\r\u2028end"
+ANSI_TITLE_TOML = ('"two beams \\u001b[2J\\u001b[31mRED\\u001b]0;pwned\\u0007\\nfake line'
+                   '\\r\\u2028end"')
+
+MODEL_TOML = """title = TITLE
+[parameters]
+K = 10
+[[beam]]
+name = "a"
+EI = 1
+m = 1
+L = 1
+left = "pinned"
+right = "pinned"
+[[spring]]
+between = ["a", "ground"]
+x = 0.5
+k = "K"
+"""
+
+COMMANDS = {
+    "solve": ["solve", "MODEL", "--count", "2"],
+    "solve-json": ["solve", "MODEL", "--count", "1", "--json"],
+    "derive": ["derive", "MODEL"],
+    "modes": ["modes", "MODEL", "--count", "1", "--points", "3"],
+    "scan": ["scan", "MODEL", "--omega-max", "5", "--points", "20", "--no-eigenvalues"],
+    "sweep": ["sweep", "MODEL", "--param", "K", "--from", "1", "--to", "2", "--steps", "2",
+              "--count", "1", "--jobs", "1", "--no-progress"],
+}
+
+
+def _terminal_safe(out: str) -> bool:
+    return all(ch.isprintable() or ch == "\n" for ch in out)
+
+
+@pytest.fixture
+def ansi_model(tmp_path):
+    path = tmp_path / "ansi.toml"
+    path.write_text(MODEL_TOML.replace("TITLE", ANSI_TITLE_TOML), encoding="utf-8")
+    return str(path)
+
+
+@pytest.mark.parametrize("command", list(COMMANDS))
+def test_every_command_prints_a_hostile_title_as_one_escaped_line(command, ansi_model, capsys):
+    from symtmm.cli import main
+
+    argv = [ansi_model if a == "MODEL" else a for a in COMMANDS[command]]
+    assert main(argv) == 0
+    out, err = capsys.readouterr()
+    assert _terminal_safe(out) and _terminal_safe(err), ascii(out)
+    if command.endswith("json"):
+        import json
+
+        assert json.loads(out)["model"] == ansi_model        # JSON keeps the data exactly
+    else:
+        assert out.split("\n")[0] == printable(ANSI_TITLE)
+        assert "fake line" not in out.split("\n")[1]
+
+
+def test_solve_title_through_the_command_line(ansi_model):
+    proc = subprocess.run([sys.executable, "-m", "symtmm", "solve", ansi_model, "--count", "2"],
+                          check=False, capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    assert "\x1b" not in proc.stdout and "\r" not in proc.stdout
+    assert proc.stdout.split("\n")[0] == (
+        "two beams \\x1b[2J\\x1b[31mRED\\x1b]0;pwned\\x07\\nfake line\\r\\u2028end")
+
+
+BAD_INPUTS = {
+    "beam name with a newline": MODEL_TOML.replace('name = "a"', 'name = "a\\nb"'),
+    "key with a newline and escapes": MODEL_TOML + '"bad\\nkey\\u001b[2J" = 1\n',
+    "parameter name with a newline": MODEL_TOML.replace("K = 10", '"K\\n\\u001b[31m" = 10'),
+    "spring beam with a newline": MODEL_TOML.replace('["a", "ground"]', '["a\\n\\r", "ground"]'),
+    "value with a newline": MODEL_TOML.replace("K = 10", 'K = "1 +\\n\\u001b[2J"'),
+    "boundary with escapes": MODEL_TOML.replace('left = "pinned"', 'left = "\\u001b[2Jx\\ny"'),
+}
+
+
+@pytest.mark.parametrize("case", list(BAD_INPUTS))
+def test_bad_input_gives_one_escaped_line_and_exit_code_2(case, tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text(BAD_INPUTS[case].replace("TITLE", '"t"'), encoding="utf-8")
+    proc = subprocess.run([sys.executable, "-m", "symtmm", "solve", str(path)],
+                          check=False, capture_output=True, text=True)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.count("\n") == 1 and proc.stderr.endswith("\n"), proc.stderr
+    assert _terminal_safe(proc.stderr) and "Traceback" not in proc.stderr
+    assert proc.stderr.startswith(f"symtmm: {path}: ")
+
+
+def test_bad_input_in_process_is_one_line(tmp_path, capsys):
+    from symtmm.cli import main
+
+    path = tmp_path / "bad.toml"
+    path.write_text(BAD_INPUTS["beam name with a newline"].replace("TITLE", '"t"'))
+    assert main(["solve", str(path)]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1
+    assert "invalid name 'a\\nb'" in err
+
+
+@pytest.mark.parametrize("argv", [
+    ["solve", "MODEL", "--set", "x\x1b[2J\ny=1"],
+    ["solve", "MODEL", "--method", "f\x1b[31m\nmin"],
+    ["codegen", "MODEL", "--lang", "c\x1b[2J\nx"],
+    ["solve", "MODEL", "--count", "\x1b[2J\n3"],
+    ["solve", "no\nsuch\x1b[2J.toml"],
+    ["sweep", "MODEL", "--param", "K\x1b[2J\nx", "--from", "1", "--to", "2", "--steps", "2"],
+])
+def test_command_line_arguments_are_escaped_in_errors(argv, ansi_model):
+    argv = [ansi_model if a == "MODEL" else a for a in argv]
+    proc = subprocess.run([sys.executable, "-m", "symtmm", *argv],
+                          check=False, capture_output=True, text=True)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.count("\n") == 1, proc.stderr
+    assert _terminal_safe(proc.stderr) and "\\x1b" in proc.stderr
+
+
+def test_standard_output_is_filtered_while_a_command_runs(capsys):
+    """The filter itself: whatever a command prints, only newlines and tabs pass raw."""
+    import io
+
+    from symtmm.cli import _PrintableStream
+
+    buffer = io.StringIO()
+    stream = _PrintableStream(buffer)
+    print("row\x1b[2J\tcell\r\u2028", file=stream)
+    assert buffer.getvalue() == "row\\x1b[2J\tcell\\r\\u2028\n"
+    ascii_out = io.TextIOWrapper(io.BytesIO(), encoding="ascii")
+    _PrintableStream(ascii_out).write("Träger")       # no UnicodeEncodeError
+    ascii_out.flush()
+    assert ascii_out.buffer.getvalue() == b"Tr\\xe4ger"
