@@ -111,6 +111,7 @@ from .characteristic import _check_order, _prepare
 from .compile import NU_STEP
 from .elements import STATE, BeamSegment
 from .elements.base import LAM
+from .errors import ModelError
 from .text import comment_text
 
 __all__ = ["EXTENSIONS", "LANGUAGES", "generate"]
@@ -226,8 +227,16 @@ _NUMBERED = re.compile(r"^(?:[Usn]|th|nu)\d+$")
 
 
 def _float_literal(value) -> str:
-    """Shortest decimal that reads back as the double nearest the exact value."""
-    return repr(float(sp.N(sp.sympify(value), 30)))
+    """Shortest decimal that reads back as the double nearest the exact value.
+
+    A value beyond the double range is refused: its repr, ``inf`` or ``nan``,
+    would be read as a name by every language but Octave.
+    """
+    number = float(sp.N(sp.sympify(value), 30))
+    if not math.isfinite(number):
+        raise ModelError(f"a constant of the model, {sp.N(sp.sympify(value), 6)}, lies beyond "
+                         "the range of double precision: it cannot be written as a double")
+    return repr(number)
 
 
 def _argument_names(params, lang: str, used=()) -> list:

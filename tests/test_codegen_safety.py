@@ -595,3 +595,13 @@ def test_command_line_python_with_builtin_names_evaluates_delta(tmp_path):
     values = {n: float(model.parameters[n]) for n in sorted(symbolic.split(","))}
     got = module.symtmm_delta(LAMS, *values.values())
     assert np.max(np.abs(got / _reference(model) - 1)) < 1e-12
+
+
+@pytest.mark.parametrize("lang", LANGUAGES)
+def test_a_constant_beyond_the_double_range_is_refused(lang):
+    """Its repr, inf, would be a name in the code (one a parameter could have been)."""
+    from symtmm.errors import ModelError
+
+    model = Model((Beam("a", EI="10**400", m=1, L=1, left="pinned", right="pinned"),))
+    with pytest.raises(ModelError, match="beyond the range of double precision"):
+        generate(model, lang)
