@@ -17,6 +17,11 @@ define a symbol. For every language and every text the tests check that
   benign module's top-level names and evaluates the right Delta;
 * Octave runs it, prints nothing else and creates no marker (when installed);
   Julia runs it when installed, and its text is checked otherwise.
+
+Parameter names that collide with keywords, builtins, macros or the code's own
+names (and symbol names no model file allows) must become distinct safe
+arguments, listed in the header, with which every language evaluates the
+Delta of the model with the values substituted.
 """
 
 from __future__ import annotations
