@@ -4,6 +4,12 @@ Each command lives in its own module of :mod:`symtmm.commands`, with
 ``HELP`` (one line), ``add_arguments(parser)`` and ``run(args) -> int``.
 Errors in the input print one line on stderr and exit with 2; a computation
 that fails exits with 1. Neither prints a traceback.
+
+Text from model files and command lines (titles, names, keys, paths) reaches
+the terminal only through :func:`symtmm.text.printable`: standard output is
+filtered while a command runs (newlines and tabs of tables and JSON kept,
+every other control character shown as an escape such as ``\\x1b``), and
+error messages and titles are escaped to one line.
 """
 
 from __future__ import annotations
@@ -15,15 +21,57 @@ import sys
 
 from . import __version__, commands
 from .errors import ComputationError, ModelError
+from .text import printable
 
-__all__ = ["main", "load_model_arg", "add_model_arguments", "positive_int", "nonnegative"]
+__all__ = ["main", "load_model_arg", "add_model_arguments", "positive_int", "nonnegative",
+           "title_line"]
 
 
 class _Parser(argparse.ArgumentParser):
     """An argument parser whose errors are one line, exit code 2."""
 
     def error(self, message):
-        self.exit(2, f"{self.prog}: error: {message}\n")
+        # the message quotes the command line, which may carry escapes or newlines
+        self.exit(2, f"{self.prog}: error: {printable(message)}\n")
+
+
+class _PrintableStream:
+    """A text stream that shows every control character it is given as an escape.
+
+    Newlines and tabs pass (tables, JSON); anything else a terminal would act
+    on (escape sequences, carriage returns, line separators) is written as
+    :func:`symtmm.text.printable` spells it, and what the stream's encoding
+    cannot encode as a backslash escape rather than an exception.
+    """
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def write(self, text):
+        safe = printable(text, multiline=True)
+        encoding = getattr(self._stream, "encoding", None)
+        if encoding:
+            safe = safe.encode(encoding, "backslashreplace").decode(encoding)
+        self._stream.write(safe)
+        return len(text)
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+def title_line(text) -> str:
+    r"""A title or path as one line for the terminal: newlines too shown as escapes.
+
+    Examples
+    --------
+    >>> print(title_line("two beams\n\x1b[2Jcleared"))
+    two beams\n\x1b[2Jcleared
+    """
+    return printable(text)
+
+
+def _error(text: str) -> None:
+    print(printable(text), file=sys.stderr)
 
 
 def load_model_arg(args):
@@ -83,24 +131,29 @@ def main(argv=None) -> int:
     """Entry point; returns the exit code."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    stdout = sys.stdout
+    # every printing path of every command goes through this one filter
+    sys.stdout = _PrintableStream(stdout)
     try:
         return args._run(args)
     except ModelError as exc:
-        print(f"symtmm: {exc}", file=sys.stderr)
+        _error(f"symtmm: {exc}")
         return 2
     except ComputationError as exc:
-        print(f"symtmm: computation failed: {exc}", file=sys.stderr)
+        _error(f"symtmm: computation failed: {exc}")
         return 1
     except KeyboardInterrupt:
-        print("symtmm: interrupted", file=sys.stderr)
+        _error("symtmm: interrupted")
         return 130
     except BrokenPipeError:
         # the reader went away (`symtmm solve ... | head`): stop quietly, as Unix tools do
         import os
 
         devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
+        os.dup2(devnull, stdout.fileno())
         return 0
+    finally:
+        sys.stdout = stdout
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -44,6 +44,12 @@ Common subexpressions of the parameters are computed once (:func:`sympy.cse`),
 identical segments share one matrix, and constants are printed with 17
 significant digits (exact to double precision).
 
+The header comment names the model (its file, title and parameter values)
+and the method. That text comes from the model file and is data: every line
+goes through :func:`symtmm.text.comment_text` (printable ASCII, one line, no
+sequence that ends or opens a comment in any of the languages), and the
+Python file carries it as ``#`` comments rather than in its docstring.
+
 Signatures (the command-line contract)
 --------------------------------------
 * C99: ``void symtmm_delta(double lam_re, double lam_im, [double P, ...]
@@ -56,9 +62,14 @@ Signatures (the command-line contract)
 
 ``P, ...`` are the model's parameters left symbolic, in alphabetical order.
 An argument keeps the parameter's name unless that name means something in
-the language or in the generated code (``I`` in C, ``E`` in Fortran, which
-ignores case, ``end`` in Julia); it is then called ``p_NAME`` (the header
-says so). The order of the cuts along the beams is fixed when the code is
+the language or in the generated code: a keyword, a macro of the included C
+headers (``I``, ``NAN``, ``linux``), a builtin the code would lose
+(``complex``, ``range`` in Python), any name the evaluator itself uses, read
+from the code generated for the model (``E`` in Fortran, which ignores case,
+``sqrt``, ``lam``), or a name that is no ASCII identifier; it is then called
+``p_NAME`` (characters other than letters, digits and ``_`` replaced by
+``_``, at most 63 characters), and the header says which parameter it stands
+for. The order of the cuts along the beams is fixed when the code is
 generated; values that would reverse it (a segment of negative length) give
 ``NaN``.
 
@@ -89,6 +100,7 @@ from __future__ import annotations
 import keyword
 import math
 import re
+import textwrap
 from dataclasses import dataclass, field, replace
 
 import sympy as sp
@@ -99,6 +111,8 @@ from .characteristic import _check_order, _prepare
 from .compile import NU_STEP
 from .elements import STATE, BeamSegment
 from .elements.base import LAM
+from .errors import ModelError
+from .text import comment_text
 
 __all__ = ["EXTENSIONS", "LANGUAGES", "generate"]
 
@@ -113,8 +127,11 @@ SERIES_TERMS = 16
 #: k/(2k)! < 1e-18 beyond, the error for max|r| h**2 <= 1).
 THEORY_TERMS = 14
 
-# Names in scope in the generated symtmm_delta, per language: its locals, the
-# file's own globals, and what the language gives a meaning there.
+# Names an argument of the generated symtmm_delta must not take, per language: what
+# the language gives a meaning (keywords, macros of the headers the C file includes,
+# builtins an argument would shadow) and the code's own locals and globals. The code's
+# own names are also read from the code itself (_code_names), so that a name the
+# emitters start to use is avoided without being listed here.
 _COMMON = {"lam", "lam2", "D", "E", "R", "logscale"}
 _RESERVED = {
     "c": _COMMON | {"lam_re", "lam_im", "delta_re", "delta_im", "U", "d", "s", "n", "nsub",
@@ -154,17 +171,86 @@ _RESERVED = {
                          "grown"}
     | set(keyword.kwlist),
 }
+# C: every keyword up to C23 and GNU's, the object-like macros of <complex.h> and
+# <math.h> (glibc in any mode, other C libraries' SVID names) and the system names
+# compilers predefine outside strict ISO mode (`gcc -std=gnu99` defines linux = 1);
+# the M_, FP_, HUGE_VAL, SNAN, CMPLX and MATH_ERR families by their prefix below.
+_RESERVED["c"] |= {
+    "_Bool", "_Complex", "_Imaginary", "alignas", "alignof", "asm", "bool", "constexpr",
+    "false", "fortran", "nullptr", "static_assert", "thread_local", "true", "typeof",
+    "typeof_unqual", "imaginary", "INFINITY", "HUGE", "MAXFLOAT", "DOMAIN", "SING",
+    "OVERFLOW", "UNDERFLOW", "TLOSS", "PLOSS", "X_TLOSS", "math_errhandling", "errno",
+    "linux", "unix", "i386", "i486", "i586", "i686", "sun", "sparc", "mips", "vax",
+    "hppa", "m68k", "mc68000", "ns32000", "pdp11", "ppc", "powerpc", "arm", "sgi",
+    "fpclassify", "iscanonical", "iseqsig", "isfinite", "isgreater", "isgreaterequal",
+    "isinf", "isless", "islessequal", "islessgreater", "isnan", "isnormal", "issignaling",
+    "issubnormal", "isunordered", "iszero", "signbit",
+}
+_C_MACRO_FAMILY = re.compile(r"^(?:M_|FP_|HUGE_VAL|SNAN|CMPLX|MATH_ERR)")
+# Octave: iskeyword() of Octave 8 and MATLAB's, and the constants and variables every
+# function sees (an argument i or e would hide the constant; nargin is set on entry).
+_RESERVED["octave"] |= {
+    "__FILE__", "__LINE__", "classdef", "end_try_catch", "end_unwind_protect",
+    "endarguments", "endclassdef", "endenumeration", "endevents", "endfor", "endfunction",
+    "endif", "endmethods", "endparfor", "endproperties", "endspmd", "endswitch",
+    "endwhile", "parfor", "spmd", "unwind_protect", "unwind_protect_cleanup", "arguments",
+    "methods", "properties", "events", "enumeration", "I", "J", "Inf", "inf", "NaN", "nan",
+    "NA", "eps", "ans", "nargin", "nargout", "varargin", "varargout", "true", "false",
+}
+# Julia: keywords of Julia 1.11 (public included) and the names of Core every file sees.
+_RESERVED["julia"] |= {
+    "public", "ccall", "nothing", "missing", "Inf", "ans", "Base", "Core", "Main",
+    "ComplexF32", "Float32", "Complex", "Matrix", "Vector",
+}
+# Python: the builtins (an argument called complex, float, int or range breaks the
+# code that calls them) and numpy's module name.
+_RESERVED["python"] |= {
+    "abs", "aiter", "all", "anext", "any", "ascii", "bin", "bool", "breakpoint", "bytearray",
+    "bytes", "callable", "chr", "classmethod", "compile", "complex", "copyright", "credits",
+    "delattr", "dict", "dir", "divmod", "enumerate", "eval", "exec", "exit", "filter",
+    "float", "format", "frozenset", "getattr", "globals", "hasattr", "hash", "help", "hex",
+    "id", "input", "int", "isinstance", "issubclass", "iter", "len", "license", "list",
+    "locals", "map", "max", "memoryview", "min", "next", "object", "oct", "open", "ord",
+    "pow", "print", "property", "quit", "range", "repr", "reversed", "round", "set",
+    "setattr", "slice", "sorted", "staticmethod", "str", "sum", "super", "tuple", "type",
+    "vars", "zip", "Ellipsis", "NotImplemented", "numpy",
+}
+#: Longest argument name: Fortran 2008 and Octave (namelengthmax) allow 63 characters,
+#: C99 guarantees 63 significant ones.
+_MAX_NAME = 63
+_ASCII_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")
+#: Longest line of the header comment, marker excluded (Fortran allows 132 characters).
+_HEADER_WIDTH = 100
+
 # numbered locals of the generated code (U1, s0, n2, th0, ...)
 _NUMBERED = re.compile(r"^(?:[Usn]|th|nu)\d+$")
 
 
 def _float_literal(value) -> str:
-    """Shortest decimal that reads back as the double nearest the exact value."""
-    return repr(float(sp.N(sp.sympify(value), 30)))
+    """Shortest decimal that reads back as the double nearest the exact value.
+
+    A value beyond the double range is refused: its repr, ``inf`` or ``nan``,
+    would be read as a name by every language but Octave.
+    """
+    number = float(sp.N(sp.sympify(value), 30))
+    if not math.isfinite(number):
+        raise ModelError(f"a constant of the model, {sp.N(sp.sympify(value), 6)}, lies beyond "
+                         "the range of double precision: it cannot be written as a double")
+    return repr(number)
 
 
-def _argument_names(params, lang: str) -> list:
+def _argument_names(params, lang: str, used=()) -> list:
     """An identifier per parameter that means nothing else where ``lang``'s code uses it.
+
+    A name that is a safe identifier stays as it is. Any other gets ``p_`` in
+    front (again, until it is free): names that are keywords, builtins or
+    macros of the language (``_RESERVED``), names the generated code itself
+    uses (``used``, see :func:`_code_names`), numbered locals (``U1``,
+    ``th0``), and names starting with ``symtmm`` or ``_``. A name that is not
+    an ASCII identifier (possible for a symbol built in Python) has its other
+    characters replaced by ``_`` and always gets the prefix; one longer than
+    ``_MAX_NAME`` is cut and numbered. Fortran compares without case. The
+    generated header lists every renamed argument with its parameter.
 
     Examples
     --------
@@ -172,18 +258,80 @@ def _argument_names(params, lang: str) -> list:
     (['p_I', 'K', 'x1'], ['p_E', 'K'])
     >>> _argument_names(["th0", "wave"], "fortran")
     ['p_th0', 'p_wave']
+    >>> _argument_names(["complex", "range", "sqrt", "x"], "python", used={"sqrt"})
+    ['p_complex', 'p_range', 'p_sqrt', 'x']
+    >>> _argument_names(["a b", "K", "k"], "fortran")
+    ['p_a_b', 'K', 'p_k']
     """
     fold = (lambda v: v.lower()) if lang == "fortran" else (lambda v: v)
-    taken = {fold(v) for v in _RESERVED[lang]}
-    out = []
-    for name in params:
-        arg = name
-        while (fold(arg) in taken or _NUMBERED.match(arg)
-               or arg.lower().startswith(("symtmm", "_"))):
+    taken = {fold(v) for v in _RESERVED[lang]} | {fold(v) for v in used}
+
+    def unsafe(arg: str) -> bool:
+        return (fold(arg) in taken or len(arg) > _MAX_NAME
+                or not _ASCII_IDENTIFIER.fullmatch(arg) or bool(_NUMBERED.match(arg))
+                or arg.lower().startswith(("symtmm", "_"))
+                or (lang == "c" and bool(_C_MACRO_FAMILY.match(arg))))
+
+    out: list = [None] * len(params)
+    # first the names that can stay: a renamed parameter must not take one of them
+    for i, name in enumerate(params):
+        if not unsafe(name):
+            out[i] = name
+            taken.add(fold(name))
+    for i, name in enumerate(params):
+        if out[i] is not None:
+            continue
+        base = name if _ASCII_IDENTIFIER.fullmatch(name) else \
+            "p_" + re.sub(r"[^A-Za-z_0-9]", "_", name)
+        arg = base
+        while unsafe(arg) and len(arg) <= _MAX_NAME:
             arg = "p_" + arg
+        count = 0
+        while unsafe(arg):          # too long: cut, and numbered to stay apart
+            count += 1
+            arg = f"p{i + 1}_{count}_" + base[:_MAX_NAME - 16]
         taken.add(fold(arg))
-        out.append(arg)
+        out[i] = arg
     return out
+
+
+# Where each language's evaluator starts and ends in the generated file (the helpers'
+# locals are theirs: an argument may share a name with them).
+_EVALUATOR = {
+    "c": (r"^void symtmm_delta\(", r"^\}$"),
+    "fortran": (r"^  subroutine symtmm_delta\(", r"^  end subroutine symtmm_delta$"),
+    "octave": (r"^function d = symtmm_delta\(", r"^end$"),
+    "julia": (r"^function symtmm_delta\(", r"^end$"),
+    "python": (r"^def symtmm_delta\(", r"\Z"),
+}
+# Comments and string literals, whose words are no names (the language's own forms only).
+_NOT_CODE = {
+    "c": r"/\*[\s\S]*?\*/|\"[^\"\n]*\"",
+    "fortran": r"![^\n]*|\"[^\"\n]*\"|'[^'\n]*'",
+    "octave": r"%[^\n]*",
+    "julia": r"#[^\n]*|\"[^\"\n]*\"",
+    "python": r"#[^\n]*|\"\"\"[\s\S]*?\"\"\"|\"[^\"\n]*\"|'[^'\n]*'",
+}
+
+
+def _code_names(plan: _Plan, lang: str) -> set:
+    """Every name the generated evaluator of ``plan`` uses besides its arguments.
+
+    The code is generated once with placeholder arguments and read: the
+    evaluator's body (locals, functions and constants it calls, nested
+    functions' locals) and, for Fortran, the module's declarations and
+    procedure names, which the subroutine sees by host association.
+    """
+    blank = replace(plan, title="", source="", values={},
+                    args=[f"symtmm_arg{i}" for i in range(len(plan.params))])
+    code = re.sub(_NOT_CODE[lang], " ", _EMITTERS[lang](blank))
+    start = re.search(_EVALUATOR[lang][0], code, re.M).start()
+    end = re.compile(_EVALUATOR[lang][1], re.M).search(code, start).end()
+    text = code[start:end]
+    if lang == "fortran":
+        text += code[:code.index("\ncontains\n")]
+        text += " ".join(re.findall(r"\b(?:subroutine|function)\s+(\w+)", code))
+    return set(re.findall(r"\b[A-Za-z_][A-Za-z_0-9]*", text))
 
 
 @dataclass
@@ -257,7 +405,8 @@ def _plan(model, symbolic=()) -> _Plan:
     plan = _Plan(title=model_in.title or "", source=model_in.source or "",
                  params=params, values={k: v for k, v in model_in.parameters.items()},
                  n=layout.levels, size=layout.size, rows=list(layout.rows),
-                 columns=list(layout.columns), args=list(params))
+                 columns=list(layout.columns),
+                 args=[_placeholder(i) for i in range(len(params))])
     raw: list = []          # expressions to go through CSE; slot i stands for raw[i]
     holders: list = []
 
@@ -323,7 +472,12 @@ def _plan(model, symbolic=()) -> _Plan:
     # common subexpressions of the parameter expressions
     lookup: dict = {}
     if raw:
-        numeric = [sp.N(e, 25) for e in raw]
+        # each parameter, whatever its name and assumptions, becomes its placeholder: a
+        # name only ever reaches the code as the identifier _for_language picks for it
+        index = {name: i for i, name in enumerate(params)}
+        marks = {s: sp.Symbol(_placeholder(index[s.name]), **s.assumptions0)
+                 for e in raw for s in e.free_symbols}
+        numeric = [sp.N(e.xreplace(marks), 25) for e in raw]
         temps, reduced = sp.cse(numeric, symbols=sp.numbered_symbols("symtmm_t"))
         plan.temps = list(temps)
         named: dict = {}
@@ -357,13 +511,22 @@ def _mapped(plan: _Plan, fn) -> _Plan:
                    guards=[sub(v) for v in plan.guards])
 
 
+def _placeholder(i: int) -> str:
+    """The name parameter ``i`` has in a plan until a language gives it an identifier."""
+    return f"symtmm_arg{i}"
+
+
 def _for_language(plan: _Plan, lang: str) -> _Plan:
-    """The plan with parameters renamed where their names mean something in ``lang``."""
-    args = _argument_names(plan.params, lang)
-    ren = {sp.Symbol(p, positive=True): sp.Symbol(a, positive=True)
-           for p, a in zip(plan.params, args) if p != a}
-    out = _mapped(plan, lambda v: v.xreplace(ren)) if ren else plan
-    return replace(out, args=args)
+    """The plan with each parameter's placeholder replaced by its argument in ``lang``."""
+    args = _argument_names(plan.params, lang, _code_names(plan, lang))
+    names = {_placeholder(i): a for i, a in enumerate(args)}
+
+    def rename(v):
+        ren = {s: sp.Symbol(names[s.name], **s.assumptions0)
+               for s in v.free_symbols if s.name in names}
+        return v.xreplace(ren) if ren else v
+
+    return replace(_mapped(plan, rename), args=args)
 
 
 # --------------------------------------------------------------------------------------
@@ -448,6 +611,12 @@ def _theory_scalars() -> list:
 
 
 def _header_lines(plan: _Plan, lang: str) -> list:
+    """The header comment's lines, without the comment marker.
+
+    Every line goes through :func:`_comment_lines`: the title, the source path
+    and the parameters' names and values come from the model file and are
+    data, never code, in every language.
+    """
     lines = ["symtmm_delta: characteristic function Delta(lam) = det R(lam) of the model",
              f"  {plan.source or '(no file)'}" + (f": {plan.title}" if plan.title else ""),
              f"generated by symtmm {__version__} (symtmm codegen --lang {lang})."]
@@ -479,7 +648,28 @@ def _header_lines(plan: _Plan, lang: str) -> list:
         "(Godunov), Delta = det(E[rows]) * exp(sum of log norms): about 13",
         "significant digits at any mode, as symtmm.compile.Evaluator.log_delta.",
     ]
-    return lines
+    return [piece for line in lines for piece in _comment_lines(line)]
+
+
+def _comment_lines(text: str) -> list:
+    r"""``text`` as comment payloads (:func:`symtmm.text.comment_text`), wrapped.
+
+    Pieces are at most ``_HEADER_WIDTH`` characters, so that a long title keeps
+    Fortran's lines under 132 characters; a piece only ever ends a line, and no
+    language continues a comment onto the next line.
+
+    Examples
+    --------
+    >>> _comment_lines("title */ int f(void); /*\nsecond line")
+    ['title * / int f(void); / *\\nsecond line']
+    >>> [len(p) <= _HEADER_WIDTH for p in _comment_lines("x" * 250)]
+    [True, True, True]
+    """
+    safe = comment_text(text)
+    if len(safe) <= _HEADER_WIDTH:
+        return [safe]
+    return textwrap.wrap(safe, _HEADER_WIDTH, subsequent_indent="    ",
+                         break_long_words=True, break_on_hyphens=False)
 
 
 def _val(expr, printer) -> str:
@@ -1686,8 +1876,12 @@ def _python_theory_helpers() -> list:
 def _emit_python(plan: _Plan) -> str:
     pyc = lambda x: sp.pycode(x).replace("math.", "np.")
     p = lambda e: _val(e, pyc)
-    out = ['"""'] + _header_lines(plan, "python") + ['"""', "", "import numpy as np", "",
-                                                       f"_NU_STEP = {_float_literal(NU_STEP)}"]
+    # the header as comments, not in the docstring: no text of the model's can end a
+    # comment, while a docstring ends at the first triple quote and reads backslashes;
+    # the fixed first line keeps it clear of the two lines Python reads for an encoding
+    out = ['"""Delta(lam) = det R(lam) of a symtmm model (generated; see the comments)."""',
+           ""] + [f"# {ln}".rstrip() for ln in _header_lines(plan, "python")]
+    out += ["", "import numpy as np", "", f"_NU_STEP = {_float_literal(NU_STEP)}"]
     if plan.has_eb:
         out += _python_eb_helpers()
     if plan.has_gen:

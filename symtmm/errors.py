@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from .text import printable
+
 
 class SymtmmError(Exception):
     """Base class of every error symtmm raises on purpose."""
@@ -23,6 +25,8 @@ class ModelError(SymtmmError, ValueError):
     --------
     >>> str(ModelError("must be positive", field="beam[1].EI", source="m.toml"))
     'm.toml: beam[1].EI: must be positive'
+    >>> print(ModelError("unknown field 'a\\nb'", field="beam[1]"))
+    beam[1]: unknown field 'a\\nb'
     """
 
     def __init__(self, message: str, field: str | None = None, source: str | None = None):
@@ -36,8 +40,9 @@ class ModelError(SymtmmError, ValueError):
         return self if self.source else ModelError(self.message, self.field, source)
 
     def __str__(self) -> str:
+        # names, keys and paths in the parts come from files: one line, escapes visible
         parts = [p for p in (self.source, self.field) if p]
-        return ": ".join(parts + [self.message])
+        return printable(": ".join(parts + [self.message]))
 
 
 class ComputationError(SymtmmError, RuntimeError):

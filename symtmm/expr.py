@@ -24,7 +24,8 @@ from decimal import Decimal, InvalidOperation
 
 import sympy as sp
 
-__all__ = ["parse_expression", "exact_number", "ExpressionError", "parameter_symbol"]
+__all__ = ["parse_expression", "exact_number", "ExpressionError", "parameter_symbol",
+           "RESERVED_NAMES"]
 
 #: Longest expression text accepted (guards against pathological input).
 MAX_LENGTH = 1000
@@ -39,6 +40,8 @@ _TOKEN = re.compile(
 
 _FUNCTIONS: Mapping[str, Callable[[sp.Expr], sp.Expr]] = {"sqrt": sp.sqrt}
 _CONSTANTS: Mapping[str, sp.Expr] = {"pi": sp.pi}
+#: Names an expression reads as its own constants and functions, never as parameters.
+RESERVED_NAMES = frozenset(_FUNCTIONS) | frozenset(_CONSTANTS)
 
 
 class ExpressionError(ValueError):

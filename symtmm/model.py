@@ -19,6 +19,7 @@ Examples
 
 from __future__ import annotations
 
+import numbers
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
@@ -28,7 +29,8 @@ import sympy as sp
 
 from .elements.theories import THEORIES
 from .errors import ModelError
-from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
+from .expr import (RESERVED_NAMES, ExpressionError, exact_number, parameter_symbol,
+                   parse_expression)
 
 __all__ = ["Beam", "Spring", "Mass", "Attachment", "RigidBody", "Model", "BOUNDARY_CONDITIONS",
            "GROUND", "SPRING_KINDS"]
@@ -45,7 +47,8 @@ GROUND = "ground"
 #: What a spring resists: the transverse displacement Y or the rotation Theta.
 SPRING_KINDS = ("translational", "rotational")
 
-_IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z_0-9]*$")
+# matched with fullmatch: "$" would also accept a name ending in a newline
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")
 
 
 def _exact(value, field_name: str) -> sp.Expr:
@@ -139,7 +142,7 @@ class Beam:
 
     def __post_init__(self):
         where = f"beam '{self.name}'"
-        if not isinstance(self.name, str) or not _IDENTIFIER.match(self.name) or self.name == GROUND:
+        if not isinstance(self.name, str) or not _IDENTIFIER.fullmatch(self.name) or self.name == GROUND:
             raise ModelError(f"invalid name {self.name!r} (an identifier other than 'ground')",
                              field="beam.name")
         for attr in ("EI", "m", "L", "x0", "kw", "N", "rhoI"):
@@ -341,7 +344,7 @@ class RigidBody:
 
     def __post_init__(self):
         where = f"body '{self.name}'"
-        if not isinstance(self.name, str) or not _IDENTIFIER.match(self.name):
+        if not isinstance(self.name, str) or not _IDENTIFIER.fullmatch(self.name):
             raise ModelError(f"invalid name {self.name!r}", field="rigid.name")
         attachments = tuple(self.attachments)
         if not attachments or not all(isinstance(a, Attachment) for a in attachments):
@@ -404,9 +407,14 @@ class Model:
         object.__setattr__(self, "bodies", tuple(self.bodies))
         params = {}
         for name, value in dict(self.parameters).items():
-            if not isinstance(name, str) or not _IDENTIFIER.match(name):
+            if not isinstance(name, str) or not _IDENTIFIER.fullmatch(name):
                 raise ModelError(f"invalid parameter name {name!r}", field="parameters",
                                  source=self.source)
+            if name in RESERVED_NAMES:
+                # an expression reads the name as the constant or function: the
+                # parameter could never be used
+                raise ModelError(f"'{name}' means {name} in expressions; give the parameter "
+                                 "another name", field=f"parameters.{name}", source=self.source)
             params[name] = None if value is None else _exact(value, f"parameters.{name}")
         # A read-only view keeps the model immutable.
         object.__setattr__(self, "parameters", _FrozenDict(params))
@@ -538,17 +546,45 @@ class Model:
             resolve(sym, [])
         return done
 
-    def value(self, expr: sp.Expr) -> sp.Expr:
+    def value(self, expr) -> sp.Expr:
         """Substitute the parameters that have values into ``expr``.
+
+        Parameters
+        ----------
+        expr : sympy.Expr, number or str
+            A string is read by the restricted parser of model files
+            (:func:`symtmm.expr.parse_expression`), never evaluated; a number
+            exactly (``0.3`` is 3/10).
+
+        Raises
+        ------
+        ModelError
+            For a string that is no restricted expression, or another type.
 
         Examples
         --------
         >>> m = Model((Beam("b", EI=1, m=1, L=1),), parameters={"K": 3, "k": "2*K"})
         >>> m.value(parameter_symbol("k")), m.with_parameters(K=5).value(parameter_symbol("k"))
         (6, 10)
+        >>> m.value("k/4 + 0.5")
+        2
+        >>> m.value("__import__('os')")
+        Traceback (most recent call last):
+        ...
+        symtmm.errors.ModelError: cannot read "__import__('os')": unexpected character ...
         """
+        if not isinstance(expr, sp.Basic):
+            try:
+                if isinstance(expr, str):
+                    expr = parse_expression(expr)
+                elif isinstance(expr, numbers.Integral) and not isinstance(expr, bool):
+                    expr = sp.Integer(int(expr))
+                else:
+                    expr = exact_number(expr)
+            except ExpressionError as exc:
+                raise ModelError(f"cannot read {expr!r}: {exc}", source=self.source) from None
         subs = self._substitution
-        return sp.sympify(expr).xreplace(subs) if subs else sp.sympify(expr)
+        return expr.xreplace(subs) if subs else expr
 
     def _resolved_beam(self, beam: Beam) -> Beam:
         return replace(beam, EI=self.value(beam.EI), m=self.value(beam.m),

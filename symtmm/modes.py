@@ -63,7 +63,8 @@ import sympy as sp
 from .assembly import Interval, Layout
 from .compile import Evaluator, _Jumps
 from .elements import STATE, EulerBernoulliSegment
-from .errors import ComputationError
+from .errors import ComputationError, ModelError
+from .expr import ExpressionError, parse_expression
 from .model import Model
 from .numeric import to_mp
 from .results import Eigenvalue, Spectrum, decimal_string
@@ -878,11 +879,21 @@ def evaluate_mode(model: Model, mode: ModeShape, beam: str, x, side: str = "+") 
 
 
 def _coordinate(value, dps):
-    """A coordinate as an mpmath number; a float is read as the decimal it prints as."""
+    """A coordinate as an mpmath number; a float is read as the decimal it prints as.
+
+    A string is read by the restricted parser of model files, never by ``sympify``.
+    """
     if isinstance(value, mpmath.mpf):
         return value
     if isinstance(value, (float, np.floating)):
         value = sp.Rational(repr(float(value)))
+    if isinstance(value, str):
+        try:
+            value = parse_expression(value)
+        except ExpressionError as exc:
+            raise ModelError(f"cannot read {value!r}: {exc}", field="x") from None
+        if not value.is_number:
+            raise ModelError(f"{value} is not a number", field="x")
     return to_mp(sp.sympify(value), dps)
 
 

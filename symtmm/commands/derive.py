@@ -16,7 +16,7 @@ them substituted.
 
 from __future__ import annotations
 
-from ..cli import add_model_arguments, load_model_arg
+from ..cli import add_model_arguments, load_model_arg, title_line
 from ..errors import ModelError
 
 HELP = "characteristic function Delta in closed form (SymPy, LaTeX, JSON)"
@@ -46,7 +46,7 @@ def run(args) -> int:
         print(eq.latex())
     else:
         if model.title:
-            print(model.title)
+            print(title_line(model.title))
         print(f"Delta({eq.variable}) = {eq.delta}")
         names = ", ".join(str(s) for s in eq.definitions) or "Omega"
         print("  with " + ("; ".join(f"{s} = {v}" for s, v in eq.definitions.items())

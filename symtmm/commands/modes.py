@@ -13,7 +13,7 @@ body that rotates).
 
 from __future__ import annotations
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int
+from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int, title_line
 from ..errors import ModelError
 
 HELP = "mode shapes (Y, Theta, M, Q along every beam)"
@@ -69,8 +69,8 @@ def run(args) -> int:
         print(modes.to_json())
     else:
         if model.title:
-            print(model.title)
+            print(title_line(model.title))
         print(modes.table())
         if args.plot:
-            print(f"figure written to {args.plot}")
+            print(f"figure written to {title_line(args.plot)}")
     return 0

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int
+from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int, title_line
 from ..errors import ModelError
 
 HELP = "log10|Delta| along omega (and over the complex plane when damped), for plots"
@@ -86,8 +86,8 @@ def run(args) -> int:
         print(result.to_json())
     else:
         if model.title:
-            print(model.title)
+            print(title_line(model.title))
         print(result.table())
         for path in written:
-            print(f"figure written to {path}")
+            print(f"figure written to {title_line(path)}")
     return 0

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int
+from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int, title_line
 from ..errors import ModelError
 
 HELP = "eigenvalues (natural frequencies), every printed digit correct"
@@ -48,7 +48,7 @@ def run(args) -> int:
         print(spectrum.to_json())
     else:
         if model.title:
-            print(model.title)
+            print(title_line(model.title))
         print(spectrum.table())
     return 0
 
@@ -70,7 +70,7 @@ def _print_certified(model, spectrum, as_json: bool) -> int:
         print(json.dumps(data, indent=2))
         return 0
     if model.title:
-        print(model.title)
+        print(title_line(model.title))
     print(spectrum.table())
     print("certified enclosures (Arb ball arithmetic):")
     for i, enc in enumerate(enclosures, 1):

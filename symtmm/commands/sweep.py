@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import sys
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int
+from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int, title_line
 from ..errors import ModelError
 
 HELP = "eigenvalues for equally spaced values of one parameter, branches tracked"
@@ -81,8 +81,8 @@ def run(args) -> int:
         print(result.to_json())
     else:
         if model.title:
-            print(model.title)
+            print(title_line(model.title))
         print(result.table())
         if args.plot:
-            print(f"figure written to {args.plot}")
+            print(f"figure written to {title_line(args.plot)}")
     return 0
