@@ -43,12 +43,16 @@ class Eigenvalue:
     bracket : tuple or None
         For undamped roots, ``(lo, hi)`` with the root(s) inside, proved by
         the eigenvalue count or by a sign change of Delta.
+    proof : str
+        What backs the printed digits (``"count (ball arithmetic)"``, ...;
+        empty when nothing is claimed beyond the method's own checks).
     """
 
     lam: mpmath.mpc
     multiplicity: int = 1
     digits: int = 15
     bracket: tuple | None = None
+    proof: str = ""
 
     @property
     def omega(self):
@@ -63,10 +67,13 @@ class Eigenvalue:
             return -self.lam.real
 
     def to_dict(self) -> dict:
-        """JSON-ready ``{"real", "imag", "multiplicity"}`` with :attr:`digits` digits."""
-        return {"real": decimal_string(self.lam.real, self.digits),
-                "imag": decimal_string(self.lam.imag, self.digits),
-                "multiplicity": self.multiplicity}
+        """JSON-ready ``{"real", "imag", "multiplicity"[, "proof"]}`` with :attr:`digits` digits."""
+        out = {"real": decimal_string(self.lam.real, self.digits),
+               "imag": decimal_string(self.lam.imag, self.digits),
+               "multiplicity": self.multiplicity}
+        if self.proof:
+            out["proof"] = self.proof
+        return out
 
     def __str__(self) -> str:
         d = self.to_dict()
@@ -123,6 +130,14 @@ class Spectrum:
         with mpmath.workdps(self.digits + 10):
             return [mpmath.sqrt(w / scale) for w in self.omegas(expand)]
 
+    def proofs(self) -> dict:
+        """What backs the eigenvalues: proof -> the positions (1-based) it backs."""
+        out: dict = {}
+        for i, e in enumerate(self.eigenvalues, 1):
+            if e.proof:
+                out.setdefault(e.proof, []).append(i)
+        return out
+
     def with_model_name(self, name: str) -> Spectrum:
         """The same spectrum labelled with ``name`` (the model file, in JSON)."""
         return replace(self, model_name=name)
@@ -169,6 +184,11 @@ class Spectrum:
         lines.append(f"{self.total} eigenvalue(s) with multiplicity, {self.digits} significant "
                      f"digits; method {self.method}, {self.evaluations} evaluations, "
                      f"{self.seconds:.3f} s")
+        proofs = self.proofs()
+        if proofs:
+            lines.append("proved by " + "; ".join(
+                f"{proof} ({', '.join(map(str, numbers))})" if len(proofs) > 1 else proof
+                for proof, numbers in proofs.items()))
         lines += list(self.notes)
         return "\n".join(lines)
 
