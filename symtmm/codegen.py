@@ -325,8 +325,8 @@ def _code_names(plan: _Plan, lang: str) -> set:
     blank = replace(plan, title="", source="", values={},
                     args=[f"symtmm_arg{i}" for i in range(len(plan.params))])
     code = re.sub(_NOT_CODE[lang], " ", _EMITTERS[lang](blank))
-    start = re.search(_EVALUATOR[lang][0], code, re.M).start()
-    end = re.compile(_EVALUATOR[lang][1], re.M).search(code, start).end()
+    start = re.search(_EVALUATOR[lang][0], code, re.MULTILINE).start()
+    end = re.compile(_EVALUATOR[lang][1], re.MULTILINE).search(code, start).end()
     text = code[start:end]
     if lang == "fortran":
         text += code[:code.index("\ncontains\n")]

@@ -29,8 +29,7 @@ import sympy as sp
 
 from .elements.theories import THEORIES
 from .errors import ModelError
-from .expr import (RESERVED_NAMES, ExpressionError, exact_number, parameter_symbol,
-                   parse_expression)
+from .expr import RESERVED_NAMES, ExpressionError, exact_number, parameter_symbol, parse_expression
 
 __all__ = ["Beam", "Spring", "Mass", "Attachment", "RigidBody", "Model", "BOUNDARY_CONDITIONS",
            "GROUND", "SPRING_KINDS"]

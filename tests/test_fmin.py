@@ -135,6 +135,14 @@ def _tally(monkeypatch):
     wrap(compile.Evaluator, "log_delta", per_point=True)
     wrap(stiffness.StiffnessModel, "count")
     wrap(dynamic_stiffness.DynamicStiffness, "log_delta", per_point=True)
+    from symtmm.roots import count
+    original_factor = count.factor
+
+    def factor(plan, ar, lam2, lam=None):
+        # the numeric kernel: one evaluation per point of the batch
+        calls["n"] += len(lam2)
+        return original_factor(plan, ar, lam2, lam)
+    monkeypatch.setattr(count, "factor", factor)
     original_boundary = undamped.boundary_matrix
 
     def boundary(model, lam=assembly.LAM, segment_matrix=None):

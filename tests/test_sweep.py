@@ -13,6 +13,7 @@ from symtmm.cli import main
 from symtmm.errors import ModelError
 from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load, loads
+from symtmm.roots.undamped import PROOFS
 from symtmm.solve import solve
 from symtmm.sweep import sweep, sweep_values, track_branches, value_string
 
@@ -288,7 +289,8 @@ def test_cli_json(tmp_path, capsys, serial):
     assert data["values"] == ["0.1", "0.2", "0.3"]
     assert len(data["eigenvalues"]) == 3
     for step, ref in zip(data["eigenvalues"], serial.spectra):
-        assert [set(e) for e in step] == [{"real", "imag", "multiplicity"}] * len(step)
+        assert [set(e) - {"proof"} for e in step] == [{"real", "imag", "multiplicity"}] * len(step)
+        assert {e.get("proof") for e in step} <= set(PROOFS.values())
         assert [e["imag"] for e in step] == [e.to_dict()["imag"] for e in ref]
     assert [len(g) for g in data["branches"][0]] == [e["multiplicity"]
                                                      for e in data["eigenvalues"][0]]

@@ -328,8 +328,10 @@ class MP(Arithmetic):
         return self._abs(x).astype(float) * (1 + 1e-14)
 
     def is_complex(self, x):
+        # arrays are homogeneous (every kernel array is built from one kind of input):
+        # the first element tells
         flat = np.asarray(x).reshape(-1)
-        return bool(flat.size) and any(isinstance(v, self.ctx.mpc) for v in flat)
+        return bool(flat.size) and isinstance(flat[0], self.ctx.mpc)
 
     def decide(self, pivot, scale, n):
         pivot = np.asarray(pivot, dtype=object)
@@ -454,7 +456,7 @@ class Ball(Arithmetic):
 
     def is_complex(self, x):
         flat = np.asarray(x).reshape(-1)
-        return bool(flat.size) and any(isinstance(v, self.flint.acb) for v in flat)
+        return bool(flat.size) and isinstance(flat[0], self.flint.acb)
 
     def decide(self, pivot, scale, n):
         flat = np.asarray(pivot, dtype=object).reshape(-1)

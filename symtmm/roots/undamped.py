@@ -1,33 +1,38 @@
-"""Natural frequencies of undamped models, none missed, to any number of digits.
+"""Natural frequencies of undamped models, none missed, every printed digit proved.
 
-1. **Count.** The Wittrick–Williams count ``J(omega)`` (:mod:`symtmm.stiffness`)
-   gives the number of natural frequencies below any ``omega``, with
-   multiplicity, rigid-body modes included. Rigid-body modes are the null
-   space of the exact static ``R(0)``.
-2. **Isolate.** Bisection on ``J`` splits ``(0, omega_max]`` into brackets
-   holding one root each; brackets that still hold several roots when they
-   are narrower than double precision can resolve go to step 4.
-3. **Refine** each simple root on ``Delta(i omega) = det R`` (the transfer
-   formulation, real on the frequency axis) with the Anderson–Björck
-   bracketing method: first in double precision on the stable evaluator, to
-   a bracket of relative width about 1e-9 that mpmath must confirm (a sign
-   change at its ends), then in mpmath at ``D + loss + 10`` digits, where ``loss``
-   estimates the cancellation in ``Delta`` (``sum beta L / ln 10``). The
-   final bracket, of relative width below ``10**-(D+2)`` and with both ends
-   rounding to the same ``D`` digits, is then checked at 15 more digits:
-   ``Delta`` must still change sign strictly across it, or the precision is
-   raised and the refinement repeated.
-4. **Clusters.** A bracket holding ``k`` roots is first tried as one exact
+One factorisation of the exact dynamic stiffness (:mod:`symtmm.roots.count`) gives
+at once the Wittrick–Williams count ``J(omega)`` (natural frequencies below
+``omega``, with multiplicity) and ``Delta(i omega)``, for a whole batch of
+frequencies; the search pays for its points in batches:
+
+1. **Rigid-body modes** are the null space of the exact static ``R(0)``.
+2. **Isolate.** Counts on a batch of frequencies bracket the range; every
+   bracket holding ``k > 1`` roots is cut into ``k + 1`` equal parts, all
+   brackets at once, until each holds one root, or is narrower than double
+   precision resolves (a cluster: step 5).
+3. **Refine in double**, all roots together: Anderson–Björck steps on
+   ``Delta(i omega)``, one batched evaluation per step, each step's side decided
+   by the count at its point, to a bracket of relative width about ``1e-13``
+   (or until the point is so close to the root that its count is undecided).
+4. **Prove the digits**, all roots together, in the proof arithmetic (Arb balls
+   where python-flint is installed, else mpmath): a secant step from the double
+   bracket gives the root to about twice the digits; the counts at the two ends of
+   a bracket of relative width ``2 10**-(D+3)`` around it, ``J = i - 1`` and ``J =
+   i``, prove the ``i``-th eigenvalue inside, and its midpoint prints correctly
+   rounded once both ends round alike (else the bracket is narrowed). Counts
+   ``J(b_i) = J(a_(i+1))`` leave no eigenvalue between brackets, a count at the
+   top none above the last one in range. Without python-flint every such count is
+   repeated at a second, higher precision and must agree (not a proof).
+5. **Clusters.** A bracket holding ``k`` roots is first tried as one exact
    ``k``-fold root: ``|Delta|**(1/k)`` is a V about it, whose vertex, found in a
    few steps, gives a bracket of width ``10**-(D + 2 + SEPARATION_DIGITS)`` that
-   two counts in mpmath then prove to hold all ``k``. Otherwise (distinct close
-   roots) brackets are bisected with the count
-   in mpmath until each holds one root (then step 3) or is narrower than
-   ``10**-(D + 2 + SEPARATION_DIGITS)`` relative with both ends printing the
-   same ``D`` digits: the roots it holds agree to ``D + SEPARATION_DIGITS``
-   digits and are reported once with their multiplicity (exact multiple roots
-   end there). Distinct roots closer than ``10**-D`` are reported separately,
-   with a note that they print alike.
+   two counts then prove to hold all ``k``. Otherwise (distinct close roots)
+   brackets are bisected on counts until each holds one root (then step 4) or is
+   narrower than ``10**-(D + 2 + SEPARATION_DIGITS)`` relative with both ends
+   printing the same ``D`` digits: the roots agree to ``D + SEPARATION_DIGITS``
+   digits and are reported once with their multiplicity.
+
+Each eigenvalue carries the name of what proves it (:attr:`Eigenvalue.proof`).
 """
 
 from __future__ import annotations
@@ -35,7 +40,6 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from dataclasses import replace
 
 import mpmath
 import numpy as np
@@ -45,17 +49,28 @@ from ..assembly import boundary_matrix
 from ..compile import Evaluator
 from ..errors import ComputationError
 from ..model import Model
-from ..results import Eigenvalue, Spectrum
-from ..stiffness import SingularCount, StiffnessModel
-from .bracket import SEPARATION_DIGITS, anderson_bjorck, bracket_done
+from ..numeric.arith import MP
+from ..results import Eigenvalue, Spectrum, decimal_string
+from .bracket import SEPARATION_DIGITS, bracket_done
+from .count import Counter, digits_for, proof_arithmetic
 
-__all__ = ["solve_undamped", "rigid_body_modes", "check_stable", "omega_scale"]
+__all__ = ["solve_undamped", "rigid_body_modes", "check_stable", "omega_scale", "PROOFS"]
 
-#: Relative width below which a double-precision count is not asked to split a bracket.
+#: Relative width below which double precision does not split a bracket further.
 _DOUBLE_WIDTH = 1e-11
+#: Relative width of the double-precision refinement: closer to a root a double count can be
+#: wrong without any pivot looking small (the pivot that changes sign may be large and
+#: steep), and the proof arithmetic would only have to widen the bracket again.
+_DOUBLE_REFINED = 1e-11
+#: Largest number of points one bracket contributes to an isolation batch.
+_SPLIT_POINTS = 16
 #: Largest precision (decimal digits) the refinement may climb to.
 MAX_DPS = 3000
 
+#: What backs an eigenvalue: its name in results and output.
+PROOFS = {"exact": "exact (rank of R(0))",
+          "ball": "count (ball arithmetic)",
+          "mp": "count (two precisions)"}
 
 
 def rigid_body_modes(model: Model) -> int:
@@ -96,15 +111,16 @@ def rigid_body_modes(model: Model) -> int:
     return R.shape[1] - dm.rank()
 
 
-def check_stable(model: Model, rigid: int, sm: StiffnessModel | None = None) -> int:
+def check_stable(model: Model, rigid: int, counter: Counter | None = None) -> int:
     """Raise :class:`ComputationError` if an axial compression has buckled the model.
 
     Above a buckling load the static stiffness is indefinite: eigenvalues with
     ``lam**2 > 0`` (real ``lam``, a motion growing without bound), which the
     search for natural frequencies would not report. Only a compressed beam
-    can cause them; dashpots do not change the static stiffness. ``sm`` is the
-    stiffness model to count with (default: one of ``model`` without dashpots).
-    Returns the number of counts spent when ``sm`` was not given (else 0).
+    can cause them; dashpots do not change the static stiffness. ``counter`` is the
+    :class:`~symtmm.roots.count.Counter` to count with (default: one of ``model``,
+    which ignores dashpots). Returns the number of counts spent when ``counter`` was
+    not given (else 0).
 
     Examples
     --------
@@ -118,15 +134,14 @@ def check_stable(model: Model, rigid: int, sm: StiffnessModel | None = None) -> 
     model = model.require_numeric()
     if not any(b.N < 0 for b in model.beams):
         return 0
-    own = sm is None
+    own = counter is None
     if own:
-        undamped = replace(model, springs=tuple(replace(s, c=0) for s in model.springs))
-        sm = StiffnessModel(undamped, _first_guess(model))
-    k = sm.unstable_modes(rigid, _first_guess(model))
+        counter = Counter(model, _first_guess(model))
+    k = counter.unstable_modes(rigid, _first_guess(model))
     if k:
         raise ComputationError(f"axial compression above a buckling load: {k} mode"
                                f"{'s' if k > 1 else ''} with lam**2 > 0")
-    return sm.evaluations if own else 0
+    return counter.evaluations if own else 0
 
 
 def omega_scale(model: Model):
@@ -173,69 +188,306 @@ def _first_guess(model: Model) -> float:
     return best
 
 
+def _exact_mpc_imag(w) -> mpmath.mpc:
+    """``i w`` as a global mpmath number without rounding ``w`` (any mpmath number)."""
+    return mpmath.mp.make_mpc((mpmath.libmp.fzero, w._mpf_))
+
+
 class _Search:
-    def __init__(self, model: Model, digits: int, omega_hi: float, rigid: int = 0):
+    """Isolation, refinement and proof of the roots of one undamped model."""
+
+    def __init__(self, model: Model, digits: int, omega_hi: float, rigid: int = 0,
+                 certified: bool | None = None):
         self.model = model
         self.digits = digits
         self.rigid = rigid
-        self.ev = Evaluator(model)
-        self.sm = StiffnessModel(model, omega_hi)
+        self.certified = certified
+        self.counter = Counter(model, omega_hi)
+        self._set_precision(digits_for(digits))
+
+    def _set_precision(self, work_digits: int):
+        if work_digits > MAX_DPS:
+            raise ComputationError(f"cannot reach {self.digits} digits within {MAX_DPS} "
+                                   "working digits")
+        self.work_digits = work_digits
+        self.hp = proof_arithmetic(work_digits, self.certified)
+        self.proof = PROOFS["ball" if self.hp.rigorous else "mp"]
+        # bracket arithmetic (midpoints, secant steps) carries more bits than the evaluations
+        self.book_prec = self.hp.prec + 64
 
     @property
     def evaluations(self) -> int:
-        return self.ev.evaluations + self.sm.evaluations
+        return self.counter.evaluations
 
-    def count(self, omega, dps=None) -> int:
-        return self.sm.count(omega, dps=dps)
+    def count_off(self, omega, toward, digits=None):
+        return self.counter.count_off(omega, toward, digits)
 
-    def count_off(self, omega, toward, dps=None):
-        """``(point, count)``: the count at ``omega``, or, if ``omega`` is exactly an
-        eigenvalue (the count is not defined there), at a point moved a little
-        toward ``toward``. Any point serves where this is used (a bisection point,
-        an upper bound), as long as it is not an eigenvalue.
+    # -- the range ------------------------------------------------------------------------
+    def top_for(self, count: int):
+        """``(omega, J(omega))`` with ``J(omega) >= count``, from a batch of doublings."""
+        hi = _first_guess(self.model)
+        while True:
+            grid = hi * 2.0 ** np.arange(6)
+            counts = self.counter.counts(grid)
+            for w, k in zip(grid, counts):
+                if k < 0:
+                    w, k = self.count_off(float(w), 2.0 * float(w))
+                if k >= count:
+                    return float(w), int(k)
+            hi = float(grid[-1]) * 2.0
+            if hi > 1e150:
+                raise ComputationError(f"fewer than {count} eigenvalues below 1e150 rad/s")
+
+    # -- isolation -------------------------------------------------------------------------
+    def isolate(self, top: float, c_top: int, wanted=None) -> list:
+        """Brackets ``(a, J(a), b, J(b))`` holding ``J(b) - J(a) >= 1`` roots, ascending.
+
+        One root each, except those narrower than double precision resolves (clusters).
+        The cut points of a round are counted in one batch.
         """
-        step = (toward - omega) * 1e-7
-        for k in range(12):
-            try:
-                return omega, self.count(omega, dps=dps)
-            except SingularCount:
-                omega = omega + step * 4**k
-        raise ComputationError(f"cannot find a point near {float(omega):.6g} rad/s that is "
-                               "not an eigenvalue")
-
-    # -- isolation ------------------------------------------------------------------
-    def isolate(self, lo, c_lo, hi, c_hi, needed=None):
-        """Brackets ``(a, b, k)`` with ``k`` roots in ``(a, b]``, ascending.
-
-        Stops once ``needed`` roots (with multiplicity) are bracketed.
-        """
-        out, found = [], 0
-        stack = [(lo, c_lo, hi, c_hi)]
-        while stack:
-            a, ca, b, cb = stack.pop()
-            k = cb - ca
-            if k <= 0:
-                continue
-            if needed is not None and found >= needed:
+        limit = None if wanted is None else self.rigid + wanted
+        work = [(0.0, self.rigid, float(top), int(c_top))]
+        done = []
+        while work:
+            if limit is not None:
+                work = [w for w in work if w[1] < limit]
+            points, owners, split = [], [], []
+            for a, ca, b, cb in work:
+                k = cb - ca
+                if k <= 0:
+                    continue
+                at_rigid_zero = a == 0 and self.rigid > 0     # Delta(0) = 0 there
+                if (k == 1 and not at_rigid_zero) or (b - a) <= _DOUBLE_WIDTH * b:
+                    done.append((a, ca, b, cb))
+                    continue
+                parts = min(k, _SPLIT_POINTS) + 1
+                for j in range(1, parts):
+                    points.append(a + (b - a) * j / parts)
+                    owners.append(len(split))
+                split.append((a, ca, b, cb))
+            if not points:
                 break
-            # Delta vanishes at 0 when there are rigid-body modes, so a bracket to be
-            # refined on Delta must not start there
-            at_rigid_zero = a == 0 and self.rigid > 0
-            if (k == 1 and not at_rigid_zero) or (b - a) <= _DOUBLE_WIDTH * b:
-                out.append((a, b, k))
-                found += k
-                continue
-            mid, cm = self.count_off(0.5 * (a + b), b)
-            # left half first: push it last
-            stack.append((mid, cm, b, cb))
-            stack.append((a, ca, mid, cm))
+            counts = self.counter.counts(np.array(points))
+            for j in np.nonzero(counts < 0)[0]:
+                points[j], counts[j] = self.count_off(points[j], split[owners[j]][2])
+            inside: dict = {}
+            for p, c, o in zip(points, counts, owners):
+                inside.setdefault(o, []).append((p, int(c)))
+            work = []
+            for o, (a, ca, b, cb) in enumerate(split):
+                seq = [(a, ca)] + inside[o] + [(b, cb)]
+                if any(c2 < c1 for (_, c1), (_, c2) in itertools.pairwise(seq)):
+                    # counts must not fall: decide the cut points again in mpmath
+                    seq = [(a, ca)] + [self.count_off(p, b, 30) for p, _ in inside[o]] + [(b, cb)]
+                work += [(p, cp, q, cq) for (p, cp), (q, cq) in itertools.pairwise(seq)]
+        return sorted(done)
+
+    # -- refinement in double precision, all roots at once ---------------------------------
+    def refine_double(self, brackets) -> list:
+        """Each one-root bracket ``(a, J(a), b)`` narrowed on the double-precision ``Delta``.
+
+        Anderson–Björck steps, one batched evaluation per step for all roots; the count
+        at each new point says on which side of the root it lies, ``Delta`` where in the
+        bracket to put the next one. A root stops when its bracket is narrower than
+        :data:`_DOUBLE_REFINED` or its new point is too close for the count to decide.
+        Returns ``(a, b)`` per bracket; nothing is concluded from them (step 4 proves).
+        """
+        if not brackets:
+            return []
+        a = np.array([x[0] for x in brackets], dtype=float)
+        b = np.array([x[2] for x in brackets], dtype=float)
+        ca = np.array([x[1] for x in brackets], dtype=int)
+        R = len(a)
+        la, sg, _ = self.counter.signed_log_delta(np.concatenate([a, b]))
+        ref = np.maximum(la[:R], la[R:])
+        ref = np.where(np.isfinite(ref), ref, 0.0)
+        with np.errstate(all="ignore"):
+            fa = sg[:R] * np.exp(np.minimum(la[:R] - ref, 700.0))
+            fb = sg[R:] * np.exp(np.minimum(la[R:] - ref, 700.0))
+        previous = b - a
+        active = (b - a) > _DOUBLE_REFINED * b
+        bisect = np.zeros(R, dtype=bool)
+        for _ in range(100):
+            idx = np.nonzero(active)[0]
+            if idx.size == 0:
+                break
+            A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
+            with np.errstate(all="ignore"):
+                c = B - FB * (B - A) / (FB - FA)
+            bad = ~np.isfinite(c) | (c <= A) | (c >= B) | bisect[idx] | (FA * FB > 0)
+            c = np.where(bad, 0.5 * (A + B), c)
+            # at least 1/64 of the bracket from either end: a secant that creeps up on the
+            # root from one side still closes the bracket
+            guard = (B - A) / 64
+            c = np.clip(c, A + guard, B - guard)
+            lc, sc, kc = self.counter.signed_log_delta(c)
+            with np.errstate(all="ignore"):
+                fc = sc * np.exp(np.minimum(lc - ref[idx], 700.0))
+            left, right = kc == ca[idx], kc == ca[idx] + 1
+            stop = ~(left | right)              # undecided (or inconsistent): leave it here
+            width_before = B - A
+            for j, i in enumerate(idx):
+                if stop[j]:
+                    active[i] = False
+                    continue
+                if right[j]:
+                    m = 1 - fc[j] / fb[i]
+                    fa[i] *= m if m > 0 else 0.5
+                    b[i], fb[i] = c[j], fc[j]
+                else:
+                    m = 1 - fc[j] / fa[i]
+                    fb[i] *= m if m > 0 else 0.5
+                    a[i], fa[i] = c[j], fc[j]
+                # bisect next time when two steps together have not halved the bracket
+                bisect[i] = (b[i] - a[i]) > 0.5 * previous[i]
+                previous[i] = width_before[j]
+                active[i] = (b[i] - a[i]) > _DOUBLE_REFINED * b[i]
+        return list(zip(a.tolist(), b.tolist()))
+
+    # -- the digits, proved, all roots at once -------------------------------------------------
+    def _evaluate(self, points):
+        """``(Delta(i w) as global mpmath numbers, J(w))`` at mpmath points, proof arithmetic."""
+        values, counts = self.counter.delta(points, self.hp)
+        # (an undecided count may come with a ball of no finite midpoint: no value there)
+        return [mpmath.re(self.hp.to_mpmath(v)) if c >= 0 else None
+                for v, c in zip(values, counts)], counts
+
+    def _checked(self, points, counts) -> bool:
+        """Without balls, the counts again at a second precision must agree."""
+        if self.hp.rigorous or not points:
+            return True
+        again = self.counter.counts(points, MP(self.hp.prec + 64))
+        return bool(np.all(again == np.asarray(counts)))
+
+    def refine_high(self, items) -> list:
+        """Eigenvalues from one-root brackets ``(lo, hi, J(lo), (A, B))``, proved by counts.
+
+        ``(lo, hi)`` comes from the double-precision refinement, ``(A, B)`` is the
+        isolation bracket to fall back on when the proof arithmetic does not confirm it.
+        """
+        D = self.digits
+        if not items:
+            return []
+        for _ in range(8):
+            try:
+                return self._refine_high(items)
+            except _MorePrecision:
+                self._set_precision(2 * self.work_digits)
+        raise ComputationError(f"cannot reach {D} digits: the counts stay undecided")
+
+    def _refine_high(self, items) -> list:
+        D = self.digits
+        book = self.book_prec
+        R = len(items)
+        ca = [x[2] for x in items]
+        with mpmath.workprec(book):
+            lo = [mpmath.mpf(x[0]) for x in items]
+            hi = [mpmath.mpf(x[1]) for x in items]
+        flo, fhi = [None] * R, [None] * R
+        # the double-precision brackets, confirmed in the proof arithmetic; those it
+        # does not confirm are widened 100-fold (in one batch) up to their isolation bracket
+        pending = list(range(R))
+        for _ in range(12):
+            values, counts = self._evaluate([lo[i] for i in pending] + [hi[i] for i in pending])
+            n = len(pending)
+            missed = []
+            with mpmath.workprec(book):
+                for j, i in enumerate(pending):
+                    kl, kh = counts[j], counts[n + j]
+                    if kl < 0 or kh < 0:
+                        raise _MorePrecision()
+                    if kl == ca[i] and kh == ca[i] + 1:
+                        flo[i], fhi[i] = values[j], values[n + j]
+                        continue
+                    A, B = (mpmath.mpf(v) for v in items[i][3])
+                    if lo[i] == A and hi[i] == B:
+                        raise ComputationError(
+                            f"the counts at {float(A):.17g} and {float(B):.17g} rad/s are "
+                            f"{kl} and {kh}, not {ca[i]} and {ca[i] + 1}")
+                    width = hi[i] - lo[i]
+                    lo[i] = max(A, lo[i] - 50 * width) if kl != ca[i] else lo[i]
+                    hi[i] = min(B, hi[i] + 50 * width) if kh != ca[i] + 1 else hi[i]
+                    missed.append(i)
+            pending = missed
+            if not pending:
+                break
+        if pending:
+            raise ComputationError("the double-precision brackets could not be confirmed")
+        tight = [mpmath.mpf(1)] * R
+        kept = [0] * R        # Anderson–Björck: +k the upper end kept k times, -k the lower
+        done = [None] * R
+        for _ in range(200):
+            tests, owner = [], []
+            with mpmath.workprec(book):
+                for i in range(R):
+                    if done[i] is not None:
+                        continue
+                    width = hi[i] - lo[i]
+                    # (test brackets are 2 10**-(D+3) wide about a point above lo: 3 allows
+                    # for that; a bracket of relative width 10**-(D+2) prints correctly)
+                    if width <= 3 * mpmath.mpf(10) ** (-(D + 3)) * lo[i] and \
+                            decimal_string(lo[i], D) == decimal_string(hi[i], D):
+                        done[i] = (lo[i], hi[i])
+                        continue
+                    c = None
+                    if flo[i] * fhi[i] < 0:
+                        c = hi[i] - fhi[i] * width / (fhi[i] - flo[i])
+                    if c is None or not lo[i] < c < hi[i]:
+                        c = (lo[i] + hi[i]) / 2
+                    # the bracket must shrink: not closer than 1/64 of it to either end
+                    c = min(max(c, lo[i] + width / 64), hi[i] - width / 64)
+                    eps = mpmath.mpf(10) ** (-(D + 3)) * c * tight[i]
+                    t1, t2 = max(c - eps, lo[i]), min(c + eps, hi[i])
+                    tests += [t1, t2]
+                    owner.append(i)
+            if not owner:
+                break
+            values, counts = self._evaluate(tests)
+            with mpmath.workprec(book):
+                for j, i in enumerate(owner):
+                    t1, t2 = tests[2 * j:2 * j + 2]
+                    f1, f2 = values[2 * j:2 * j + 2]
+                    k1, k2 = counts[2 * j:2 * j + 2]
+                    if k1 < 0 or k2 < 0:
+                        raise _MorePrecision()
+                    if k1 == ca[i] and k2 == ca[i] + 1:
+                        lo[i], flo[i], hi[i], fhi[i] = t1, f1, t2, f2
+                        kept[i] = 0
+                        if decimal_string(t1, D) != decimal_string(t2, D):
+                            tight[i] /= 100     # near a rounding boundary: a finer bracket
+                    elif k1 == ca[i] and k2 == ca[i]:
+                        # the upper end stays: scale its value (Anderson–Björck) so that
+                        # the next secant point moves past the root
+                        if kept[i] > 0:
+                            m = 1 - f2 / flo[i]
+                            fhi[i] *= m if m > 0 else mpmath.mpf(0.5)
+                        lo[i], flo[i] = t2, f2
+                        kept[i] = max(kept[i], 0) + 1
+                    elif k1 == ca[i] + 1 and k2 == ca[i] + 1:
+                        if kept[i] < 0:
+                            m = 1 - f1 / fhi[i]
+                            flo[i] *= m if m > 0 else mpmath.mpf(0.5)
+                        hi[i], fhi[i] = t1, f1
+                        kept[i] = min(kept[i], 0) - 1
+                    else:
+                        raise ComputationError(f"inconsistent counts near {float(t1):.17g} rad/s")
+        if any(d is None for d in done):
+            raise ComputationError(f"the refinement to {D} digits did not converge")
+        if not self._checked([x for d in done for x in d],
+                             [c for i in range(R) for c in (ca[i], ca[i] + 1)]):
+            raise _MorePrecision()
+        out = []
+        for lo_i, hi_i in done:
+            with mpmath.workprec(book):
+                mid = (lo_i + hi_i) / 2
+            out.append(Eigenvalue(_exact_mpc_imag(mid), 1, D, (lo_i, hi_i), self.proof))
         return out
 
-    # -- clusters ---------------------------------------------------------------------
-    def split_cluster(self, a, b, k):
-        """Separate the ``k`` roots in ``(a, b]`` by bisection on high-precision counts.
+    # -- clusters ------------------------------------------------------------------------------
+    def split_cluster(self, a, ca, b, k):
+        """Separate the ``k`` roots in ``(a, b]`` (``J(a) = ca``) on high-precision counts.
 
-        Returns brackets ``(lo, hi, m)``, ascending: ``m == 1`` for a root of its
+        Returns brackets ``(lo, hi, J(lo), m)``, ascending: ``m == 1`` for a root of its
         own, ``m > 1`` for roots that still share a bracket of relative width
         ``10**-(D + 2 + SEPARATION_DIGITS)``: they agree to ``D + SEPARATION_DIGITS``
         digits and are reported as one eigenvalue of multiplicity ``m``. Exact
@@ -246,16 +498,15 @@ class _Search:
         dps = resolution + 15
         with mpmath.workdps(dps):
             a, b = mpmath.mpf(a), mpmath.mpf(b)
-            a, ca = self.count_off(a, b, dps=dps)
+            a, ca = self.count_off(a, b, dps)
             cb = ca + k
             tol = mpmath.mpf(10) ** (-resolution)
             zoomed = self._zoom(a, b, k, resolution)
             if zoomed is not None:
                 lo, hi = zoomed
-                # the proof: two counts, as at the end of the bisection below
-                if (bracket_done(lo, hi, self.digits) and self.count_off(lo, a, dps=dps)
-                        == (lo, ca) and self.count_off(hi, b, dps=dps) == (hi, cb)):
-                    return [(lo, hi, k)]
+                if (bracket_done(lo, hi, self.digits) and self.count_off(lo, a, dps)
+                        == (lo, ca) and self.count_off(hi, b, dps) == (hi, cb)):
+                    return [(lo, hi, ca, k)]
             out, stack = [], [(a, ca, b, cb)]
             while stack:
                 a, ca, b, cb = stack.pop()
@@ -263,12 +514,18 @@ class _Search:
                 if m <= 0:
                     continue
                 if m == 1 or ((b - a) <= tol * b and bracket_done(a, b, self.digits)):
-                    out.append((a, b, m))
+                    out.append((a, b, ca, m))
                     continue
-                mid, cm = self.count_off((a + b) / 2, b, dps=dps)
+                mid, cm = self.count_off((a + b) / 2, b, dps)
                 stack.append((mid, cm, b, cb))
                 stack.append((a, ca, mid, cm))
             return out
+
+    def _delta(self, w, dps: int):
+        """``Delta(i w)`` at ``dps`` digits (mpmath), as a global mpmath number."""
+        ar = MP.from_digits(dps)
+        values, _ = self.counter.delta([w], ar)
+        return mpmath.re(ar.to_mpmath(values[0]))
 
     def _zoom(self, a, b, k, resolution):
         """A guess for an exact ``k``-fold root in ``(a, b)``, or None.
@@ -280,10 +537,9 @@ class _Search:
         ``|Delta|`` to keep its digits ``10**-resolution`` from the root give the
         bracket ``omega0 (1 -+ 10**-resolution / 2)``. Nothing is concluded here: the
         caller proves the bracket with two counts, and bisects as before when the
-        roots are not one multiple root (distinct close roots, a poor guess). Two
-        counts replace the ~3.3 counts per digit of a bisection to the same width.
+        roots are not one multiple root (distinct close roots, a poor guess).
         """
-        dps = k * resolution + math.ceil(self.ev.digits_lost(1j * float(b))) + 20
+        dps = k * resolution + 20
         if dps > MAX_DPS:
             return None
         with mpmath.workdps(dps):
@@ -291,7 +547,7 @@ class _Search:
             power = mpmath.mpf(1) / k
 
             def v(w):      # the V: |Delta|**(1/k)
-                return abs(self._f(w)) ** power
+                return abs(self._delta(w, dps)) ** power
 
             lo, hi = mpmath.mpf(a), mpmath.mpf(b)
             f_lo, f_hi = v(lo), v(hi)
@@ -311,99 +567,29 @@ class _Search:
                 f_lo, f_hi = v(lo), v(hi)
         return None
 
-    # -- refinement --------------------------------------------------------------------
-    def _double_bracket(self, a: float, b: float):
-        """The root's bracket narrowed to ~1e-11 relative on the double-precision Delta.
+    def prove_cluster(self, lo, hi, ca, m) -> Eigenvalue:
+        """An ``m``-fold eigenvalue in ``[lo, hi]``: the counts ``ca`` and ``ca + m`` at the
+        ends, in the proof arithmetic (and, without balls, at a second precision)."""
+        digits = self.digits + 2 + SEPARATION_DIGITS + 15
+        ar = proof_arithmetic(digits, self.certified)
+        counts = self.counter.counts([lo, hi], ar)
+        if list(counts) != [ca, ca + m] or not (
+                ar.rigorous or list(self.counter.counts([lo, hi], MP(ar.prec + 64)))
+                == [ca, ca + m]):
+            raise ComputationError(f"the counts at the ends of the {m}-fold eigenvalue near "
+                                   f"{float(lo):.15g} rad/s are not {ca} and {ca + m}")
+        with mpmath.workprec(ar.prec + 64):
+            mid = (mpmath.mpf(lo) + mpmath.mpf(hi)) / 2
+        proof = PROOFS["ball" if ar.rigorous else "mp"]
+        return Eigenvalue(_exact_mpc_imag(mid), m, self.digits, (lo, hi), proof)
 
-        The stable evaluator (:meth:`Evaluator.log_delta`) keeps about 13 digits, so
-        the sign it shows is right except within about ``1e-13 |lam|`` of the root.
-        Nothing is concluded from it: the narrowed bracket, padded, must show the
-        sign change again in mpmath before it replaces ``(a, b]``. Returns None when
-        double precision shows no sign change.
-        """
-        ref = []
 
-        def f(w):
-            logabs, phase = self.ev.log_delta(np.array([1j * float(w)]))
-            if not np.isfinite(logabs[0]):
-                return 0.0
-            if not ref:
-                ref.append(logabs[0])
-            return math.copysign(math.exp(min(logabs[0] - ref[0], 700.0)), math.cos(phase[0]))
-
-        fa, fb = f(a), f(b)
-        if fa == 0 or fb == 0 or (fa > 0) == (fb > 0):
-            return None
-        lo, hi = anderson_bjorck(f, a, b, fa, fb, lambda lo, hi: hi - lo <= 1e-11 * hi,
-                                 1e-11 * b)
-        return float(lo), float(hi)
-
-    def refine(self, a, b) -> Eigenvalue:
-        """One simple root in ``(a, b]`` to ``digits`` significant digits."""
-        extra = 0
-        # a bracket from a separated cluster may be far narrower than double precision
-        width = mpmath.mpf(b - a) / b
-        resolved = max(0, -int(mpmath.floor(mpmath.log10(width)))) if width > 0 else 0
-        narrow = self._double_bracket(float(a), float(b)) if width > 1e-9 else None
-        if narrow is not None:
-            pad = 1e-9 * narrow[1]
-            narrow = (max(float(a), narrow[0] - pad), min(float(b), narrow[1] + pad))
-        while True:
-            dps = (max(self.digits, resolved) + math.ceil(self.ev.digits_lost(1j * float(b)))
-                   + 10 + extra)
-            if dps > MAX_DPS:
-                raise ComputationError(
-                    f"cannot reach {self.digits} digits for the root near {float(b):.6g} rad/s "
-                    f"within {MAX_DPS} working digits")
-            with mpmath.workdps(dps):
-                lo = None
-                if narrow is not None:
-                    # the double-precision bracket, if mpmath confirms its sign change
-                    lo, hi = self._bracket_refine(mpmath.mpf(narrow[0]), mpmath.mpf(narrow[1]))
-                    narrow = None if lo is None else narrow
-                if lo is None:
-                    lo, hi = self._bracket_refine(mpmath.mpf(a), mpmath.mpf(b))
-            if lo is not None and self._verify(lo, hi, dps + 15):
-                # build the result inside the context: mpc() rounds to the working precision
-                with mpmath.workdps(dps):
-                    return Eigenvalue(mpmath.mpc(0, (lo + hi) / 2), 1, self.digits, (lo, hi))
-            extra += max(10, dps // 2)
-
-    def _f(self, omega):
-        value = self.ev.delta_mp(mpmath.mpc(0, omega), real=True)
-        if value == 0:
-            # mpmath.det returns an exact 0 for a matrix singular at the working
-            # precision: that is no sign, so look again with more digits
-            with mpmath.workdps(2 * mpmath.mp.dps):
-                value = self.ev.delta_mp(mpmath.mpc(0, omega), real=True)
-        return value
-
-    def _bracket_refine(self, a, b):
-        """Anderson–Björck on Delta; None if Delta shows no sign change (precision)."""
-        fa, fb = self._f(a), self._f(b)
-        if fa == 0:
-            return a, a
-        if fb == 0:
-            return b, b
-        if (fa > 0) == (fb > 0):
-            return None, None
-        tol = mpmath.mpf(10) ** (-(self.digits + 2)) * abs(a)
-        return anderson_bjorck(self._f, a, b, fa, fb,
-                               lambda lo, hi: bracket_done(lo, hi, self.digits), tol)
-
-    def _verify(self, lo, hi, dps) -> bool:
-        """Delta changes sign strictly across [lo, hi] at a higher precision too."""
-        if lo == hi:
-            with mpmath.workdps(dps):
-                eps = mpmath.mpf(10) ** (-(self.digits + 3)) * abs(lo)
-                lo, hi = lo - eps, hi + eps
-        with mpmath.workdps(dps):
-            f_lo, f_hi = self._f(mpmath.mpf(lo)), self._f(mpmath.mpf(hi))
-        return f_lo != 0 and f_hi != 0 and (f_lo > 0) != (f_hi > 0)
+class _MorePrecision(Exception):
+    """A count in the proof arithmetic is undecided: raise its precision."""
 
 
 def solve_undamped(model: Model, count: int | None = None, omega_max=None,
-                   digits: int = 15) -> Spectrum:
+                   digits: int = 15, certified: bool | None = None) -> Spectrum:
     """Natural frequencies of an undamped model.
 
     Parameters
@@ -417,11 +603,14 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         All eigenvalues with ``0 <= omega <= omega_max``.
     digits : int
         Significant digits, all correct (default 15).
+    certified : bool, optional
+        Prove in ball arithmetic (needs python-flint); False: mpmath at two
+        precisions; None (default): balls where python-flint is installed.
 
     Returns
     -------
     Spectrum
-        Eigenvalues ``lam = i omega``, ascending.
+        Eigenvalues ``lam = i omega``, ascending, each with the proof behind it.
 
     Examples
     --------
@@ -444,33 +633,37 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         hi = float(omega_max)
         if hi < 0:
             raise ValueError("omega_max must not be negative")
-        search = _Search(model, digits, max(hi, 1e-300), rigid)
+        search = _Search(model, digits, max(hi, 1e-300), rigid, certified)
     else:
         hi = _first_guess(model)
-        search = _Search(model, digits, hi, rigid)
-    check_stable(model, rigid, search.sm)
-    if omega_max is None:
-        while rigid < count:
-            hi, c_hi = search.count_off(hi, 2 * hi)
-            if c_hi >= count:
-                break
-            hi *= 2.0
+        search = _Search(model, digits, hi, rigid, certified)
+    check_stable(model, rigid, search.counter)
     eigen = []
     if rigid:
-        eigen.append(Eigenvalue(mpmath.mpc(0, 0), rigid, digits, (0.0, 0.0)))
+        eigen.append(Eigenvalue(mpmath.mpc(0, 0), rigid, digits, (0.0, 0.0), PROOFS["exact"]))
     wanted = None if count is None else count - rigid
+    if omega_max is None and wanted > 0:
+        hi, _ = search.top_for(count)
     if hi > 0 and (wanted is None or wanted > 0):
         # include a root sitting exactly on omega_max
         top, c_top = search.count_off(hi * (1 + 4e-16), 2 * hi)
-        for a, b, k in search.isolate(0.0, rigid, top, c_top, wanted):
-            parts = [(a, b, k)] if k == 1 else search.split_cluster(a, b, k)
-            for pa, pb, pk in parts:
-                if pk == 1:
-                    eigen.append(search.refine(pa, pb))
+        brackets = search.isolate(top, c_top, wanted)
+        simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
+        clusters = [(a, ca, b, cb - ca) for a, ca, b, cb in brackets if cb - ca > 1]
+        items = [(lo, hi_, ca, (a, b)) for (a, ca, b), (lo, hi_) in
+                 zip(simple, search.refine_double(simple))]
+        for a, ca, b, k in clusters:
+            for lo, hi_, cl, m in search.split_cluster(a, ca, b, k):
+                if m == 1:
+                    items.append((lo, hi_, cl, (lo, hi_)))
                 else:
-                    with mpmath.workdps(digits + 2 + SEPARATION_DIGITS + 15):
-                        mid = (mpmath.mpf(pa) + mpmath.mpf(pb)) / 2
-                        eigen.append(Eigenvalue(mpmath.mpc(0, mid), pk, digits, (pa, pb)))
+                    eigen.append(search.prove_cluster(lo, hi_, cl, m))
+        eigen += search.refine_high(items)
+        if omega_max is not None:
+            # nothing above the last bracket and below omega_max: the count there, proved
+            got = search.counter.counts([top], search.hp)
+            if got[0] != c_top:
+                raise ComputationError(f"the count at omega_max is {got[0]}, not {c_top}")
     eigen.sort(key=lambda e: e.omega)
     if count is not None:
         kept, total = [], 0

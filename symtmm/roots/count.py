@@ -1,0 +1,250 @@
+"""The Wittrick–Williams count and ``Delta`` on the frequency axis, on the numeric kernel.
+
+For an undamped model the number of natural frequencies below ``omega``
+(with multiplicity, rigid-body modes included) is ``J(omega) = J0 + s{K(omega)}``
+(Wittrick & Williams 1971): ``s{K}`` the number of negative eigenvalues of the
+exact dynamic stiffness, read off the signs of the ``LDL^T`` pivots
+(:func:`symtmm.numeric.stiffness.factor`), and ``J0 = 0`` because the plan's
+pieces stay below their own clamped-clamped frequencies
+(:data:`symtmm.numeric.plan.NU_MAX`). One factorisation gives both the count and
+``Delta(i omega)``, for a whole batch of frequencies.
+
+:class:`Counter` keeps one plan per frequency range and evaluates in any
+arithmetic: double batches to search, mpmath or Arb balls to decide and to prove.
+A count whose pivots cannot all be trusted at one precision is redone at a higher
+one; a point where a pivot stays undecided to :data:`SINGULAR_DIGITS` digits is
+taken for an eigenvalue (:class:`SingularCount`): the count is not defined there.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+
+from ..errors import ComputationError
+from ..numeric.arith import DOUBLE, MP, Arithmetic, Ball, ball_available
+from ..numeric.plan import StiffnessPlan
+from ..numeric.stiffness import factor
+
+__all__ = ["Counter", "SingularCount", "SINGULAR_DIGITS", "proof_arithmetic"]
+
+#: A count whose pivots stay undecided up to this many digits is taken at an eigenvalue.
+SINGULAR_DIGITS = 240
+
+
+class SingularCount(ArithmeticError):
+    """``K(omega)`` is singular: ``omega`` is an eigenvalue, where the count is not defined.
+
+    ``J(omega)`` counts the eigenvalues strictly below ``omega``; at an eigenvalue a
+    pivot of ``K`` is zero and its sign undefined. Callers count at a point moved off it.
+    """
+
+
+def proof_arithmetic(digits: int, certified: bool | None = None) -> Arithmetic:
+    """The arithmetic that decides and proves at ``digits`` decimal digits.
+
+    Arb balls where python-flint is installed (``certified`` None or True), else
+    mpmath (``certified`` False, or no flint): then results are checked at two
+    precisions instead of proved.
+    """
+    if certified is None:
+        certified = ball_available()
+    return Ball.from_digits(digits) if certified else MP.from_digits(digits)
+
+
+def _mpf_bits(x) -> tuple:
+    """``x`` (a float or any mpmath number) as an ``_mpf_`` tuple, unrounded."""
+    if hasattr(x, "_mpf_"):
+        return x._mpf_
+    return mpmath.libmp.from_float(float(x))
+
+
+class Counter:
+    """Counts and ``Delta(i omega)`` of an undamped model, any arithmetic, in batches.
+
+    Parameters
+    ----------
+    model : Model
+        Numeric; dashpots are ignored (the count of the model without them).
+    omega_design : float
+        Highest frequency expected; a higher one gets a plan of its own.
+
+    Attributes
+    ----------
+    evaluations : int
+        Frequencies evaluated (one per point of every batch, every arithmetic).
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> c = Counter(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 100.0)
+    >>> c.counts(np.array([1.0, 10.0, 40.0, 90.0])).tolist()   # roots (n pi)^2
+    [0, 1, 2, 3]
+    """
+
+    def __init__(self, model, omega_design: float):
+        from dataclasses import replace
+        model = model.require_numeric()
+        if model.damped:
+            model = replace(model, springs=tuple(replace(s, c=0) for s in model.springs))
+        self.model = model
+        self.omega_design = max(float(omega_design), 1e-300)
+        self.evaluations = 0
+        self._plans: dict = {}
+        self._extra_bits: dict = {}
+
+    def plan(self, omega: float) -> StiffnessPlan:
+        """The plan valid up to ``omega`` (one per doubling of the range)."""
+        omega = float(omega)
+        design = self.omega_design
+        while design < omega * (1 + 1e-12):
+            design *= 2.0
+        key = design
+        plan = self._plans.get(key)
+        if plan is None:
+            plan = self._plans[key] = StiffnessPlan(self.model, design * design)
+        return plan
+
+    # -- batches ------------------------------------------------------------------------
+    def factors(self, omegas, ar: Arithmetic = DOUBLE, positive: bool = False):
+        """:class:`~symtmm.numeric.stiffness.Factors` at ``lam**2 = -omega**2`` for every omega.
+
+        ``omegas``: floats (double) or numbers with an ``_mpf_`` (exact inputs for the other
+        arithmetics). ``positive``: at ``lam**2 = +omega**2`` instead (a real, growing
+        ``lam``; buckling checks).
+        """
+        if ar is DOUBLE:
+            w = np.asarray(omegas, dtype=float)
+            top = float(np.max(w, initial=0.0))
+            lam2 = w * w if positive else -(w * w)
+        else:
+            top = max((float(mpmath.mpf(_mpf_bits(v))) for v in omegas), default=0.0)
+            with ar:
+                pts = [ar.number(mpmath.mp.make_mpf(_mpf_bits(v))) for v in omegas]
+                lam2 = ar.array([p * p if positive else -(p * p) for p in pts])
+        self.evaluations += len(lam2)
+        plan = self.plan(top)
+        if not ar.rigorous:
+            return factor(plan, ar, lam2)
+        return self._ball_factor(plan, ar, omegas, positive)
+
+    def _ball_factor(self, plan, ar, omegas, positive):
+        """Ball ``LDL^T`` with the precision its radii need.
+
+        Without pivoting, ball elimination widens the radii along the band (each update
+        adds the radii of the row it subtracts): measured at ``prec`` bits as the largest
+        relative radius of the pivots, that growth is roughly independent of the
+        precision, so one retry with ``log2(growth)`` more bits decides every pivot not
+        genuinely close to zero. The extra bits are kept per plan for later calls.
+        """
+        extra = self._extra_bits.get(id(plan), 0)
+        for _ in range(6):
+            work = Ball(ar.prec + extra) if extra else ar
+            with work:
+                pts = [work.number(mpmath.mp.make_mpf(_mpf_bits(v))) for v in omegas]
+                lam2 = work.array([p * p if positive else -(p * p) for p in pts])
+            fa = factor(plan, work, lam2)
+            if fa.trusted.all():
+                return fa
+            growth = 0.0
+            for p in fa.pivots.reshape(-1):
+                mid, rad = abs(p.mid()), p.rad()
+                if mid != 0 and mid.is_finite() and rad.is_finite():
+                    growth = max(growth, float(rad / mid))
+            # the bits the radii ate, measured; when they ran out entirely (an infinite
+            # pivot ball) at least twice the precision
+            needed = math.log2(growth) + work.prec + 8 if growth > 0 else 0
+            if extra >= 16 * ar.prec:
+                return fa
+            extra = max(extra + 32, int(needed)) if growth > 0 else max(2 * extra, ar.prec)
+            self._extra_bits[id(plan)] = extra
+        return fa
+
+    def counts(self, omegas, ar: Arithmetic = DOUBLE) -> np.ndarray:
+        """``J(omega)`` per point, ``-1`` where the arithmetic cannot decide it."""
+        if len(omegas) == 0:
+            return np.zeros(0, dtype=int)
+        return self.factors(omegas, ar).counts()
+
+    # -- one point, decided ---------------------------------------------------------------
+    def count(self, omega, digits: int | None = None, positive: bool = False) -> int:
+        """``J(omega)``: double precision unless a pivot is too small to trust; then (or with
+        ``digits``) mpmath from ``digits`` (default 30) digits, doubled until decided."""
+        if digits is None:
+            c = self.factors([float(omega)], DOUBLE, positive).counts()[0]
+            if c >= 0:
+                return int(c)
+            digits = 30
+        while True:
+            c = self.factors([omega], MP.from_digits(digits), positive).counts()[0]
+            if c >= 0:
+                return int(c)
+            if digits >= SINGULAR_DIGITS:
+                raise SingularCount(f"K({float(omega):.17g}) is singular to {digits} digits: "
+                                    "an eigenvalue")
+            digits *= 2
+
+    def count_off(self, omega: float, toward: float, digits: int | None = None):
+        """``(point, J(point))``: at ``omega``, or moved a little toward ``toward`` when
+        ``omega`` is an eigenvalue (any point serves where this is used)."""
+        step = (toward - omega) * 1e-7
+        for k in range(12):
+            try:
+                return omega, self.count(omega, digits)
+            except SingularCount:
+                omega = omega + step * 4**k
+        raise ComputationError(f"cannot find a point near {float(omega):.6g} rad/s that is "
+                               "not an eigenvalue")
+
+    def unstable_modes(self, rigid: int, omega_ref: float) -> int:
+        """Eigenvalues with ``omega**2 < 0``: modes buckled by an axial compression.
+
+        ``J`` extends to ``omega**2 < 0`` (``K`` at the real ``lam = w`` counts the
+        eigenvalues below ``-w**2``; the pieces' clamped-clamped ones all lie above
+        zero). Without rigid-body modes this is the count of the static ``K(0)``; with
+        ``rigid`` of them (``omega = 0`` exactly) the counts at ``omega**2 = -w**2`` and
+        ``+w**2`` must differ by ``rigid`` alone, for a ``w`` from ``1e-3 omega_ref`` down,
+        so that no eigenvalue near zero is taken for a buckled or a rigid one.
+        """
+        if rigid == 0:
+            try:
+                return self.count(0.0)
+            except SingularCount:
+                pass
+        w = 1e-3 * float(omega_ref)
+        for _ in range(6):
+            try:
+                below, above = self.count(w, positive=True), self.count(w)
+            except SingularCount:
+                below = above = None
+            if below is not None and above - below == rigid:
+                return below
+            w *= 1e-3
+        raise ComputationError("cannot tell whether the axial compression is above a buckling "
+                               f"load: eigenvalues with |omega| below {w * 1e3:.3g} rad/s besides "
+                               "the rigid-body modes")
+
+    # -- Delta ------------------------------------------------------------------------------
+    def signed_log_delta(self, omegas):
+        """``(log|Delta|, sign Delta, counts)`` of ``Delta(i omega)`` (real), double, batched."""
+        fa = self.factors(omegas, DOUBLE)
+        logabs, phase = fa.log_delta()
+        sign = np.where(np.cos(phase) < 0, -1.0, 1.0)
+        return logabs, sign, fa.counts()
+
+    def delta(self, omegas, ar: Arithmetic):
+        """``(Delta(i omega), counts)`` in ``ar`` (mpmath numbers or balls)."""
+        fa = self.factors(omegas, ar)
+        return fa.delta(), fa.counts()
+
+
+def digits_for(digits: int) -> int:
+    """Working digits of the high-precision stage for ``digits`` correct digits.
+
+    The stiffness formulation loses no digit to the growth of long segments; what is
+    needed beyond the result's digits is the resolution of a pivot ``10**-(digits+3)``
+    of the scale (a bracket end that close to a root) and guard digits.
+    """
+    return digits + 25 + math.ceil(math.log10(max(digits, 1)))

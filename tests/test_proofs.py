@@ -1,0 +1,40 @@
+"""Every undamped eigenvalue says what backs its printed digits."""
+
+import json
+
+import pytest
+
+from symtmm.cli import main
+from symtmm.model import Beam, Model
+from symtmm.numeric.arith import ball_available
+from symtmm.roots.undamped import PROOFS, solve_undamped
+
+FREE_FREE = Model((Beam("b", 1, 1, 1, left="free", right="free"),))
+PINNED = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),))
+
+
+@pytest.mark.skipif(not ball_available(), reason="needs python-flint")
+def test_balls_prove_every_root_where_flint_is_installed():
+    spec = solve_undamped(PINNED, count=4, digits=20)
+    assert [e.proof for e in spec] == [PROOFS["ball"]] * 4
+    assert "proved by count (ball arithmetic)" in spec.table()
+
+
+def test_two_precisions_without_balls():
+    spec = solve_undamped(PINNED, count=3, digits=15, certified=False)
+    assert [e.proof for e in spec] == [PROOFS["mp"]] * 3
+
+
+def test_rigid_body_modes_are_exact():
+    spec = solve_undamped(FREE_FREE, count=4, digits=15, certified=False)
+    assert spec.eigenvalues[0].multiplicity == 2 and spec.eigenvalues[0].proof == PROOFS["exact"]
+    assert spec.proofs() == {PROOFS["exact"]: [1], PROOFS["mp"]: [2, 3]}
+
+
+def test_json_names_the_proof(tmp_path, capsys):
+    path = tmp_path / "pp.toml"
+    path.write_text('[[beam]]\nname = "b"\nEI = 1\nm = 1\nL = 1\nleft = "pinned"\n'
+                    'right = "pinned"\n')
+    assert main(["solve", str(path), "--count", "2", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert all(e["proof"] in PROOFS.values() for e in data["eigenvalues"])
