@@ -22,7 +22,7 @@ from .assembly import point_elements
 from .errors import ModelError
 from .model import Model
 
-__all__ = ["Mesh", "BC_FREEDOMS_FIXED"]
+__all__ = ["Mesh", "BC_FREEDOMS_FIXED", "static_nullity"]
 
 #: The node freedoms (0 = Y, 1 = Theta) each boundary condition fixes.
 BC_FREEDOMS_FIXED = {"free": (), "clamped": (0, 1), "pinned": (0,), "sliding": (1,)}
@@ -238,3 +238,88 @@ class Mesh:
                             del ex[w]
             subs[pivot] = value
         return subs
+
+
+def _segment_null_rows(beam, length) -> list:
+    """Rows ``r`` with ``r . (Y0, Theta0, Y1, Theta1) = 0`` exactly on the static null space
+    of one piece of ``beam`` (its motions without strain energy).
+
+    Without axial force or foundation a piece moves rigidly (``Theta1 = Theta0``,
+    ``Y1 = Y0 + l Theta0``; for a shear-flexible piece ``Theta`` is the section's
+    rotation, which a rigid motion turns with the line); an axial force
+    resists every turn (its energy ``N Y'**2``), leaving the translation; a
+    foundation resists every motion.
+    """
+    one, zero = sp.Integer(1), sp.Integer(0)
+    if beam.kw != 0:
+        return [[one, zero, zero, zero], [zero, one, zero, zero],
+                [zero, zero, one, zero], [zero, zero, zero, one]]
+    if beam.N != 0:
+        return [[zero, one, zero, zero], [zero, zero, zero, one], [-one, zero, one, zero]]
+    return [[zero, -one, zero, one], [-one, -length, one, zero]]
+
+
+def static_nullity(model: Model) -> int:
+    """The number of rigid-body (zero-frequency) modes: the nullity of the static ``K(0)``.
+
+    ``K(0)`` is the sum of the elements' static stiffnesses, each positive
+    semi-definite in a model that is not buckled, so its null space is the
+    intersection of theirs: the freedoms on which every piece moves without
+    strain energy (:func:`_segment_null_rows`) and every spring is unstretched
+    (the rows of its exact static stiffness). The rank of those rows is exact
+    (rational arithmetic where the model is rational), whatever the axial force
+    or foundation: only the structure of each null space enters, never the
+    transcendental values of a stiffness.
+
+    Under a compression short of buckling a piece's static stiffness is indefinite;
+    its null space is still the translation, and the model's is the same unless the
+    compression is critical (which the buckling check, counting at ``omega**2 < 0``,
+    reports).
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model, Spring
+    >>> ff = dict(left="free", right="free")
+    >>> static_nullity(Model((Beam("b", 1, 1, 1, **ff),)))
+    2
+    >>> static_nullity(Model((Beam("b", 1, 1, 1, N=3, **ff),)))     # tension resists turning
+    1
+    >>> static_nullity(Model((Beam("a", 1, 1, 1, **ff), Beam("b", 1, 1, 1, **ff)),
+    ...                      (Spring("a", "b", "1/2", 10),)))         # joined at one point
+    3
+    """
+    from sympy.polys.constructor import construct_domain
+    from sympy.polys.matrices import DomainMatrix
+
+    model = model.require_numeric().resolved()
+    mesh = Mesh(model, lambda beam, seg: float(seg.l))
+    if mesh.size == 0:
+        return 0
+    rows: list = []
+
+    def add(places, local_rows):
+        for local in local_rows:
+            row: dict = {}
+            for coef, combo in zip(local, places):
+                if coef == 0:
+                    continue
+                for index, c in combo:
+                    row[index] = row.get(index, 0) + coef * c
+            row = {i: c for i, c in row.items() if c != 0}
+            if row:
+                rows.append(row)
+
+    for (b_idx, seg, _, _), places in zip(mesh.segments, mesh.segment_places):
+        add(places, _segment_null_rows(model.beams[b_idx], seg.l))
+    for places, element in mesh.point_places:
+        S = element.stiffness(sp.Integer(0))
+        add(places, [[S[i, j] for j in range(S.cols)] for i in range(S.rows)])
+    if not rows:
+        return mesh.size
+    # each row scaled by its first entry: springs of irrational stiffness give rational rows
+    rows = [{i: c / row[min(row)] for i, c in row.items()} for row in rows]
+    domain, values = construct_domain([c for row in rows for c in row.values()])
+    it = iter(values)
+    sdm = {r: {i: next(it) for i in row} for r, row in enumerate(rows)}
+    dm = DomainMatrix(sdm, (len(rows), mesh.size), domain)
+    return mesh.size - dm.rank()

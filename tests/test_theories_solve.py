@@ -34,6 +34,7 @@ from reference import classical_roots
 
 from symtmm import Beam, ComputationError, Model, ModelError, Spring
 from symtmm.compile import Evaluator
+from symtmm.fe import fe_converged
 from symtmm.model import Attachment, Mass, RigidBody
 from symtmm.modelfile import loads
 from symtmm.roots.damped import count_in_rectangle, solve_damped
@@ -367,11 +368,29 @@ def test_body_on_a_free_beam_keeps_its_two_rigid_body_modes():
     assert spectrum.eigenvalues[0].multiplicity == 2 and spectrum.eigenvalues[0].omega == 0
 
 
-def test_rigid_body_modes_with_axial_force_are_decided_numerically():
+def test_rigid_body_modes_with_axial_force_and_foundation():
     ff = dict(left="free", right="free", theory="timoshenko", rhoI="1/50", kGA=30)
-    assert rigid_body_modes(Model((Beam("b", 1, 1, 1, **ff),))) == 2          # exact rank
+    assert rigid_body_modes(Model((Beam("b", 1, 1, 1, **ff),))) == 2
     assert rigid_body_modes(Model((Beam("b", 1, 1, 1, N=3, **ff),))) == 1     # tension resists
+    assert rigid_body_modes(Model((Beam("b", 1, 1, 1, N=-3, **ff),))) == 1    # so does compression
     assert rigid_body_modes(Model((Beam("b", 1, 1, 1, kw=3, **ff),))) == 0    # so does a foundation
+
+
+def test_long_free_beam_in_tension_beside_another_beam():
+    """A long free-free beam in tension (cosh(sqrt(N/EI) L) = cosh(70) in its transfer
+    matrix) keeps one rigid-body mode beside a pinned-pinned beam; the spectrum is the
+    union of the pinned beam's (n pi)**2 and the tension beam's (converged FE)."""
+    tense = dict(name="t", EI=0.1, m=2.0, L=10.0, x0=0.0, left="free", right="free", N=5.0)
+    model = Model((Beam("t", "1/10", 2, 10, N=5, left="free", right="free"),
+                   Beam("p", 1, 1, 1, left="pinned", right="pinned")))
+    assert rigid_body_modes(model) == 1
+    spectrum = solve_undamped(model, omega_max=12, digits=12)
+    got = sorted(float(e.omega) for e in spectrum for _ in range(e.multiplicity))
+    fe = fe_converged([tense], [], 40, count=40)
+    tension = [w for w in fe["omega"] if 0 < w <= 12]
+    expected = sorted([0.0] + tension + [math.pi**2])
+    assert len(got) == len(expected)
+    assert np.allclose(got, expected, rtol=1e-8, atol=1e-12)
 
 
 # -- damped models ----------------------------------------------------------------------------

@@ -17,7 +17,7 @@ pivoting on the pairs ``(R, R')``.
 
 Proofs, per eigenvalue:
 
-* ``exact``: ``lam = 0`` for rigid-body modes (the exact rank of ``R(0)``).
+* ``exact``: ``lam = 0`` for rigid-body modes (the exact static null space, :func:`symtmm.mesh.static_nullity`).
 * ``sign change``: a real function that changes sign has a zero between.
   ``Delta(i omega)`` of an undamped model and ``Delta(x)`` on the real axis
   are real; balls of opposite sign at the two ends of a bracket prove a root

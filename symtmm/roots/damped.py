@@ -759,7 +759,7 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         notes.append(f"Re lam = 0 for {search.idle} eigenvalue(s): also eigenvalues of the "
                      f"model without dashpots and with doubled dashpots to "
                      f"{digits + 20} digits (modes that do not move the dashpots)")
-    evaluations += search.p.evaluations + 1     # (+1: R(0) for the rigid-body modes)
+    evaluations += search.p.evaluations
     name, scale = omega_scale(model)
     with mpmath.workdps(digits + 20):
         scale_mp = mpmath.mpf(sp.N(scale, digits + 20)._to_mpmath(mpmath.mp.prec))

@@ -232,8 +232,7 @@ def fmin1d(model: Model, count: int | None = None, omega_max=None, sigma_max=Non
             kept.append(e)
             n += e.multiplicity
         eigen = kept
-    # (+1: the exact R(0) that gave the rigid-body modes)
-    return _spectrum(model, eigen, digits, "fmin1d", ev.evaluations + ds.evaluations + 1, start,
+    return _spectrum(model, eigen, digits, "fmin1d", ev.evaluations + ds.evaluations, start,
                      notes)
 
 

@@ -5,7 +5,8 @@ at once the Wittrick–Williams count ``J(omega)`` (natural frequencies below
 ``omega``, with multiplicity) and ``Delta(i omega)``, for a whole batch of
 frequencies; the search pays for its points in batches:
 
-1. **Rigid-body modes** are the null space of the exact static ``R(0)``.
+1. **Rigid-body modes** are the null space of the static stiffness, exactly
+   (:func:`symtmm.mesh.static_nullity`).
 2. **Isolate.** Counts on a batch of frequencies bracket the range; every
    bracket holding ``k > 1`` roots is cut into ``k + 1`` equal parts, all
    brackets at once, until each holds one root, or is narrower than double
@@ -45,9 +46,8 @@ import mpmath
 import numpy as np
 import sympy as sp
 
-from ..assembly import boundary_matrix
-from ..compile import Evaluator
 from ..errors import ComputationError
+from ..mesh import static_nullity
 from ..model import Model
 from ..numeric.arith import MP
 from ..results import Eigenvalue, Spectrum, decimal_string
@@ -68,20 +68,16 @@ _SPLIT_POINTS = 16
 MAX_DPS = 3000
 
 #: What backs an eigenvalue: its name in results and output.
-PROOFS = {"exact": "exact (rank of R(0))",
+PROOFS = {"exact": "exact (static null space)",
           "ball": "count (ball arithmetic)",
           "mp": "count (two precisions)"}
 
 
 def rigid_body_modes(model: Model) -> int:
-    """Number of rigid-body (zero-frequency) modes: the nullity of ``R(0)``.
+    """Number of rigid-body (zero-frequency) modes: the nullity of the static stiffness.
 
-    Exact rank over the rationals when ``R(0)`` is rational (Euler–Bernoulli,
-    Rayleigh and Timoshenko beams without axial force or foundation: the
-    segments' static transfer matrices are polynomial; rigid bodies add
-    rational entries). An axial force or a foundation makes ``R(0)``
-    transcendental: its nullity is then decided numerically at two precisions
-    (:meth:`Evaluator.nullity_at_zero`).
+    Exact, from the structure of each element's static null space
+    (:func:`symtmm.mesh.static_nullity`), with or without axial force and foundation.
 
     Examples
     --------
@@ -96,19 +92,7 @@ def rigid_body_modes(model: Model) -> int:
     >>> rigid_body_modes(Model((Beam("b", 1, 1, 1, left="pinned", right="free", N=3),)))
     0
     """
-    model = model.require_numeric()
-    if any(b.kw != 0 or b.N != 0 for b in model.beams):
-        return Evaluator(model).nullity_at_zero()
-    R = boundary_matrix(model, lam=sp.Integer(0))
-    if R.shape[1] == 0:
-        return 0
-    # exact elimination in the smallest domain holding the entries (the rationals for
-    # numeric models): Matrix.rank's fraction-free elimination takes minutes at 10 levels
-    from sympy.polys.matrices import DomainMatrix
-    dm = DomainMatrix.from_Matrix(R)
-    if dm.domain.is_EX:
-        return R.shape[1] - R.rank(simplify=True)
-    return R.shape[1] - dm.rank()
+    return static_nullity(model)
 
 
 def check_stable(model: Model, rigid: int, counter: Counter | None = None) -> int:
@@ -678,8 +662,7 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     name, scale = omega_scale(model)
     with mpmath.workdps(digits + 20):
         scale_mp = mpmath.mpf(sp.N(scale, digits + 20)._to_mpmath(mpmath.mp.prec))
-    # (+1: the exact R(0) that gave the rigid-body modes)
-    return Spectrum(tuple(eigen), digits, "default", search.evaluations + 1,
+    return Spectrum(tuple(eigen), digits, "default", search.evaluations,
                     time.perf_counter() - start, model.title or (model.source or ""),
                     (name, scale_mp), _notes(eigen, digits))
 
