@@ -14,6 +14,7 @@ from symtmm.cli import main
 from symtmm.errors import ComputationError
 from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load
+from symtmm.roots.undamped import solve_undamped
 from symtmm.solve import solve
 
 flint = pytest.importorskip("flint")
@@ -71,11 +72,14 @@ def test_example4_enclosures_contain_decoupled_references():
             assert enc.real[0] < 0 < enc.real[1]
 
 
-def test_undamped_sign_change_enclosures():
-    spec = solve(PP, count=4, digits=20)
+@pytest.mark.parametrize("certified", [True, False])
+def test_undamped_enclosures(certified):
+    """Proved by the solver's ball counts; from a spectrum found without balls, by a
+    sign change of Delta in balls."""
+    spec = solve_undamped(PP, count=4, digits=20, certified=certified)
     enclosures = certify(PP, spec)
     for n, enc in enumerate(enclosures, 1):
-        assert enc.proof == "sign change"
+        assert enc.proof == ("count" if certified else "sign change")
         with mpmath.workdps(50):
             assert enc.contains(mpmath.mpc(0, (n * mpmath.pi) ** 2))
         assert enc.real == (0, 0)

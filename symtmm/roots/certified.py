@@ -58,6 +58,7 @@ from ..elements.base import LAM
 from ..errors import ComputationError
 from ..model import Model
 from ..results import Eigenvalue, Spectrum
+from .undamped import PROOFS
 
 __all__ = ["ArbCount", "ArbDelta", "Enclosure", "Enclosures", "certify", "require_flint"]
 
@@ -744,6 +745,10 @@ class _Certifier:
     def enclose(self, e: Eigenvalue) -> Enclosure:
         lam = e.lam
         zero = mpmath.mpf(0)
+        if e.proof == PROOFS["ball"] and e.bracket is not None and lam.real == 0 and lam != 0:
+            # the solver proved it already: counts in balls at the ends of its bracket
+            lo, hi = sorted(e.bracket)
+            return Enclosure(e, (zero, zero), (_exact_mpf(lo), _exact_mpf(hi)), "count")
         if e.multiplicity > 1:
             if lam == 0 and e.bracket == (0.0, 0.0):
                 return Enclosure(e, (zero, zero), (zero, zero), "exact")
@@ -821,8 +826,8 @@ def certify(model: Model, spectrum: Spectrum) -> list:
     >>> enc = certify(pp, solve(pp, count=2, digits=12))
     >>> with mpmath.workdps(40):                   # the roots (n pi)^2 i, to 40 digits
     ...     inside = [e.contains(mpmath.mpc(0, (n * mpmath.pi) ** 2)) for e, n in zip(enc, (1, 2))]
-    >>> [e.proof for e in enc], inside
-    (['sign change', 'sign change'], [True, True])
+    >>> [e.proof for e in enc], inside             # proved by the solver's counts already
+    (['count', 'count'], [True, True])
     """
     certifier = _Certifier(model, spectrum.digits)
     out = Enclosures(certifier.enclose(e) for e in spectrum)

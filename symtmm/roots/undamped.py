@@ -268,13 +268,14 @@ class _Search:
 
     # -- refinement in double precision, all roots at once ---------------------------------
     def refine_double(self, brackets) -> list:
-        """Each one-root bracket ``(a, J(a), b)`` narrowed on the double-precision ``Delta``.
+        """The root in each one-root bracket ``(a, J(a), b)``, estimated in double precision.
 
-        Anderson–Björck steps, one batched evaluation per step for all roots; the count
-        at each new point says on which side of the root it lies, ``Delta`` where in the
+        Anderson–Björck steps on ``Delta``, one batched evaluation per step for all roots;
+        the count at each new point says on which side of the root it lies (or, where a
+        pivot is too small for the count, the sign of ``Delta``), ``Delta`` where in the
         bracket to put the next one. A root stops when its bracket is narrower than
-        :data:`_DOUBLE_REFINED` or its new point is too close for the count to decide.
-        Returns ``(a, b)`` per bracket; nothing is concluded from them (step 4 proves).
+        :data:`_DOUBLE_REFINED` or its side cannot be told. Returns, per bracket, the
+        point of smallest ``|Delta|`` met; nothing is concluded from it (step 4 proves).
         """
         if not brackets:
             return []
@@ -291,6 +292,9 @@ class _Search:
         previous = b - a
         active = (b - a) > _DOUBLE_REFINED * b
         bisect = np.zeros(R, dtype=bool)
+        # the best estimate among the points inside (an end may sit on a neighbouring root)
+        best = 0.5 * (a + b)
+        best_f = np.full(R, np.inf)
         for _ in range(100):
             idx = np.nonzero(active)[0]
             if idx.size == 0:
@@ -300,17 +304,26 @@ class _Search:
                 c = B - FB * (B - A) / (FB - FA)
             bad = ~np.isfinite(c) | (c <= A) | (c >= B) | bisect[idx] | (FA * FB > 0)
             c = np.where(bad, 0.5 * (A + B), c)
-            # at least 1/64 of the bracket from either end: a secant that creeps up on the
-            # root from one side still closes the bracket
-            guard = (B - A) / 64
+            # at least a quarter of the final width inside: once the iterate is that close to
+            # the root, the next point falls on its other side and the bracket closes at once
+            guard = np.minimum(0.25 * _DOUBLE_REFINED * B, (B - A) / 4)
             c = np.clip(c, A + guard, B - guard)
             lc, sc, kc = self.counter.signed_log_delta(c)
             with np.errstate(all="ignore"):
                 fc = sc * np.exp(np.minimum(lc - ref[idx], 700.0))
             left, right = kc == ca[idx], kc == ca[idx] + 1
+            # an undecided count (a pivot near zero: the point is near the root): the sign of
+            # Delta tells the side (one simple root inside, so Delta changes sign once); a
+            # wrong side costs the proof stage a wider bracket, never a wrong result
+            unsure = kc < 0
+            by_sign = unsure & (FA * FB < 0) & (fc != 0) & np.isfinite(fc)
+            right = right | (by_sign & (np.sign(fc) == np.sign(FB)))
+            left = left | (by_sign & (np.sign(fc) == np.sign(FA)))
             stop = ~(left | right)              # undecided (or inconsistent): leave it here
             width_before = B - A
             for j, i in enumerate(idx):
+                if not abs(fc[j]) >= best_f[i]:        # (also Delta = 0: at the root)
+                    best[i], best_f[i] = c[j], abs(fc[j])
                 if stop[j]:
                     active[i] = False
                     continue
@@ -326,7 +339,7 @@ class _Search:
                 bisect[i] = (b[i] - a[i]) > 0.5 * previous[i]
                 previous[i] = width_before[j]
                 active[i] = (b[i] - a[i]) > _DOUBLE_REFINED * b[i]
-        return list(zip(a.tolist(), b.tolist()))
+        return best.tolist()
 
     # -- the digits, proved, all roots at once -------------------------------------------------
     def _evaluate(self, points):
@@ -344,10 +357,10 @@ class _Search:
         return bool(np.all(again == np.asarray(counts)))
 
     def refine_high(self, items) -> list:
-        """Eigenvalues from one-root brackets ``(lo, hi, J(lo), (A, B))``, proved by counts.
+        """Eigenvalues from one-root brackets ``(estimate, J(A), (A, B))``, proved by counts.
 
-        ``(lo, hi)`` comes from the double-precision refinement, ``(A, B)`` is the
-        isolation bracket to fall back on when the proof arithmetic does not confirm it.
+        ``estimate`` is the double-precision one (any point near the root, or None for
+        the bracket's midpoint), ``(A, B)`` a bracket known to hold the root.
         """
         D = self.digits
         if not items:
@@ -360,111 +373,85 @@ class _Search:
         raise ComputationError(f"cannot reach {D} digits: the counts stay undecided")
 
     def _refine_high(self, items) -> list:
+        """All roots at once: pairs of points about each root's estimate, counted.
+
+        Every evaluation factorises ``K`` once and gives ``Delta`` and the count
+        together. Each round evaluates, for every root, the pair ``c (1 -+ h)``
+        about its current estimate ``c``: its counts ``J_i`` and ``J_i + 1`` prove
+        the root between them, and its two values of ``Delta`` give the next
+        estimate by a secant step, whose error is about the square of the last one.
+        The first pair (``h = 1e-11``, the double estimate's accuracy) gives an
+        estimate good to about 22 digits, the next pairs (``h = 10**-(D+3)``) prove
+        it: two rounds for 15 digits, three for 30. A secant step that leaves the
+        bracket the counts have proved is replaced by an Anderson–Björck step on it.
+        The midpoint of a proving pair prints correctly rounded once both ends round
+        alike (else the next pair is taken narrower).
+        """
         D = self.digits
-        book = self.book_prec
+        ctx = MP(self.book_prec).ctx            # bookkeeping: more bits than the evaluations
         R = len(items)
-        ca = [x[2] for x in items]
-        with mpmath.workprec(book):
-            lo = [mpmath.mpf(x[0]) for x in items]
-            hi = [mpmath.mpf(x[1]) for x in items]
-        flo, fhi = [None] * R, [None] * R
-        # the double-precision brackets, confirmed in the proof arithmetic; those it
-        # does not confirm are widened 100-fold (in one batch) up to their isolation bracket
-        pending = list(range(R))
-        for _ in range(12):
-            values, counts = self._evaluate([lo[i] for i in pending] + [hi[i] for i in pending])
-            n = len(pending)
-            missed = []
-            with mpmath.workprec(book):
-                for j, i in enumerate(pending):
-                    kl, kh = counts[j], counts[n + j]
-                    if kl < 0 or kh < 0:
-                        raise _MorePrecision()
-                    if kl == ca[i] and kh == ca[i] + 1:
-                        flo[i], fhi[i] = values[j], values[n + j]
-                        continue
-                    A, B = (mpmath.mpf(v) for v in items[i][3])
-                    if lo[i] == A and hi[i] == B:
-                        raise ComputationError(
-                            f"the counts at {float(A):.17g} and {float(B):.17g} rad/s are "
-                            f"{kl} and {kh}, not {ca[i]} and {ca[i] + 1}")
-                    width = hi[i] - lo[i]
-                    lo[i] = max(A, lo[i] - 50 * width) if kl != ca[i] else lo[i]
-                    hi[i] = min(B, hi[i] + 50 * width) if kh != ca[i] + 1 else hi[i]
-                    missed.append(i)
-            pending = missed
-            if not pending:
-                break
-        if pending:
-            raise ComputationError("the double-precision brackets could not be confirmed")
-        tight = [mpmath.mpf(1)] * R
-        kept = [0] * R        # Anderson–Björck: +k the upper end kept k times, -k the lower
-        done = [None] * R
-        for _ in range(200):
+        ca = [x[1] for x in items]
+        a = [ctx.mpf(x[2][0]) for x in items]
+        b = [ctx.mpf(x[2][1]) for x in items]
+        c = [(a[i] + b[i]) / 2 if x[0] is None else min(max(ctx.mpf(x[0]), a[i]), b[i])
+             for i, x in enumerate(items)]
+        fa: list = [None] * R
+        fb: list = [None] * R
+        h = [ctx.mpf("1e-11")] * R
+        target = ctx.mpf(10) ** (-(D + 3))
+        done: list = [None] * R
+        for _ in range(60):
             tests, owner = [], []
-            with mpmath.workprec(book):
-                for i in range(R):
-                    if done[i] is not None:
-                        continue
-                    width = hi[i] - lo[i]
-                    # (test brackets are 2 10**-(D+3) wide about a point above lo: 3 allows
-                    # for that; a bracket of relative width 10**-(D+2) prints correctly)
-                    if width <= 3 * mpmath.mpf(10) ** (-(D + 3)) * lo[i] and \
-                            decimal_string(lo[i], D) == decimal_string(hi[i], D):
-                        done[i] = (lo[i], hi[i])
-                        continue
-                    c = None
-                    if flo[i] * fhi[i] < 0:
-                        c = hi[i] - fhi[i] * width / (fhi[i] - flo[i])
-                    if c is None or not lo[i] < c < hi[i]:
-                        c = (lo[i] + hi[i]) / 2
-                    # the bracket must shrink: not closer than 1/64 of it to either end
-                    c = min(max(c, lo[i] + width / 64), hi[i] - width / 64)
-                    eps = mpmath.mpf(10) ** (-(D + 3)) * c * tight[i]
-                    t1, t2 = max(c - eps, lo[i]), min(c + eps, hi[i])
-                    tests += [t1, t2]
+            for i in range(R):
+                if done[i] is None:
+                    e = h[i] * c[i]
+                    tests += [max(c[i] - e, (a[i] + c[i]) / 2), min(c[i] + e, (c[i] + b[i]) / 2)]
                     owner.append(i)
             if not owner:
                 break
             values, counts = self._evaluate(tests)
-            with mpmath.workprec(book):
-                for j, i in enumerate(owner):
-                    t1, t2 = tests[2 * j:2 * j + 2]
-                    f1, f2 = values[2 * j:2 * j + 2]
-                    k1, k2 = counts[2 * j:2 * j + 2]
-                    if k1 < 0 or k2 < 0:
-                        raise _MorePrecision()
-                    if k1 == ca[i] and k2 == ca[i] + 1:
-                        lo[i], flo[i], hi[i], fhi[i] = t1, f1, t2, f2
-                        kept[i] = 0
-                        if decimal_string(t1, D) != decimal_string(t2, D):
-                            tight[i] /= 100     # near a rounding boundary: a finer bracket
-                    elif k1 == ca[i] and k2 == ca[i]:
-                        # the upper end stays: scale its value (Anderson–Björck) so that
-                        # the next secant point moves past the root
-                        if kept[i] > 0:
-                            m = 1 - f2 / flo[i]
-                            fhi[i] *= m if m > 0 else mpmath.mpf(0.5)
-                        lo[i], flo[i] = t2, f2
-                        kept[i] = max(kept[i], 0) + 1
-                    elif k1 == ca[i] + 1 and k2 == ca[i] + 1:
-                        if kept[i] < 0:
-                            m = 1 - f1 / fhi[i]
-                            flo[i] *= m if m > 0 else mpmath.mpf(0.5)
-                        hi[i], fhi[i] = t1, f1
-                        kept[i] = min(kept[i], 0) - 1
-                    else:
-                        raise ComputationError(f"inconsistent counts near {float(t1):.17g} rad/s")
+            for j, i in enumerate(owner):
+                (t1, t2), (f1, f2), (k1, k2) = (tests[2 * j:2 * j + 2], values[2 * j:2 * j + 2],
+                                                counts[2 * j:2 * j + 2])
+                for t, f, k in ((t1, f1, k1), (t2, f2, k2)):
+                    if k == ca[i] and t > a[i]:
+                        a[i], fa[i] = t, f
+                    elif k == ca[i] + 1 and t < b[i]:
+                        b[i], fb[i] = t, f
+                    elif k >= 0 and k not in (ca[i], ca[i] + 1):
+                        raise ComputationError(f"inconsistent counts near {float(t):.17g} rad/s")
+                if (k1, k2) == (ca[i], ca[i] + 1) and h[i] <= target:
+                    if decimal_string(t1, D) == decimal_string(t2, D):
+                        done[i] = (t1, t2)
+                        continue
+                    h[i] /= 100         # near a rounding boundary: a finer pair
+                elif (k1 < 0 or k2 < 0) and h[i] <= target:
+                    raise _MorePrecision()          # a proving pair must be decided
+                # the next estimate: a secant through the pair, kept inside the bracket
+                step = None
+                if f1 is not None and f2 is not None and f1 != f2:
+                    step = t2 - f2 * (t2 - t1) / (f2 - f1)
+                if step is None or not a[i] < step < b[i]:
+                    width = b[i] - a[i]
+                    step = None
+                    if fa[i] is not None and fb[i] is not None and fa[i] * fb[i] < 0:
+                        step = b[i] - fb[i] * width / (fb[i] - fa[i])
+                    if step is None or not a[i] < step < b[i]:
+                        step = (a[i] + b[i]) / 2
+                    h[i] = min(h[i], width / (8 * step))
+                else:
+                    h[i] = min(h[i], target)
+                c[i] = step
         if any(d is None for d in done):
             raise ComputationError(f"the refinement to {D} digits did not converge")
         if not self._checked([x for d in done for x in d],
-                             [c for i in range(R) for c in (ca[i], ca[i] + 1)]):
+                             [k for i in range(R) for k in (ca[i], ca[i] + 1)]):
             raise _MorePrecision()
         out = []
         for lo_i, hi_i in done:
-            with mpmath.workprec(book):
-                mid = (lo_i + hi_i) / 2
-            out.append(Eigenvalue(_exact_mpc_imag(mid), 1, D, (lo_i, hi_i), self.proof))
+            mid = (lo_i + hi_i) / 2
+            bracket = (mpmath.mp.make_mpf(lo_i._mpf_), mpmath.mp.make_mpf(hi_i._mpf_))
+            out.append(Eigenvalue(_exact_mpc_imag(mid), 1, D, bracket, self.proof))
         return out
 
     # -- clusters ------------------------------------------------------------------------------
@@ -634,12 +621,12 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         brackets = search.isolate(top, c_top, wanted)
         simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
         clusters = [(a, ca, b, cb - ca) for a, ca, b, cb in brackets if cb - ca > 1]
-        items = [(lo, hi_, ca, (a, b)) for (a, ca, b), (lo, hi_) in
+        items = [(guess, ca, (a, b)) for (a, ca, b), guess in
                  zip(simple, search.refine_double(simple))]
         for a, ca, b, k in clusters:
             for lo, hi_, cl, m in search.split_cluster(a, ca, b, k):
                 if m == 1:
-                    items.append((lo, hi_, cl, (lo, hi_)))
+                    items.append((None, cl, (lo, hi_)))     # (its midpoint, exactly)
                 else:
                     eigen.append(search.prove_cluster(lo, hi_, cl, m))
         eigen += search.refine_high(items)
