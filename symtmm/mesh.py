@@ -22,7 +22,7 @@ from .assembly import point_elements
 from .errors import ModelError
 from .model import Model
 
-__all__ = ["Mesh", "BC_FREEDOMS_FIXED", "static_nullity"]
+__all__ = ["Mesh", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
 
 #: The node freedoms (0 = Y, 1 = Theta) each boundary condition fixes.
 BC_FREEDOMS_FIXED = {"free": (), "clamped": (0, 1), "pinned": (0,), "sliding": (1,)}
@@ -259,6 +259,48 @@ def _segment_null_rows(beam, length) -> list:
     return [[zero, -one, zero, one], [-one, -length, one, zero]]
 
 
+def _static_null_space(model: Model):
+    """``(mesh, basis)``: the exact null space of the static ``K(0)``, one basis vector
+    (a list over the free freedoms) per rigid-body mode (see :func:`static_nullity`)."""
+    from sympy.polys.constructor import construct_domain
+    from sympy.polys.matrices import DomainMatrix
+
+    model = model.require_numeric().resolved()
+    mesh = Mesh(model, lambda beam, seg: float(seg.l))
+    rows: list = []
+
+    def add(places, local_rows):
+        for local in local_rows:
+            row: dict = {}
+            for coef, combo in zip(local, places):
+                if coef == 0:
+                    continue
+                for index, c in combo:
+                    row[index] = row.get(index, 0) + coef * c
+            row = {i: c for i, c in row.items() if c != 0}
+            if row:
+                rows.append(row)
+
+    for (b_idx, seg, _, _), places in zip(mesh.segments, mesh.segment_places):
+        add(places, _segment_null_rows(model.beams[b_idx], seg.l))
+    for places, element in mesh.point_places:
+        S = element.stiffness(sp.Integer(0))
+        add(places, [[S[i, j] for j in range(S.cols)] for i in range(S.rows)])
+    n = mesh.size
+    if not rows:
+        return mesh, [[sp.Integer(int(i == j)) for i in range(n)] for j in range(n)]
+    # each row scaled by its first entry: springs of irrational stiffness give rational rows
+    rows = [{i: c / row[min(row)] for i, c in row.items()} for row in rows]
+    domain, values = construct_domain([c for row in rows for c in row.values()])
+    it = iter(values)
+    sdm = {r: {i: next(it) for i in row} for r, row in enumerate(rows)}
+    dm = DomainMatrix(sdm, (len(rows), n), domain)
+    if dm.rank() == n:
+        return mesh, []
+    basis = dm.to_dense().nullspace().to_Matrix()
+    return mesh, [list(basis.row(k)) for k in range(basis.rows)]
+
+
 def static_nullity(model: Model) -> int:
     """The number of rigid-body (zero-frequency) modes: the nullity of the static ``K(0)``.
 
@@ -288,38 +330,44 @@ def static_nullity(model: Model) -> int:
     ...                      (Spring("a", "b", "1/2", 10),)))         # joined at one point
     3
     """
-    from sympy.polys.constructor import construct_domain
-    from sympy.polys.matrices import DomainMatrix
+    return len(_static_null_space(model)[1])
 
-    model = model.require_numeric().resolved()
-    mesh = Mesh(model, lambda beam, seg: float(seg.l))
-    if mesh.size == 0:
-        return 0
-    rows: list = []
 
-    def add(places, local_rows):
-        for local in local_rows:
-            row: dict = {}
-            for coef, combo in zip(local, places):
-                if coef == 0:
-                    continue
-                for index, c in combo:
-                    row[index] = row.get(index, 0) + coef * c
-            row = {i: c for i, c in row.items() if c != 0}
-            if row:
-                rows.append(row)
+def zero_order(model: Model) -> tuple:
+    """``(r, order)``: the rigid-body modes and the order of the zero of ``Delta`` at ``lam = 0``.
 
-    for (b_idx, seg, _, _), places in zip(mesh.segments, mesh.segment_places):
-        add(places, _segment_null_rows(model.beams[b_idx], seg.l))
+    With ``Z`` a basis of the ``r`` rigid-body motions (the null space of ``K(0)``)
+    and ``C`` the dashpots' matrix, ``Delta(lam) = det(K(0) + C lam + M lam**2 + ...)``
+    vanishes at 0 to the order ``2 r - rank(Z^T C Z)``: a Schur complement on the
+    rigid motions leaves ``lam**r det(Z^T C Z + lam Z^T M Z + ...)``, and ``Z^T M Z``
+    is positive definite on the null space of ``Z^T C Z`` (every rigid motion moves
+    mass). A free rigid motion is a double zero; one resisted by a dashpot alone is
+    a simple zero, beside a real negative eigenvalue (``M lam + c = 0``).
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model, Spring
+    >>> pf = Beam("b", 1, 1, 1, left="pinned", right="free")
+    >>> zero_order(Model((pf,)))
+    (1, 2)
+    >>> zero_order(Model((pf,), (Spring("b", "ground", "3/5", 0, 2),)))   # a pure dashpot
+    (1, 1)
+    """
+    from .elements.base import LAM
+
+    mesh, basis = _static_null_space(model)
+    r = len(basis)
+    if r == 0:
+        return 0, 0
+    CZ = sp.zeros(r, r)
     for places, element in mesh.point_places:
-        S = element.stiffness(sp.Integer(0))
-        add(places, [[S[i, j] for j in range(S.cols)] for i in range(S.rows)])
-    if not rows:
-        return mesh.size
-    # each row scaled by its first entry: springs of irrational stiffness give rational rows
-    rows = [{i: c / row[min(row)] for i, c in row.items()} for row in rows]
-    domain, values = construct_domain([c for row in rows for c in row.values()])
-    it = iter(values)
-    sdm = {r: {i: next(it) for i in row} for r, row in enumerate(rows)}
-    dm = DomainMatrix(sdm, (len(rows), mesh.size), domain)
-    return mesh.size - dm.rank()
+        C = element.stiffness(LAM).diff(LAM).subs(LAM, 0)
+        if C.is_zero_matrix:
+            continue
+        local = [[sum((c * z[i] for i, c in combo), sp.Integer(0)) for combo in places]
+                 for z in basis]
+        for a in range(r):
+            for b in range(r):
+                CZ[a, b] += sum(local[a][i] * C[i, j] * local[b][j]
+                                for i in range(C.rows) for j in range(C.cols))
+    return r, 2 * r - CZ.rank()

@@ -44,9 +44,9 @@ from symtmm.fe import fe_matrices
 from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load
 from symtmm.results import decimal_string
-from symtmm.roots.damped import count_in_rectangle, default_sigma_max, solve_damped
+from symtmm.roots.damped import DAMPED_PROOFS, count_in_rectangle, default_sigma_max, solve_damped
 from symtmm.roots.dynamic_stiffness import DynamicStiffness
-from symtmm.roots.undamped import solve_undamped
+from symtmm.roots.undamped import PROOFS, solve_undamped
 from symtmm.solve import METHODS, solve
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -156,7 +156,8 @@ def test_example4_cli_json(capsys):
     assert out["digits"] == 8 and out["stats"]["method"] == "default"
     assert [e["real"] for e in eig if e["real"] == "0"] == ["0", "0"]
     assert len(eig) == 6      # 40.1, 146.3, 165.2, 461.6, 585.1, 586.2
-    assert eig[0] == {"real": "-246.35132", "imag": "40.102275", "multiplicity": 1}
+    assert eig[0] == {"real": "-246.35132", "imag": "40.102275", "multiplicity": 1,
+                      "proof": DAMPED_PROOFS["agree"]}
 
 
 # -- digits -----------------------------------------------------------------------------------
@@ -284,7 +285,8 @@ def test_rigid_body_modes_of_free_beams():
     model = Model(beams, (Spring("a", "b", x="1/4", k=30, c=3),
                           Spring("a", "b", x="3/4", k=30, c=3)))
     spec = solve_damped(model, omega_max=60, digits=15)
-    assert spec[0].to_dict() == {"real": "0", "imag": "0", "multiplicity": 2}
+    assert spec[0].to_dict() == {"real": "0", "imag": "0", "multiplicity": 2,
+                                 "proof": PROOFS["exact"]}
     with mpmath.workdps(30):
         Omega1 = mpmath.findroot(lambda x: mpmath.cos(x) - mpmath.sech(x), 4.73)
     in_phase = [e for e in spec if e.lam.real == 0 and e.lam.imag > 0]

@@ -135,14 +135,14 @@ def _tally(monkeypatch):
     wrap(compile.Evaluator, "log_delta", per_point=True)
     wrap(stiffness.StiffnessModel, "count")
     wrap(dynamic_stiffness.DynamicStiffness, "log_delta", per_point=True)
+    from symtmm.numeric import evaluator
     from symtmm.roots import count
-    original_factor = count.factor
-
-    def factor(plan, ar, lam2, lam=None):
+    for module in (count, evaluator):
         # the numeric kernel: one evaluation per point of the batch
-        calls["n"] += len(lam2)
-        return original_factor(plan, ar, lam2, lam)
-    monkeypatch.setattr(count, "factor", factor)
+        def factor(plan, ar, lam2, lam=None, original=module.factor):
+            calls["n"] += len(lam2)
+            return original(plan, ar, lam2, lam)
+        monkeypatch.setattr(module, "factor", factor)
     return calls
 
 

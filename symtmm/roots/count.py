@@ -20,12 +20,11 @@ from __future__ import annotations
 
 import math
 
-import mpmath
 import numpy as np
 
 from ..errors import ComputationError
 from ..numeric.arith import DOUBLE, MP, Arithmetic, Ball, ball_available
-from ..numeric.plan import StiffnessPlan
+from ..numeric.evaluator import Evaluator, exact_mpf
 from ..numeric.stiffness import factor
 
 __all__ = ["Counter", "SingularCount", "SINGULAR_DIGITS", "proof_arithmetic"]
@@ -54,14 +53,7 @@ def proof_arithmetic(digits: int, certified: bool | None = None) -> Arithmetic:
     return Ball.from_digits(digits) if certified else MP.from_digits(digits)
 
 
-def _mpf_bits(x) -> tuple:
-    """``x`` (a float or any mpmath number) as an ``_mpf_`` tuple, unrounded."""
-    if hasattr(x, "_mpf_"):
-        return x._mpf_
-    return mpmath.libmp.from_float(float(x))
-
-
-class Counter:
+class Counter(Evaluator):
     """Counts and ``Delta(i omega)`` of an undamped model, any arithmetic, in batches.
 
     Parameters
@@ -89,23 +81,7 @@ class Counter:
         model = model.require_numeric()
         if model.damped:
             model = replace(model, springs=tuple(replace(s, c=0) for s in model.springs))
-        self.model = model
-        self.omega_design = max(float(omega_design), 1e-300)
-        self.evaluations = 0
-        self._plans: dict = {}
-        self._extra_bits: dict = {}
-
-    def plan(self, omega: float) -> StiffnessPlan:
-        """The plan valid up to ``omega`` (one per doubling of the range)."""
-        omega = float(omega)
-        design = self.omega_design
-        while design < omega * (1 + 1e-12):
-            design *= 2.0
-        key = design
-        plan = self._plans.get(key)
-        if plan is None:
-            plan = self._plans[key] = StiffnessPlan(self.model, design * design)
-        return plan
+        super().__init__(model, omega_design)
 
     # -- batches ------------------------------------------------------------------------
     def factors(self, omegas, ar: Arithmetic = DOUBLE, positive: bool = False):
@@ -117,50 +93,16 @@ class Counter:
         """
         if ar is DOUBLE:
             w = np.asarray(omegas, dtype=float)
-            top = float(np.max(w, initial=0.0))
-            lam2 = w * w if positive else -(w * w)
-        else:
-            top = max((float(mpmath.mpf(_mpf_bits(v))) for v in omegas), default=0.0)
-            with ar:
-                pts = [ar.number(mpmath.mp.make_mpf(_mpf_bits(v))) for v in omegas]
-                lam2 = ar.array([p * p if positive else -(p * p) for p in pts])
-        self.evaluations += len(lam2)
-        plan = self.plan(top)
-        if not ar.rigorous:
-            return factor(plan, ar, lam2)
-        return self._ball_factor(plan, ar, omegas, positive)
+            self.evaluations += w.size
+            return factor(self.plan(float(np.max(w, initial=0.0))), ar,
+                          w * w if positive else -(w * w))
+        points = [exact_mpf(v) for v in omegas]
+        self.evaluations += len(points)
 
-    def _ball_factor(self, plan, ar, omegas, positive):
-        """Ball ``LDL^T`` with the precision its radii need.
-
-        Without pivoting, ball elimination widens the radii along the band (each update
-        adds the radii of the row it subtracts): measured at ``prec`` bits as the largest
-        relative radius of the pivots, that growth is roughly independent of the
-        precision, so one retry with ``log2(growth)`` more bits decides every pivot not
-        genuinely close to zero. The extra bits are kept per plan for later calls.
-        """
-        extra = self._extra_bits.get(id(plan), 0)
-        for _ in range(6):
-            work = Ball(ar.prec + extra) if extra else ar
-            with work:
-                pts = [work.number(mpmath.mp.make_mpf(_mpf_bits(v))) for v in omegas]
-                lam2 = work.array([p * p if positive else -(p * p) for p in pts])
-            fa = factor(plan, work, lam2)
-            if fa.trusted.all():
-                return fa
-            growth = 0.0
-            for p in fa.pivots.reshape(-1):
-                mid, rad = abs(p.mid()), p.rad()
-                if mid != 0 and mid.is_finite() and rad.is_finite():
-                    growth = max(growth, float(rad / mid))
-            # the bits the radii ate, measured; when they ran out entirely (an infinite
-            # pivot ball) at least twice the precision
-            needed = math.log2(growth) + work.prec + 8 if growth > 0 else 0
-            if extra >= 16 * ar.prec:
-                return fa
-            extra = max(extra + 32, int(needed)) if growth > 0 else max(2 * extra, ar.prec)
-            self._extra_bits[id(plan)] = extra
-        return fa
+        def build(work):
+            pts = [work.number(v) for v in points]
+            return work.array([p * p if positive else -(p * p) for p in pts]), None
+        return self._factor(self.plan(max((float(v) for v in points), default=0.0)), ar, build)
 
     def counts(self, omegas, ar: Arithmetic = DOUBLE) -> np.ndarray:
         """``J(omega)`` per point, ``-1`` where the arithmetic cannot decide it."""

@@ -1,40 +1,39 @@
 """Eigenvalues of damped models in a rectangle of the complex plane, none missed.
 
 Eigenvalues ``lam = -sigma + i omega`` are the zeros of the entire function
-``Delta(lam) = det R(lam)``. They come in conjugate pairs; those with
-``Im lam >= 0`` are reported. The search region is
+``Delta(lam) = det K(lam) * prod det U12 * P`` (equal to ``det R``, evaluated by
+the numeric kernel: :class:`symtmm.numeric.evaluator.Evaluator`). They come in
+conjugate pairs; those with ``Im lam >= 0`` are reported. The search region is
 
     -sigma_max <= Re lam <= 0,   0 <= Im lam <= omega_max,
 
 ``sigma_max`` defaulting to ``2 * omega_max`` (:data:`SIGMA_FACTOR`).
 
 1. **Count.** The number of zeros in a rectangle is the change of
-   ``arg Delta`` around it over ``2 pi`` (:mod:`symtmm.roots.contour`).
-   ``Delta`` is evaluated in double precision without cancellation as
-   ``det K * prod det U12`` (:mod:`symtmm.roots.dynamic_stiffness`); points
-   where that product is ill-conditioned (very close to a zero) are
-   re-evaluated with the transfer-matrix ``Delta`` in mpmath, at
-   ``digits_lost + 20`` and ``+ 30`` digits, and kept only if both agree.
-   The region is enlarged slightly beyond ``Re lam = 0`` (no eigenvalue of
-   a passive model lies to the right of the imaginary axis, so undamped
-   modes are strictly inside), and its lower part is a rectangle symmetric
-   about the real axis, so that real (overdamped) eigenvalues lie strictly
-   inside too; only its upper half is sampled (``Delta`` is real on the
-   real axis).
-2. **Isolate.** Rectangles are halved (quadtree) until each holds at most
-   one zero; the counts of the halves must add up to the count of the
-   whole. A symmetric rectangle holding one zero holds a real one (a
-   non-real zero would bring its conjugate).
-3. **Refine** in mpmath on the transfer-matrix ``Delta``: a real zero by
-   the Anderson–Björck bracketing method on the real axis, a complex one by
-   the secant method from the centre of the zero estimated from the contour
-   samples, at ``D + digits_lost + 10`` digits plus what a small real or
-   imaginary part needs. The zero must stay in its rectangle, and a second
-   refinement 15 digits higher must agree to ``D + 2`` digits in each part;
-   if a part lies so close to a rounding boundary that the two ends of its
-   error bound print differently at ``D`` digits, more digits are computed
-   (up to 30 more), so the printed digits are correctly rounded. A real
-   zero's bracket is narrowed the same way.
+   ``arg Delta`` around it over ``2 pi`` (:mod:`symtmm.roots.contour`), sampled
+   in double precision in batches; a point whose pivots cannot all be trusted
+   (very close to a zero) is evaluated again in the proof arithmetic (Arb balls,
+   or mpmath at two precisions without python-flint). The region is enlarged
+   slightly beyond ``Re lam = 0`` (no eigenvalue of a passive model lies to the
+   right of the imaginary axis, so undamped modes are strictly inside), and its
+   lower part is a rectangle symmetric about the real axis, so that real
+   (overdamped) eigenvalues lie strictly inside too; only its upper half is
+   sampled (``Delta`` is real on the real axis).
+2. **Isolate.** Rectangles are halved (quadtree) until each holds at most one
+   zero; the counts of the halves must add up to the count of the whole. A
+   symmetric rectangle holding one zero holds a real one (a non-real zero would
+   bring its conjugate). With rigid-body modes ``lam = 0`` is a zero of known
+   order (:func:`symtmm.mesh.zero_order`: two per free rigid motion, one per
+   rigid motion only a dashpot resists): a rectangle around 0 holds that many
+   zeros besides the others, and is never refined.
+3. **Refine**, all zeros at once: secant steps on ``Delta`` in double precision,
+   one batch per step, then in the proof arithmetic at ``D + 20`` digits (more
+   for a small real or imaginary part), again one batch per step. A real zero is
+   bracketed on the real axis instead (``Delta`` is real there): Anderson–Björck
+   steps in double, then pairs of points about its estimate, whose signs prove it
+   between them (strictly opposite balls: ``sign change``). A complex zero is
+   refined once more 15 digits higher and must agree to ``D + 2`` digits in each
+   part, with both ends of that error printing alike (``two precisions``).
 4. **Undamped modes of damped models** (e.g. beams moving in phase, their
    dashpots idle) have ``Re lam = 0`` exactly; numerically the real part
    comes out as rounding noise. When it is below ``10**-(D+25) |lam|`` and
@@ -44,12 +43,16 @@ Eigenvalues ``lam = -sigma + i omega`` are the zeros of the entire function
    real part is reported as exactly ``0`` and a note says so. This is a
    numerical identification, not a proof.
 5. **Multiple zeros.** A rectangle that still holds ``m >= 2`` zeros when it
-   is too small for double precision is handed to mpmath: the modified
+   is too small for double precision is taken to high precision: the modified
    Newton method ``z - m Delta/Delta'`` finds the cluster, and a count on a
    square of half-width ``10**-(D + 2 + SEPARATION_DIGITS) |lam|`` around it
    decides between one zero of multiplicity ``m`` (its ``m`` zeros agree to
    ``D + SEPARATION_DIGITS`` digits) and distinct zeros, separated by the same
-   quadtree in mpmath and refined one by one, however close.
+   quadtree at high precision and refined one by one, however close.
+
+Precision is explicit throughout: every high-precision evaluation names its
+digits, and the bookkeeping (secant steps, brackets) runs in private mpmath
+contexts, never in the ambient ``mpmath.mp``.
 """
 
 from __future__ import annotations
@@ -62,28 +65,37 @@ import mpmath
 import numpy as np
 import sympy as sp
 
-from ..compile import Evaluator
 from ..errors import ComputationError
+from ..mesh import zero_order
 from ..model import Model
+from ..numeric.arith import MP, Ball, ball_available
+from ..numeric.evaluator import Evaluator
 from ..results import Eigenvalue, Spectrum, decimal_string
-from .bracket import SEPARATION_DIGITS, anderson_bjorck, bracket_done
+from .bracket import SEPARATION_DIGITS
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
-from .dynamic_stiffness import DynamicStiffness
-from .undamped import _first_guess, check_stable, omega_scale, rigid_body_modes
+from .undamped import PROOFS, _first_guess, check_stable, omega_scale
 
-__all__ = ["SIGMA_FACTOR", "count_in_rectangle", "default_sigma_max", "solve_damped"]
+__all__ = ["SIGMA_FACTOR", "count_in_rectangle", "default_sigma_max", "solve_damped",
+           "DAMPED_PROOFS"]
 
 #: ``sigma_max`` defaults to this multiple of ``omega_max``.
 SIGMA_FACTOR = 2
 #: Largest working precision (decimal digits).
-MAX_DPS = 1500
+MAX_DIGITS = 1500
 #: A rectangle smaller than this (relative to |lam|) that still holds several zeros is
-#: left to mpmath: double precision cannot split it reliably.
+#: left to high precision: double precision cannot split it reliably.
 _TINY = 1e-6
 #: Split positions tried in turn when a split line passes too close to a zero.
 _SPLITS = (0.5, 0.4427, 0.5573, 0.3711, 0.6289, 0.3019, 0.6981)
-#: Guard digits above the estimated loss.
-_GUARD = 10
+#: Guard digits of the high-precision refinement.
+_GUARD = 20
+#: Relative step below which the double-precision secant stops.
+_DOUBLE_STEP = 1e-13
+
+#: What backs a damped eigenvalue: its name in results and output.
+DAMPED_PROOFS = {"ball": "sign change (ball arithmetic)",
+                 "mp": "sign change (two precisions)",
+                 "agree": "two precisions"}
 
 
 def default_sigma_max(omega_max: float) -> float:
@@ -108,38 +120,47 @@ def _scaled_dashpots(model: Model, factor) -> Model:
     return replace(model, springs=springs)
 
 
-def _rounds_alike(x, err, digits) -> bool:
+def _global(z) -> mpmath.mpc:
+    """A number of any mpmath context (or a Python complex) as a global one, unrounded."""
+    if hasattr(z, "_mpc_"):
+        return mpmath.mp.make_mpc(z._mpc_)
+    if hasattr(z, "_mpf_"):
+        return mpmath.mp.make_mpc((z._mpf_, mpmath.libmp.fzero))
+    z = complex(z)
+    return mpmath.mp.make_mpc((mpmath.libmp.from_float(z.real),
+                               mpmath.libmp.from_float(z.imag)))
+
+
+def _prints_alike(x, err, digits) -> bool:
     """``x - err`` and ``x + err`` print alike with ``digits`` digits (0 always does)."""
     if x == 0:
         return True
-    return decimal_string(x - err, digits) == decimal_string(x + err, digits)
-
-
-def _mpc(z) -> mpmath.mpc:
-    return mpmath.mpc(complex(z).real, complex(z).imag)
+    return decimal_string(_global(x - err).real, digits) == \
+        decimal_string(_global(x + err).real, digits)
 
 
 class _Problem:
-    """The function of one model, in double precision and in mpmath, with counters."""
+    """``Delta`` of one model: double batches for contours, any precision for refinement.
 
-    def __init__(self, model: Model, lam_max: float):
+    ``certified``: the high-precision arithmetic is Arb balls (python-flint),
+    else mpmath checked at a second precision.
+    """
+
+    def __init__(self, model: Model, lam_max: float, certified: bool | None = None):
         self.model = model
-        self.ev = Evaluator(model)
-        self.ds = DynamicStiffness(model, lam_max)
+        self.kernel = Evaluator(model, lam_max)
         # per beam, what its wave number at |lam| comes from: (m/EI) for a plain beam,
         # else the segment (Rayleigh, Timoshenko, axial force)
         self.waves = [(None if b.plain else b.segment(b.L), float(b.m) / float(b.EI),
                        float(b.L)) for b in model.beams]
         self.lam_ref = _reference_frequency(model)
-        self.extra = 0   # evaluations of auxiliary models
-        self.mp_fallbacks = 0
+        self.balls = ball_available() if certified is None else bool(certified)
+        self.extra = 0          # evaluations of auxiliary models
+        self._aux: dict = {}
 
     @property
     def evaluations(self) -> int:
-        return self.ds.evaluations + self.ev.evaluations + self.extra
-
-    def lost(self, z) -> float:
-        return self.ev.digits_lost(complex(z))
+        return self.kernel.evaluations + self.extra
 
     def spacing(self, z) -> float:
         a = max(abs(z), self.lam_ref)
@@ -152,63 +173,79 @@ class _Problem:
     def min_step(self, z) -> float:
         return 1e-10 * max(abs(z), self.lam_ref)
 
-    # -- log Delta for the contour, double precision with an mpmath fallback --------------
+    def arithmetic(self, digits: int):
+        return Ball.from_digits(digits) if self.balls else MP.from_digits(digits)
+
+    # -- values ---------------------------------------------------------------------------
+    def values(self, points, digits: int, kernel: Evaluator | None = None) -> list:
+        """``Delta`` at ``points`` (mpmath numbers, exact) as global mpmath numbers, or None
+        where the evaluation cannot be trusted (a ball too wide, an undecided pivot)."""
+        if not points:
+            return []
+        ar = self.arithmetic(digits)
+        vals, trusted = (kernel or self.kernel).delta(points, ar)
+        out = []
+        for v, ok in zip(vals, trusted):
+            if not ok:
+                out.append(None)
+                continue
+            if ar.rigorous:
+                # a ball too wide to say where its value is (its width, far below the
+                # step sizes for any ball this narrow, is left to the guard digits)
+                mid = abs(v.mid())
+                if not (mid.is_finite() and v.rad() < mid / 1024):
+                    out.append(None)
+                    continue
+            out.append(_global(ar.to_mpmath(v)))
+        return out
+
     def log_delta(self, z):
-        logabs, phase, ok = self.ds.log_delta(z)
-        for i in np.nonzero(~ok)[0]:
-            value = self.log_delta_mp(complex(z[i]))
-            if value is not None:
-                logabs[i], phase[i] = value
-                ok[i] = True
+        """``(log|Delta|, arg Delta, trusted)`` at complex points (the contour's function).
+
+        Double precision in one batch; points with untrusted pivots again in the proof
+        arithmetic at 30 digits (and, in mpmath, checked at 45).
+        """
+        logabs, phase, ok = self.kernel.log_delta(z)
+        bad = np.nonzero(~ok)[0]
+        if bad.size:
+            points = [_global(complex(z[i])) for i in bad]
+            first = self.values(points, 30)
+            second = first if self.balls else self.values(points, 45)
+            for i, a, b in zip(bad, first, second):
+                if a is None or b is None or a == 0 or b == 0:
+                    continue
+                la, ph = float(mpmath.log(abs(a))), float(mpmath.arg(a))
+                if not self.balls and (abs(la - float(mpmath.log(abs(b)))) > 1e-6 or abs(
+                        math.remainder(ph - float(mpmath.arg(b)), 2 * math.pi)) > 1e-6):
+                    continue
+                logabs[i], phase[i], ok[i] = la, ph, True
         return logabs, phase, ok
 
-    def log_delta_mp(self, z, extra_digits: int = 20, origin=None, check: bool = True):
-        """``(log|Delta|, arg Delta)`` at ``origin + z`` in mpmath.
-
-        With ``check``, also 10 digits higher, and None if the two disagree;
-        without, the caller vouches that ``extra_digits`` suffice.
-        """
-        self.mp_fallbacks += 1
-        base = math.ceil(self.lost(z if origin is None else complex(origin) + z)) + extra_digits
-        values = []
-        for dps in (base, base + 10)[:2 if check else 1]:
-            with mpmath.workdps(dps):
-                d = self.ev.delta_mp(_mpc(z) if origin is None else origin + _mpc(z))
-                if d == 0:
-                    return None
-                values.append((float(mpmath.log(abs(d))), float(mpmath.arg(d))))
-        if not check:
-            return values[0]
-        (la1, ph1), (la2, ph2) = values
-        dph = abs(math.remainder(ph1 - ph2, 2 * math.pi))
-        if abs(la1 - la2) < 1e-6 and dph < 1e-6:
-            return values[1]
-        return None
-
-    def delta_mp(self, z):
-        return self.ev.delta_mp(z)
+    def auxiliary(self, factor) -> Evaluator:
+        """The kernel of the model with every dashpot scaled by ``factor``."""
+        if factor not in self._aux:
+            self._aux[factor] = Evaluator(_scaled_dashpots(self.model, factor),
+                                          self.kernel.size)
+        return self._aux[factor]
 
 
-class _MPFunction:
-    """``log Delta(origin + u)`` evaluated only in mpmath, for local coordinates ``u``."""
+class _LocalFunction:
+    """``log Delta(origin + u)`` for local coordinates ``u``, at a given precision only."""
 
-    def __init__(self, problem: _Problem, extra_digits: int, origin=None, check=True):
-        self.problem = problem
-        self.extra_digits = extra_digits
-        self.origin = origin
-        self.check = check
+    def __init__(self, problem: _Problem, digits: int, origin):
+        self.problem, self.digits, self.origin = problem, digits, origin
 
     def __call__(self, u):
         u = np.atleast_1d(u)
+        ctx = MP.from_digits(self.digits + 10).ctx
+        points = [_global(ctx.mpc(self.origin) + ctx.mpc(complex(ui))) for ui in u]
+        values = self.problem.values(points, self.digits)
         logabs = np.zeros(u.shape)
         phase = np.zeros(u.shape)
         ok = np.zeros(u.shape, dtype=bool)
-        for i, ui in enumerate(u):
-            value = self.problem.log_delta_mp(complex(ui), self.extra_digits, self.origin,
-                                              self.check)
-            if value is not None:
-                logabs[i], phase[i] = value
-                ok[i] = True
+        for i, v in enumerate(values):
+            if v is not None and v != 0:
+                logabs[i], phase[i], ok[i] = float(mpmath.log(abs(v))), float(mpmath.arg(v)), True
         return logabs, phase, ok
 
 
@@ -226,21 +263,25 @@ class _Search:
         self.digits = digits
         self.ap = ap or ArgumentPrinciple(problem.log_delta, problem.spacing, problem.min_step)
         self.origin = origin
-        self.notes: list = []
         self.idle = 0
-        self.zero_order = 0   # > 0: lam = 0 is known to be a multiple zero (rigid-body modes)
+        #: the order of the zero of Delta at lam = 0 (rigid-body modes), known exactly
+        self.zero_order = 0
 
-    def _global(self, u) -> mpmath.mpc:
-        """The point ``origin + u`` at the working precision."""
-        u = _mpc(u) if not isinstance(u, mpmath.mpc) else u
-        return u if self.origin is None else self.origin + u
+    def _at(self, u, ctx=None):
+        """The global point ``origin + u`` (in ``ctx``, default the global context)."""
+        if self.origin is None:
+            return _global(u) if ctx is None else ctx.mpc(complex(u))
+        ctx = ctx or MP(256).ctx
+        return ctx.mpc(self.origin) + ctx.mpc(complex(u))
 
     def _local(self, z) -> complex:
-        return complex(z if self.origin is None else z - self.origin)
+        if self.origin is None:
+            return complex(z)
+        ctx = MP(256).ctx
+        return complex(ctx.mpc(z) - ctx.mpc(self.origin))
 
     def _scale(self, u) -> float:
-        with mpmath.workdps(20):
-            return max(float(abs(self._global(u))), self.p.lam_ref)
+        return max(abs(complex(self._at(u))), self.p.lam_ref)
 
     # -- counting -----------------------------------------------------------------------
     def _split(self, rect, count):
@@ -283,11 +324,16 @@ class _Search:
         return [(Rectangle(rect.x0, rect.x1, rect.y0, ym), 1),
                 (Rectangle(rect.x0, rect.x1, ym, rect.y1), 1)]
 
+    def _holds_zero(self, rect: Rectangle) -> bool:
+        """``rect`` holds ``lam = 0`` (a known zero of order :attr:`zero_order`)."""
+        return bool(self.zero_order) and self.origin is None and rect.contains(0j)
+
     def isolate(self, cells, tiny):
         """Rectangles holding one zero, and those smaller than ``tiny`` holding several.
 
         ``cells``: ``[(rect, count, center)]``; ``tiny`` is relative to ``|lam|``.
-        Returns ``(singles, clusters)``.
+        The known zero at ``lam = 0`` is not counted among them. Returns
+        ``(singles, clusters)``.
         """
         singles, clusters = [], []
         work = list(cells)
@@ -297,199 +343,401 @@ class _Search:
             guard += 1
             if guard > 20000:
                 raise ComputationError("too many rectangles: the zeros could not be isolated")
-            if n == 0:
+            at_zero = self._holds_zero(rect)
+            others = n - (self.zero_order if at_zero else 0)
+            if others < 0:
+                raise ComputationError(f"{n} zeros counted in {rect}, fewer than the "
+                                       f"{self.zero_order} at lam = 0")
+            if others == 0:
                 continue
-            if n == 1:
+            if others == 1 and not at_zero:
                 singles.append((rect, center))
                 continue
-            if rect.size < tiny * self._scale(rect.center) or (
-                    self.zero_order and rect.symmetric and rect.size < 1e-3 * self.p.lam_ref
-                    and rect.contains(self._local(mpmath.mpf(0)))):
-                # (lam = 0 is a known multiple zero when there are rigid-body modes: double
-                # precision is not asked to approach it closely)
+            if not at_zero and rect.size < tiny * self._scale(rect.center):
                 clusters.append((rect, n, center))
                 continue
             for kid, k, c, _ in self._split(rect, n):
                 work.append((kid, k, c))
         return singles, clusters
 
-    # -- precision ------------------------------------------------------------------------
-    def _dps(self, z, small_part=None) -> int:
-        z = complex(z)
+    # -- refinement: complex zeros, all at once -----------------------------------------------
+    def _double_secant(self, starts):
+        """Secant steps on the double-precision ``Delta`` from ``starts``, all at once.
+
+        Returns the estimates (complex). A root stops when its step is below
+        :data:`_DOUBLE_STEP` relative, or its point is too close for double precision.
+        """
+        z0 = np.array([complex(s) for s in starts])
+        if z0.size == 0:
+            return []
+        h = 1e-7 * np.maximum(np.abs(z0), self.p.lam_ref)
+        z1 = z0 + h * (1 + 1j)
+        la, ph, ok = self.p.log_delta(np.concatenate([z0, z1]))
+        R = z0.size
+        ref = np.where(np.isfinite(la[:R]), la[:R], 0.0)
+        with np.errstate(all="ignore"):
+            f0 = np.exp(la[:R] - ref + 1j * ph[:R])
+            f1 = np.exp(la[R:] - ref + 1j * ph[R:])
+        active = ok[:R] & ok[R:] & np.isfinite(f0) & np.isfinite(f1)
+        best = z0.copy()
+        for _ in range(40):
+            idx = np.nonzero(active)[0]
+            if idx.size == 0:
+                break
+            with np.errstate(all="ignore"):
+                z2 = z1[idx] - f1[idx] * (z1[idx] - z0[idx]) / (f1[idx] - f0[idx])
+            good = np.isfinite(z2)
+            step = np.abs(z2 - z1[idx])
+            la2, ph2, ok2 = self.p.log_delta(np.where(good, z2, z1[idx]))
+            with np.errstate(all="ignore"):
+                f2 = np.exp(la2 - ref[idx] + 1j * ph2)
+            for j, i in enumerate(idx):
+                if not good[j]:
+                    active[i] = False
+                    continue
+                best[i] = z2[j]
+                z0[i], f0[i], z1[i], f1[i] = z1[i], f1[i], z2[j], f2[j]
+                if not ok2[j] or not np.isfinite(f2[j]) or \
+                        step[j] <= _DOUBLE_STEP * abs(z2[j]):
+                    active[i] = False
+        return best.tolist()
+
+    def _digits_for(self, z: complex, small=None) -> int:
         extra = 0
-        if small_part is not None and small_part > 0:
-            extra = max(0, math.ceil(math.log10(abs(z) / small_part)))
-        return self.digits + math.ceil(self.p.lost(z)) + _GUARD + extra
+        if small is not None and small > 0:
+            extra = max(0, math.ceil(math.log10(abs(z) / small)))
+        return self.digits + _GUARD + extra
 
-    # -- real zeros ---------------------------------------------------------------------
-    def refine_real(self, rect: Rectangle) -> Eigenvalue:
-        """The single real zero in a symmetric rectangle, by bracketing on the real axis."""
-        with mpmath.workdps(40):
-            scale = float(max(abs(self._global(rect.x0)), abs(self._global(rect.x1))))
-        dps = self._dps(scale) + 5
-        while dps <= MAX_DPS:
-            with mpmath.workdps(dps):
-                a, b = self._global(rect.x0).real, self._global(rect.x1).real
-                lo, hi = self._shrink(a, b)
-            bracket = None if lo is None else self._sign_change(lo, hi, dps + 15)
-            if bracket is not None:
-                with mpmath.workdps(dps):
-                    lam = mpmath.mpc((lo + hi) / 2, 0)
-                return Eigenvalue(lam, 1, self.digits, bracket)
-            dps += max(10, dps // 2)
-        raise ComputationError(f"cannot reach {self.digits} digits for the real eigenvalue "
-                               f"near {scale:.6g}")
-
-    def _re_delta(self, x):
-        return mpmath.re(self.p.delta_mp(mpmath.mpc(x, 0)))
-
-    def _shrink(self, a, b):
-        fa, fb = self._re_delta(a), self._re_delta(b)
-        if fa == 0:
-            return a, a
-        if fb == 0:
-            return b, b
-        if (fa > 0) == (fb > 0):
-            return None, None
-        tol = mpmath.mpf(10) ** (-(self.digits + 2)) * min(abs(a), abs(b))
-        return anderson_bjorck(self._re_delta, a, b, fa, fb,
-                               lambda lo, hi: bracket_done(lo, hi, self.digits, self.p.lam_ref),
-                               tol if tol > 0 else None)
-
-    def _sign_change(self, lo, hi, dps):
-        """``(lo, hi)`` if ``Re Delta`` changes sign strictly across it at ``dps`` digits.
-
-        A zero-width bracket (``Delta`` vanished to the working precision) is widened by
-        ``10**-(D+3)`` relative first.
-        """
-        with mpmath.workdps(dps):
-            if lo == hi:
-                eps = mpmath.mpf(10) ** (-(self.digits + 3)) * abs(lo)
-                lo, hi = lo - eps, hi + eps
-            f_lo, f_hi = self._re_delta(mpmath.mpf(lo)), self._re_delta(mpmath.mpf(hi))
-        # strict: mpmath.det returns an exact 0 for a matrix singular to the working
-        # precision, which proves nothing (the caller then raises the precision)
-        if (f_lo > 0 and f_hi < 0) or (f_lo < 0 and f_hi > 0):
-            return lo, hi
-        return None
-
-    def _secant(self, f, z0, tol, maxsteps=80, multiplicity=1):
-        """Secant iteration (``multiplicity`` 1) or modified Newton from ``z0``.
-
-        Returns ``(z, last_step)`` or ``(None, None)`` when it does not converge.
-        """
-        if multiplicity > 1:
-            return self._newton_multiple(f, z0, tol, multiplicity, maxsteps)
-        z0 = mpmath.mpc(z0)
-        h = max(abs(z0), mpmath.mpf(1)) * mpmath.mpf(10) ** (-(self.digits // 2 + 4))
-        z1 = z0 + h * mpmath.mpc(1, 1)
-        f0, f1 = f(z0), f(z1)
+    def _secants(self, starts, digits, tols, kernel=None, maxsteps=60):
+        """High-precision secant steps from ``starts`` (global mpmath numbers) at
+        ``digits``, all at once; each stops below its tolerance. Returns
+        ``[(z, last step) or (None, None)]``."""
+        ctx = MP.from_digits(digits + 10).ctx
+        R = len(starts)
+        z0 = [ctx.mpc(s) for s in starts]
+        h = [max(abs(z), ctx.mpf(self.p.lam_ref)) * ctx.mpf(10) ** (-(digits // 2 + 4))
+             for z in z0]
+        z1 = [z + hi * ctx.mpc(1, 1) for z, hi in zip(z0, h)]
+        vals = self.p.values([_global(z) for z in z0 + z1], digits, kernel)
+        f0, f1 = vals[:R], vals[R:]
+        out: list = [(None, None)] * R
+        # (no value: a point so close to a zero that the working precision cannot tell it
+        # apart; it is the zero to that precision)
+        for i in range(R):
+            if f0[i] is None:
+                out[i] = (_global(z0[i]), mpmath.mpf(0))
+            elif f1[i] is None:
+                out[i] = (_global(z1[i]), _global(h[i]).real)
+        active = [f0[i] is not None and f1[i] is not None for i in range(R)]
         for _ in range(maxsteps):
-            if f1 == 0:
-                return z1, mpmath.mpf(0)
-            if f1 == f0:
-                return None, None
-            z2 = z1 - f1 * (z1 - z0) / (f1 - f0)
-            step = abs(z2 - z1)
-            if not mpmath.isfinite(step):
-                return None, None
-            if step <= tol:
-                return z2, step
-            z0, f0 = z1, f1
-            z1, f1 = z2, f(z2)
-        return None, None
+            idx, new = [], []
+            for i in range(R):
+                if not active[i]:
+                    continue
+                if f1[i] == 0:
+                    out[i], active[i] = (_global(z1[i]), mpmath.mpf(0)), False
+                    continue
+                a, b = ctx.mpc(f0[i]), ctx.mpc(f1[i])
+                if a == b:
+                    active[i] = False
+                    continue
+                z2 = z1[i] - b * (z1[i] - z0[i]) / (b - a)
+                step = abs(z2 - z1[i])
+                if not ctx.isfinite(step):
+                    active[i] = False
+                    continue
+                if step <= tols[i]:
+                    out[i], active[i] = (_global(z2), _global(step).real), False
+                    continue
+                idx.append(i)
+                new.append(z2)
+            if not idx:
+                break
+            vals = self.p.values([_global(z) for z in new], digits, kernel)
+            for i, z2, v in zip(idx, new, vals):
+                if v is None:
+                    out[i], active[i] = (_global(z2), _global(abs(z2 - z1[i])).real), False
+                    continue
+                z0[i], f0[i], z1[i], f1[i] = z1[i], f1[i], z2, v
+        return out
 
-    def _newton_multiple(self, f, z, tol, m, maxsteps):
+    def refine_complex(self, items) -> list:
+        """The zeros of one-zero rectangles ``(rect, center)`` above the real axis.
+
+        Returns an :class:`Eigenvalue` or None (the secant strayed: split and retry)
+        per item.
+        """
+        if not items:
+            return []
+        estimates = self._double_secant([self._at(c if c is not None and r.contains(c)
+                                                  else r.center) for r, c in items])
+        state = []
+        for (rect, _), z in zip(items, estimates):
+            zf = complex(z)
+            small = min(abs(zf.real), abs(zf.imag)) or None
+            state.append(dict(rect=rect, z=_global(z), zf=zf, small=small, extra=0,
+                              tighter=0, done=None))
+        conservative = not self.p.model.damped
+        for _ in range(12):
+            todo = [s for s in state if s["done"] is None]
+            if not todo:
+                break
+            # one precision per round: the largest any of them needs
+            digits = max(self._digits_for(s["zf"], s["small"]) + s["extra"] + s["tighter"]
+                         for s in todo)
+            if digits > MAX_DIGITS:
+                raise ComputationError(f"cannot reach {self.digits} digits for the eigenvalue "
+                                       f"near {todo[0]['zf']:.6g} within {MAX_DIGITS} working "
+                                       "digits")
+            tols = []
+            for s in todo:
+                target = min(abs(s["zf"].real) or abs(s["zf"]), abs(s["zf"].imag) or abs(s["zf"]))
+                if conservative:
+                    target = abs(s["zf"].imag) or abs(s["zf"])
+                tols.append(mpmath.mpf(10) ** (-(self.digits + 4 + s["tighter"])) * target)
+            first = self._secants([s["z"] for s in todo], digits, tols)
+            ok = []
+            for s, (za, _) in zip(todo, first):
+                margin = 1e-9 * s["rect"].size
+                if za is None or not s["rect"].contains(self._local(za), margin):
+                    s["done"] = False           # strayed
+                else:
+                    s["za"] = za
+                    ok.append(s)
+            second = self._secants([s["za"] for s in ok], digits + 15,
+                                   [t / 10 ** 5 for s, t in zip(todo, tols) if s in ok])
+            for s, (zb, _) in zip(ok, second):
+                margin = 1e-9 * s["rect"].size
+                if zb is None or not s["rect"].contains(self._local(zb), margin):
+                    s["done"] = False
+                    continue
+                self._judge(s, zb, digits, conservative)
+        out = []
+        for s in state:
+            out.append(s["done"] if isinstance(s["done"], Eigenvalue) else None)
+        return out
+
+    def _judge(self, s, zb, digits, conservative):
+        """Accept ``zb`` (the refinement 15 digits higher) or say what the next round needs."""
+        za = s["za"]
+        ctx = MP.from_digits(digits + 30).ctx
+        za_c, zb_c = ctx.mpc(za), ctx.mpc(zb)
+        size = abs(zb_c)
+        re_b, im_b = abs(zb_c.real), abs(zb_c.imag)
+        err = abs(za_c - zb_c)          # bounds the error of za; zb is far better
+        rel = ctx.mpf(10) ** (-(self.digits + 2))
+        ok_re, ok_im = err <= rel * re_b, err <= rel * im_b
+        if conservative:
+            # no dashpot: a conservative model, every eigenvalue is imaginary
+            zb_c = ctx.mpc(0, zb_c.imag)
+            ok_re = True
+        if ok_re and ok_im:
+            if s["tighter"] >= 30 or all(_prints_alike(part, err, self.digits)
+                                         for part in (zb_c.real, zb_c.imag)):
+                s["done"] = Eigenvalue(_global(zb_c), 1, self.digits, None,
+                                       DAMPED_PROOFS["agree"])
+                return
+            s["tighter"] += 10      # too close to a rounding boundary to tell yet
+            s["z"], s["zf"] = _global(zb_c), complex(zb_c)
+            return
+        floor = ctx.mpf(10) ** (-(self.digits + 25)) * size
+        if ok_im and re_b < floor and self._idle(_global(zb_c), digits + 15, 1):
+            # the real part is rounding noise and the dashpots stay idle
+            self.idle += 1
+            s["done"] = Eigenvalue(_global(ctx.mpc(0, zb_c.imag)), 1, self.digits, None,
+                                   DAMPED_PROOFS["agree"])
+            return
+        # the smaller part needs more digits: aim at it
+        new_small = float(max(min(re_b, im_b), floor / 10 ** 5))
+        if s["small"] is None or new_small < s["small"]:
+            s["small"] = new_small
+        else:
+            s["extra"] += 20
+        s["z"], s["zf"] = _global(zb_c), complex(zb_c)
+
+    def _idle(self, z, digits, m) -> bool:
+        """``z`` is also an ``m``-fold zero of the model without and with doubled dashpots."""
+        tol = mpmath.mpf(10) ** (-(self.digits + (20 if m == 1 else 2))) * abs(z)
+        for factor in (0, 2):
+            kernel = self.p.auxiliary(factor)
+            before = kernel.evaluations
+            if m == 1:
+                zt, _ = self._secants([z], digits, [tol / 10 ** 5], kernel, maxsteps=40)[0]
+            else:
+                zt, _ = self._newton_multiple(z, digits, tol / 10 ** 5, m, kernel)
+            self.p.extra += kernel.evaluations - before
+            if zt is None or abs(zt - z) > tol:
+                return False
+        return True
+
+    def _newton_multiple(self, z, digits, tol, m, kernel=None, maxsteps=60):
         """Newton on ``f**(1/m)``: ``z - m f/f'``, quadratic at an ``m``-fold zero.
 
         ``f'`` is a forward difference with a step of half the working digits.
         """
-        z = mpmath.mpc(z)
+        ctx = MP.from_digits(digits + 10).ctx
+        z = ctx.mpc(z)
         for _ in range(maxsteps):
-            h = max(abs(z), mpmath.mpf(self.p.lam_ref)) * mpmath.mpf(10) ** (-(mpmath.mp.dps // 2))
-            f0 = f(z)
+            h = max(abs(z), ctx.mpf(self.p.lam_ref)) * ctx.mpf(10) ** (-(digits // 2))
+            f0, f1 = self.p.values([_global(z), _global(z + h)], digits, kernel)
+            if f0 is None or f1 is None:
+                return None, None
             if f0 == 0:
-                return z, mpmath.mpf(0)
-            deriv = (f(z + h) - f0) / h
+                return _global(z), mpmath.mpf(0)
+            deriv = (ctx.mpc(f1) - ctx.mpc(f0)) / h
             if deriv == 0:
                 return None, None
-            step = m * f0 / deriv
+            step = m * ctx.mpc(f0) / deriv
             z = z - step
-            if not mpmath.isfinite(abs(step)):
+            if not ctx.isfinite(abs(step)):
                 return None, None
             if abs(step) <= tol:
-                return z, abs(step)
+                return _global(z), _global(abs(step)).real
         return None, None
 
-    def refine_complex(self, rect: Rectangle, center) -> Eigenvalue | None:
-        """The single zero in ``rect`` (above the real axis); None if the secant strays."""
-        u = complex(center) if center is not None and rect.contains(center) else rect.center
-        with mpmath.workdps(self.digits + 40):
-            z_est = self._global(u)
-        zf = complex(z_est)
-        small = min(abs(zf.real), abs(zf.imag)) or None
-        margin = 1e-9 * rect.size
-        extra = 0      # digits added when a part needs more
-        tighter = 0    # digits added when a part sits near a rounding boundary
-        conservative = not self.p.model.damped
-        while True:
-            dps = self._dps(zf, small) + extra + tighter
-            if dps > MAX_DPS:
-                raise ComputationError(f"cannot reach {self.digits} digits for the eigenvalue "
-                                       f"near {zf:.6g} within {MAX_DPS} working digits")
-            with mpmath.workdps(dps):
-                target = min(abs(zf.real) or abs(zf), abs(zf.imag) or abs(zf))
-                if conservative:
-                    target = abs(zf.imag) or abs(zf)
-                tol = mpmath.mpf(10) ** (-(self.digits + 4 + tighter)) * mpmath.mpf(target)
-                za, _ = self._secant(self.p.delta_mp, +z_est, tol)
-                if za is None or not rect.contains(self._local(za), margin):
-                    return None
-            with mpmath.workdps(dps + 15):
-                zb, _ = self._secant(self.p.delta_mp, za, tol / 10 ** 5)
-                if zb is None or not rect.contains(self._local(zb), margin):
-                    return None
-                size = abs(zb)
-                re_b, im_b = abs(zb.real), abs(zb.imag)
-                err = abs(za - zb)     # bounds the error of za; zb is far better
-                rel = mpmath.mpf(10) ** (-(self.digits + 2))
-                ok_re, ok_im = err <= rel * re_b, err <= rel * im_b
-                if conservative:
-                    # no dashpot: a conservative model, every eigenvalue is imaginary
-                    zb = mpmath.mpc(0, zb.imag)
-                    ok_re = True
-                if ok_re and ok_im:
-                    if tighter >= 30 or all(_rounds_alike(part, err, self.digits)
-                                            for part in (zb.real, zb.imag)):
-                        return Eigenvalue(+zb, 1, self.digits, None)
-                    tighter += 10    # too close to a rounding boundary to tell yet
-                    z_est, zf = zb, complex(zb)
-                    continue
-                floor = mpmath.mpf(10) ** (-(self.digits + 25)) * size
-                if ok_im and re_b < floor and self._idle(zb, dps + 15, 1):
-                    # the real part is rounding noise and the dashpots stay idle
-                    self.idle += 1
-                    return Eigenvalue(mpmath.mpc(0, zb.imag), 1, self.digits, None)
-                # the smaller part needs more digits: aim at it
-                new_small = float(max(min(re_b, im_b), floor / 10 ** 5))
-            if small is None or new_small < small:
-                small = new_small
-            else:
-                extra += 20
-            z_est, zf = zb, complex(zb)
+    # -- refinement: real zeros, all at once ----------------------------------------------------
+    def refine_real(self, rects) -> list:
+        """The single real zero of each symmetric rectangle, bracketed on the real axis.
 
-    def _idle(self, z, dps, m) -> bool:
-        """``z`` is also an ``m``-fold zero of the model without and with doubled dashpots."""
-        tol = mpmath.mpf(10) ** (-(self.digits + (20 if m == 1 else 2))) * abs(z)
-        for factor in (0, 2):
-            ev = Evaluator(_scaled_dashpots(self.p.model, factor))
-            with mpmath.workdps(dps):
-                zt, _ = self._secant(ev.delta_mp, z, tol / 10 ** 5,
-                                     maxsteps=40, multiplicity=m)
-            self.p.extra += ev.evaluations
-            if zt is None or abs(zt - z) > tol:
-                return False
-        return True
+        Anderson–Björck steps on the double-precision ``Delta`` (real there), all at
+        once, then pairs ``c (1 -+ h)`` about each estimate in the proof arithmetic:
+        strictly opposite signs prove the zero between them, and their values give the
+        next estimate by a secant step (:meth:`_pairs`).
+        """
+        if not rects:
+            return []
+        a = np.array([self._at(r.x0).real for r in rects], dtype=float)
+        b = np.array([self._at(r.x1).real for r in rects], dtype=float)
+        if self.origin is not None:
+            # (a cluster's local search: its rectangles are far below double precision)
+            a = [self._at(r.x0, MP(256).ctx).real for r in rects]
+            b = [self._at(r.x1, MP(256).ctx).real for r in rects]
+            return self._pairs([(x + y) / 2 for x, y in zip(a, b)], list(zip(a, b)))
+        R = len(rects)
+        la, ph, _ = self.p.log_delta(np.concatenate([a, b]).astype(complex))
+        sign = np.where(np.cos(ph) < 0, -1.0, 1.0)
+        ref = np.maximum(la[:R], la[R:])
+        ref = np.where(np.isfinite(ref), ref, 0.0)
+        with np.errstate(all="ignore"):
+            fa = sign[:R] * np.exp(np.minimum(la[:R] - ref, 700.0))
+            fb = sign[R:] * np.exp(np.minimum(la[R:] - ref, 700.0))
+        best = 0.5 * (a + b)
+        active = (fa * fb < 0) & (b - a > 1e-13 * np.maximum(np.abs(a), np.abs(b)))
+        for _ in range(80):
+            idx = np.nonzero(active)[0]
+            if idx.size == 0:
+                break
+            A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
+            with np.errstate(all="ignore"):
+                c = B - FB * (B - A) / (FB - FA)
+            c = np.where(np.isfinite(c) & (c > A) & (c < B), c, 0.5 * (A + B))
+            guard = (B - A) / 16
+            c = np.clip(c, A + guard, B - guard)
+            lc, pc, okc = self.p.log_delta(c.astype(complex))
+            with np.errstate(all="ignore"):
+                fc = np.where(np.cos(pc) < 0, -1.0, 1.0) * np.exp(np.minimum(lc - ref[idx], 700.0))
+            for j, i in enumerate(idx):
+                best[i] = c[j]
+                if not okc[j] or fc[j] == 0 or not np.isfinite(fc[j]):
+                    active[i] = False
+                    continue
+                if (fc[j] > 0) == (fb[i] > 0):
+                    m = 1 - fc[j] / fb[i]
+                    fa[i] *= m if m > 0 else 0.5
+                    b[i], fb[i] = c[j], fc[j]
+                else:
+                    m = 1 - fc[j] / fa[i]
+                    fb[i] *= m if m > 0 else 0.5
+                    a[i], fa[i] = c[j], fc[j]
+                active[i] = b[i] - a[i] > 1e-13 * max(abs(a[i]), abs(b[i]))
+        outer = [(self._at(r.x0).real, self._at(r.x1).real) for r in rects]
+        return self._pairs(best.tolist(), outer)
+
+    def _pairs(self, estimates, outer) -> list:
+        """Real zeros proved by the signs of ``Delta`` at pairs about each estimate.
+
+        ``outer``: a bracket per zero with one zero inside. Its ends' signs are taken
+        first; then every round evaluates, for each zero, the pair ``c (1 -+ h)`` about
+        its estimate: strictly opposite signs prove the zero between them (balls:
+        ``sign change``; mpmath: the same signs again 15 digits higher), and the pair's
+        values give the next estimate by a secant step (``h`` from ``1e-11`` to
+        ``10**-(D+3)``; narrower where the ends would print differently).
+        """
+        D = self.digits
+        scale = max(max(abs(float(x)), abs(float(y))) for x, y in outer)
+        digits = self._digits_for(scale) + 5
+        R = len(estimates)
+        target = mpmath.mpf(10) ** (-(D + 3))
+        while digits <= MAX_DIGITS:
+            ctx = MP.from_digits(digits + 20).ctx
+            a = [ctx.mpf(x) for x, _ in outer]
+            b = [ctx.mpf(y) for _, y in outer]
+            ends = self._real_values([_global(t) for t in a + b], digits)
+            sa, sb = ends[:R], ends[R:]
+            if any(u is None or v is None or (u > 0) == (v > 0) for u, v in zip(sa, sb)):
+                digits += max(20, digits // 2)
+                continue
+            c = [min(max(ctx.mpf(e), a[i]), b[i]) for i, e in enumerate(estimates)]
+            h = [ctx.mpf("1e-11")] * R
+            done: list = [None] * R
+            for _ in range(60):
+                tests, owner = [], []
+                for i in range(R):
+                    if done[i] is None:
+                        e = h[i] * max(abs(c[i]), ctx.mpf(self.p.lam_ref) * target)
+                        tests += [max(c[i] - e, (a[i] + c[i]) / 2),
+                                  min(c[i] + e, (c[i] + b[i]) / 2)]
+                        owner.append(i)
+                if not owner:
+                    break
+                values = self._real_values([_global(t) for t in tests], digits)
+                for j, i in enumerate(owner):
+                    t1, t2 = tests[2 * j:2 * j + 2]
+                    s1, s2 = values[2 * j:2 * j + 2]
+                    for t, sv in ((t1, s1), (t2, s2)):
+                        if sv is None:
+                            continue
+                        if (sv > 0) == (sa[i] > 0) and t > a[i]:
+                            a[i] = t
+                        elif (sv > 0) == (sb[i] > 0) and t < b[i]:
+                            b[i] = t
+                    proved = s1 is not None and s2 is not None and (s1 > 0) != (s2 > 0)
+                    if proved and h[i] <= target:
+                        if decimal_string(_global(t1).real, D) == \
+                                decimal_string(_global(t2).real, D):
+                            done[i] = (t1, t2)
+                            continue
+                        h[i] /= 100
+                    step = None
+                    if s1 is not None and s2 is not None and s1 != s2:
+                        step = t2 - ctx.mpf(s2) * (t2 - t1) / (ctx.mpf(s2) - ctx.mpf(s1))
+                    if step is None or not a[i] < step < b[i]:
+                        step = (a[i] + b[i]) / 2
+                        h[i] = min(h[i], (b[i] - a[i]) / (8 * max(abs(step), ctx.mpf(1e-300))))
+                    else:
+                        h[i] = min(h[i], target)
+                    c[i] = step
+            if any(d is None for d in done):
+                digits += max(20, digits // 2)
+                continue
+            if not self.p.balls:
+                again = self._real_values([_global(t) for d in done for t in d], digits + 15)
+                if any(v is None for v in again) or any(
+                        (again[2 * i] > 0) == (again[2 * i + 1] > 0) for i in range(R)):
+                    digits += max(20, digits // 2)
+                    continue
+            proof = DAMPED_PROOFS["ball" if self.p.balls else "mp"]
+            return [Eigenvalue(_global((lo + hi) / 2), 1, D,
+                               (_global(lo).real, _global(hi).real), proof) for lo, hi in done]
+        raise ComputationError(f"cannot reach {D} digits for the real eigenvalue near "
+                               f"{float(estimates[0]):.6g}")
+
+    def _real_values(self, points, digits) -> list:
+        """``Re Delta`` at real points, None where its sign is not certain."""
+        out = []
+        for v in self.p.values(points, digits):
+            out.append(None if v is None or v.real == 0 else v.real)
+        return out
 
     # -- clusters ------------------------------------------------------------------------
     def resolve_cluster(self, rect: Rectangle, m: int, center) -> list:
@@ -502,15 +750,15 @@ class _Search:
         """
         res = self.digits + 2 + SEPARATION_DIGITS
         u = complex(center) if center is not None and rect.contains(center) else rect.center
-        zf = complex(self._global(u))
-        dps = m * res + math.ceil(self.p.lost(zf)) + _GUARD + 10
+        zf = complex(self._at(u))
+        digits = m * res + _GUARD + 10
         extra = (m + 1) * res + 10
-        with mpmath.workdps(dps):
-            z0 = self._global(u)
-            tol = mpmath.mpf(10) ** (-(res + 4)) * max(abs(z0), self.p.lam_ref)
-            z, _ = self._secant(self.p.delta_mp, z0, tol, multiplicity=m)
-            if rect.symmetric and z is not None:
-                z = mpmath.mpc(z.real, 0)   # the cluster is closed under conjugation
+        ctx = MP.from_digits(digits + 10).ctx
+        z0 = self._at(u, ctx)
+        tol = ctx.mpf(10) ** (-(res + 4)) * max(abs(z0), ctx.mpf(self.p.lam_ref))
+        z, _ = self._newton_multiple(_global(z0), digits, tol, m)
+        if rect.symmetric and z is not None:
+            z = mpmath.mpc(z.real, 0)   # the cluster is closed under conjugation
         if z is not None and rect.contains(self._local(z), 1e-9 * rect.size):
             scale = max(abs(zf), self.p.lam_ref)
             r = 10.0 ** (-res) * scale
@@ -520,69 +768,73 @@ class _Search:
                     r = min(r, 10.0 ** (-res) * abs(part))
             box = (Rectangle(-r, r, -r, r, True) if rect.symmetric
                    else Rectangle(-r, r, -r, r))
-            # |Delta| ~ r**m on the box: m res digits above the loss carry its phase
-            ap = ArgumentPrinciple(_MPFunction(self.p, extra, z, check=False),
+            # |Delta| ~ r**m on the box: m res digits above the working ones carry its phase
+            ap = ArgumentPrinciple(_LocalFunction(self.p, extra, z),
                                    spacing=lambda _u: r, min_step=lambda _u: r * 1e-6)
             try:
                 k = ap.count(box)
             except (NearZero, CountError):
                 k = -1
             if k == m:
-                return [self._cluster_eigenvalue(z, m, rect.symmetric, dps, r)]
-        # the cluster separates: isolate its zeros with mpmath, around a local origin
-        with mpmath.workdps(dps):
-            origin = self._global(rect.center)
-            if rect.symmetric:
-                origin = mpmath.mpc(origin.real, 0)
-            shift = self._local(origin)
+                return [self._cluster_eigenvalue(z, m, rect.symmetric, digits, r)]
+        # the cluster separates: isolate its zeros at high precision, around a local origin
+        origin = self._at(rect.center, ctx)
+        if rect.symmetric:
+            origin = ctx.mpc(origin.real, 0)
+        shift = self._local(_global(origin))
         local = Rectangle(rect.x0 - shift.real, rect.x1 - shift.real,
                           rect.y0 if rect.symmetric else rect.y0 - shift.imag,
                           rect.y1 if rect.symmetric else rect.y1 - shift.imag, rect.symmetric)
+        r_min = 10.0 ** (-res) * abs(zf)
         sub = _Search(self.p, self.digits,
-                      ArgumentPrinciple(_MPFunction(self.p, extra, origin),
+                      ArgumentPrinciple(_LocalFunction(self.p, extra, _global(origin)),
                                         spacing=lambda _u: local.size / 8,
                                         min_step=lambda _u: 1e-6 * r_min),
-                      origin)
-        r_min = 10.0 ** (-res) * abs(zf)
+                      _global(origin))
         singles, clusters = sub.isolate([(local, m, None)], 10.0 ** -res)
-        out = [sub.single(r, c) for r, c in singles]
+        out = sub.refine_all(singles)
         for r, k, _ in clusters:
-            with mpmath.workdps(dps):
-                out.append(sub._cluster_eigenvalue(sub._global(r.center), k, r.symmetric, dps,
-                                                   r.size))
+            out.append(sub._cluster_eigenvalue(sub._at(r.center), k, r.symmetric, digits,
+                                               r.size))
         self.idle += sub.idle
         return out
 
-    def _cluster_eigenvalue(self, z, m, symmetric, dps, radius) -> Eigenvalue:
+    def _cluster_eigenvalue(self, z, m, symmetric, digits, radius) -> Eigenvalue:
         """An ``m``-fold eigenvalue at ``z``, known to within ``radius``."""
-        with mpmath.workdps(dps):
-            if not self.p.model.damped:
-                return Eigenvalue(mpmath.mpc(0, abs(z.imag)), m, self.digits, None)
-            if symmetric and abs(z.imag) <= radius:
-                return Eigenvalue(mpmath.mpc(z.real, 0), m, self.digits, None)
-            if abs(z.real) <= radius:
-                if self._idle(z, dps, m):
-                    self.idle += 1
-                    return Eigenvalue(mpmath.mpc(0, z.imag), m, self.digits, None)
-                raise ComputationError(
-                    f"{m} eigenvalues agree to {self.digits + SEPARATION_DIGITS} digits near "
-                    f"{complex(z):.6g} and their real part, below {float(radius):.1e}, cannot "
-                    "be given to the digits asked for")
-            return Eigenvalue(+z, m, self.digits, None)
+        z = _global(z)
+        if not self.p.model.damped:
+            return Eigenvalue(mpmath.mpc(0, abs(z.imag)), m, self.digits, None)
+        if symmetric and abs(z.imag) <= radius:
+            return Eigenvalue(mpmath.mpc(z.real, 0), m, self.digits, None)
+        if abs(z.real) <= radius:
+            if self._idle(z, digits, m):
+                self.idle += 1
+                return Eigenvalue(mpmath.mpc(0, z.imag), m, self.digits, None)
+            raise ComputationError(
+                f"{m} eigenvalues agree to {self.digits + SEPARATION_DIGITS} digits near "
+                f"{complex(z):.6g} and their real part, below {float(radius):.1e}, cannot "
+                "be given to the digits asked for")
+        return Eigenvalue(z, m, self.digits, None)
 
-    def single(self, rect, center) -> Eigenvalue:
-        """Refine one isolated zero, halving its rectangle while the secant strays."""
+    def refine_all(self, singles) -> list:
+        """Refine every isolated zero; a rectangle whose secant strays is split and retried."""
+        out = self.refine_real([r for r, _ in singles if r.symmetric])
+        work = [(r, c) for r, c in singles if not r.symmetric]
         for _ in range(60):
-            if rect.symmetric:
-                return self.refine_real(rect)
-            e = self.refine_complex(rect, center)
-            if e is not None:
-                return e
-            for kid, k, c, _ in self._split(rect, 1):
-                if k:
-                    rect, center = kid, c
-                    break
-        raise ComputationError(f"the eigenvalue in {rect} could not be refined")
+            if not work:
+                return out
+            results = self.refine_complex(work)
+            retry = []
+            for (rect, center), e in zip(work, results):
+                if e is not None:
+                    out.append(e)
+                    continue
+                for kid, k, c, _ in self._split(rect, 1):
+                    if k:
+                        retry.append((kid, c))
+                        break
+            work = retry
+        raise ComputationError(f"the eigenvalue in {work[0][0]} could not be refined")
 
 
 def _region(omega_max: float, sigma_max: float, lam_ref: float, attempt: int):
@@ -634,7 +886,7 @@ def count_in_rectangle(model: Model, re_min: float, re_max: float, im_min: float
         raise ComputationError(str(exc)) from None
 
 
-def _search_region(model, omega_max, sigma_max, digits):
+def _search_region(model, omega_max, sigma_max, digits, certified):
     """``(search, counted cells, evaluations spent on attempts given up)``."""
     lam_ref = _reference_frequency(model)
     last = None
@@ -643,7 +895,7 @@ def _search_region(model, omega_max, sigma_max, digits):
         rects = _region(omega_max, sigma_max, lam_ref, attempt)
         lam_max = 1.05 * max(abs(complex(x, y)) for r in rects for x in (r.x0, r.x1)
                              for y in (r.y0, r.y1))
-        problem = _Problem(model, lam_max)
+        problem = _Problem(model, lam_max, certified)
         search = _Search(problem, digits)
         try:
             return search, _count_region(search, rects), spent
@@ -654,7 +906,7 @@ def _search_region(model, omega_max, sigma_max, digits):
 
 
 def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
-                 digits: int = 15) -> Spectrum:
+                 digits: int = 15, certified: bool | None = None) -> Spectrum:
     """Eigenvalues ``lam = -sigma + i omega`` (``omega >= 0``) of a damped model.
 
     Parameters
@@ -673,6 +925,10 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         (:func:`default_sigma_max`).
     digits : int
         Significant digits, all correct, in both the real and the imaginary part.
+    certified : bool, optional
+        The high-precision arithmetic: Arb balls (python-flint; real eigenvalues are
+        then proved by a sign change of ball values), or mpmath checked at a second
+        precision (False); None (default): balls where python-flint is installed.
 
     Returns
     -------
@@ -696,45 +952,41 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         raise ValueError("digits must be positive")
     model = model.require_numeric()
     start = time.perf_counter()
-    rigid = rigid_body_modes(model)
+    rigid, order = zero_order(model)
     evaluations = check_stable(model, rigid)
     if omega_max is not None:
         W = float(omega_max)
         S = default_sigma_max(W) if sigma_max is None else float(sigma_max)
         if W < 0 or S < 0:
             raise ValueError("omega_max and sigma_max must not be negative")
-        search, cells, spent = _search_region(model, W, S, digits)
+        search, cells, spent = _search_region(model, W, S, digits, certified)
         evaluations += spent
     else:
         W = _first_guess(model)
         while True:
             S = default_sigma_max(W) if sigma_max is None else float(sigma_max)
-            search, cells, spent = _search_region(model, W, S, digits)
+            search, cells, spent = _search_region(model, W, S, digits, certified)
             evaluations += spent
-            # the symmetric strip counts conjugate pairs twice: at least half are above
+            # the symmetric strip counts conjugate pairs twice: at least half are above;
+            # the zero at lam = 0 counts once per rigid-body mode
             found = sum(n if not r.symmetric else (n + 1) // 2 for r, n, _ in cells)
+            found -= order - rigid
             if found >= count:
                 break
             evaluations += search.p.evaluations
             W *= 2.0
             if W > 1e12:
                 raise ComputationError(f"fewer than {count} eigenvalues below |lam| = 1e12")
-    search.zero_order = rigid
+    search.zero_order = order
     singles, clusters = search.isolate(cells, _TINY)
-    eigen = [search.single(rect, center) for rect, center in singles]
+    eigen = search.refine_all(singles)
     for rect, m, center in clusters:
         eigen += search.resolve_cluster(rect, m, center)
     eigen = [e for e in eigen if e.lam.imag >= 0]
-    total = sum(e.multiplicity for e in eigen)
+    total = sum(e.multiplicity for e in eigen) + rigid
     notes = []
     if rigid:
-        # Delta(0) = 0 exactly; the zeros found within the accuracy of 0 are that zero
-        near = [e for e in eigen if abs(e.lam) <= 10.0 ** -(digits + 1) * search.p.lam_ref]
-        if not near:
-            raise ComputationError("the rigid-body eigenvalue lam = 0 was not found")
-        order = sum(e.multiplicity for e in near)
-        eigen = [e for e in eigen if e not in near]
-        eigen.append(Eigenvalue(mpmath.mpc(0, 0), rigid, digits, (0.0, 0.0)))
+        eigen.append(Eigenvalue(mpmath.mpc(0, 0), rigid, digits, (0.0, 0.0), PROOFS["exact"]))
         notes.append(f"lam = 0: {rigid} rigid-body mode(s), a zero of order {order} of Delta")
     for e in eigen:
         if e.lam.real > 0:
@@ -761,7 +1013,7 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
                      f"{digits + 20} digits (modes that do not move the dashpots)")
     evaluations += search.p.evaluations
     name, scale = omega_scale(model)
-    with mpmath.workdps(digits + 20):
-        scale_mp = mpmath.mpf(sp.N(scale, digits + 20)._to_mpmath(mpmath.mp.prec))
+    scale_mp = _global(MP.from_digits(digits + 20).ctx.mpf(
+        sp.N(scale, digits + 20)._to_mpmath(MP.from_digits(digits + 20).prec)))
     return Spectrum(tuple(eigen), digits, "default", evaluations, time.perf_counter() - start,
                     model.title or (model.source or ""), (name, scale_mp), tuple(notes))

@@ -1,0 +1,169 @@
+"""A numeric model evaluated in batches, in any arithmetic: the searches' one entry point.
+
+:class:`Evaluator` keeps the :class:`~symtmm.numeric.plan.StiffnessPlan` of a
+model for each range of ``|lam|`` it is asked about (one per doubling: a plan
+cut for a range serves every point inside it), factorises ``K(lam)`` at a batch
+of points (:func:`~symtmm.numeric.stiffness.factor`) and counts the points it
+evaluates. What a factorisation gives, per point:
+
+* ``Delta(lam) = det K * prod det U12 * P``, equal to ``det R`` of the transfer
+  formulation but with no digit lost to the growth of long segments (the pieces
+  are short), as ``(log|Delta|, arg Delta)`` in double precision or as a number
+  of the arithmetic;
+* whether every pivot can be trusted (a posteriori, from the backward error of
+  ``LDL^T``; balls decide by themselves);
+* for an undamped model on the frequency axis, the Wittrick–Williams count
+  (:class:`symtmm.roots.count.Counter`).
+
+Ball arithmetic without pivoting widens the radii along the band; a factorisation
+with undecided pivots is redone with the bits the radii ate
+(:meth:`Evaluator._ball`), once per plan.
+
+Examples
+--------
+>>> import numpy as np
+>>> from symtmm.model import Beam, Model, Spring
+>>> beam = Beam("b", 1, 1, 1, left="pinned", right="pinned")
+>>> ev = Evaluator(Model((beam,), (Spring("b", "ground", "1/4", 0, "1/2"),)), 100.0)
+>>> logabs, phase, trusted = ev.log_delta(np.array([-0.250087667713 + 9.86833681264j, 5j]))
+>>> bool(logabs[0] < logabs[1] - 20), trusted.tolist()   # a zero: its pivot untrusted
+(True, [False, True])
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+
+from .arith import DOUBLE, Arithmetic, Ball
+from .plan import StiffnessPlan
+from .stiffness import Factors, factor
+
+__all__ = ["Evaluator", "exact_mpf"]
+
+
+def exact_mpf(x) -> mpmath.mpf:
+    """``x`` (a float, an int or a number of any mpmath context) as a global mpmath
+    number without rounding (``mpmath.mpf(x)`` rounds to the ambient precision)."""
+    if hasattr(x, "_mpf_"):
+        return mpmath.mp.make_mpf(x._mpf_)
+    return mpmath.mp.make_mpf(mpmath.libmp.from_float(float(x)))
+
+
+def _exact_mpc(z) -> mpmath.mpc:
+    if hasattr(z, "_mpc_"):
+        return mpmath.mp.make_mpc(z._mpc_)
+    if hasattr(z, "_mpf_"):
+        return mpmath.mp.make_mpc((z._mpf_, mpmath.libmp.fzero))
+    z = complex(z)
+    return mpmath.mp.make_mpc((mpmath.libmp.from_float(z.real),
+                               mpmath.libmp.from_float(z.imag)))
+
+
+class Evaluator:
+    """``K(lam)`` factorised at batches of points, with one plan per range of ``|lam|``.
+
+    Parameters
+    ----------
+    model : Model
+        Numeric (dashpots included: ``K`` is complex off the frequency axis).
+    size : float
+        The largest ``|lam|`` expected; a larger one gets a plan of its own.
+
+    Attributes
+    ----------
+    evaluations : int
+        Points evaluated (one per point of every batch, in every arithmetic).
+    """
+
+    def __init__(self, model, size: float):
+        self.model = model.require_numeric()
+        self.size = max(float(size), 1e-300)
+        self.evaluations = 0
+        self._plans: dict = {}
+        self._extra_bits: dict = {}
+
+    def plan(self, size: float) -> StiffnessPlan:
+        """The plan valid for ``|lam| <= size`` (one per doubling of the range)."""
+        size = float(size)
+        design = self.size
+        while design < size * (1 + 1e-12):
+            design *= 2.0
+        plan = self._plans.get(design)
+        if plan is None:
+            plan = self._plans[design] = StiffnessPlan(self.model, design * design)
+        return plan
+
+    # -- batches ---------------------------------------------------------------------------
+    def factors(self, lam, ar: Arithmetic = DOUBLE) -> Factors:
+        """``LDL^T`` of ``K`` at the points ``lam`` (complex for double; mpmath numbers,
+        floats or balls for the other arithmetics, taken exactly)."""
+        if ar is DOUBLE:
+            lam = np.asarray(lam, dtype=complex)
+            top = float(np.max(np.abs(lam), initial=0.0))
+            self.evaluations += lam.size
+            return factor(self.plan(top), ar, lam * lam, lam)
+        points = [_exact_mpc(z) if not hasattr(z, "mid") else z for z in lam]
+        top = max((float(abs(complex(z.mid()) if hasattr(z, "mid") else complex(z)))
+                   for z in points), default=0.0)
+        self.evaluations += len(points)
+
+        def build(work):
+            values = work.array([work.number(z) for z in points])
+            return values * values, values
+        return self._factor(self.plan(top), ar, build)
+
+    def _factor(self, plan, ar, build) -> Factors:
+        """``factor`` at the points ``build(ar) -> (lam2, lam)`` gives, redone in balls with
+        more bits while pivots stay undecided (:meth:`_ball`)."""
+        if not ar.rigorous:
+            with ar:
+                lam2, lam = build(ar)
+            return factor(plan, ar, lam2, lam)
+        return self._ball(plan, ar, build)
+
+    def _ball(self, plan, ar, build) -> Factors:
+        """Ball ``LDL^T`` with the precision its radii need.
+
+        Without pivoting, ball elimination widens the radii along the band (each update
+        adds the radii of the row it subtracts): measured at ``prec`` bits as the largest
+        relative radius of the pivots, that growth is roughly independent of the
+        precision, so one retry with ``log2(growth)`` more bits decides every pivot not
+        genuinely close to zero. The extra bits are kept per plan for later calls.
+        """
+        extra = self._extra_bits.get(id(plan), 0)
+        fa = None
+        for _ in range(6):
+            work = Ball(ar.prec + extra) if extra else ar
+            with work:
+                lam2, lam = build(work)
+            fa = factor(plan, work, lam2, lam)
+            if fa.trusted.all():
+                return fa
+            growth = 0.0
+            for p in fa.pivots.reshape(-1):
+                mid, rad = abs(p.mid()), p.rad()
+                if mid != 0 and mid.is_finite() and rad.is_finite():
+                    growth = max(growth, float(rad / mid))
+            # the bits the radii ate, measured; when they ran out entirely (an infinite
+            # pivot ball) at least twice the precision
+            needed = math.log2(growth) + work.prec + 8 if growth > 0 else 0
+            if extra >= 16 * ar.prec:
+                return fa
+            extra = max(extra + 32, int(needed)) if growth > 0 else max(2 * extra, ar.prec)
+            self._extra_bits[id(plan)] = extra
+        return fa
+
+    # -- values ------------------------------------------------------------------------------
+    def log_delta(self, lam):
+        """``(log|Delta|, arg Delta, trusted)`` at complex points, double precision, batched."""
+        fa = self.factors(lam, DOUBLE)
+        logabs, phase = fa.log_delta()
+        return logabs, phase, fa.trusted
+
+    def delta(self, lam, ar: Arithmetic):
+        """``(Delta as numbers of ar, trusted)`` at the points ``lam``."""
+        fa = self.factors(lam, ar)
+        return fa.delta(), fa.trusted
