@@ -166,3 +166,54 @@ def pp_root_above(n, EI, m, L, supports, dps=60):
             if t > 0.1:
                 raise ArithmeticError("no root above the mode")
         return mpmath.findroot(f, (lo, hi), solver="anderson")
+
+
+_END_ROWS = {"free": (2, 3), "pinned": (0, 2), "clamped": (0, 1), "sliding": (1, 3)}
+
+
+def beam_char(lam, EI, m, L, left, right, supports):
+    """Characteristic determinant of a uniform beam with grounded supports ``(x, k, c)``.
+
+    The classical piecewise solution: on each piece between supports ``Y = A cos bx +
+    B sin bx + C cosh bx + D sinh bx`` (``b**4 = -m lam**2 / EI``, ``x`` from the piece's
+    start); the end conditions (``Y, Y', Y'', Y'''`` rows, two zero at each end), and at
+    each support ``Y, Y', Y''`` continuous and ``EI [Y''']`` equal to ``-(k + c lam) Y``.
+    Nothing of symtmm is used; ``lam = 0`` is excluded (``b = 0``).
+    """
+    b = mpmath.root(-m * lam**2 / EI, 4)
+    cuts = [mpmath.mpf(0)] + sorted(mpmath.mpf(x) for x, _, _ in supports) + [mpmath.mpf(L)]
+    pieces = len(cuts) - 1
+    n = 4 * pieces
+
+    def rows(x):
+        """Y, Y', Y'', Y''' of the four basis functions at local x."""
+        c, s, ch, sh = mpmath.cos(b * x), mpmath.sin(b * x), mpmath.cosh(b * x), mpmath.sinh(b * x)
+        return [[c, s, ch, sh], [-b * s, b * c, b * sh, b * ch],
+                [-b**2 * c, -b**2 * s, b**2 * ch, b**2 * sh],
+                [b**3 * s, -b**3 * c, b**3 * sh, b**3 * ch]]
+
+    A = mpmath.matrix(n, n)
+    r = 0
+    start = rows(0)
+    for k in _END_ROWS[left]:
+        for j in range(4):
+            A[r, j] = start[k][j]
+        r += 1
+    by_x = {mpmath.mpf(x): (k, c) for x, k, c in supports}
+    for p in range(pieces - 1):
+        end, nxt = rows(cuts[p + 1] - cuts[p]), rows(0)
+        k, c = by_x[cuts[p + 1]]
+        for d in range(4):
+            for j in range(4):
+                A[r, 4 * p + j] = end[d][j] * (EI if d == 3 else 1)
+                A[r, 4 * (p + 1) + j] = -nxt[d][j] * (EI if d == 3 else 1)
+            if d == 3:       # EI (Y'''(a-) - Y'''(a+)) = (k + c lam) Y(a)
+                for j in range(4):
+                    A[r, 4 * p + j] -= (k + c * lam) * end[0][j]
+            r += 1
+    end = rows(cuts[-1] - cuts[-2])
+    for k in _END_ROWS[right]:
+        for j in range(4):
+            A[r, 4 * (pieces - 1) + j] = end[k][j]
+        r += 1
+    return mpmath.det(A)

@@ -34,7 +34,7 @@ import mpmath
 import numpy as np
 import pytest
 import scipy.linalg
-from damped_reference import pp_char, pp_damped_roots
+from damped_reference import beam_char, pp_char, pp_damped_roots
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -305,6 +305,55 @@ def test_rigid_body_modes_of_free_beams():
             f0 = single.delta_mp(lam)
             newton_step = f0 * h / (single.delta_mp(lam + h) - f0)
             assert abs(newton_step) < abs(lam) * 1e-14
+
+
+# -- a dashpot alone on a rigid-body motion ------------------------------------------------------
+PURE_DASHPOT = {
+    # a pinned-free beam turning about its pin, a dashpot at 0.6: lam = 0 is a simple zero
+    # beside a real eigenvalue; the values in the issue that reported it (an independent
+    # state-space FE polished on an exact determinant) are reproduced by beam_char
+    "pinned-free": (("pinned", "free"), [("3/5", 0, 2)],
+                    [("-2.19141315549854", "0"), ("-0.623622447176967", "15.3310074918209"),
+                     ("-1.43788429657287", "49.8554523918882"),
+                     ("-0.056570866708691", "104.245191761378")]),
+    # a free-free beam held by a spring at midspan turns about it; a dashpot at 0.2
+    "free-free": (("free", "free"), [("1/2", 50, 0), ("1/5", 0, 2)], None),
+}
+
+
+@pytest.mark.parametrize("digits", [15, 30])
+@pytest.mark.parametrize("name", list(PURE_DASHPOT))
+def test_dashpot_alone_on_a_rigid_body_motion(name, digits):
+    (left, right), supports, published = PURE_DASHPOT[name]
+    model = Model((Beam("b", 1, 1, 1, left=left, right=right),),
+                  tuple(Spring("b", "ground", x, k, c) for x, k, c in supports))
+    spec = solve_damped(model, omega_max=110, digits=digits)
+    zero = [e for e in spec if e.lam == 0]
+    others = [e for e in spec if e.lam != 0]
+    assert len(zero) == 1 and zero[0].multiplicity == 1
+    assert "order 1" in " ".join(spec.notes)
+    with mpmath.workdps(digits + 30):
+        sup = [(Fraction(x), k, c) for x, k, c in supports]
+        sup = [(mpmath.mpf(x.numerator) / x.denominator, k, c) for x, k, c in sup]
+        for e in others:
+            ref = mpmath.findroot(lambda z: beam_char(z, 1, 1, 1, left, right, sup),
+                                  mpmath.mpc(e.lam))
+            assert_digits_correct(e.to_dict()["real"], ref.real, digits)
+            if e.lam.imag == 0:
+                assert abs(ref.imag) < mpmath.mpf(10) ** -(digits + 20)
+            else:
+                assert_digits_correct(e.to_dict()["imag"], ref.imag, digits)
+    if published and digits == 15:
+        assert [(Decimal(e.to_dict()["real"]), Decimal(e.to_dict()["imag"])) for e in others] \
+            == [(Decimal(a), Decimal(b)) for a, b in published]
+    real = [e for e in others if e.lam.imag == 0]
+    assert len(real) == 1 and real[0].lam.real < 0
+    if digits == 15:
+        # by count, and by the contour method: the same first three
+        first = [(e.to_dict()["real"], e.to_dict()["imag"]) for e in spec][:3]
+        for method in ("default", "contour"):
+            again = solve(model, count=3, digits=15, method=method)
+            assert [(e.to_dict()["real"], e.to_dict()["imag"]) for e in again] == first
 
 
 # -- undamped models: the contour search agrees with the Wittrick-Williams search ---------------
