@@ -61,8 +61,9 @@ import numpy as np
 import sympy as sp
 
 from .assembly import Interval, Layout
-from .compile import Evaluator, _Jumps
+from .compile import Evaluator
 from .elements import STATE, EulerBernoulliSegment
+from .elements.base import LAM
 from .errors import ComputationError, ModelError
 from .expr import ExpressionError, parse_expression
 from .model import Model
@@ -293,6 +294,46 @@ class ModeSet:
 # -----------------------------------------------------------------------------------
 # Propagation of states along the beams
 # -----------------------------------------------------------------------------------
+
+class _Jumps:
+    """The entries ``(row, col, value)`` of a station's ``G``, values as polynomials in lam."""
+
+    def __init__(self, terms):
+        self.rows = [r for r, _, _ in terms]
+        self.cols = [c for _, c, _ in terms]
+        self.coeffs = []        # per term: exact coefficients of lam**0, lam**1, ...
+        for _, _, value in terms:
+            poly = sp.Poly(sp.expand(value), LAM)
+            self.coeffs.append([sp.sympify(c) for c in reversed(poly.all_coeffs())])
+        self._float = [[complex(sp.N(c, 20)) for c in cs] for cs in self.coeffs]
+        self._mp: dict = {}
+
+    def values_numpy(self, lam) -> list:
+        out = []
+        for cs in self._float:
+            v = np.zeros_like(lam)
+            for c in reversed(cs):
+                v = v * lam + c
+            out.append(v)
+        return out
+
+    def values_mp(self, lam, real: bool) -> list:
+        key = (mpmath.mp.prec, real)
+        coeffs = self._mp.get(key)
+        if coeffs is None:
+            dps = mpmath.mp.dps
+            coeffs = [[to_mp(c, dps) if c.is_real else mpmath.mpmathify(complex(sp.N(c, dps)))
+                       for c in cs] for cs in self.coeffs]
+            self._mp[key] = coeffs
+        out = []
+        for cs in coeffs:
+            v = mpmath.mpf(0)
+            for c in reversed(cs):
+                v = v * lam + c
+            out.append(mpmath.re(v) if real else v)
+        return out
+
+
 
 def working_digits(evaluator: Evaluator, lam, digits: int) -> int:
     """Decimal digits to compute a shape in: ``digits`` plus the cancellation, plus guard.

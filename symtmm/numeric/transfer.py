@@ -1,0 +1,320 @@
+"""The transfer-matrix walk along the layout, written once for every arithmetic.
+
+The layout of a model (:class:`symtmm.assembly.Layout`) is a sequence of
+intervals, each spanned by beam segments, and stations where point elements
+act. :class:`TransferPlan` compiles it once: the distinct segment kinds
+(evaluated together by :mod:`symtmm.numeric.segments`) and, per station, the
+entries of its jump ``G`` as exact coefficient lists. :func:`propagate` then
+carries the columns of the unknowns from the left to the right end,
+``E <- U E`` per segment and ``E[row] += g E[col]`` per jump, in any
+arithmetic of :mod:`symtmm.numeric.arith`, for a batch of eigenvalues at once;
+``R`` is the rows of the conditions, ``Delta = det R``.
+
+An undamped model's jumps are polynomials in ``lam**2`` (springs, masses): they
+are evaluated in ``lam**2``, so that on the frequency axis (``lam**2 = -omega**2``
+real) the whole walk stays in real arithmetic.
+
+The plain product loses about ``sum |beta| L / ln 10`` digits to the growth of
+its columns (entries grow like ``exp(|beta| l)``): high precision absorbs that.
+In double precision :func:`log_delta` walks in steps of ``|beta| l <=``
+:data:`NU_STEP` with the state in wave-number units and re-orthonormalises the
+columns as they grow (Godunov's method for stiff boundary-value problems), which
+keeps about 13 significant digits at any mode.
+
+Examples
+--------
+>>> import numpy as np
+>>> from symtmm.model import Beam, Model
+>>> from symtmm.numeric.arith import DOUBLE, MP
+>>> cc = TransferPlan(Model((Beam("b", 1, 1, 1, left="clamped", right="clamped"),)))
+>>> Om = np.array([30.0, 60.0])               # cos(Om) cosh(Om) - 1, over 2 Om**4
+>>> logabs, phase = log_delta(cc, 1j * Om**2)
+>>> exact = (1 - np.cos(Om) * np.cosh(Om)) / (2 * Om**4)
+>>> bool(np.all(abs(np.exp(logabs + 1j * phase) / exact - 1) < 1e-12))
+True
+>>> ar = MP(200)
+>>> value = delta(cc, ar, ar.array([ar.number(-500)]), real=True)[0]   # lam**2 = -500
+>>> Om = ar.ctx.root(500, 4)
+>>> abs(value / ((1 - ar.ctx.cos(Om) * ar.ctx.cosh(Om)) / (2 * Om**4)) - 1) < 1e-55
+True
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from ..assembly import Interval, Layout
+from ..elements.base import LAM
+from .arith import DOUBLE, Arithmetic, memo
+from .linalg import det
+from .plan import _kind
+from .segments import transfer_matrices
+
+__all__ = ["TransferPlan", "propagate", "boundary", "delta", "log_delta", "NU_STEP"]
+
+#: Largest ``|beta| l`` of one step of :func:`log_delta`: the columns grow by at most
+#: ``exp(NU_STEP)`` between two re-orthonormalisations.
+NU_STEP = 4.0
+
+
+def _with_length(kind, length):
+    """A segment kind ``(family, constants)`` with its length replaced."""
+    family, consts = kind
+    consts = list(consts)
+    consts[2 if family == "eb" else 7] = length
+    return family, tuple(consts)
+
+
+class TransferPlan:
+    """A model's layout compiled for the transfer walk.
+
+    Parameters
+    ----------
+    model : Model
+        Numeric.
+
+    Attributes
+    ----------
+    size : int
+        Length of the extended state (four per beam, then the bodies' variables).
+    columns, rows : list
+        The unknowns at the left end, the conditions at the right end.
+    steps : list
+        ``("segments", [(level, kind index)])`` or ``("jumps", [(row, col, power, index)])``.
+    kinds : list
+        Distinct segment kinds ``(family, exact constants)``, ``"eb"`` first.
+    even : bool
+        Every jump is a polynomial in ``lam**2`` (no dashpot).
+    """
+
+    def __init__(self, model):
+        self.model = model.require_numeric()
+        layout = self.layout = Layout(self.model)
+        self.size = layout.size
+        self.columns = list(layout.columns)
+        self.rows = list(layout.rows)
+        self.units = list(layout.units)
+        self.levels = [(b.segment(b.L), float(b.EI), float(b.L)) for b in self.model.beams]
+        found: dict = {}
+        raw = []
+        for step in layout.steps:
+            if isinstance(step, Interval):
+                items = []
+                for lvl, seg in step.segments:
+                    items.append((lvl, found.setdefault(_kind(seg), len(found)), seg))
+                raw.append(("segments", items))
+            else:
+                raw.append(("jumps", [(r, c, sp.Poly(sp.expand(v), LAM).all_coeffs()[::-1])
+                                      for r, c, v in step.terms]))
+        order = sorted(found, key=lambda k: (k[0] != "eb", found[k]))
+        index = {found[k]: i for i, k in enumerate(order)}
+        self.kinds = order
+        self.even = all(all(c == 0 for c in cs[1::2]) for kind, items in raw if kind == "jumps"
+                        for _, _, cs in items)
+        self.coefficients: list = []       # per jump entry: exact coefficients
+        self.steps = []
+        for kind, items in raw:
+            if kind == "segments":
+                self.steps.append(("segments", [(lvl, index[i]) for lvl, i, _ in items]))
+                continue
+            entries = []
+            for r, c, cs in items:
+                if self.even:
+                    cs = cs[::2]            # in lam**2
+                entries.append((r, c, len(self.coefficients)))
+                self.coefficients.append([sp.sympify(v) for v in cs])
+            self.steps.append(("jumps", entries))
+        self.segments_of = [[seg for _, _, seg in items] for kind, items in raw
+                            if kind == "segments"]
+
+    # -- numbers ----------------------------------------------------------------------------
+    def kind_tables(self, ar: Arithmetic, divide: int = 1):
+        """The kinds' constants in ``ar`` for pieces ``1/divide`` of their length."""
+        from .plan import StiffnessPlan
+
+        def build():
+            kinds = [_with_length(k, (k[1][2] if k[0] == "eb" else k[1][7]) / divide)
+                     for k in self.kinds] if divide != 1 else self.kinds
+            return StiffnessPlan._kind_tables(ar, kinds)
+        return memo(self, ar, f"kinds/{divide}", build)
+
+    def jump_coefficients(self, ar: Arithmetic) -> list:
+        return memo(self, ar, "jumps", lambda: [[ar.exact(c) for c in cs]
+                                                 for cs in self.coefficients])
+
+    def jump_values(self, ar: Arithmetic, lam, lam2) -> list:
+        """Every jump entry at the points (arrays ``(B,)``), Horner in ``lam`` or ``lam**2``."""
+        x = lam2 if self.even else lam
+        out = []
+        for cs in self.jump_coefficients(ar):
+            v = cs[-1] + 0 * x
+            for c in cs[-2::-1]:
+                v = v * x + c
+            out.append(v)
+        return out
+
+
+def propagate(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None) -> np.ndarray:
+    """The columns of the unknowns at the right end: ``(B, size, len(columns))``.
+
+    ``lam`` ``(B,)`` (complex for double, numbers of ``ar`` otherwise); or, for an
+    undamped model, ``lam2`` alone (``lam**2``, real on the frequency axis).
+    """
+    with ar:
+        if lam2 is None:
+            lam2 = lam * lam
+        B = len(lam2)
+        like = lam2 if lam is None else lam
+        E = ar.zeros((B, plan.size, len(plan.columns)), like=like)
+        one = ar.exact(1)
+        for j, c in enumerate(plan.columns):
+            E[:, c, j] = one
+        U = transfer_matrices(ar, plan.kind_tables(ar), lam2) if plan.kinds else None
+        values = plan.jump_values(ar, lam, lam2) if plan.coefficients else []
+        for kind, items in plan.steps:
+            if kind == "segments":
+                for lvl, k in items:
+                    blk = slice(4 * lvl, 4 * lvl + 4)
+                    E[:, blk, :] = U[:, k] @ E[:, blk, :]
+            else:
+                for row, col, i in items:
+                    E[:, row, :] = E[:, row, :] + values[i][:, None] * E[:, col, :]
+    return E
+
+
+def boundary(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None) -> np.ndarray:
+    """``R`` at the points: ``(B, k, k)``."""
+    return propagate(plan, ar, lam, lam2)[:, plan.rows, :]
+
+
+def delta(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None, real: bool = False):
+    """``Delta = det R`` at the points, as numbers of ``ar`` (``(B,)``).
+
+    ``real=True``: ``lam`` holds ``lam**2`` values (an undamped model on the frequency
+    axis), so the walk runs in real arithmetic.
+    """
+    if real:
+        lam, lam2 = None, lam
+    R = boundary(plan, ar, lam, lam2)
+    with ar:
+        return ar.array([det(ar, R[p]) for p in range(R.shape[0])])
+
+
+# -- double precision, stable at any mode ---------------------------------------------------
+def _units(plan: TransferPlan, lam2) -> np.ndarray:
+    """Per point and index of the extended state, the unit it is measured in.
+
+    The state of beam ``j`` in units of its wave number ``b``: ``[Y, Theta/b,
+    M/(EI b**2), Q/(EI b**3)]``; a body's variables in those of the beam
+    they act on. Unscaled, the rows of a high mode differ by powers of ``b``
+    and the orthonormal columns would carry ``Y`` and ``Theta`` in their last
+    digits.
+    """
+    N = lam2.size
+    per_level = []
+    for seg, EI, L in plan.levels:
+        b = np.maximum(seg.wave_number(lam2), 1.0 / L)
+        per_level.append({"Y": np.ones(N), "Theta": 1 / b, "M": 1 / (EI * b**2),
+                          "Q": 1 / (EI * b**3)})
+    D = np.empty((N, plan.size))
+    for i, (lvl, var) in enumerate(plan.units):
+        D[:, i] = per_level[lvl][var]
+    return D
+
+
+def _step_counts(plan: TransferPlan, lam2) -> np.ndarray:
+    """Per point, the number of steps of ``|beta| l <= NU_STEP`` of every interval."""
+    out = np.ones((lam2.size, len(plan.segments_of)), dtype=int)
+    for col, segs in enumerate(plan.segments_of):
+        for seg in segs:
+            nu = seg.wave_number(lam2) * float(seg.l)
+            out[:, col] = np.maximum(out[:, col], np.ceil(nu / NU_STEP).astype(int))
+    return out
+
+
+def log_delta(plan: TransferPlan, lam) -> tuple:
+    """``(log|Delta|, arg Delta)`` at complex points, double precision, without overflow.
+
+    The columns of the unknowns are propagated as in :func:`propagate`, but every
+    segment is applied in steps of ``|beta| l <=`` :data:`NU_STEP`, the state
+    measured in wave-number units, and the columns re-orthonormalised whenever
+    they may have grown by ``exp(NU_STEP)`` since the last time: ``E = Q F`` with
+    ``Q`` orthonormal, so ``Delta = det Q[rows] * prod det F``. Points are
+    propagated together when they take the same steps (a batch stepped for its
+    highest mode would cost its low modes digits).
+    """
+    lam = np.asarray(lam, dtype=complex)
+    flat = lam.reshape(-1)
+    logabs = np.empty(flat.size)
+    phase = np.empty(flat.size)
+    steps = _step_counts(plan, flat * flat)
+    groups: dict = {}
+    for i, key in enumerate(map(tuple, steps)):
+        groups.setdefault(key, []).append(i)
+    for key, idx in groups.items():
+        idx = np.array(idx)
+        logabs[idx], phase[idx] = _log_delta(plan, flat[idx], key)
+    return logabs.reshape(lam.shape), phase.reshape(lam.shape)
+
+
+def _log_delta(plan: TransferPlan, flat, steps) -> tuple:
+    """:func:`log_delta` of points that take the same ``steps`` in every interval."""
+    N = flat.size
+    lam2 = flat * flat
+    D = _units(plan, lam2)
+    E = np.zeros((N, plan.size, len(plan.columns)), dtype=complex)
+    for j, c in enumerate(plan.columns):
+        E[:, c, j] = 1.0
+    # E holds D * (true columns) / D[columns]: det R = det E[rows] * prod D[cols] / prod D[rows]
+    logabs = np.sum(np.log(D[:, plan.columns]), axis=-1) - np.sum(np.log(D[:, plan.rows]),
+                                                                   axis=-1)
+    phase = np.zeros(N)
+
+    def orthonormalise(E):
+        Q, F = np.linalg.qr(E)
+        diag = np.diagonal(F, axis1=-2, axis2=-1)
+        with np.errstate(divide="ignore"):
+            logabs[:] += np.sum(np.log(np.abs(diag)), axis=-1)
+        phase[:] += np.sum(np.angle(diag), axis=-1)
+        return Q
+
+    values = plan.jump_values(DOUBLE, flat, lam2) if plan.coefficients else []
+    matrices: dict = {}
+
+    def pieces(divide):
+        if divide not in matrices:
+            matrices[divide] = transfer_matrices(DOUBLE, plan.kind_tables(DOUBLE, divide), lam2)
+        return matrices[divide]
+
+    interval = 0
+    grown = 0.0        # sum of |beta| l applied since the columns were last orthonormal
+    for kind, items in plan.steps:
+        if kind == "segments":
+            n_sub = int(steps[interval])
+            segs = plan.segments_of[interval]
+            interval += 1
+            nu = max((float(np.max(seg.wave_number(lam2), initial=0.0)) * float(seg.l)
+                      for seg in segs), default=0.0) / n_sub
+            U = pieces(n_sub)
+            subs = []
+            for lvl, k in items:
+                blk = slice(4 * lvl, 4 * lvl + 4)
+                subs.append((blk, U[:, k] * (D[:, blk, None] / D[:, None, blk])))
+            for _ in range(n_sub):
+                # orthonormalise only once the columns may have grown by exp(NU_STEP)
+                if grown + nu > NU_STEP:
+                    E = orthonormalise(E)
+                    grown = 0.0
+                for blk, Us in subs:
+                    E[:, blk, :] = Us @ E[:, blk, :]
+                grown += nu
+        else:
+            for row, col, i in items:
+                E[:, row, :] += (values[i] * D[:, row] / D[:, col])[:, None] * E[:, col, :]
+    if len(plan.columns):
+        value = np.linalg.det(E[:, plan.rows, :])
+        with np.errstate(divide="ignore"):
+            logabs = logabs + np.log(np.abs(value))
+        phase = phase + np.angle(value)
+    return logabs, np.angle(np.exp(1j * phase))
