@@ -58,6 +58,7 @@ from ..elements.base import LAM
 from ..errors import ComputationError
 from ..model import Model
 from ..results import Eigenvalue, Spectrum
+from .damped import DAMPED_PROOFS
 from .undamped import PROOFS
 
 __all__ = ["ArbCount", "ArbDelta", "Enclosure", "Enclosures", "certify", "require_flint"]
@@ -572,7 +573,7 @@ class Enclosure:
     real, imag : tuple of mpmath.mpf or None
         ``(lower, upper)`` bounds of the real and imaginary part.
     proof : str
-        ``"exact"``, ``"sign change"``, ``"Krawczyk"``, ``"count"`` or ``"none"``.
+        ``"exact"``, ``"sign change"``, ``"Krawczyk"``, ``"Rouche"``, ``"count"`` or ``"none"``.
     note : str
         Why there is no proof, when that is known (e.g. a multiple eigenvalue
         of a model the certified count does not handle).
@@ -745,10 +746,18 @@ class _Certifier:
     def enclose(self, e: Eigenvalue) -> Enclosure:
         lam = e.lam
         zero = mpmath.mpf(0)
+        # what the solvers proved already: counts in balls at the ends of an undamped
+        # bracket, opposite ball signs at the ends of a real one, Rouche's theorem on a box
         if e.proof == PROOFS["ball"] and e.bracket is not None and lam.real == 0 and lam != 0:
-            # the solver proved it already: counts in balls at the ends of its bracket
             lo, hi = sorted(e.bracket)
             return Enclosure(e, (zero, zero), (_exact_mpf(lo), _exact_mpf(hi)), "count")
+        if e.proof == DAMPED_PROOFS["ball"] and e.bracket is not None:
+            lo, hi = sorted(e.bracket)
+            return Enclosure(e, (_exact_mpf(lo), _exact_mpf(hi)), (zero, zero), "sign change")
+        if e.proof in (DAMPED_PROOFS["rouche"], DAMPED_PROOFS["rouche_idle"]):
+            (a, b), (c, d) = e.bracket
+            return Enclosure(e, (_exact_mpf(a), _exact_mpf(b)), (_exact_mpf(c), _exact_mpf(d)),
+                             "Rouche")
         if e.multiplicity > 1:
             if lam == 0 and e.bracket == (0.0, 0.0):
                 return Enclosure(e, (zero, zero), (zero, zero), "exact")

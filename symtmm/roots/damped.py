@@ -95,6 +95,8 @@ _DOUBLE_STEP = 1e-13
 #: What backs a damped eigenvalue: its name in results and output.
 DAMPED_PROOFS = {"ball": "sign change (ball arithmetic)",
                  "mp": "sign change (two precisions)",
+                 "rouche": "Rouche (ball arithmetic)",
+                 "rouche_idle": "Rouche (ball arithmetic) for Im lam; Re lam = 0 identified",
                  "agree": "two precisions"}
 
 
@@ -129,6 +131,14 @@ def _global(z) -> mpmath.mpc:
     z = complex(z)
     return mpmath.mp.make_mpc((mpmath.libmp.from_float(z.real),
                                mpmath.libmp.from_float(z.imag)))
+
+
+def _box(z, r) -> tuple:
+    """``((re - r, re + r), (im - r, im + r))``: the square a proof holds a zero in."""
+    ctx = MP(max(int(mpmath.mag(z) - mpmath.mag(r)), 0) + 128).ctx
+    re, im, r = ctx.mpf(z.real), ctx.mpf(z.imag), ctx.mpf(r)
+    return ((_global(re - r).real, _global(re + r).real),
+            (_global(im - r).real, _global(im + r).real))
 
 
 def _prints_alike(x, err, digits) -> bool:
@@ -494,7 +504,15 @@ class _Search:
                 target = min(abs(s["zf"].real) or abs(s["zf"]), abs(s["zf"].imag) or abs(s["zf"]))
                 if conservative:
                     target = abs(s["zf"].imag) or abs(s["zf"])
-                tols.append(mpmath.mpf(10) ** (-(self.digits + 4 + s["tighter"])) * target)
+                s["tol"] = mpmath.mpf(10) ** (-(self.digits + 4 + s["tighter"])) * target
+                if self.p.balls and self.origin is None:
+                    # the box Rouche's theorem proves (see _rouche), and the estimate well
+                    # inside it
+                    s["box"] = min(10 * s["tol"], mpmath.mpf(10) ** (-(self.digits + 15))
+                                   * abs(s["zf"]))
+                    s["tol"] = s["box"] / 1000
+                    digits = max(digits, math.ceil(-math.log10(s["box"] / abs(s["zf"]))) + 10)
+                tols.append(s["tol"])
             first = self._secants([s["z"] for s in todo], digits, tols)
             ok = []
             for s, (za, _) in zip(todo, first):
@@ -504,8 +522,10 @@ class _Search:
                 else:
                     s["za"] = za
                     ok.append(s)
+            if self.p.balls and self.origin is None:
+                ok = self._prove_boxes(ok, digits, conservative)
             second = self._secants([s["za"] for s in ok], digits + 15,
-                                   [t / 10 ** 5 for s, t in zip(todo, tols) if s in ok])
+                                   [s["tol"] / 10 ** 5 for s in ok])
             for s, (zb, _) in zip(ok, second):
                 margin = 1e-9 * s["rect"].size
                 if zb is None or not s["rect"].contains(self._local(zb), margin):
@@ -513,8 +533,111 @@ class _Search:
                     continue
                 self._judge(s, zb, digits, conservative)
         out = []
+        idle = [s for s in state if isinstance(s["done"], Eigenvalue) and s.get("idle")]
+        if idle and self.p.balls and self.origin is None:
+            # the imaginary part of an undamped mode of a damped model: a box about it
+            # straddling Re lam = 0 (which itself stays a numerical identification)
+            D = self.digits
+            items = []
+            for s in idle:
+                z = s["done"].lam
+                items.append((z, min(mpmath.mpf(10) ** (-(D + 3)) * abs(z.imag),
+                                     mpmath.mpf(10) ** (-(D + 15)) * abs(z))))
+            digits = max(math.ceil(-math.log10(r / abs(z))) for z, r in items) + 20
+            for s, (z, r), ok in zip(idle, items, self._rouche(items, digits)):
+                if ok and _prints_alike(z.imag, r, D):
+                    s["done"] = Eigenvalue(z, 1, D, _box(z, r), DAMPED_PROOFS["rouche_idle"])
         for s in state:
             out.append(s["done"] if isinstance(s["done"], Eigenvalue) else None)
+        return out
+
+    def _prove_boxes(self, items, digits, conservative) -> list:
+        """Accept the estimates Rouche's theorem proves alone in their box; return the rest.
+
+        A zero whose real part looks like rounding noise (an undamped mode of a
+        damped model) is left to :meth:`_judge`, which identifies it.
+        """
+        D = self.digits
+        tried, rest = [], []
+        for s in items:
+            z = s["za"]
+            if conservative:
+                z = mpmath.mpc(0, z.imag)
+            elif abs(z.real) < mpmath.mpf(10) ** (-(D + 25)) * abs(z):
+                rest.append(s)
+                continue
+            tried.append((s, z))
+        proved = self._rouche([(z, s["box"]) for s, z in tried], digits + 10)
+        for (s, z), ok in zip(tried, proved):
+            r = s["box"]
+            if ok and all(_prints_alike(part, r, D) for part in (z.real, z.imag) if part != 0):
+                s["done"] = Eigenvalue(z, 1, D, _box(z, r), DAMPED_PROOFS["rouche"])
+            else:
+                rest.append(s)
+        return rest
+
+    def _rouche(self, items, digits) -> list:
+        """Prove exactly one zero of ``Delta`` in each box ``z -+ r (1 + i)``, in balls.
+
+        With ``M`` an upper bound of ``|Delta|`` on a disk of radius ``rho`` about ``z``
+        (one ball evaluation over the square holding it), Cauchy's estimate bounds
+        ``|Delta''| <= 8 M / rho**2`` within ``rho / 2``. The slope ``s = (Delta(z + h) -
+        Delta(z)) / h`` of two exact points then differs from ``Delta'(z)`` by at most
+        ``4 M h / rho**2``, and ``L(w) = Delta(z) + s (w - z)`` from ``Delta`` by at most
+        ``eps = 4 M |w - z| (h + |w - z|) / rho**2`` (Taylor with that remainder). ``L``
+        has one zero ``z* = z - Delta(z) / s``; if it lies in the box and ``eps < |s|
+        dist(z*, boundary)`` on the boundary, Rouche's theorem gives ``Delta`` exactly one
+        zero in the box too. Every quantity is a ball; the comparisons hold for all of
+        its points. ``rho`` is tried at ``1e10 .. 1e18`` times ``r``: large enough for the
+        remainder, small enough for the ball over the disk to stay narrow (the square is
+        enclosed by :meth:`symtmm.numeric.evaluator.Evaluator.enclose`).
+        """
+        if not items:
+            return []
+        import flint
+
+        ar = Ball.from_digits(digits)
+        factors = (10, 14, 18)
+        points, boxes = [], []
+        with ar:
+            for z, r in items:
+                zc = ar.number(z)
+                rr = ar.number(r)
+                points += [zc, zc + rr]
+                for k in factors:
+                    rho = rr * 10 ** k
+                    boxes.append(flint.acb(flint.arb(zc.real.mid(), rho),
+                                           flint.arb(zc.imag.mid(), rho)))
+            values, _ = self.p.kernel.delta(points, ar, retry=False)
+            bounds = self.p.kernel.enclose(boxes, ar)
+            out = []
+            for i, (z, r) in enumerate(items):
+                f0, f1 = values[2 * i], values[2 * i + 1]
+                # (at a point this close to the zero the pivot through it may hold 0: its
+                # enclosure of Delta still holds wherever it is finite)
+                if not (f0.abs_upper().is_finite() and f1.abs_upper().is_finite()):
+                    out.append(False)
+                    continue
+                rr = ar.number(r)
+                s = (f1 - f0) / rr
+                zs_off = -f0 / s                     # z* - z
+                off = max(zs_off.real.abs_upper(), zs_off.imag.abs_upper())
+                if not off < rr:
+                    out.append(False)
+                    continue
+                dist = rr - off
+                reach = rr * flint.arb(2).sqrt()       # |w - z| on the box's boundary
+                proved = False
+                for j, k in enumerate(factors):
+                    M = bounds[len(factors) * i + j].abs_upper()
+                    if not M.is_finite():
+                        continue
+                    rho = rr * 10 ** k
+                    eps = 4 * M * reach * (rr + reach) / (rho * rho)
+                    if eps < s.abs_lower() * dist:
+                        proved = True
+                        break
+                out.append(proved)
         return out
 
     def _judge(self, s, zb, digits, conservative):
@@ -544,6 +667,7 @@ class _Search:
         if ok_im and re_b < floor and self._idle(_global(zb_c), digits + 15, 1):
             # the real part is rounding noise and the dashpots stay idle
             self.idle += 1
+            s["idle"] = True
             s["done"] = Eigenvalue(_global(ctx.mpc(0, zb_c.imag)), 1, self.digits, None,
                                    DAMPED_PROOFS["agree"])
             return
