@@ -105,14 +105,14 @@ from dataclasses import dataclass, field, replace
 
 import sympy as sp
 
-from . import __version__
-from .assembly import Interval, Layout
-from .characteristic import _check_order, _prepare
-from .compile import NU_STEP
-from .elements import STATE, BeamSegment
-from .elements.base import LAM
-from .errors import ModelError
-from .text import comment_text
+from .. import __version__
+from ..assembly import Interval, Layout
+from ..characteristic import _check_order, _prepare
+from ..compile import NU_STEP
+from ..elements import STATE, BeamSegment
+from ..elements.base import LAM
+from ..errors import ModelError
+from ..text import comment_text
 
 __all__ = ["EXTENSIONS", "LANGUAGES", "generate"]
 
