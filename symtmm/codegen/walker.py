@@ -59,88 +59,57 @@ class Body:
     """The evaluator's statements at their depths, and the locals they set.
 
     ``params`` are the statements that depend on the parameters alone,
-    ``point`` those of one point (or one batch of points); the dialect puts
-    them where its language wants them.
+    ``point`` those of one point (or one batch of points); ``waves`` holds each
+    segment's ``|beta| l``. The dialect puts them where its language wants them.
     """
 
     def __init__(self, dialect):
         self.d = dialect
         self.lines: list = []       # (depth, text)
-        self.depth = 0
         self.kinds: dict = {}       # local -> (kind, dims), in the order first set
         self.closers: list = []
         self.split = 0              # where the per-point statements start
-        self.waves: list = []       # per segment, its wave number times its length
+        self.waves: list = []
 
-    @property
-    def params(self) -> list:
-        return self.lines[:self.split]
-
-    @property
-    def point(self) -> list:
-        return self.lines[self.split:]
+    params = property(lambda self: self.lines[:self.split])
+    point = property(lambda self: self.lines[self.split:])
 
     def put(self, *texts):
-        self.lines += [(self.depth, t) for t in texts]
+        self.lines += [(len(self.closers), t) for t in texts]
 
-    def local(self, name, kind, dims=()) -> bool:
-        """Note a local; whether the dialect declares it here and now (C, first time)."""
+    def new(self, name, kind, dims=()) -> bool:
+        """Note a local; whether to declare it here and now (C, the first time)."""
         first = name not in self.kinds
         self.kinds.setdefault(name, (kind, tuple(dims)))
-        return first and self.d.declares == "in place"
-
-    def declare(self, name, kind, dims):
-        """A local set piecewise (an array filled by a routine)."""
-        if self.local(name, kind, dims):
-            self.put(self.d.declaration(name, kind, dims) + ";")
+        return first and self.d.declares_in_place
 
     def let(self, name, value, kind="real", dims=()):
         """``name = value``, declared where the language wants it."""
-        if self.local(name, kind, dims):
-            self.put(f"{self.d.declaration(name, kind, dims)} = {value};")
-        else:
-            self.put(self.d.assign(name, value))
+        first = self.new(name, kind, dims)
+        self.put(self.d.assign(self.d.declaration(name, kind, dims) if first else name, value))
 
-    def zeros(self, name, kind, dims):
-        self.local(name, kind, dims)
-        self.put(self.d.zeros(name, kind, tuple(dims)))
-
-    def call(self, routine, args, out):
-        """``out = routine(args)`` for a runtime routine that fills an array."""
-        self.put(self.d.call.format(fn=self.d.fn(routine), args=", ".join(args), out=out))
+    def array(self, name, kind, dims, zero=False):
+        """A local array, filled with zeros or left to a routine."""
+        if self.new(name, kind, dims) or zero:
+            self.put(self.d.zero_array(name, kind, dims) if zero
+                     else self.d.declaration(name, kind, dims) + self.d.end)
 
     def open(self, head, closer):
         self.put(head)
         self.closers.append(closer)
-        self.depth += 1
 
-    def open_for(self, var, count):
+    def loop(self, var, count):
         self.kinds.setdefault(var, ("int", ()))
         self.open(self.d.for_open.format(var, count), self.d.for_close)
 
     def close(self):
-        self.depth -= 1
         closer = self.closers.pop()
         if closer:
             self.put(closer)
 
-    def declarations(self) -> list:
-        """One declaration per kind and shape class, for a language that declares at the top."""
-        grouped: dict = {}
-        for name, (kind, dims) in self.kinds.items():
-            grouped.setdefault(kind, []).append(
-                self.d.declaration(name, kind, dims).split(" :: ")[1])
-        return [f"{self.d.declaration('x', kind, ()).split(' :: ')[0]} :: {', '.join(names)}"
-                for kind, names in grouped.items()]
-
     def render(self, depth, lines=None) -> list:
-        return [self.d.indent * (depth + k) + text for k, text in
-                (self.lines if lines is None else lines)]
-
-
-def _shifted(s, value) -> str:
-    """``lam2``, or ``(lam2 + kw/m)`` for a segment on a Winkler foundation."""
-    return "lam2" if s == 0 else f"(lam2 + {value(s)})"
+        return [self.d.indent * (depth + k) + text
+                for k, text in (self.lines if lines is None else lines)]
 
 
 def _polynomial(coeffs, value, lam) -> str:
@@ -163,13 +132,12 @@ def _polynomial(coeffs, value, lam) -> str:
 
 
 def walk(plan, d) -> Body:
-    """The body of ``plan``'s evaluator in dialect ``d`` (0-based indices in the plan)."""
-    b = Body(d)
-    value = d.value
+    """The body of ``plan``'s evaluator in dialect ``d``."""
+    b, value = Body(d), d.value
     b.let("nu_step", d.literal(NU_STEP))
     for name, expr in plan.temps:
         b.let(str(name), d.printer(expr))
-    if plan.guards:
+    if plan.guards:                            # the cuts out of their order
         b.open(d.if_open.format(d.either.join(d.negative.format(value(g))
                                               for g in plan.guards)), d.if_close)
         b.put(*d.nan_exit)
@@ -178,72 +146,73 @@ def walk(plan, d) -> Body:
         b.let(f"th{t}", d.vector.format(", ".join(value(v) for v in th)), dims=(7,))
     b.split = len(b.lines)
     # units of each beam's state from its wave number, a body's from the beam variable's
-    b.zeros("D", "real", (plan.size,))
+    b.array("D", "real", (plan.size,), zero=True)
     for j, level in enumerate(plan.levels):
         if level[0] == "eb":
             _, EI, mu, L, k = level
             wave = d.fourth_root.format(f"{value(mu)} * lam2 + {value(k)}")
         else:
             _, t, L = level
-            EI = plan.theories[t][0]
-            wave = f"{d.fn('wave')}(lam2, th{t})"
-        b.call("units", [wave, value(EI), value(L)], d.block("D", 4 * j))
+            EI, wave = plan.theories[t][0], f"{d.fn('wave')}(lam2, th{t})"
+        b.put(d.call.format(fn=d.fn("units"), args=f"{wave}, {value(EI)}, {value(L)}",
+                            out=d.index("D", (4 * j, 4))))
     for i, src in plan.virtual:
-        b.put(d.assign(d.item("D", i), d.item("D", src)))
+        b.put(d.assign(d.index("D", i), d.index("D", src)))
     # the unknowns' columns, measured in those units
-    b.zeros("E", "complex", (plan.size, plan.ncol))
+    b.array("E", "complex", (plan.size, plan.ncol), zero=True)
     for j, c in enumerate(plan.columns):
-        b.put(d.assign(d.item("E", c, j), d.literal(1)))
+        b.put(d.assign(d.index("E", c, j), d.literal(1)))
     b.let("logscale", d.literal(0) + "".join(
-        f" {'+' if sign > 0 else '-'} {d.log.format(d.item('D', i))}"
+        f" {'+' if sign > 0 else '-'} {d.log.format(d.index('D', i))}"
         for sign, i in plan.logscale_terms))
-    b.let("grown", d.literal(0))               # |beta| l applied since the last orthonormalisation
+    b.let("grown", d.literal(0))               # |beta| l since the last orthonormalisation
     # each segment's matrix, for one of n equal steps of |beta| l <= nu_step
-    waves = b.waves
     for i, seg in enumerate(plan.segments):
         if seg[0] == "eb":
             _, a, l, EI, s = seg
-            lam2 = _shifted(s, value)
-            waves.append(d.fourth_root.format(f"-{lam2} * {value(a)}"))
+            lam2 = "lam2" if s == 0 else f"(lam2 + {value(s)})"    # a foundation: kw/m
+            b.waves.append(d.fourth_root.format(f"-{lam2} * {value(a)}"))
             routine, args = "segment", [lam2, value(a), value(l), value(EI)]
         else:
             _, t, l = seg
-            waves.append(f"{d.fn('wave')}(lam2, th{t}) * {value(l)}")
+            b.waves.append(f"{d.fn('wave')}(lam2, th{t}) * {value(l)}")
             routine, args = "segment_gen", ["lam2", f"th{t}", value(l)]
-        b.let("w", waves[-1])
+        b.let("w", b.waves[-1])
         b.let(f"n{i}", d.steps.format("w", i), "int")
         b.let(f"nu{i}", f"{d.peak.format('w')} / n{i}")
-        b.declare(f"U{i}", "complex", (4, 4))
-        b.call(routine, [*args, f"n{i}"], f"U{i}")
+        b.array(f"U{i}", "complex", (4, 4))
+        b.put(d.call.format(fn=d.fn(routine), args=", ".join([*args, f"n{i}"]), out=f"U{i}"))
     for i, coeffs in enumerate(plan.stiff):
         b.let(f"s{i}", d.stiffness.format(_polynomial(coeffs, value, d.lam)), "complex")
     # the walk: segments step by step, re-orthonormalised once the columns may have grown
     # by exp(nu_step); stations' jumps E[row] += D[row] s E[col] / D[col]
+    sizes = {"ns": plan.size, "nc": plan.ncol}
     for step in plan.steps:
         if step[0] == "seg":
             _, k, level = step
-            b.declare("Us", "complex", (4, 4))
-            b.put(d.scale(k, 4 * level))
-            b.open_for("it", f"n{k}")
+            b.array("Us", "complex", (4, 4))
+            b.put(d.scale.format(k=k, D=d.index("D", (4 * level, 4))))
+            b.loop("it", f"n{k}")
             b.open(d.if_open.format(f"grown + nu{k} > nu_step"), d.if_close)
-            b.put(d.orthonormalise.format(ns=plan.size, nc=plan.ncol))
+            b.put(d.orthonormalise.format(**sizes))
             b.let("grown", d.literal(0))
             b.close()
-            b.put(d.apply(4 * level, plan.ncol))
+            b.put(d.apply.format(E=d.index("E", (4 * level, 4), ":"), **sizes))
             b.let("grown", f"grown + nu{k}")
             b.close()
         elif step[1]:
             if d.row_loop:
-                b.open_for("j", plan.ncol)
+                b.loop("j", plan.ncol)
             for row, terms in step[1]:
-                jump = " ".join(f"{'-' if sign < 0 else '+'} s{si} * {d.row('E', col)} / "
-                                f"{d.scalar('D', col)}" for sign, col, si in terms)
+                jump = " ".join(f"{'-' if sign < 0 else '+'} s{si} * {d.index('E', col, ':')} / "
+                                f"{d.index('D', col, *d.against_row)}" for sign, col, si in terms)
                 jump = jump[2:] if jump[0] == "+" else "-" + jump[2:]
-                b.put(d.assign(d.row("E", row), f"{d.row('E', row)} + "
-                                                 f"{d.scalar('D', row)} * ({jump})"))
+                b.put(d.assign(d.index("E", row, ":"), f"{d.index('E', row, ':')} + "
+                               f"{d.index('D', row, *d.against_row)} * ({jump})"))
             if d.row_loop:
                 b.close()
-    b.let("delta", f"{d.det(plan)} * {d.exp.format('logscale')}", "complex")
+    b.let("delta", f"{d.det.format(E=d.index('E', plan.rows, ':'), **sizes)} * "
+                   f"{d.exp.format('logscale')}", "complex")
     b.put(*d.deliver)
     return b
 
@@ -319,10 +288,8 @@ def runtime_source(stem: str, dialect) -> str:
 
 def emit(plan, d) -> str:
     """The source file of ``plan``'s evaluator in dialect ``d``."""
-    body = walk(plan, d)
     needed = {"euler_bernoulli": plan.has_eb, "theory": plan.has_gen}
-    runtime = d.gap.join(runtime_source(stem, d).strip("\n")
-                         for stem in d.runtime if needed.get(stem, True))
-    lines = d.file(d.header(header_lines(plan, d.name)), runtime,
-                   d.function(plan, body, body.waves))
-    return d.finish(lines)
+    runtime = "\n\n".join(runtime_source(stem, d).strip("\n")
+                          for stem in d.runtime if needed.get(stem, True))
+    return d.finish(d.file(d.header(header_lines(plan, d.name)), runtime,
+                           d.function(plan, walk(plan, d))))

@@ -3,18 +3,6 @@
    foundation kw, as symtmm.elements.theories computes them. A theory is
    th = {EI, a, b, cN, rhoI, m, kw}: c = cN + rhoI lam2, mu = m lam2 + kw. */
 
-/* 1/n!, n = 0 .. 27, exact to double: the series below stop at k = 13, where
-   k/(2k)! < 1e-18 is their error for max|r| h^2 <= 1 */
-static const double symtmm_ifact[28] = {
-    1.0, 1.0, 0.5, 0.16666666666666666,
-    0.041666666666666664, 0.008333333333333333, 0.001388888888888889, 0.0001984126984126984,
-    2.48015873015873e-05, 2.7557319223985893e-06, 2.755731922398589e-07, 2.505210838544172e-08,
-    2.08767569878681e-09, 1.6059043836821613e-10, 1.1470745597729725e-11, 7.647163731819816e-13,
-    4.779477332387385e-14, 2.8114572543455206e-15, 1.5619206968586225e-16, 8.22063524662433e-18,
-    4.110317623312165e-19, 1.9572941063391263e-20, 8.896791392450574e-22, 3.868170170630684e-23,
-    1.6117375710961184e-24, 6.446950284384474e-26, 2.4795962632247976e-27, 9.183689863795546e-29,
-};
-
 /* c, mu and t, d, the trace and determinant of G = B C, of the theory th at lam2 */
 static void symtmm_invariants(double complex lam2, const double th[7],
                               double complex *c, double complex *mu,
@@ -54,7 +42,7 @@ static void symtmm_segment_gen(double complex lam2, const double th[7], double l
     }
     double complex T = t * h * h, DD = d * (h * h) * (h * h);
     double complex qp = 0.0, q = 1.0, s0a = 0.0, s0b = 0.0, s1a = 0.0, s1b = 0.0;
-    for (int k = 1; k < 14; k++) {
+    for (int k = 1; k < 14; k++) {   /* k/(2k)! < 1e-18 beyond: the error for w h <= 1 */
         s0b += q * symtmm_ifact[2 * k];
         s0a += qp * symtmm_ifact[2 * k];
         s1b += q * symtmm_ifact[2 * k + 1];

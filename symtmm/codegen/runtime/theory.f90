@@ -33,18 +33,6 @@
     real(dp), intent(in) :: th(7), l
     integer, intent(in) :: n
     complex(dp), intent(out) :: u(4, 4)
-    ! 1/n!, n = 0 .. 27, exact to double: the series below stop at k = 13, where
-    ! k/(2k)! < 1e-18 is their error for max|r| h^2 <= 1
-    real(dp), parameter :: ifact(0:27) = [ &
-      1.0_dp, 1.0_dp, 0.5_dp, 0.16666666666666666_dp, &
-      0.041666666666666664_dp, 0.008333333333333333_dp, 0.001388888888888889_dp, &
-      0.0001984126984126984_dp, 2.48015873015873e-05_dp, 2.7557319223985893e-06_dp, &
-      2.755731922398589e-07_dp, 2.505210838544172e-08_dp, 2.08767569878681e-09_dp, &
-      1.6059043836821613e-10_dp, 1.1470745597729725e-11_dp, 7.647163731819816e-13_dp, &
-      4.779477332387385e-14_dp, 2.8114572543455206e-15_dp, 1.5619206968586225e-16_dp, &
-      8.22063524662433e-18_dp, 4.110317623312165e-19_dp, 1.9572941063391263e-20_dp, &
-      8.896791392450574e-22_dp, 3.868170170630684e-23_dp, 1.6117375710961184e-24_dp, &
-      6.446950284384474e-26_dp, 2.4795962632247976e-27_dp, 9.183689863795546e-29_dp]
     complex(dp) :: c, mu, t, d, ts, ds, qp, q, qn, s0a, s0b, s1a, s1b
     complex(dp) :: a0, b0, a1, b1, na0, nb0, na1, nb1
     complex(dp) :: g00, g01, g10, g11, p00, p01, p10, p11, h00, h01, h10, h11
@@ -67,11 +55,11 @@
     qp = (0.0_dp, 0.0_dp)
     q = (1.0_dp, 0.0_dp)
     s0a = qp; s0b = qp; s1a = qp; s1b = qp
-    do k = 1, 13
-      s0b = s0b + q * ifact(2 * k)
-      s0a = s0a + qp * ifact(2 * k)
-      s1b = s1b + q * ifact(2 * k + 1)
-      s1a = s1a + qp * ifact(2 * k + 1)
+    do k = 1, 13   ! k/(2k)! < 1e-18 beyond: the error for w h <= 1
+      s0b = s0b + q * symtmm_ifact(2 * k)
+      s0a = s0a + qp * symtmm_ifact(2 * k)
+      s1b = s1b + q * symtmm_ifact(2 * k + 1)
+      s1a = s1a + qp * symtmm_ifact(2 * k + 1)
       qn = ts * q - ds * qp
       qp = q
       q = qn
