@@ -43,7 +43,6 @@ class Dialect:
     """
 
     name = extension = ""
-    printer = staticmethod(sp.julia_code)
     indent, end, comment = "    ", "", "#"  # statement terminator, line comment
     prefix = "symtmm_"            # of the runtime routines' names
     runtime = ("kernels",)        # runtime source stems, each copied when the model needs it
@@ -72,6 +71,11 @@ class Dialect:
     fold = staticmethod(lambda name: name)
     evaluator = ("", "")          # regular expressions around the evaluator in the file
     not_code = ""                 # comments and strings: words there are no names
+
+    @staticmethod
+    def printer(expr) -> str:
+        """A SymPy expression in the language."""
+        raise NotImplementedError
 
     def literal(self, value) -> str:
         return float_literal(value)
@@ -105,7 +109,8 @@ class Dialect:
     def zero_array(self, name, kind, dims) -> str:
         dims2 = dims + (1,) * (2 - len(dims))
         return self.zeros.format(name=name, dims=", ".join(map(str, dims)),
-                                 dims2=", ".join(map(str, dims2)), eltype=self.eltypes[kind == "complex"])
+                                 dims2=", ".join(map(str, dims2)),
+                                 eltype=self.eltypes[kind == "complex"])
 
     def header(self, lines) -> list:
         return [f"{self.comment} {ln}".rstrip() for ln in lines]
@@ -259,7 +264,8 @@ class Fortran(Dialect):
                 '      bind(C, name="symtmm_delta")',
                 f"    real(c_double), value, intent(in) :: {inputs}",
                 "    real(c_double), intent(out) :: delta_re, delta_im",
-                "    complex(dp) :: lam, lam2", *("    " + d for d in self.declarations(body.kinds)),
+                "    complex(dp) :: lam, lam2",
+                *("    " + d for d in self.declarations(body.kinds)),
                 "    lam = cmplx(lam_re, lam_im, kind=dp)", "    lam2 = lam * lam",
                 *body.render(2), "  end subroutine symtmm_delta"]
 
@@ -341,6 +347,7 @@ class Octave(Dialect):
 
 class Julia(Dialect):
     name, extension = "julia", "jl"
+    printer = staticmethod(sp.julia_code)
     brackets = "[]"
     eltypes = ("Float64", "ComplexF64")
     zeros = "{name} = zeros({eltype}, {dims})"

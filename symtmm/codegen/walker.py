@@ -248,12 +248,13 @@ def header_lines(plan, lang: str) -> list:
     if plan.theories:
         lines += ["Other beam theories (axial force N, rotary inertia rhoI, shear kGA): exp(A l)",
                   "from alpha, beta of cosh and sinh/s in (t, d) = (trace, det) of G = B C,",
-                  "series on a piece with max|r| h^2 <= 1, then doubled (symtmm.elements.theories)."]
+                  ("series on a piece with max|r| h^2 <= 1, then doubled "
+                   "(symtmm.elements.theories).")]
     lines += [
         f"Segments applied in steps of |beta| l <= {NU_STEP:g}; states in units of each",
-        "beam's wave number; the unknown columns re-orthonormalised after every step",
-        "(Godunov), Delta = det(E[rows]) * exp(sum of log norms): about 13",
-        "significant digits at any mode, as symtmm.compile.Evaluator.log_delta.",
+        "beam's wave number; the unknown columns re-orthonormalised whenever they may have",
+        f"grown by exp({NU_STEP:g}) (Godunov), Delta = det(E[rows]) * exp(sum of log norms):",
+        "about 13 significant digits at any mode, as symtmm.compile.Evaluator.log_delta.",
     ]
     return [piece for line in lines for piece in comment_lines(line)]
 
