@@ -112,7 +112,7 @@ from __future__ import annotations
 
 from .dialects import DIALECTS
 from .names import argument_names, for_language
-from .plan import plan
+from .plan import plan as _plan  # the name plan stays the module's
 from .walker import emit
 
 __all__ = ["EXTENSIONS", "LANGUAGES", "generate"]
@@ -157,4 +157,4 @@ def generate(model, lang: str, symbolic=()) -> str:
     if lang not in DIALECTS:
         raise ValueError(f"unknown language {lang!r} (use one of {', '.join(LANGUAGES)})")
     dialect = DIALECTS[lang]
-    return emit(for_language(plan(model, symbolic), dialect), dialect)
+    return emit(for_language(_plan(model, symbolic), dialect), dialect)
