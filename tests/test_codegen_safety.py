@@ -316,9 +316,9 @@ def test_julia_text_keeps_the_payload_in_comments(tmp_path):
         path = tmp_path / f"delta{i}.jl"
         path.write_text(generate(_model(title=text, source=text), "julia"))
         proc = subprocess.run([julia, "--startup-file=no", "-e",
-                               f'include("{path.name}"); for z in [{lam}]; d = symtmm_delta(z); '
-                               'println(real(d), " ", imag(d)); end; '
-                               'println(isdefined(Main, :symtmm_pwn))'],
+                               (f'include("{path.name}"); for z in [{lam}]; d = symtmm_delta(z); '
+                                'println(real(d), " ", imag(d)); end; '
+                                'println(isdefined(Main, :symtmm_pwn))')],
                               check=False, capture_output=True, text=True, cwd=tmp_path,
                               timeout=300)
         assert proc.returncode == 0, proc.stderr
@@ -416,7 +416,7 @@ def _signature_args(src: str, lang: str) -> list:
                "octave": r"function d = symtmm_delta\(([^)]*)\)",
                "julia": r"function symtmm_delta\(([^)]*)\)",
                "fortran": r"subroutine symtmm_delta\(([^)]*)\)"}[lang]
-    text = re.sub(r"&\s*\n\s*", "", re.search(pattern, src, re.S).group(1))
+    text = re.sub(r"&\s*\n\s*", "", re.search(pattern, src, re.DOTALL).group(1))
     args = [a.strip().split()[-1].split("::")[0].lstrip("*") for a in text.split(",")]
     return {"c": args[2:-2], "fortran": args[2:-2]}.get(lang, args[1:])
 
@@ -469,8 +469,8 @@ def test_octave_arguments_with_colliding_names_evaluate_delta(named_case, tmp_pa
     lam = "[" + ", ".join(f"complex({float(z.real)!r}, {float(z.imag)!r})" for z in LAMS) + "]"
     call = ", ".join([lam] + [repr(a) for a in args])
     proc = subprocess.run([octave, "--no-gui", "--quiet", "--no-window-system", "--eval",
-                           f"d = symtmm_delta({call}); printf('%.17g %.17g\\n', "
-                           "[real(d); imag(d)])"],
+                           (f"d = symtmm_delta({call}); printf('%.17g %.17g\\n', "
+                            "[real(d); imag(d)])")],
                           check=False, capture_output=True, text=True, cwd=tmp_path, timeout=120)
     assert proc.returncode == 0, proc.stderr
     got = np.array([complex(*map(float, ln.split())) for ln in proc.stdout.split("\n")
@@ -525,7 +525,8 @@ def test_c_names_avoid_every_macro_of_the_included_headers(tmp_path):
     for flags in (["-std=c99"], ["-std=gnu99"], ["-std=gnu11", "-D_GNU_SOURCE"]):
         out = subprocess.run([compiler, *flags, "-dM", "-E", str(tmp_path / "h.c")],
                              check=True, capture_output=True, text=True).stdout
-        macros |= {m for m in re.findall(r"^#define (\w+)", out, re.M) if not m.startswith("_")}
+        macros |= {m for m in re.findall(r"^#define (\w+)", out, re.MULTILINE)
+                   if not m.startswith("_")}
     assert {"I", "complex", "NAN", "linux"} <= macros
     kept = [m for m in sorted(macros) if _argument_names([m], "c") == [m]]
     assert kept == []

@@ -147,7 +147,7 @@ def test_any_text_becomes_safe(text):
 
 def _never_sympify(monkeypatch):
     """Make any sympify of a string fail loudly (sympify hands strings to parse_expr)."""
-    import sympy.parsing.sympy_parser as sympy_parser
+    from sympy.parsing import sympy_parser
 
     def refuse(*args, **kwargs):
         raise AssertionError(f"a string reached sympify: {args[:1]!r}")

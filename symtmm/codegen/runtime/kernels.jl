@@ -1,0 +1,172 @@
+# symtmm codegen runtime: the fixed kernels of a generated Julia evaluator, included
+# verbatim before it.
+
+# 1/n!, n = 0 .. 63 (at n + 1), exact to double: the series of both segment kinds
+const SYMTMM_IFACT = (
+    1.0, 1.0, 0.5, 0.16666666666666666,
+    0.041666666666666664, 0.008333333333333333, 0.001388888888888889, 0.0001984126984126984,
+    2.48015873015873e-05, 2.7557319223985893e-06, 2.755731922398589e-07, 2.505210838544172e-08,
+    2.08767569878681e-09, 1.6059043836821613e-10, 1.1470745597729725e-11, 7.647163731819816e-13,
+    4.779477332387385e-14, 2.8114572543455206e-15, 1.5619206968586225e-16, 8.22063524662433e-18,
+    4.110317623312165e-19, 1.9572941063391263e-20, 8.896791392450574e-22, 3.868170170630684e-23,
+    1.6117375710961184e-24, 6.446950284384474e-26, 2.4795962632247976e-27, 9.183689863795546e-29,
+    3.279889237069838e-30, 1.1309962886447716e-31, 3.7699876288159054e-33, 1.216125041553518e-34,
+    3.8003907548547434e-36, 1.151633562077195e-37, 3.387157535521162e-39, 9.67759295863189e-41,
+    2.6882202662866363e-42, 7.265460179153071e-44, 1.911963205040282e-45, 4.902469756513544e-47,
+    1.2256174391283858e-48, 2.9893108271424046e-50, 7.117406731291439e-52, 1.6552108677421951e-53,
+    3.7618428812322616e-55, 8.359650847182804e-57, 1.817315401561479e-58, 3.866628513960594e-60,
+    8.055476070751236e-62, 1.643974708316579e-63, 3.287949416633158e-65, 6.446959640457172e-67,
+    1.2397999308571486e-68, 2.3392451525606576e-70, 4.331935467704922e-72, 7.876246304918039e-74,
+    1.4064725544496498e-75, 2.4674957095607893e-77, 4.254302947518602e-79, 7.2106829618959365e-81,
+    1.2017804936493226e-82, 1.9701319568021682e-84, 3.1776321883905942e-86, 5.043860616493007e-88,
+)
+
+# units of one beam's state: 1, 1/b, 1/(EI b^2), 1/(EI b^3), b >= 1/L the wave number
+function symtmm_units(b, EI, L)
+    b = max(b, 1 / L)
+    return [1.0, 1 / b, 1 / (EI * b^2), 1 / (EI * b^3)]
+end
+
+# modified Gram-Schmidt, twice: E := Q of E = Q F in place; returns logscale + log det F
+function symtmm_orthonormalise!(E::Matrix{ComplexF64}, logscale)
+    for j in 1:size(E, 2)
+        for pass in 1:2, k in 1:j-1
+            r = sum(conj(E[i, k]) * E[i, j] for i in 1:size(E, 1))
+            for i in 1:size(E, 1)
+                E[i, j] -= r * E[i, k]
+            end
+        end
+        nrm = sqrt(sum(abs2(E[i, j]) for i in 1:size(E, 1)))
+        for i in 1:size(E, 1)
+            E[i, j] /= nrm
+        end
+        logscale += log(nrm)
+    end
+    return logscale
+end
+
+# determinant by Gaussian elimination with partial pivoting
+function symtmm_det(A::Matrix{ComplexF64})
+    A = copy(A)
+    n = size(A, 1)
+    d = one(ComplexF64)
+    for k in 1:n
+        p = k
+        for i in k+1:n
+            if abs(A[i, k]) > abs(A[p, k])
+                p = i
+            end
+        end
+        A[p, k] == 0 && return zero(ComplexF64)
+        if p != k
+            A[k, :], A[p, :] = A[p, :], A[k, :]
+            d = -d
+        end
+        d *= A[k, k]
+        for i in k+1:n
+            f = A[i, k] / A[k, k]
+            for j in k+1:n
+                A[i, j] -= f * A[k, j]
+            end
+        end
+    end
+    return d
+end
+
+# Euler-Bernoulli segments: the transfer matrix from the entire functions
+# c_j(x) = sum_k x^k / (4k+j)!, x = -lam^2 m l^4/EI, with no branch to choose and
+# no 0/0 at lam = 0.
+
+# c_0..c_3 of x: series below |x| = 1, closed forms in x^(1/4) above
+function symtmm_cfun(x::ComplexF64)
+    if abs(x) < 1.0   # 16 terms: 1/(4k+j)! < 1e-80 beyond
+        c = zeros(ComplexF64, 4)
+        for j in 1:4
+            acc = zero(ComplexF64)
+            for k in 16:-1:1
+                acc = acc * x + SYMTMM_IFACT[4 * (k - 1) + j]
+            end
+            c[j] = acc
+        end
+        return c
+    end
+    nu = x^0.25
+    ch, co, sh, si = cosh(nu), cos(nu), sinh(nu), sin(nu)
+    return [(ch + co) / 2, (sh + si) / (2nu), (ch - co) / (2nu^2), (sh - si) / (2nu^3)]
+end
+
+# transfer matrix of one of n equal steps of an Euler-Bernoulli segment of length l,
+# a = m l^4 / EI (lam2 shifted by kw/m on a foundation); I for l = 0
+function symtmm_segment(lam2, a, l, EI, n)
+    if l == 0
+        return ComplexF64[i == j ? 1 : 0 for i in 1:4, j in 1:4]
+    end
+    x = ComplexF64(-lam2 * (a / n^4))
+    c = symtmm_cfun(x)
+    h = l / n
+    return ComplexF64[c[1] h*c[2] h^2*c[3]/EI h^3*c[4]/EI;
+                      x*c[4]/h c[1] h*c[2]/EI h^2*c[3]/EI;
+                      EI*x*c[3]/h^2 EI*x*c[4]/h c[1] h*c[2];
+                      EI*x*c[2]/h^3 EI*x*c[3]/h^2 x*c[4]/h c[1]]
+end
+
+# Beam theories other than the plain Euler-Bernoulli one: axial force N, rotary
+# inertia rhoI, shear stiffness kGA, a foundation kw, as symtmm.elements.theories
+# computes them. A theory is th = (EI, a, b, cN, rhoI, m, kw): c = cN + rhoI lam2,
+# mu = m lam2 + kw.
+
+# c, mu and t, d, the trace and determinant of G = B C, of the theory th at lam2
+function symtmm_invariants(lam2, th)
+    c = th[4] + th[5] * lam2
+    mu = th[6] * lam2 + th[7]
+    return c, mu, c / th[1] - th[3] * mu, mu * (th[2] * th[2] - th[3] * c) / th[1]
+end
+
+# a bound on the largest wave number |s| of the theory th at lam2 (1/length)
+function symtmm_wave(lam2, th)
+    _, _, t, d = symtmm_invariants(lam2, th)
+    return sqrt(abs(t) / 2 + sqrt(abs(t)^2 / 4 + abs(d)))
+end
+
+# transfer matrix exp(A h) of one of n equal steps h = l/n of a segment of the
+# theory th, [Y, Theta, M, Q]: alpha, beta of F0 = cosh(s h), F1 = sinh(s h)/s from
+# their series in (t, d) on a piece h/2^j with max|r| (h/2^j)^2 <= 1, then doubled
+# j times; U = [[F0(G), B F1(G')], [C F1(G), F0(G')]], G = B C on (Y, M), G' = C B
+# on (Theta, Q), B = [[a, b], [c, a]], C = [[0, 1/EI], [-mu, 0]]
+function symtmm_segment_gen(lam2, th, l, n)
+    EI, a, b = th[1], th[2], th[3]
+    c, mu, t, d = symtmm_invariants(lam2, th)
+    w = symtmm_wave(lam2, th)
+    h = l / n
+    nd = 0
+    while w * h > 1
+        h /= 2
+        nd += 1
+    end
+    T = t * h * h
+    DD = d * (h * h) * (h * h)
+    qp, q = zero(ComplexF64), one(ComplexF64)
+    s0a = s0b = s1a = s1b = zero(ComplexF64)
+    for k in 1:13   # k/(2k)! < 1e-18 beyond: the error for w h <= 1
+        s0b += q * SYMTMM_IFACT[2k + 1]
+        s0a += qp * SYMTMM_IFACT[2k + 1]
+        s1b += q * SYMTMM_IFACT[2k + 2]
+        s1a += qp * SYMTMM_IFACT[2k + 2]
+        qp, q = q, T * q - DD * qp
+    end
+    a0, b0 = 1 - DD * s0a, h * h * s0b
+    a1, b1 = h * (1 - DD * s1a), h * h * h * s1b
+    for _ in 1:nd   # F0(2h) = 2 F0^2 - I, F1(2h) = 2 F0 F1
+        a0, b0, a1, b1 = (2 * (a0 * a0 - d * b0 * b0) - 1, 2 * (2 * a0 * b0 + t * b0 * b0),
+                          2 * (a0 * a1 - d * b0 * b1), 2 * (a0 * b1 + a1 * b0 + t * b0 * b1))
+    end
+    G = [-b*mu a/EI; -a*mu c/EI]     # B C, on (Y, M)
+    P = [c/EI a/EI; -mu*a -mu*b]     # C B, on (Theta, Q)
+    I2 = [1 0; 0 1]
+    U = zeros(ComplexF64, 4, 4)
+    U[[1, 3], [1, 3]] = a0 * I2 + b0 * G
+    U[[2, 4], [2, 4]] = a0 * I2 + b0 * P
+    U[[1, 3], [2, 4]] = [a b; c a] * (a1 * I2 + b1 * P)
+    U[[2, 4], [1, 3]] = [0 1/EI; -mu 0] * (a1 * I2 + b1 * G)
+    return U
+end
