@@ -137,6 +137,7 @@ def _tally(monkeypatch):
     wrap(dynamic_stiffness.DynamicStiffness, "log_delta", per_point=True)
     from symtmm.numeric import evaluator
     from symtmm.roots import count
+    wrap(evaluator.Evaluator, "enclose", per_point=True)
     for module in (count, evaluator):
         # the numeric kernel: one evaluation per point of the batch
         def factor(plan, ar, lam2, lam=None, original=module.factor):

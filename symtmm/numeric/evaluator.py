@@ -139,10 +139,12 @@ class Evaluator:
         """
         extra = self._extra_bits.get(id(plan), 0)
         fa = None
-        for _ in range(6):
+        for attempt in range(6):
             work = Ball(ar.prec + extra) if extra else ar
             with work:
                 lam2, lam = build(work)
+            if attempt:
+                self.evaluations += len(lam2)       # the points again, with more bits
             fa = factor(plan, work, lam2, lam)
             if fa.trusted.all():
                 return fa
