@@ -5,8 +5,8 @@ The paper locates eigenvalues by scanning ``log10|Delta|`` for minima
 systems). :func:`scan` computes the same pictures, with the eigenvalues of
 :func:`symtmm.solve.solve` to mark the true roots.
 
-The curve uses the vectorised double-precision evaluator
-(:meth:`symtmm.compile.Evaluator.delta`). ``|Delta|`` grows like
+The curve is the transfer formulation's ``Delta = det R``, as the paper plots it,
+in double precision (:func:`symtmm.numeric.transfer.log_delta`). ``|Delta|`` grows like
 ``exp(sum |beta| L)`` and near a root cancels from that size down to zero, so
 in double precision the depth of each dip is limited by rounding (about
 ``1e-16`` times the size of the terms) and, at high frequency, the whole
@@ -23,9 +23,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .compile import Evaluator
 from .errors import ComputationError, ModelError
 from .model import Model
+from .numeric import transfer
 from .results import Spectrum
 
 __all__ = ["Scan", "scan"]
@@ -144,9 +144,9 @@ class Scan:
         return plot_scan_map(self, **kwargs)
 
 
-def _log10_abs(ev: Evaluator, lam):
+def _log10_abs(plan: transfer.TransferPlan, lam):
     """``log10|Delta(lam)|`` from the stable evaluation: no overflow at high modes."""
-    return ev.log_delta(lam)[0] / math.log(10)
+    return transfer.log_delta(plan, lam)[0] / math.log(10)
 
 
 def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=None,
@@ -209,14 +209,14 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
         raise ModelError("need at least 3 points", field="--points")
     if spacing not in ("Omega", "omega"):
         raise ValueError("spacing must be 'Omega' or 'omega'")
-    ev = Evaluator(model)
+    plan = transfer.TransferPlan(model)
     name, scale = omega_scale(model)
     if spacing == "Omega":
         omega = np.linspace(math.sqrt(omega_min), math.sqrt(omega_max), int(points)) ** 2
         omega[[0, -1]] = omega_min, omega_max
     else:
         omega = np.linspace(omega_min, omega_max, int(points))
-    curve = _log10_abs(ev, 1j * omega)
+    curve = _log10_abs(plan, 1j * omega)
     notes = []
     spectrum = None
     if eigenvalues:
@@ -244,7 +244,7 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
         map_sigma = np.linspace(-0.04 * sigma_max, sigma_max, n_re)
         map_omega = np.linspace(omega_min, omega_max, n_im)
         lam = -map_sigma[None, :] + 1j * map_omega[:, None]
-        map_log10 = _log10_abs(ev, lam)
+        map_log10 = _log10_abs(plan, lam)
     return Scan(omega, curve, spectrum, (name, float(scale)),
                 model.title or (model.source or ""), map_sigma, map_omega, map_log10,
                 tuple(notes))

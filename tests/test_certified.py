@@ -19,36 +19,43 @@ from symtmm.roots.undamped import solve_undamped
 from symtmm.solve import solve
 
 flint = pytest.importorskip("flint")
-from symtmm.roots.certified import ArbDelta, certify, require_flint, to_arb
+from symtmm.roots.certified import certify, require_flint, to_arb
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 EX4 = EXAMPLES / "paper_ex4_damped.toml"
 PP = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
 
 
-def test_arb_delta_encloses_the_mpmath_value():
-    """The ball for Delta contains the 60-digit transfer-matrix value (second formulation)."""
+def test_kernel_ball_encloses_the_transfer_value():
+    """The stiffness kernel's ball for Delta contains the 60-digit value of the transfer
+    formulation (a second formulation: the product of transfer matrices along x)."""
     from symtmm.compile import Evaluator
-    model = load(EX4)
-    f, ev = ArbDelta(model), Evaluator(model)
+    from symtmm.numeric.arith import Ball
+    from symtmm.numeric.evaluator import Evaluator as Kernel
+    model = load(EX4).require_numeric()
+    kernel, ev = Kernel(model, 1300.0), Evaluator(model)
     for z in (mpmath.mpc(-1000, 700), mpmath.mpc(-0.25, 3), mpmath.mpc(-30, 0)):
-        with flint.ctx.workprec(300):
-            ball = f.value(flint.acb(z.real, z.imag))
-        with mpmath.workdps(60):
-            exact = ev.delta_mp(z)
-            assert ball.contains(flint.acb(exact.real, exact.imag)) or \
-                abs(complex(ball.mid()) - complex(exact)) < 1e-40 * abs(exact)
+        ball = kernel.delta([z], Ball(300))[0][0]
+        exact = ev.delta_mp(z, dps=60)
+        assert ball.contains(flint.acb(exact.real, exact.imag)) or \
+            abs(complex(ball.mid()) - complex(exact)) < 1e-40 * abs(exact)
         assert ball.rad() < 1e-50 * abs(complex(ball.mid()))
 
 
-def test_arb_derivative_matches_a_difference_quotient():
-    model = load(EX4)
-    f = ArbDelta(model)
-    with flint.ctx.workprec(300):
-        _, d = f.value_and_derivative(flint.acb(-200, 300))
-        h = flint.acb(flint.arb(10) ** -30)
-        q = (f.value(flint.acb(-200, 300) + h) - f.value(flint.acb(-200, 300) - h)) / (2 * h)
-    assert abs(complex(d.mid()) - complex(q.mid())) < 1e-20 * abs(complex(d.mid()))
+def test_rouche_proves_a_zero_alone_and_nothing_where_there_is_none():
+    """A pinned-pinned beam with a dashpot: a box about its first eigenvalue (from the
+    Green's-function reference) is proved; boxes beside it, or between two eigenvalues,
+    are not."""
+    from symtmm.roots.damped import _Problem, _Search
+    model = Model(PP.beams, (Spring("b", "ground", x="3/10", k=0, c=4),)).require_numeric()
+    search = _Search(_Problem(model, 60.0, certified=True), 15)
+    with mpmath.workdps(50):
+        sup = [(mpmath.mpf(3) / 10, 0, 4)]
+        root = mpmath.findroot(lambda z: pp_char(z, 1, 1, 1, sup), mpmath.mpc(-2.7, 9.6))
+        r = mpmath.mpf(10) ** -20 * abs(root)
+        beside = root + 10 * r
+        between = mpmath.mpc(-3, 24)
+    assert search._rouche([(root, r), (beside, r), (between, r)], 60) == [True, False, False]
 
 
 def test_exact_parameters_as_balls():
@@ -62,16 +69,14 @@ def test_exact_parameters_as_balls():
 
 @pytest.mark.parametrize("balls", [True, False])
 def test_example4_enclosures_contain_decoupled_references(balls):
-    """Proved by the solver (Rouche's theorem on a box, in balls) or afterwards by
-    Krawczyk's operator (from a spectrum found without balls)."""
+    """Proved by the solver (Rouche's theorem on a box, in balls) or afterwards, the same
+    way, from a spectrum found without balls."""
     spec = solve_damped(load(EX4), omega_max=1500, digits=15, certified=balls)
     enclosures = certify(load(EX4), spec)
     refs = ex4_reference(dps=50)      # the enclosures are about 1e-29 wide
     assert len(enclosures) == len(refs) == 9
-    proofs = [enc.proof for enc in enclosures]
-    assert set(proofs) <= ({"Rouche", "Krawczyk"} if balls else {"Krawczyk"})
-    if balls:
-        assert proofs.count("Rouche") >= 6
+    assert [enc.proof for enc in enclosures] == ["Rouche"] * 9
+    assert not any(enc.note for enc in enclosures)
     for enc, (ref, family) in zip(enclosures, refs):
         assert enc.contains(ref), (enc, ref)
         assert enc.radius < mpmath.mpf(10) ** -17 * abs(ref)
@@ -81,12 +86,12 @@ def test_example4_enclosures_contain_decoupled_references(balls):
 
 @pytest.mark.parametrize("certified", [True, False])
 def test_undamped_enclosures(certified):
-    """Proved by the solver's ball counts; from a spectrum found without balls, by a
-    sign change of Delta in balls."""
+    """Proved by the solver's ball counts, or from a spectrum found without balls, by
+    ball counts at the ends of its brackets."""
     spec = solve_undamped(PP, count=4, digits=20, certified=certified)
     enclosures = certify(PP, spec)
     for n, enc in enumerate(enclosures, 1):
-        assert enc.proof == ("count" if certified else "sign change")
+        assert enc.proof == "count"
         with mpmath.workdps(50):
             assert enc.contains(mpmath.mpc(0, (n * mpmath.pi) ** 2))
         assert enc.real == (0, 0)

@@ -13,6 +13,7 @@ from decimal import Decimal
 from pathlib import Path
 
 import mpmath
+import numpy as np
 import pytest
 
 from symtmm.errors import ModelError
@@ -114,36 +115,29 @@ def test_fmin2d_count_mode():
 
 def _tally(monkeypatch):
     """Count, independently of the code's own counters, every lam at which Delta, R or
-    the eigenvalue count is evaluated (numpy arrays count one per element)."""
-    import numpy as np
-
-    from symtmm import compile, stiffness
-    from symtmm.roots import dynamic_stiffness
+    the eigenvalue count is evaluated: the kernel's factorisations, box enclosures and
+    transfer walks (one per point of a batch)."""
+    from symtmm.numeric import evaluator, transfer
+    from symtmm.roots import count
 
     calls = {"n": 0}
-
-    def wrap(owner, name, per_point=False):
-        original = getattr(owner, name)
-
-        def counted(self, lam, *args, **kwargs):
-            calls["n"] += int(np.asarray(lam).size) if per_point else 1
-            return original(self, lam, *args, **kwargs)
-        monkeypatch.setattr(owner, name, counted)
-
-    wrap(compile.Evaluator, "R_mp")
-    wrap(compile.Evaluator, "R", per_point=True)
-    wrap(compile.Evaluator, "log_delta", per_point=True)
-    wrap(stiffness.StiffnessModel, "count")
-    wrap(dynamic_stiffness.DynamicStiffness, "log_delta", per_point=True)
-    from symtmm.numeric import evaluator
-    from symtmm.roots import count
-    wrap(evaluator.Evaluator, "enclose", per_point=True)
     for module in (count, evaluator):
-        # the numeric kernel: one evaluation per point of the batch
         def factor(plan, ar, lam2, lam=None, original=module.factor):
             calls["n"] += len(lam2)
             return original(plan, ar, lam2, lam)
         monkeypatch.setattr(module, "factor", factor)
+    original_enclose = evaluator.Evaluator.enclose
+
+    def enclose(self, lam, ar):
+        calls["n"] += len(lam)
+        return original_enclose(self, lam, ar)
+    monkeypatch.setattr(evaluator.Evaluator, "enclose", enclose)
+    original_log = transfer.log_delta
+
+    def log_delta(plan, lam):
+        calls["n"] += int(np.asarray(lam).size)
+        return original_log(plan, lam)
+    monkeypatch.setattr(transfer, "log_delta", log_delta)
     return calls
 
 

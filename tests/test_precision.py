@@ -11,8 +11,8 @@ from reference import classical_roots
 from symtmm import Beam, Model, Spring
 from symtmm.errors import ComputationError
 from symtmm.results import decimal_string
+from symtmm.roots.count import Counter
 from symtmm.solve import solve
-from symtmm.stiffness import StiffnessModel
 
 pp = dict(EI=1, m=1, L=1, left="pinned", right="pinned")
 
@@ -131,10 +131,10 @@ def test_unreachable_digits_are_refused(monkeypatch):
 
 def test_banded_count_equals_dense_eigenvalue_count():
     model = _chain(25, ("0.3", "0.8"))
-    sm = StiffnessModel(model, 2000.0)
+    sm = Counter(model, 2000.0)
     for w in np.linspace(1.0, 2000.0, 60):
         dense = int(np.sum(np.linalg.eigvalsh(sm.matrix(w)) < 0))
-        assert sm.count(w) == dense == sm.count(w, dps=30)
+        assert sm.count(w) == dense == sm.count(w, digits=30)
 
 
 def test_same_roots_at_two_precisions():
@@ -194,7 +194,7 @@ def test_random_models_agree_with_finite_elements(model):
     scale = max(tmm.max(), 1.0)
     assert np.all(np.abs(fe - tmm) <= 1e-6 * np.maximum(tmm, 1e-3 * scale))
     # the count agrees with the roots found, between every pair of them and beyond
-    sm = StiffnessModel(model, 2 * scale)
+    sm = Counter(model, 2 * scale)
     edges = sorted({float(w) for w in spectrum.omegas()})
     for lo, hi in zip([0.0] + edges, edges + [None]):
         w = 0.5 * (lo + hi) if hi is not None else lo * 1.0000001

@@ -37,11 +37,12 @@ from symtmm.compile import Evaluator
 from symtmm.fe import fe_converged
 from symtmm.model import Attachment, Mass, RigidBody
 from symtmm.modelfile import loads
+from symtmm.numeric.evaluator import Evaluator as Kernel
+from symtmm.numeric.stiffness import segment_stiffness
+from symtmm.roots.count import Counter
 from symtmm.roots.damped import count_in_rectangle, solve_damped
-from symtmm.roots.dynamic_stiffness import DynamicStiffness
 from symtmm.roots.undamped import rigid_body_modes, solve_undamped
 from symtmm.solve import solve
-from symtmm.stiffness import StiffnessModel, segment_stiffness
 
 DPS = 45
 
@@ -445,7 +446,7 @@ def test_damped_tip_bodies_in_phase_are_the_undamped_tip_body_cantilever():
 ], ids=["timoshenko-tip-body", "fork", "body-held-twice"])
 def test_dynamic_stiffness_delta_equals_transfer_delta_with_bodies(model):
     """det K * prod det U12 (times the squared pivots of the constraints) is det R."""
-    ds = DynamicStiffness(model, 400.0)
+    ds = Kernel(model, 400.0)
     ev = Evaluator(model)
     rng = np.random.default_rng(11)
     lam = rng.uniform(-300, 50, 6) + 1j * rng.uniform(-200, 300, 6)
@@ -465,11 +466,11 @@ def test_segment_and_global_stiffness_are_symmetric_for_every_theory():
 
     seg = BeamSegment(2, 3, sp.Rational(1, 2), kw=1, N=-3, rhoI=sp.Rational(1, 50), kGA=40)
     for w in (0.0, 3.0, 25.0, 80.0):
-        D = segment_stiffness(seg.evaluate_numpy(np.array(-w * w)).real)
+        D = _kernel_stiffness(seg, -w * w)
         assert np.allclose(D, D.T, rtol=1e-12, atol=1e-12 * np.abs(D).max())
     model = Model((Beam("b", 1, 1, 1, left="clamped", right="free", N=-2, **TIMO),),
                   bodies=(RigidBody("tip", (Attachment("b", 1),), M=2, J="1/10", xc="11/10"),))
-    K = StiffnessModel(model, 50.0).matrix(17.0)
+    K = Counter(model, 50.0).matrix(17.0)
     assert np.allclose(K, K.T, rtol=1e-12, atol=1e-12 * np.abs(K).max())
 
 
@@ -479,8 +480,8 @@ def test_static_timoshenko_segment_stiffness_is_the_classical_one():
     from symtmm.elements import BeamSegment
 
     EI, kGA, l = 2.0, 30.0, 0.5
-    D = segment_stiffness(BeamSegment(EI, 1, sp.Rational(1, 2), rhoI=sp.Rational(1, 50),
-                                      kGA=30).evaluate_numpy(np.array(0.0)).real)
+    D = _kernel_stiffness(BeamSegment(EI, 1, sp.Rational(1, 2), rhoI=sp.Rational(1, 50),
+                                      kGA=30), 0.0)
     phi = 12 * EI / (kGA * l * l)
     ref = EI / ((1 + phi) * l**3) * np.array(
         [[12, 6 * l, -12, 6 * l], [6 * l, (4 + phi) * l**2, -6 * l, (2 - phi) * l**2],
@@ -585,7 +586,7 @@ def test_random_models_count_agrees_with_roots_found(model):
     # each root is a simple zero of the transfer-matrix Delta (the refinement proved a sign
     # change); the Wittrick-Williams count agrees with them between every pair and beyond
     edges = sorted({float(e.omega) for e in spectrum})
-    sm = StiffnessModel(model, 2 * edges[-1])
+    sm = Counter(model, 2 * edges[-1])
     for lo, hi in zip([0.0] + edges, edges + [None]):
         w = 0.5 * (lo + hi) if hi is not None else lo * 1.0000001
         if w > 0:
@@ -624,3 +625,13 @@ def test_two_supports_on_one_joint_are_refused():
             'right = "pinned"\n[[joint]]\nends = ["a.right", "b.left"]\n')
     with pytest.raises(ModelError, match="more supported beam ends than it has freedoms"):
         loads(text)
+
+
+def _kernel_stiffness(seg, lam2):
+    """A segment's dynamic stiffness at ``lam**2`` from the kernel's transfer matrix."""
+    from symtmm.numeric.arith import DOUBLE
+    from symtmm.numeric.plan import StiffnessPlan, _kind
+    from symtmm.numeric.segments import transfer_matrices
+    U = transfer_matrices(DOUBLE, StiffnessPlan._kind_tables(DOUBLE, [_kind(seg)]),
+                          np.array([lam2], dtype=float))[0, 0]
+    return segment_stiffness(U)[0].real

@@ -164,10 +164,32 @@ class Evaluator:
 
     # -- values ------------------------------------------------------------------------------
     def log_delta(self, lam):
-        """``(log|Delta|, arg Delta, trusted)`` at complex points, double precision, batched."""
+        """``(log|Delta|, arg Delta, trusted)`` at complex points, double precision, batched.
+
+        Where the band elimination is not trusted (a pivot too small beside what rounding
+        can do to it), the dense ``K`` is factorised with partial pivoting and trusted if
+        its condition number leaves the phase good to ``1e-6``: a point near an eigenvalue
+        of a leading sub-structure, not of the model, is then as good as any other.
+        """
         fa = self.factors(lam, DOUBLE)
         logabs, phase = fa.log_delta()
-        return logabs, phase, fa.trusted
+        trusted = fa.trusted.copy()
+        bad = np.nonzero(~trusted)[0]
+        if bad.size and fa.plan.n:
+            from .stiffness import dense
+            full = dense(fa.plan, fa.K[bad])
+            with np.errstate(all="ignore"):
+                sign, logdet = np.linalg.slogdet(full)
+                cond = np.linalg.cond(full)
+            la12, ph12 = DOUBLE.log_abs_arg(fa.det12[bad])
+            mult = fa.plan.multiplicity
+            good = np.isfinite(logdet) & (cond * fa.plan.n * 2.2e-16 < 1e-6)
+            logabs[bad] = np.where(good, logdet + (la12 * mult).sum(axis=1)
+                                   + fa.plan.log_constant, logabs[bad])
+            phase[bad] = np.where(good, np.angle(sign * np.exp(1j * (ph12 * mult).sum(axis=1))),
+                                  phase[bad])
+            trusted[bad] = good
+        return logabs, phase, trusted
 
     def enclose(self, lam, ar: Ball):
         """Enclosures of ``Delta`` over wide balls ``lam`` (a box of the complex plane).
@@ -202,6 +224,19 @@ class Evaluator:
         return ar.array(out)
 
     def delta(self, lam, ar: Arithmetic, retry: bool = True):
-        """``(Delta as numbers of ar, trusted)`` at the points ``lam``."""
+        """``(Delta as numbers of ar, trusted)`` at the points ``lam``.
+
+        Where the band elimination broke down (an undecided pivot), ``Delta`` comes from
+        the dense ``K`` with pivoting (:meth:`~symtmm.numeric.stiffness.Factors.pivoted_delta`):
+        a ball is then trusted as it comes (it holds the value), an mpmath number is
+        left to the caller's check at a second precision.
+        """
         fa = self.factors(lam, ar, retry)
-        return fa.delta(), fa.trusted
+        values, trusted = fa.delta(), fa.trusted.copy()
+        bad = np.nonzero(~trusted)[0]
+        if bad.size:
+            values = values.copy()
+            for i, v in zip(bad, fa.pivoted_delta(bad)):
+                values[i] = v
+                trusted[i] = not ar.rigorous or v.abs_upper().is_finite()
+        return values, trusted

@@ -1,7 +1,7 @@
 """A model compiled once for the dynamic-stiffness kernel.
 
 :class:`StiffnessPlan` is the one artefact the numeric layer evaluates: the
-mesh of the model (:class:`symtmm.stiffness.Mesh`: nodes at beam ends, point
+mesh of the model (:class:`symtmm.mesh.Mesh`: nodes at beam ends, point
 elements and attachments, every beam cut into pieces short enough for the
 frequency range, rigid bodies and boundary conditions eliminated as exact
 constraints), its freedoms renumbered for a narrow band, and tables that say
@@ -18,7 +18,7 @@ where every number goes:
 * a diagonal **scaling** by powers of two (exact in every arithmetic) that gives
   the static ``K`` a diagonal near 1 whatever the units, and the exact constant
   of the determinant identity ``det R = det K * prod det U12 * P``
-  (:mod:`symtmm.roots.dynamic_stiffness`).
+  (:class:`symtmm.numeric.evaluator.Evaluator`).
 
 The exact tables are converted once per arithmetic and precision
 (:meth:`StiffnessPlan.tables`).
@@ -44,13 +44,40 @@ from ..elements.base import LAM
 from .arith import DOUBLE, Arithmetic
 from .segments import eb_constants, theory_constants
 
-__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "rcm_order"]
+__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "rcm_order", "wave_number_bound"]
 
 #: Largest ``|s| l`` of a piece (``beta l`` for Euler–Bernoulli) anywhere in the plan's range:
 #: below the first clamped-clamped root ``beta l = 4.730``, so no piece has a
 #: clamped-clamped eigenvalue in the range (``J0 = 0``, ``det U12 != 0``), and no
 #: digit is lost to the growth of long pieces.
 NU_MAX = 3.0
+
+
+def wave_number_bound(segment, radius: float) -> float:
+    """An upper bound on the largest wave number of ``segment`` for all ``|lam**2| <= radius``.
+
+    From the triangle inequality on the trace ``t`` and determinant ``d`` of the
+    segment's ``G`` (see :mod:`symtmm.elements.theories`); for an Euler–Bernoulli
+    segment ``((m radius + kw) / EI)**(1/4)``.
+
+    Examples
+    --------
+    >>> round(wave_number_bound(EulerBernoulliSegment(1, 1, 1), 16.0), 12)
+    2.0
+    """
+    if isinstance(segment, EulerBernoulliSegment):
+        EI, m, _, kw = segment.constants()
+        return ((m * radius + kw) / EI) ** 0.25
+    EI, m, _, kw, N, rhoI, kGA = segment.constants()
+    if math.isinf(kGA):
+        a, b = 1.0, 0.0
+    else:
+        a, b = kGA / (kGA + N), -1.0 / (kGA + N)
+    c = abs(N * a) + rhoI * radius
+    mu = m * radius + kw
+    t = c / EI + abs(b) * mu
+    d = mu * (a * a + abs(b) * c) / EI
+    return math.sqrt(t / 2 + math.sqrt(t * t / 4 + d))
 
 
 def piece_length(segment, radius: float, nu_max: float = NU_MAX) -> float:
@@ -60,7 +87,6 @@ def piece_length(segment, radius: float, nu_max: float = NU_MAX) -> float:
     other than Euler–Bernoulli) its clamped-clamped natural frequencies lie above
     ``sqrt(radius)`` (:meth:`~symtmm.elements.theories.BeamSegment.safe_length`).
     """
-    from ..stiffness import wave_number_bound
     s = wave_number_bound(segment, radius)
     length = float(segment.l)
     longest = length if s * length <= nu_max else nu_max / s
@@ -146,7 +172,7 @@ class StiffnessPlan:
     ----------
     n, band : int
         Order of ``K`` and its half-bandwidth.
-    mesh : symtmm.stiffness.Mesh
+    mesh : symtmm.mesh.Mesh
     kinds : list
         ``(family, exact constants)`` of the distinct segments, ``"eb"`` ones first.
     multiplicity : numpy.ndarray

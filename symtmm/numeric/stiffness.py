@@ -137,6 +137,9 @@ class Factors:
         ``(B, n)``: whether each sign (or, complex, the pivot's distance from 0) is trusted.
     det12 : numpy.ndarray
         ``(B, kinds)``: ``det U12`` of every segment kind.
+    K : numpy.ndarray
+        ``(B, n, b + 1)``: the band factorised (kept for a pivoted determinant where the
+        elimination without pivoting broke down: :meth:`pivoted_delta`).
     """
 
     plan: object
@@ -145,6 +148,7 @@ class Factors:
     signs: np.ndarray
     decided: np.ndarray
     det12: np.ndarray
+    K: np.ndarray | None = None
 
     @property
     def trusted(self) -> np.ndarray:
@@ -166,11 +170,39 @@ class Factors:
         phase = ph.sum(axis=1) + (ph12 * mult).sum(axis=1)
         return logabs, np.angle(np.exp(1j * phase))
 
+    def _constant(self):
+        ar, plan = self.ar, self.plan
+        return ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
+
+    def pivoted_delta(self, points) -> list:
+        """``Delta`` at the given point indices from the dense ``K`` with partial pivoting
+        (Arb's preconditioned determinant for balls): where a pivot of the band
+        elimination is (nearly) zero without ``K`` being singular, as at an eigenvalue
+        of a leading sub-structure."""
+        from .linalg import det
+        ar, plan = self.ar, self.plan
+        full = dense(plan, self.K[points])
+        n = plan.n
+        out = []
+        with ar:
+            const = self._constant()
+            for p, idx in enumerate(points):
+                if ar.rigorous and n:
+                    value = ar.flint.acb_mat(n, n, [full[p, i, j] for i in range(n)
+                                                    for j in range(n)]).det()
+                else:
+                    value = det(ar, full[p])
+                value = value * const
+                for v, m in zip(self.det12[idx], plan.multiplicity):
+                    value = value * v ** int(m)
+                out.append(value)
+        return out
+
     def delta(self) -> np.ndarray:
         """``Delta`` per point as numbers of the arithmetic (mpmath numbers or balls)."""
         ar, plan = self.ar, self.plan
         with ar:
-            const = ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
+            const = self._constant()
             out = []
             for p in range(self.pivots.shape[0]):
                 value = const
@@ -227,7 +259,7 @@ def _ldl(plan, ar: Arithmetic, K, det12) -> Factors:
     signs, decided = ar.decide(pivots, scale, n)
     # a pivot after an undecided one is meaningless: the point is undecided from there on
     decided = np.logical_and.accumulate(decided, axis=1)
-    return Factors(plan, ar, pivots, signs, decided, det12)
+    return Factors(plan, ar, pivots, signs, decided, det12, K)
 
 
 def dense(plan, K) -> np.ndarray:

@@ -104,6 +104,14 @@ class Counter(Evaluator):
             return work.array([p * p if positive else -(p * p) for p in pts]), None
         return self._factor(self.plan(max((float(v) for v in points), default=0.0)), ar, build)
 
+    def matrix(self, omega: float) -> np.ndarray:
+        """The dense ``K(omega)`` in double precision (scaled by powers of two: its inertia,
+        and so the count, is that of the unscaled one)."""
+        from ..numeric.stiffness import assemble, dense
+        w = float(omega)
+        K, _ = assemble(self.plan(w), DOUBLE, np.array([-w * w]))
+        return dense(self.plan(w), K)[0].real
+
     def counts(self, omegas, ar: Arithmetic = DOUBLE) -> np.ndarray:
         """``J(omega)`` per point, ``-1`` where the arithmetic cannot decide it."""
         if len(omegas) == 0:

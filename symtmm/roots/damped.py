@@ -63,7 +63,6 @@ from dataclasses import replace
 
 import mpmath
 import numpy as np
-import sympy as sp
 
 from ..errors import ComputationError
 from ..mesh import zero_order
@@ -133,6 +132,16 @@ def _global(z) -> mpmath.mpc:
                                mpmath.libmp.from_float(z.imag)))
 
 
+def _imaginary(z) -> mpmath.mpc:
+    """``i Im z`` exactly (``mpmath.mpc(0, y)`` would round ``y`` to the ambient precision)."""
+    return mpmath.mp.make_mpc((mpmath.libmp.fzero, _global(z).imag._mpf_))
+
+
+def _real(z) -> mpmath.mpc:
+    """``Re z`` as a complex number, exactly."""
+    return mpmath.mp.make_mpc((_global(z).real._mpf_, mpmath.libmp.fzero))
+
+
 def _box(z, r) -> tuple:
     """``((re - r, re + r), (im - r, im + r))``: the square a proof holds a zero in."""
     ctx = MP(max(int(mpmath.mag(z) - mpmath.mag(r)), 0) + 128).ctx
@@ -189,24 +198,27 @@ class _Problem:
     # -- values ---------------------------------------------------------------------------
     def values(self, points, digits: int, kernel: Evaluator | None = None) -> list:
         """``Delta`` at ``points`` (mpmath numbers, exact) as global mpmath numbers, or None
-        where the evaluation cannot be trusted (a ball too wide, an undecided pivot)."""
-        if not points:
-            return []
-        ar = self.arithmetic(digits)
-        vals, trusted = (kernel or self.kernel).delta(points, ar)
-        out = []
-        for v, ok in zip(vals, trusted):
-            if not ok:
-                out.append(None)
-                continue
-            if ar.rigorous:
-                # a ball too wide to say where its value is (its width, far below the
-                # step sizes for any ball this narrow, is left to the guard digits)
-                mid = abs(v.mid())
-                if not (mid.is_finite() and v.rad() < mid / 1024):
-                    out.append(None)
+        where the evaluation cannot be trusted (an undecided pivot; a ball too wide to say
+        where its value is, still after the digits were doubled twice: a point that close
+        to a zero)."""
+        out: list = [None] * len(points)
+        todo = list(range(len(points)))
+        for attempt in range(3):
+            if not todo:
+                break
+            ar = self.arithmetic(digits * 2 ** attempt)
+            vals, trusted = (kernel or self.kernel).delta([points[i] for i in todo], ar)
+            wide = []
+            for i, v, ok in zip(todo, vals, trusted):
+                if not ok:
                     continue
-            out.append(_global(ar.to_mpmath(v)))
+                if ar.rigorous:
+                    mid = abs(v.mid())
+                    if not (mid.is_finite() and v.rad() < mid / 1024):
+                        wide.append(i)
+                        continue
+                out[i] = _global(ar.to_mpmath(v))
+            todo = wide
         return out
 
     def log_delta(self, z):
@@ -562,7 +574,7 @@ class _Search:
         for s in items:
             z = s["za"]
             if conservative:
-                z = mpmath.mpc(0, z.imag)
+                z = _imaginary(z)
             elif abs(z.real) < mpmath.mpf(10) ** (-(D + 25)) * abs(z):
                 rest.append(s)
                 continue
@@ -592,6 +604,21 @@ class _Search:
         remainder, small enough for the ball over the disk to stay narrow (the square is
         enclosed by :meth:`symtmm.numeric.evaluator.Evaluator.enclose`).
         """
+        out = [False] * len(items)
+        todo = list(range(len(items)))
+        for extra in (0, 30, 60):
+            # the balls of the two points must be narrow beside the box: where rounding
+            # grew too much for that, the same proof with more digits
+            if not todo:
+                break
+            proved = self._rouche_once([items[i] for i in todo], digits + extra)
+            for i, ok in zip(todo, proved):
+                out[i] = ok
+            todo = [i for i, ok in zip(todo, proved) if not ok]
+        return out
+
+    def _rouche_once(self, items, digits) -> list:
+        """One attempt of :meth:`_rouche` at ``digits``."""
         if not items:
             return []
         import flint
@@ -882,7 +909,7 @@ class _Search:
         tol = ctx.mpf(10) ** (-(res + 4)) * max(abs(z0), ctx.mpf(self.p.lam_ref))
         z, _ = self._newton_multiple(_global(z0), digits, tol, m)
         if rect.symmetric and z is not None:
-            z = mpmath.mpc(z.real, 0)   # the cluster is closed under conjugation
+            z = _real(z)   # the cluster is closed under conjugation
         if z is not None and rect.contains(self._local(z), 1e-9 * rect.size):
             scale = max(abs(zf), self.p.lam_ref)
             r = 10.0 ** (-res) * scale
@@ -927,13 +954,13 @@ class _Search:
         """An ``m``-fold eigenvalue at ``z``, known to within ``radius``."""
         z = _global(z)
         if not self.p.model.damped:
-            return Eigenvalue(mpmath.mpc(0, abs(z.imag)), m, self.digits, None)
+            return Eigenvalue(_imaginary(z if z.imag > 0 else -z), m, self.digits, None)
         if symmetric and abs(z.imag) <= radius:
-            return Eigenvalue(mpmath.mpc(z.real, 0), m, self.digits, None)
+            return Eigenvalue(_real(z), m, self.digits, None)
         if abs(z.real) <= radius:
             if self._idle(z, digits, m):
                 self.idle += 1
-                return Eigenvalue(mpmath.mpc(0, z.imag), m, self.digits, None)
+                return Eigenvalue(_imaginary(z), m, self.digits, None)
             raise ComputationError(
                 f"{m} eigenvalues agree to {self.digits + SEPARATION_DIGITS} digits near "
                 f"{complex(z):.6g} and their real part, below {float(radius):.1e}, cannot "
@@ -1136,8 +1163,6 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
                      f"model without dashpots and with doubled dashpots to "
                      f"{digits + 20} digits (modes that do not move the dashpots)")
     evaluations += search.p.evaluations
-    name, scale = omega_scale(model)
-    scale_mp = _global(MP.from_digits(digits + 20).ctx.mpf(
-        sp.N(scale, digits + 20)._to_mpmath(MP.from_digits(digits + 20).prec)))
+    name, scale_mp = omega_scale(model, digits + 10)
     return Spectrum(tuple(eigen), digits, "default", evaluations, time.perf_counter() - start,
                     model.title or (model.source or ""), (name, scale_mp), tuple(notes))

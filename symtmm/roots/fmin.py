@@ -24,8 +24,8 @@ false ones. The methods report what they find and say so in the notes;
 no root is checked during the search. Every eigenvalue gets multiplicity 1
 and only the digits that are backed: the final grid bracket is widened by
 the estimated distance to the nearest root, the Newton step ``|Delta/Delta'|``
-of the cancellation-free ``Delta`` of :mod:`symtmm.roots.dynamic_stiffness`
-at the minimum (an a-posteriori label, not part of the search), and only
+of the cancellation-free ``Delta`` of the numeric kernel
+(:class:`symtmm.numeric.evaluator.Evaluator`) at the minimum (an a-posteriori label, not part of the search), and only
 the significant digits both ends of that print alike are shown, at most the
 requested number; ``Spectrum.digits`` is the smallest of these. A minimum
 that backs no digit (no root near it, or one moved by rounding noise) is not
@@ -41,12 +41,13 @@ import time
 import mpmath
 import numpy as np
 
-from ..compile import Evaluator
 from ..errors import ModelError
 from ..model import Model
+from ..numeric import transfer
+from ..numeric.arith import MP
+from ..numeric.evaluator import Evaluator
 from ..results import Eigenvalue, Spectrum, decimal_string
 from .damped import default_sigma_max
-from .dynamic_stiffness import DynamicStiffness
 from .undamped import omega_scale, rigid_body_modes
 
 __all__ = ["GRID_1D", "GRID_2D", "REFINE_1D", "REFINE_2D", "TOL", "fmin1d", "fmin2d"]
@@ -65,9 +66,18 @@ TOL = 1e-6
 MAX_MINIMA = 400
 
 
-def _log_abs(ev: Evaluator, lam) -> np.ndarray:
-    """``log10|Delta(lam)|`` in double precision (stable at high modes, no overflow)."""
-    return ev.log_delta(lam)[0] / math.log(10)
+class _Transfer:
+    """``log10|Delta|`` of the transfer formulation in double precision, as the paper
+    evaluates it (stable at high modes, no overflow), counting its points."""
+
+    def __init__(self, model: Model):
+        self.plan = transfer.TransferPlan(model)
+        self.evaluations = 0
+
+    def __call__(self, lam) -> np.ndarray:
+        lam = np.asarray(lam, dtype=complex)
+        self.evaluations += lam.size
+        return transfer.log_delta(self.plan, lam)[0] / math.log(10)
 
 
 def _backed_digits(lo: float, hi: float, digits: int) -> int:
@@ -83,11 +93,15 @@ def _backed_digits(lo: float, hi: float, digits: int) -> int:
     if lo <= 0 <= hi:
         return 0
     d = 0
-    with mpmath.workdps(30):
-        while d < digits and decimal_string(mpmath.mpf(lo), d + 1) == \
-                decimal_string(mpmath.mpf(hi), d + 1):
-            d += 1
+    lo, hi = _mpf(lo), _mpf(hi)
+    while d < digits and decimal_string(lo, d + 1) == decimal_string(hi, d + 1):
+        d += 1
     return d
+
+
+def _mpf(x) -> mpmath.mpf:
+    """A float as a global mpmath number, exactly."""
+    return mpmath.mp.make_mpf(mpmath.libmp.from_float(float(x)))
 
 
 def _minima_1d(v: np.ndarray) -> list:
@@ -120,11 +134,8 @@ def _first_guess(model: Model) -> float:
 def _spectrum(model, eigen, digits, method, evaluations, start, notes) -> Spectrum:
     eigen.sort(key=lambda e: (e.lam.imag, e.lam.real))
     shown = min([e.digits for e in eigen], default=digits)
-    name, scale = omega_scale(model)
-    with mpmath.workdps(30):
-        scale_mp = mpmath.mpf(float(scale))
     return Spectrum(tuple(eigen), shown, method, evaluations, time.perf_counter() - start,
-                    model.title or (model.source or ""), (name, scale_mp), tuple(notes))
+                    model.title or (model.source or ""), omega_scale(model, 20), tuple(notes))
 
 
 #: Safety factor on the Newton step: some zero of a cluster of ``m`` lies within
@@ -132,10 +143,10 @@ def _spectrum(model, eigen, digits, method, evaluations, start, notes) -> Spectr
 _CLUSTER = 4
 
 
-def _root_distance(ds: DynamicStiffness, lam: complex) -> float:
+def _root_distance(ds: Evaluator, lam: complex) -> float:
     """A bound on the distance from ``lam`` to the nearest root: :data:`_CLUSTER` times
-    the Newton step ``|Delta/Delta'|`` of the cancellation-free ``Delta``
-    (:mod:`symtmm.roots.dynamic_stiffness`), ``Delta'`` by a central difference over
+    the Newton step ``|Delta/Delta'|`` of the cancellation-free ``Delta`` of the kernel
+    (:class:`symtmm.numeric.evaluator.Evaluator`), ``Delta'`` by a central difference over
     ``1e-8 |lam|``. Labels the digits of a grid minimum; the search does not use it.
     """
     h = 1e-8 * max(abs(lam), 1e-300)
@@ -159,10 +170,11 @@ def _eigenvalue(re_bracket, im_bracket, digits, radius=0.0) -> Eigenvalue | None
     d = min(d_im, d_re)
     if d < 1:
         return None
-    with mpmath.workdps(30):
-        re = mpmath.mpf(0) if re_lo <= 0 <= re_hi else (mpmath.mpf(re_lo) + re_hi) / 2
-        im = mpmath.mpf(0) if im_lo <= 0 else (mpmath.mpf(im_lo) + im_hi) / 2
-        return Eigenvalue(mpmath.mpc(re, im), 1, d, ((re_lo, re_hi), (im_lo, im_hi)))
+    ctx = MP(128).ctx        # the midpoints of two doubles, exactly
+    re = ctx.mpf(0) if re_lo <= 0 <= re_hi else (ctx.mpf(re_lo) + re_hi) / 2
+    im = ctx.mpf(0) if im_lo <= 0 else (ctx.mpf(im_lo) + im_hi) / 2
+    return Eigenvalue(mpmath.mp.make_mpc((re._mpf_, im._mpf_)), 1, d,
+                      ((re_lo, re_hi), (im_lo, im_hi)))
 
 
 def _dropped_note(n: int) -> str:
@@ -188,10 +200,10 @@ def fmin1d(model: Model, count: int | None = None, omega_max=None, sigma_max=Non
                          "use fmin2d (or the default method) for damped models",
                          field="--method")
     start = time.perf_counter()
-    ev = Evaluator(model)
+    ev = _Transfer(model)
 
     def f(omega):
-        return _log_abs(ev, 1j * np.asarray(omega, dtype=float))
+        return ev(1j * np.asarray(omega, dtype=float))
 
     rigid = rigid_body_modes(model)
     notes = [(f"fmin1d: minima of log10|Delta| on {GRID_1D} points, refined on {REFINE_1D}-point "
@@ -213,7 +225,7 @@ def fmin1d(model: Model, count: int | None = None, omega_max=None, sigma_max=Non
     if rigid:
         eigen.append(Eigenvalue(mpmath.mpc(0, 0), rigid, digits, (0.0, 0.0)))
     dropped = 0
-    ds = DynamicStiffness(model, 1.05 * band)
+    ds = Evaluator(model, 1.05 * band)
     for i in mins:
         lo, hi = _refine_1d(f, grid[i - 1], grid[i + 1])
         radius = _root_distance(ds, 0.5j * (lo + hi))
@@ -278,10 +290,10 @@ def fmin2d(model: Model, count: int | None = None, omega_max=None, sigma_max=Non
     """
     model = model.require_numeric()
     start = time.perf_counter()
-    ev = Evaluator(model)
+    ev = _Transfer(model)
 
     def f(S, Wg):
-        return _log_abs(ev, -np.asarray(S) + 1j * np.asarray(Wg))
+        return ev(-np.asarray(S) + 1j * np.asarray(Wg))
 
     notes = [(f"fmin2d: minima of log10|Delta| on a {GRID_2D} x {GRID_2D} grid over "
              f"(sigma, omega), refined on {REFINE_2D} x {REFINE_2D} grids to boxes below "
@@ -303,7 +315,7 @@ def fmin2d(model: Model, count: int | None = None, omega_max=None, sigma_max=Non
         notes.append(f"{len(mins)} minima, only the {MAX_MINIMA} deepest refined")
         mins = mins[:MAX_MINIMA]
     eigen, dropped = [], 0
-    ds = DynamicStiffness(model, 1.05 * abs(complex(S_max, W)))
+    ds = Evaluator(model, 1.05 * abs(complex(S_max, W)))
     for i, j in mins:
         s_lo, s_hi, w_lo, w_hi = _refine_2d(f, s[max(i - 1, 0)], s[min(i + 1, GRID_2D - 1)],
                                             w[max(j - 1, 0)], w[min(j + 1, GRID_2D - 1)])

@@ -128,10 +128,18 @@ def check_stable(model: Model, rigid: int, counter: Counter | None = None) -> in
     return counter.evaluations if own else 0
 
 
-def omega_scale(model: Model):
-    """``(name, sqrt(EI/(m L^4)))`` of the first beam: ``omega = Omega**2 * scale``."""
+def omega_scale(model: Model, digits: int | None = None):
+    """``(name, sqrt(EI/(m L^4)))`` of the first beam: ``omega = Omega**2 * scale``.
+
+    Exact (SymPy), or with ``digits`` a global mpmath number good to that many digits
+    (what a :class:`~symtmm.results.Spectrum` carries).
+    """
     b = model.resolved().beams[0]
-    return b.name, sp.sqrt(b.EI / (b.m * b.L**4))
+    scale = sp.sqrt(b.EI / (b.m * b.L**4))
+    if digits is None:
+        return b.name, scale
+    ar = MP.from_digits(digits + 10)
+    return b.name, mpmath.mp.make_mpf(ar.exact(scale)._mpf_)
 
 
 def _pinned_omega2(beam) -> float:
@@ -646,9 +654,7 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         eigen = kept
     elif omega_max is not None:
         eigen = [e for e in eigen if e.omega <= mpmath.mpf(omega_max) * (1 + mpmath.mpf(4e-16))]
-    name, scale = omega_scale(model)
-    with mpmath.workdps(digits + 20):
-        scale_mp = mpmath.mpf(sp.N(scale, digits + 20)._to_mpmath(mpmath.mp.prec))
+    name, scale_mp = omega_scale(model, digits + 10)
     return Spectrum(tuple(eigen), digits, "default", search.evaluations,
                     time.perf_counter() - start, model.title or (model.source or ""),
                     (name, scale_mp), _notes(eigen, digits))
