@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import json
 from dataclasses import dataclass, field, replace
 
@@ -24,9 +25,22 @@ def decimal_string(value, digits: int) -> str:
     """
     if value == 0:
         return "0"
-    with mpmath.workdps(digits + 10):
-        return mpmath.nstr(mpmath.mpf(value), digits, strip_zeros=False,
-                           min_fixed=-mpmath.inf, max_fixed=mpmath.inf)
+    ctx = _context(digits + 10)
+    return ctx.nstr(ctx.mpf(value), digits, strip_zeros=False, min_fixed=-ctx.inf,
+                    max_fixed=ctx.inf)
+
+
+@functools.lru_cache(maxsize=32)
+def _context(dps: int) -> mpmath.MPContext:
+    """A private mpmath context at ``dps`` digits (the ambient precision is never set)."""
+    ctx = mpmath.MPContext()
+    ctx.dps = dps
+    return ctx
+
+
+def _global(x) -> mpmath.mpf:
+    """A number of a private context as a global mpmath number, unrounded."""
+    return mpmath.mp.make_mpf(x._mpf_)
 
 
 @dataclass(frozen=True)
@@ -62,9 +76,8 @@ class Eigenvalue:
     @property
     def sigma(self):
         """Decay rate ``-Re lam`` (1/s)."""
-        # negation rounds to the working precision: do it at the value's own precision
-        with mpmath.workprec(max(self.lam.real._mpf_[3], 53)):  # [3]: mantissa bits
-            return -self.lam.real
+        # (exactly: ``-x`` would round to the ambient precision)
+        return mpmath.mp.make_mpf(mpmath.libmp.mpf_neg(self.lam.real._mpf_))
 
     def to_dict(self) -> dict:
         """JSON-ready ``{"real", "imag", "multiplicity"[, "proof"]}`` with :attr:`digits` digits."""
@@ -126,9 +139,12 @@ class Spectrum:
         """Frequency parameters ``Omega = (omega^2 m L^4/EI)^(1/4)`` of the reference beam."""
         if not self.omega_scale:
             raise ValueError("no reference beam")
-        scale = self.omega_scale[1]
-        with mpmath.workdps(self.digits + 10):
-            return [mpmath.sqrt(w / scale) for w in self.omegas(expand)]
+        return [_global(self._Omega(w)) for w in self.omegas(expand)]
+
+    def _Omega(self, omega):
+        """``sqrt(omega / scale)`` at the spectrum's digits (a private context's number)."""
+        ctx = _context(self.digits + 10)
+        return ctx.sqrt(ctx.mpf(omega) / ctx.mpf(self.omega_scale[1]))
 
     def proofs(self) -> dict:
         """What backs the eigenvalues: proof -> the positions (1-based) it backs."""
@@ -167,15 +183,13 @@ class Spectrum:
             head.append(f"Omega (beam {ref})")
         head.append("mult.")
         rows = []
-        with mpmath.workdps(self.digits + 10):
-            for i, e in enumerate(self.eigenvalues, 1):
-                d = e.to_dict()
-                row = [str(i)] + ([d["real"]] if damped else []) + [d["imag"]]
-                if ref:
-                    row.append(decimal_string(mpmath.sqrt(e.omega / self.omega_scale[1]),
-                                              self.digits))
-                row.append(str(e.multiplicity))
-                rows.append(row)
+        for i, e in enumerate(self.eigenvalues, 1):
+            d = e.to_dict()
+            row = [str(i)] + ([d["real"]] if damped else []) + [d["imag"]]
+            if ref:
+                row.append(decimal_string(self._Omega(e.omega), self.digits))
+            row.append(str(e.multiplicity))
+            rows.append(row)
         widths = [max(len(h), *(len(r[k]) for r in rows)) if rows else len(h)
                   for k, h in enumerate(head)]
         lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths))]
@@ -205,14 +219,12 @@ class Spectrum:
             head.append(f"Ω (beam {ref})")
         head.append("mult.")
         rows = []
-        with mpmath.workdps(self.digits + 10):
-            for i, e in enumerate(self.eigenvalues, 1):
-                d = e.to_dict()
-                row = [str(i)] + ([d["real"]] if damped else []) + [d["imag"]]
-                if ref:
-                    row.append(decimal_string(mpmath.sqrt(e.omega / self.omega_scale[1]),
-                                              self.digits))
-                rows.append(row + [str(e.multiplicity)])
+        for i, e in enumerate(self.eigenvalues, 1):
+            d = e.to_dict()
+            row = [str(i)] + ([d["real"]] if damped else []) + [d["imag"]]
+            if ref:
+                row.append(decimal_string(self._Omega(e.omega), self.digits))
+            rows.append(row + [str(e.multiplicity)])
         return head, rows
 
     def _repr_html_(self) -> str:

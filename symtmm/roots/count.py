@@ -121,14 +121,15 @@ class Counter(Evaluator):
     # -- one point, decided ---------------------------------------------------------------
     def count(self, omega, digits: int | None = None, positive: bool = False) -> int:
         """``J(omega)``: double precision unless a pivot is too small to trust; then (or with
-        ``digits``) mpmath from ``digits`` (default 30) digits, doubled until decided."""
+        ``digits``) in the proof arithmetic (balls where python-flint is installed, else
+        mpmath) from ``digits`` (default 30) digits, doubled until decided."""
         if digits is None:
             c = self.factors([float(omega)], DOUBLE, positive).counts()[0]
             if c >= 0:
                 return int(c)
             digits = 30
         while True:
-            c = self.factors([omega], MP.from_digits(digits), positive).counts()[0]
+            c = self.factors([omega], proof_arithmetic(digits), positive).counts()[0]
             if c >= 0:
                 return int(c)
             if digits >= SINGULAR_DIGITS:

@@ -50,8 +50,9 @@ from ..errors import ComputationError
 from ..mesh import static_nullity
 from ..model import Model
 from ..numeric.arith import MP
+from ..numeric.evaluator import exact_mpf as _exact_mpf
 from ..results import Eigenvalue, Spectrum, decimal_string
-from .bracket import SEPARATION_DIGITS, bracket_done
+from .bracket import SEPARATION_DIGITS
 from .count import Counter, digits_for, proof_arithmetic
 
 __all__ = ["solve_undamped", "rigid_body_modes", "check_stable", "omega_scale", "PROOFS"]
@@ -473,32 +474,41 @@ class _Search:
         multiple roots (identical beams, symmetric couplings) end there; distinct
         roots are told apart however close, down to that resolution.
         """
-        resolution = self.digits + 2 + SEPARATION_DIGITS
-        dps = resolution + 15
-        with mpmath.workdps(dps):
-            a, b = mpmath.mpf(a), mpmath.mpf(b)
-            a, ca = self.count_off(a, b, dps)
-            cb = ca + k
-            tol = mpmath.mpf(10) ** (-resolution)
-            zoomed = self._zoom(a, b, k, resolution)
-            if zoomed is not None:
-                lo, hi = zoomed
-                if (bracket_done(lo, hi, self.digits) and self.count_off(lo, a, dps)
-                        == (lo, ca) and self.count_off(hi, b, dps) == (hi, cb)):
-                    return [(lo, hi, ca, k)]
-            out, stack = [], [(a, ca, b, cb)]
-            while stack:
-                a, ca, b, cb = stack.pop()
-                m = cb - ca
-                if m <= 0:
-                    continue
-                if m == 1 or ((b - a) <= tol * b and bracket_done(a, b, self.digits)):
-                    out.append((a, b, ca, m))
-                    continue
-                mid, cm = self.count_off((a + b) / 2, b, dps)
-                stack.append((mid, cm, b, cb))
-                stack.append((a, ca, mid, cm))
-            return out
+        D = self.digits
+        resolution = D + 2 + SEPARATION_DIGITS
+        digits = resolution + 15
+        ctx = MP.from_digits(digits + 10).ctx
+        limit = ctx.mpf(10) ** (-(digits - 5))       # what the counts can still resolve
+
+        def done(lo, hi):
+            width = (hi - lo) / lo
+            return width <= limit or (width <= ctx.mpf(10) ** (-(D + 2)) and
+                                      decimal_string(_exact_mpf(lo), D)
+                                      == decimal_string(_exact_mpf(hi), D))
+
+        a, b = ctx.mpf(a), ctx.mpf(b)
+        a, ca = self.count_off(a, b, digits)
+        cb = ca + k
+        tol = ctx.mpf(10) ** (-resolution)
+        zoomed = self._zoom(a, b, k, resolution)
+        if zoomed is not None:
+            lo, hi = zoomed
+            if (done(lo, hi) and self.count_off(lo, a, digits) == (lo, ca)
+                    and self.count_off(hi, b, digits) == (hi, cb)):
+                return [(lo, hi, ca, k)]
+        out, stack = [], [(a, ca, b, cb)]
+        while stack:
+            a, ca, b, cb = stack.pop()
+            m = cb - ca
+            if m <= 0:
+                continue
+            if m == 1 or ((b - a) <= tol * b and done(a, b)):
+                out.append((a, b, ca, m))
+                continue
+            mid, cm = self.count_off((a + b) / 2, b, digits)
+            stack.append((mid, cm, b, cb))
+            stack.append((a, ca, mid, cm))
+        return out
 
     def _delta(self, w, dps: int):
         """``Delta(i w)`` at ``dps`` digits (mpmath), as a global mpmath number."""
@@ -521,29 +531,30 @@ class _Search:
         dps = k * resolution + 20
         if dps > MAX_DPS:
             return None
-        with mpmath.workdps(dps):
-            half = mpmath.mpf(10) ** (-resolution) / 2
-            power = mpmath.mpf(1) / k
+        ctx = MP.from_digits(dps + 10).ctx
+        half = ctx.mpf(10) ** (-resolution) / 2
+        power = ctx.mpf(1) / k
 
-            def v(w):      # the V: |Delta|**(1/k)
-                return abs(self._delta(w, dps)) ** power
+        def v(w):      # the V: |Delta|**(1/k)
+            return abs(ctx.mpf(self._delta(w, dps))) ** power
 
-            lo, hi = mpmath.mpf(a), mpmath.mpf(b)
+        a, b = ctx.mpf(a), ctx.mpf(b)
+        lo, hi = a, b
+        f_lo, f_hi = v(lo), v(hi)
+        for _ in range(8):
+            if not f_lo + f_hi > 0:
+                return None
+            slope = (f_lo + f_hi) / (hi - lo)
+            guess = (lo * f_hi + hi * f_lo) / (f_lo + f_hi)
+            f_guess = v(guess)
+            # |omega0 - guess| ~ f(guess) / slope: a bracket twice that wide
+            reach = 2 * f_guess / slope
+            if reach <= half * guess / 4:
+                return guess * (1 - half), guess * (1 + half)
+            lo, hi = guess - reach, guess + reach
+            if not a <= lo < hi <= b:
+                return None
             f_lo, f_hi = v(lo), v(hi)
-            for _ in range(8):
-                if not f_lo + f_hi > 0:
-                    return None
-                slope = (f_lo + f_hi) / (hi - lo)
-                guess = (lo * f_hi + hi * f_lo) / (f_lo + f_hi)
-                f_guess = v(guess)
-                # |omega0 - guess| ~ f(guess) / slope: a bracket twice that wide
-                reach = 2 * f_guess / slope
-                if reach <= half * guess / 4:
-                    return guess * (1 - half), guess * (1 + half)
-                lo, hi = guess - reach, guess + reach
-                if not a <= lo < hi <= b:
-                    return None
-                f_lo, f_hi = v(lo), v(hi)
         return None
 
     def prove_cluster(self, lo, hi, ca, m) -> Eigenvalue:
@@ -557,10 +568,11 @@ class _Search:
                 == [ca, ca + m]):
             raise ComputationError(f"the counts at the ends of the {m}-fold eigenvalue near "
                                    f"{float(lo):.15g} rad/s are not {ca} and {ca + m}")
-        with mpmath.workprec(ar.prec + 64):
-            mid = (mpmath.mpf(lo) + mpmath.mpf(hi)) / 2
+        ctx = MP(ar.prec + 64).ctx
+        mid = (ctx.mpf(lo) + ctx.mpf(hi)) / 2
         proof = PROOFS["ball" if ar.rigorous else "mp"]
-        return Eigenvalue(_exact_mpc_imag(mid), m, self.digits, (lo, hi), proof)
+        return Eigenvalue(_exact_mpc_imag(mid), m, self.digits,
+                          (_exact_mpf(lo), _exact_mpf(hi)), proof)
 
 
 class _MorePrecision(Exception):
@@ -653,7 +665,8 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
             total += e.multiplicity
         eigen = kept
     elif omega_max is not None:
-        eigen = [e for e in eigen if e.omega <= mpmath.mpf(omega_max) * (1 + mpmath.mpf(4e-16))]
+        top = _exact_mpf(float(omega_max) * (1 + 4e-16))
+        eigen = [e for e in eigen if e.omega <= top]
     name, scale_mp = omega_scale(model, digits + 10)
     return Spectrum(tuple(eigen), digits, "default", search.evaluations,
                     time.perf_counter() - start, model.title or (model.source or ""),
