@@ -159,7 +159,8 @@ def _measured(name, sec) -> str:
 
 
 def _targets(r) -> list:
-    rows = [[i, TARGETS[name], _measured(name, r[name]), _met(r[name]["target"]["met"])]
+    rows = [[i, TARGETS[name], f"failed: {r[name]['error']}" if "error" in r[name]
+             else _measured(name, r[name]), _met(r[name]["target"]["met"])]
             for i, name in enumerate(TARGETS, 1) if name in r]
     return ["## Targets", ""] + _table(["#", "target", "measured", "verdict"], rows)
 
@@ -238,7 +239,9 @@ def _why_root_search(rs) -> list:
             f"{t['default_evaluations']} evaluations, fMin2D {_g(t['fmin2d_seconds'])} s and "
             f"{t['fmin2d_evaluations']} evaluations (fMin2D misses "
             f"{case['methods']['fmin2d']['missed']}, the default {t['missed']}).")]
-    if t["seconds_ratio"] >= 1:
+    if d["status"] != "ok":
+        out.append(f"The default search stopped: {d['status']}.")
+    elif t["seconds_ratio"] >= 1:
         out.append("fMin2D evaluates whole grids of points per vectorised call; the default "
                    "search, " + _profile_sentence(d["profile"]) + ".")
     if t["evaluation_ratio"] > 0.1:
@@ -284,6 +287,10 @@ def _findings(r) -> list:
         if name not in r:
             continue
         out += [f"**{i}. {TARGETS[name]}** — {_met(r[name]['target']['met'])}", ""]
+        if "error" in r[name]:
+            out += [f"* The section stopped with {r[name]['error']}:", "", "```",
+                    *r[name]["trace"], "```", ""]
+            continue
         out += [f"* {line}" for line in _WHY[name](r[name])] + [""]
     return out
 
@@ -490,6 +497,6 @@ def render(r: dict) -> str:
     sections = {"fe": _fe, "scaling": _scaling, "precision": _precision,
                 "root_search": _root_search, "sweep": _sweep, "evaluator": _evaluator}
     for name, fn in sections.items():
-        if name in r:
+        if name in r and "error" not in r[name]:
             out += fn(r[name])
     return "\n".join(out)

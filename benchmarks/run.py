@@ -17,6 +17,7 @@ import shutil
 import subprocess
 import sys
 import time
+import traceback
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -98,7 +99,13 @@ def run(quick: bool, sections, progress) -> dict:
     seconds = {}
     for name in sections:
         t = time.perf_counter()
-        result[name] = modules[name].run(quick=quick, progress=progress)
+        try:
+            result[name] = modules[name].run(quick=quick, progress=progress)
+        except Exception as exc:  # noqa: BLE001 - a failed section is reported, the run goes on
+            progress(f"{name}: failed: {type(exc).__name__}: {exc}")
+            result[name] = dict(error=f"{type(exc).__name__}: {exc}"[:300],
+                                trace=traceback.format_exc().splitlines()[-6:],
+                                target=dict(met=False))
         seconds[name] = round(time.perf_counter() - t, 1)
     result["seconds"] = dict(seconds, total=round(time.perf_counter() - start, 1))
     result["load_after"] = _load()
