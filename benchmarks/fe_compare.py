@@ -129,34 +129,56 @@ def _fe_error(fe, n: int, ref) -> float:
     return rel_error([float(w) for w in sparse_fe.frequencies(fe, n, COUNT)], ref)
 
 
-def coarsest_mesh(fe, ref, tol: float = TOLERANCE) -> tuple:
-    """``(elements per beam, tried)``: the coarsest mesh within ``tol``, and every
-    ``(elements per beam, dofs, error)`` tried (doubling from 2, then bisection)."""
-    tried = {}
+def coarsest(error, tol: float = TOLERANCE, start: int = 2, limit: int = 4096) -> tuple:
+    """``(n, tried)``: the smallest ``n`` with ``error(n) <= tol``, and ``{n: error}`` tried.
 
-    def error(n):
+    A ladder of sizes growing by about 1.25 from ``start`` finds the first one within
+    ``tol`` (the FE error falls like ``n**-4``, so the ladder's previous size is within
+    ``1.25**4`` of the tolerance), then bisection between the two. The error does not
+    fall for ever: on fine meshes rounding takes over, and where it has grown to twice
+    its smallest value above ``tol`` the search stops with an ArithmeticError.
+
+    Examples
+    --------
+    >>> n, tried = coarsest(lambda n: 1.0 / n**4, tol=1e-6)
+    >>> n, len(tried) < 20
+    (32, True)
+    """
+    tried: dict = {}
+
+    def err(n):
         if n not in tried:
-            if sparse_fe.dof_count(fe, n) <= COUNT + 1:
-                tried[n] = np.inf           # too few dofs for eigsh
-            else:
-                tried[n] = _fe_error(fe, n, ref)
+            tried[n] = error(n)
         return tried[n]
 
-    hi = 2
-    while error(hi) > tol:
-        if hi > 4096:
-            raise ArithmeticError("no mesh up to 4096 elements per beam reaches the tolerance")
-        hi *= 2
-    lo = hi // 2 if hi > 2 else 1
-    while hi - lo > 1:
+    lo, hi = None, start
+    while err(hi) > tol:
+        best = min(tried.values())
+        if hi >= limit or err(hi) > 2 * best:
+            raise ArithmeticError(f"the FE error stops falling above {tol:g} (smallest "
+                                  f"{best:.2g}; {err(hi):.2g} at {hi} elements per beam)")
+        lo, hi = hi, max(hi + 1, round(1.25 * hi))
+    while lo is not None and hi - lo > 1:
         mid = (lo + hi) // 2
-        if error(mid) <= tol:
+        if err(mid) <= tol:
             hi = mid
         else:
             lo = mid
-    rows = [dict(elements_per_beam=n, dofs=sparse_fe.dof_count(fe, n),
-                 max_rel_error=None if e == np.inf else e) for n, e in sorted(tried.items())]
-    return hi, rows
+    return hi, tried
+
+
+def coarsest_mesh(fe, ref, tol: float = TOLERANCE) -> tuple:
+    """``(elements per beam, tried)``: the coarsest mesh within ``tol`` (:func:`coarsest`),
+    and every ``(elements per beam, dofs, error)`` tried."""
+    def error(n):
+        if sparse_fe.dof_count(fe, n) <= COUNT + 1:
+            return np.inf                   # too few dofs for eigsh
+        return _fe_error(fe, n, ref)
+
+    n, tried = coarsest(error, tol)
+    rows = [dict(elements_per_beam=k, dofs=sparse_fe.dof_count(fe, k),
+                 max_rel_error=None if e == np.inf else e) for k, e in sorted(tried.items())]
+    return n, rows
 
 
 def fe_seconds(fe, n: int, repeat: int = REPEAT) -> float:

@@ -256,11 +256,12 @@ class _GlobalLayout:
     """Unknowns and equations of the global matrix: 4 unknowns per beam and segment.
 
     ``beams``: ``(EI, m, left, right)`` over ``[0, L]``; ``springs``:
-    ``(a, b, x, k)`` with ``b = None`` for a spring to the ground and ``x``
-    strictly inside ``(0, L)`` (a number or an exact string such as ``"3/10"``).
-    Each beam is cut where its own springs act, so a chain of many levels keeps
-    a few segments per beam. Beam ``i`` has the wave number
-    ``nu_i = beta_i L = ratio_i Omega`` with ``Omega = beta_1 L``.
+    ``(a, b, x, k)`` with ``b = None`` for a spring to the ground and ``0 <= x <= L``
+    (a number or an exact string such as ``"3/10"``); a spring at an end enters
+    the shear condition of every end it holds there. Each beam is cut where its
+    own springs act, so a chain of many levels keeps a few segments per beam. Beam
+    ``i`` has the wave number ``nu_i = beta_i L = ratio_i Omega`` with
+    ``Omega = beta_1 L``.
     """
 
     def __init__(self, beams, springs, L=1):
@@ -269,11 +270,12 @@ class _GlobalLayout:
         self.L = Fraction(str(L))
         self.springs = [(a, b, Fraction(str(x)) / self.L, Fraction(str(k)))
                         for a, b, x, k in springs]
-        if any(not 0 < x < 1 for _, _, x, _ in self.springs):
-            raise ValueError("springs must lie strictly inside the span")
+        if any(not 0 <= x <= 1 for _, _, x, _ in self.springs):
+            raise ValueError("springs must lie on the span")
         #: per beam: its cut points (ends included) and its segment lengths
-        self.points = [[Fraction(0), *sorted({x for a, b, x, _ in self.springs if i in (a, b)}),
-                        Fraction(1)] for i in range(len(self.beams))]
+        self.points = [[Fraction(0), *sorted({x for a, b, x, _ in self.springs
+                                              if i in (a, b) and 0 < x < 1}), Fraction(1)]
+                       for i in range(len(self.beams))]
         self.lengths = [[b - a for a, b in itertools.pairwise(p)] for p in self.points]
         self._first = [0]
         for lengths in self.lengths:
@@ -301,10 +303,15 @@ class _GlobalLayout:
         out, r = [], 0
         for i, (_, _, left, right) in enumerate(self.beams):
             last = len(self.lengths[i]) - 1
-            for seg, xi, kind in ((0, Fraction(0), left), (last, self.lengths[i][-1], right)):
+            for seg, xi, kind, x, sign in ((0, Fraction(0), left, Fraction(0), 1),
+                                           (last, self.lengths[i][-1], right, Fraction(1), -1)):
                 at = rows_at(i, xi)
                 for d in _END_ROWS[kind]:
-                    out += [(r, self._column(i, seg) + j, at[d][j]) for j in range(4)]
+                    out += [(r, self._column(i, seg) + j, sign * at[d][j]) for j in range(4)]
+                    if d == 3:
+                        # the shear at a left end is +F, at a right end -F (Q+ - Q- = F,
+                        # no beam beyond the end): the interior jump with one side gone
+                        out += self._spring_terms(r, i, x, rows_at, kappa)
                     r += 1
         for i in range(len(self.beams)):
             for s in range(1, len(self.lengths[i])):
@@ -326,7 +333,8 @@ class _GlobalLayout:
         ``EI_i (Y_i'''(x+) - Y_i'''(x-)) = F_i`` with ``F_i = k (Y_other - Y_i)``
         (``-k Y_i`` to the ground), so the row gets ``+kappa Y_i - kappa Y_other``;
         each ``Y`` is taken at the right end of its beam's segment left of the cut
-        (every beam a spring touches is cut there).
+        (every beam a spring touches is cut there), at a left end at the start of
+        its first segment.
         """
         out = []
         for a, b, xs, k in self.springs:
@@ -338,8 +346,9 @@ class _GlobalLayout:
                 if beam is None:
                     continue
                 s = self.points[beam].index(x)
-                y = rows_at(beam, self.lengths[beam][s - 1])[0]
-                out += [(r, self._column(beam, s - 1) + j, sign * kk * y[j]) for j in range(4)]
+                seg, xi = (0, Fraction(0)) if s == 0 else (s - 1, self.lengths[beam][s - 1])
+                y = rows_at(beam, xi)[0]
+                out += [(r, self._column(beam, seg) + j, sign * kk * y[j]) for j in range(4)]
         return out
 
 
@@ -578,7 +587,10 @@ def _sparse_sign_logdet(layout: _GlobalLayout, Omega: float) -> tuple:
 
     r, c, v = zip(*layout.entries(rows_at, lambda i, k: float(k) * L3 / (EIs[i] * nus[i] ** 3)))
     A = scipy.sparse.csc_matrix((v, (r, c)), shape=(layout.size, layout.size))
-    lu = scipy.sparse.linalg.splu(A)
+    try:
+        lu = scipy.sparse.linalg.splu(A)
+    except RuntimeError:            # an exactly zero pivot: a root in double precision
+        return 0.0, -math.inf
     d = lu.U.diagonal()
     if np.any(d == 0):
         return 0.0, -math.inf

@@ -438,10 +438,12 @@ def _sweep(sw) -> list:
             f"step on the coarsest mesh within 1e-6 at every step, {f['elements_per_beam']} "
             f"elements per beam: {_g(f['seconds_default_threads'])} s (default BLAS threads), "
             f"{_g(f['seconds_one_thread'])} s (one thread), best of 3 loops."), "",
-           (f"Mesh reference: {ref['method']}; against the exact global-matrix reference at "
-            f"x1 = 0.3 it is off by {_g(ref['error_at_x1_0_3'], 2)}, and the symtmm sweep's "
-            f"values differ from it by at most {_g(s['max_rel_difference_from_reference'], 2)} "
-            f"over all steps (largest Romberg correction {_g(ref['romberg_correction'], 2)})."),
+           (f"Reference at each step: the {ref['exact']}; where roots are multiple or too close "
+            f"for that (x1 = {', '.join(ref['extrapolated_at']) or 'none'}) the "
+            f"{ref['extrapolated']}, which differs from the exact values by at most "
+            f"{_g(ref['extrapolated_error'], 2)} at the other steps. The symtmm sweep's "
+            f"values differ from the reference by at most "
+            f"{_g(s['max_rel_difference_from_reference'], 2)} over all steps."),
            "", "Meshes tried (elements per beam: worst error over the steps): "
            + ", ".join(f"{t['elements_per_beam']}: {_g(t['max_rel_error'], 2)}"
                        for t in f["tried"]) + ".", ""]

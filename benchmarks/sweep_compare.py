@@ -8,11 +8,14 @@ with its defaults (12 digits, branches tracked by mode shapes) in this process
 uniform one (elements per beam) within 1e-6 at *every* step.
 
 The FE mesh is chosen against a reference at each step that symtmm does not
-compute: the FE model itself extrapolated from four nested meshes
-(:func:`benchmarks.sparse_fe.converged`; at ``x1 = 0`` the springs sit on the
-beam ends, which the global-matrix reference does not take). Its accuracy is
-checked in the run at ``x1 = 0.3`` against the global-matrix reference of
-example 1, and the symtmm sweep's values are compared with it at every step.
+compute: the exact global coefficient matrix, each root located below a fine
+FE frequency (:func:`benchmarks.references.located_omegas`), where the roots
+are simple and apart; where they are not (at ``x1 = 0.5`` the free beam turns
+about the springs, ``omega = 0``, and antisymmetric modes of both beams
+coincide; branches may cross near a step) the FE model extrapolated from four
+nested meshes (:func:`benchmarks.sparse_fe.converged`), whose accuracy is
+measured in the run against the exact values at the other steps. The symtmm
+sweep's values are compared with the reference at every step.
 """
 
 from __future__ import annotations
@@ -26,7 +29,7 @@ import time
 import numpy as np
 
 from . import references, sparse_fe
-from .fe_compare import ONE_THREAD, ROOT, TOLERANCE, rel_error
+from .fe_compare import ONE_THREAD, ROOT, TOLERANCE, coarsest, rel_error
 from .models import example
 from .profiling import profile_call
 
@@ -35,6 +38,8 @@ __all__ = ["run", "PARAMETER", "START", "STOP", "STEPS", "COUNT"]
 PARAMETER, START, STOP, STEPS, COUNT = "x1", "0", "0.5", 51, 10
 #: Elements per beam of the coarsest of the four meshes of the extrapolated reference.
 REFERENCE_ELEMENTS = 10
+#: Elements per beam of the FE model whose frequencies locate the exact roots.
+LOCATOR_ELEMENTS = 64
 
 
 def _inputs(steps: int) -> tuple:
@@ -58,45 +63,49 @@ def _fe_loop_seconds(inputs, n: int, repeat: int = 3) -> float:
     return best
 
 
+def _references(model, values, inputs) -> tuple:
+    """Per step ``(reference, kind)`` and the largest difference between the extrapolated
+    FE values and the exact ones where both exist."""
+    from .models import global_input
+
+    out, check = [], 0.0
+    for value, fe in zip(values, inputs):
+        conv = list(sparse_fe.converged(fe, REFERENCE_ELEMENTS, COUNT)["omega"])
+        guesses = sparse_fe.frequencies(fe, LOCATOR_ELEMENTS, COUNT)
+        exact = None
+        if np.all(guesses > 0):
+            beams, springs = global_input(model.with_parameters(**{PARAMETER: value}))
+            try:
+                exact = references.located_omegas(beams, springs, list(guesses))
+            except ArithmeticError:         # close or multiple roots: no sign change each
+                exact = None
+        if exact is None:
+            out.append((conv, "extrapolated FE"))
+        else:
+            out.append((exact, "global matrix"))
+            check = max(check, rel_error(conv, exact))
+    return out, check
+
+
 def _worst_error(inputs, refs, n: int) -> float:
     return max(rel_error(sparse_fe.frequencies(fe, n, COUNT), r) for fe, r in zip(inputs, refs))
 
 
 def _mesh(inputs, refs) -> tuple:
-    """The coarsest mesh within the tolerance at every step (doubling, then bisection)."""
-    tried = {}
-
-    def error(n):
-        if n not in tried:
-            tried[n] = _worst_error(inputs, refs, n)
-        return tried[n]
-
-    hi = 8
-    while error(hi) > TOLERANCE:
-        hi *= 2
-    lo = hi // 2
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if error(mid) <= TOLERANCE:
-            hi = mid
-        else:
-            lo = mid
-    return hi, [dict(elements_per_beam=k, max_rel_error=v) for k, v in sorted(tried.items())]
+    """The coarsest mesh within the tolerance at every step (:func:`coarsest`)."""
+    n, tried = coarsest(lambda k: _worst_error(inputs, refs, k), start=8)
+    return n, [dict(elements_per_beam=k, max_rel_error=v) for k, v in sorted(tried.items())]
 
 
 def run(quick: bool = False, progress=print) -> dict:
-    from symtmm.sweep import sweep
+    from symtmm.sweep import sweep, value_string
 
     steps = 11 if quick else STEPS
     model = example("paper_ex1_ff_cc")
     values, inputs = _inputs(steps)
-    progress(f"sweep: extrapolated FE reference at {steps} steps")
-    conv = [sparse_fe.converged(fe, REFERENCE_ELEMENTS, COUNT) for fe in inputs]
-    refs = [list(c["omega"]) for c in conv]
-    at = [i for i, v in enumerate(values) if str(v) == "3/10"]
-    check = None
-    if at:
-        check = rel_error(refs[at[0]], references.ex1_omegas(COUNT))
+    progress(f"sweep: references at {steps} steps")
+    found, check = _references(model, values, inputs)
+    refs = [r for r, _ in found]
     progress("sweep: coarsest FE mesh within 1e-6 at every step")
     n, tried = _mesh(inputs, refs)
     fe_default = _fe_loop_seconds(inputs, n)
@@ -110,18 +119,23 @@ def run(quick: bool = False, progress=print) -> dict:
         start = time.perf_counter()
         sweep(model, PARAMETER, START, STOP, steps, count=COUNT, jobs=1)
         seconds = min(seconds, time.perf_counter() - start)
-    found = [[float(e.omega) for e in s for _ in range(e.multiplicity)][:COUNT]
+    swept = [[float(e.omega) for e in s for _ in range(e.multiplicity)][:COUNT]
              for s in result.spectra]
-    agreement = max(rel_error(f, r) for f, r in zip(found, refs))
+    agreement = max(rel_error(f, r) for f, r in zip(swept, refs))
     fe_seconds = min(fe_default, fe_one if fe_one is not None else np.inf)
     return dict(
         model="paper_ex1_ff_cc", parameter=PARAMETER, start=START, stop=STOP, steps=steps,
         count=COUNT, digits=result.digits,
-        reference=dict(method=f"sparse FE extrapolated from {REFERENCE_ELEMENTS}, "
-                              f"{2 * REFERENCE_ELEMENTS}, {4 * REFERENCE_ELEMENTS} and "
-                              f"{8 * REFERENCE_ELEMENTS} elements per beam (Romberg)",
-                       romberg_correction=float(max(c["error"].max() for c in conv)),
-                       error_at_x1_0_3=check),
+        reference=dict(
+            exact="global coefficient matrix in double precision, each root below a "
+                  f"{LOCATOR_ELEMENTS}-element FE frequency, confirmed by a sign change "
+                  "across 1e-11 relative",
+            extrapolated=f"sparse FE extrapolated from {REFERENCE_ELEMENTS}, "
+                         f"{2 * REFERENCE_ELEMENTS}, {4 * REFERENCE_ELEMENTS} and "
+                         f"{8 * REFERENCE_ELEMENTS} elements per beam (Romberg)",
+            extrapolated_at=[value_string(v) for v, (_, kind) in zip(values, found)
+                             if kind != "global matrix"],
+            extrapolated_error=check),
         symtmm=dict(seconds=seconds, profile=profile,
                     max_rel_difference_from_reference=agreement),
         fe=dict(elements_per_beam=n, tried=tried, seconds_default_threads=fe_default,
