@@ -203,6 +203,21 @@ def test_located_roots_agree_with_the_mpmath_grid_and_the_solver():
         assert abs(a - b) < 1e-12 * b and abs(a - c) < 1e-12 * c
 
 
+def test_global_matrix_takes_springs_at_the_ends():
+    # example 1 with x1 = 0: the springs join the free ends to the clamped ends, so the
+    # clamped-clamped beam keeps its own frequencies and the free one sits on end springs
+    from symtmm.solve import solve
+
+    model = models.example("paper_ex1_ff_cc").with_parameters(x1=0)
+    beams, springs = models.global_input(model)
+    ours = references.global_matrix_omegas(beams, springs, 6, dps=30)
+    solved = [e.omega for e in solve(model, count=6, digits=20)]
+    assert all(abs(a - b) < 1e-18 * b for a, b in zip(ours, solved))
+    with mpmath.workdps(30):
+        cc = references.clamped_clamped_omegas(2, dps=30)
+        assert min(abs(w - cc[0]) for w in ours) < 1e-25
+
+
 def test_located_roots_refuse_a_wrong_guess():
     pp = [(1, 1, "pinned", "pinned")]
     with pytest.raises(ArithmeticError, match="no sign change"):
