@@ -213,6 +213,10 @@ def _why_precision(pr) -> list:
     out = []
     for name, c in pr["cases"].items():
         base = c["profiles"]["15"]
+        out.append(f"{name}: {_g(c['seconds']['15'])} s at 15 digits; "
+                   + ", ".join(f"{_g(c['ratio'][d])}x at {d}" for d in c["ratio"])
+                   + "; evaluations " + " / ".join(str(v) for v in c["evaluations"].values())
+                   + ".")
         for d, ratio in c["ratio"].items():
             if ratio <= 2:
                 continue
@@ -224,9 +228,7 @@ def _why_precision(pr) -> list:
                     grew.append(f"{_routine_text(label)} {_g(b['seconds'])} s over {b['points']} "
                                 f"points at 15 digits, {_g(s['seconds'])} s over {s['points']} "
                                 f"at {d}")
-            out.append(f"{name} at {d} digits: {_g(c['seconds'][d])} s against "
-                       f"{_g(c['seconds']['15'])} s ({_g(ratio)}x), {c['evaluations'][d]} "
-                       f"evaluations against {c['evaluations']['15']}. What grew (profiled): "
+            out.append(f"{name} at {d} digits is over 2x; what grew (profiled): "
                        + ("; ".join(grew) or "no single routine") + ".")
     return out
 
@@ -242,8 +244,13 @@ def _why_root_search(rs) -> list:
     if d["status"] != "ok":
         out.append(f"The default search stopped: {d['status']}.")
     elif t["seconds_ratio"] >= 1:
-        out.append("fMin2D evaluates whole grids of points per vectorised call; the default "
-                   "search, " + _profile_sentence(d["profile"]) + ".")
+        per_f = t["fmin2d_seconds"] / max(t["fmin2d_evaluations"], 1)
+        dd = d["profile"]["routines"].get("damped_double")
+        per_d = (f"; the default's double-precision Delta costs {_ms(dd['seconds'] / dd['points'])} "
+                 "per point") if dd and dd["points"] else ""
+        out.append(f"fMin2D evaluates whole grids per vectorised call, {_ms(per_f)} per point "
+                   f"all included{per_d}. The default search, "
+                   + _profile_sentence(d["profile"]) + ".")
     if t["evaluation_ratio"] > 0.1:
         out.append(f"Evaluations: {_g(t['evaluation_ratio'])} of fMin2D's, over 1/10.")
     return out
@@ -257,7 +264,10 @@ def _why_sweep(sw) -> list:
             f"FE model {_g(f['seconds'])} s ({_ms(f['seconds'] / steps)} per step, "
             f"{f['elements_per_beam']} elements per beam).")]
     if not sw["target"]["met"]:
-        out.append("Profiled sweep, " + _profile_sentence(s["profile"]) + ".")
+        big = [f"{_routine_text(k)} alone {_g(v['seconds'])} s ({_g(v['seconds'] / f['seconds'])}x "
+               "the FE loop)" for k, v in _largest(s["profile"])]
+        out.append("Profiled sweep, " + _profile_sentence(s["profile"]) + ". "
+                   + "; ".join(big) + ".")
     return out
 
 
@@ -485,9 +495,9 @@ def render(r: dict) -> str:
            + (" (quick run: small sizes only, not the targets' full measure)"
               if r.get("quick") else "") + ".", "",
            "## How to run", "", "```",
-           "python benchmarks/run.py --json > docs/benchmarks.json   # full run, ~10 minutes",
+           "python benchmarks/run.py --json > docs/benchmarks.json   # full run, ~3 minutes",
            "python benchmarks/run.py --from-json docs/benchmarks.json -o docs/benchmarks.md",
-           "python benchmarks/run.py --quick                          # small sizes, ~2 minutes",
+           "python benchmarks/run.py --quick                          # small sizes, <1 minute",
            "python benchmarks/run.py --sections fe sweep              # some sections",
            "```", "",
            ("cxroots is optional (`pip install cxroots`, or the `bench` extra); without it its "

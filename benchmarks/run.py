@@ -2,7 +2,7 @@
 
 Without ``--json`` a markdown report goes to standard output (and to
 ``FILE`` with ``-o``; the repository's copy is ``docs/benchmarks.md``).
-``--quick`` runs small sizes only (about two minutes); ``--sections`` picks
+``--quick`` runs small sizes only (under a minute); ``--sections`` picks
 sections; ``--from-json FILE`` renders the report of a saved ``--json`` run.
 Progress goes to standard error.
 """
@@ -115,7 +115,7 @@ def run(quick: bool, sections, progress) -> dict:
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="small sizes, about two minutes")
+    parser.add_argument("--quick", action="store_true", help="small sizes, under a minute")
     parser.add_argument("--json", action="store_true", help="print the results as JSON")
     parser.add_argument("--sections", nargs="+", choices=SECTIONS, default=list(SECTIONS),
                         help="sections to run (default: all)")
