@@ -62,9 +62,19 @@ def _gcc() -> str | None:
 
 
 def _commit() -> str | None:
-    out = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True,
-                         text=True, cwd=ROOT, check=False)
-    return out.stdout.strip() or None
+    """The commit measured, ``-dirty`` if files other than the report's own differ (the
+    documented command writes docs/benchmarks.json while it runs)."""
+    def git(*args):
+        out = subprocess.run(["git", *args], capture_output=True, text=True, cwd=ROOT,
+                             check=False)
+        return out.stdout.strip() if out.returncode == 0 else None
+
+    head = git("rev-parse", "--short", "HEAD")
+    if head is None:
+        return None
+    changed = git("status", "--porcelain", "--untracked-files=no", "--", ".",
+                  ":!docs/benchmarks.json", ":!docs/benchmarks.md")
+    return head + ("-dirty" if changed else "")
 
 
 def _mpmath_backend() -> str:
