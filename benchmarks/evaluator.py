@@ -17,8 +17,8 @@ over points timed inside C; the transfer-matrix algorithm), per point. Every
 time is the minimum of several repetitions. The accuracy of the double
 ``Delta``: its ``log|Delta|`` against the 50-digit one at :data:`ACCURACY`
 points. The baselines run on the models up to 10 levels (the naive product takes
-seconds per point at 50 levels). The profile of one batch call (cProfile, own time per function) says
-where the time goes.
+seconds per point at 50 levels). The profile of three batch calls (cProfile, own
+time per function) says where the time goes.
 """
 
 from __future__ import annotations
@@ -64,11 +64,13 @@ def _min_seconds(fn, repeat: int, enough: float = 5.0) -> float:
     return best
 
 
-def _own_time(fn, top: int = 6) -> dict:
-    """Own time of the functions of one call of ``fn`` (cProfile), the largest ``top``."""
+def _own_time(fn, top: int = 6, calls: int = 3) -> dict:
+    """Own time of the functions of ``calls`` calls of ``fn`` (cProfile; several, so that
+    one disturbed call weighs less), the largest ``top``."""
     prof = cProfile.Profile()
     prof.enable()
-    fn()
+    for _ in range(calls):
+        fn()
     prof.disable()
     stats = pstats.Stats(prof).stats
     total = sum(tt for _, _, tt, _, _ in stats.values())

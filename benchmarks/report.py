@@ -280,7 +280,7 @@ def _why_evaluator(ev) -> list:
                    f"{m['freedoms']} freedoms, half-bandwidth {m['band']}): Delta "
                    f"{_g(per['delta'] * 1e6)} us per point, its transcendental functions "
                    f"{_g(per['transcendental'] * 1e6)} us, ratio {_g(m['ratio_to_transcendental'])}"
-                   + (". Own time of one batch call: " + top if m["ratio_to_transcendental"] > 5
+                   + (". Own time in batch calls (cProfile): " + top if m["ratio_to_transcendental"] > 5
                       else "") + ".")
     return out
 
