@@ -38,12 +38,12 @@ def internals() -> SimpleNamespace:
         ``(suffix, points)`` of a call or None.
     """
     from symtmm import modes
-    from symtmm.compile import Evaluator
+    from symtmm.compile import Evaluator as TransferEvaluator
     from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
+    from symtmm.numeric.evaluator import Evaluator
     from symtmm.numeric.plan import StiffnessPlan
     from symtmm.roots import undamped
     from symtmm.roots.count import Counter
-    from symtmm.roots.dynamic_stiffness import DynamicStiffness
 
     def arithmetic(digits):
         if digits is None:
@@ -70,23 +70,23 @@ def internals() -> SimpleNamespace:
             delta=delta, size=size, evaluations=lambda: counter.evaluations)
 
     def factor_key(args, kwargs):
-        # Counter.factors(self, omegas, ar=DOUBLE, positive=False)
+        # Counter.factors(self, omegas, ar=DOUBLE, ...), Evaluator.factors(self, lam, ar=DOUBLE,
+        # ...), Evaluator.enclose(self, lam, ar)
         ar = args[2] if len(args) > 2 else kwargs.get("ar", DOUBLE)
         return ar.name, len(args[1])
-
-    def batch_key(args, kwargs):
-        return None, len(args[1]) if hasattr(args[1], "__len__") else 1
 
     return SimpleNamespace(
         kernel=kernel,
         arithmetic_name=lambda digits: arithmetic(digits).name,
         certified=ball_available(),
-        transfer_delta=lambda model: Evaluator(model).delta,
+        transfer_delta=lambda model: TransferEvaluator(model).delta,
         profiled={
             "plan": (StiffnessPlan, "__init__", None),
             "factor": (Counter, "factors", factor_key),
+            # the damped search: the same kernel at complex points (Counter overrides
+            # factors without calling it), and Arb enclosures over boxes
+            "complex_factor": (Evaluator, "factors", factor_key),
+            "enclose": (Evaluator, "enclose", factor_key),
             "rigid_body_modes": (undamped, "rigid_body_modes", None),
-            "damped_double": (DynamicStiffness, "log_delta", batch_key),
-            "damped_mpmath": (Evaluator, "delta_mp", None),
             "mode_shapes": (modes, "shapes_at", None),
         })

@@ -25,8 +25,10 @@ ROUTINE_TEXT = {
     "factor_ball": "ball-arithmetic factorizations (the proofs)",
     "factor_mp": "mpmath factorizations",
     "rigid_body_modes": "the exact rank of R(0) (rigid-body modes)",
-    "damped_double": "double-precision Delta of the damped search",
-    "damped_mpmath": "mpmath Delta of the damped search",
+    "complex_factor_double": "double-precision factorizations at complex points",
+    "complex_factor_ball": "ball factorizations at complex points",
+    "complex_factor_mp": "mpmath factorizations at complex points",
+    "enclose_ball": "Arb enclosures of Delta over boxes (the damped proofs)",
     "mode_shapes": "mode shapes (branch tracking)",
 }
 

@@ -245,7 +245,7 @@ def _why_root_search(rs) -> list:
         out.append(f"The default search stopped: {d['status']}.")
     elif t["seconds_ratio"] >= 1:
         per_f = t["fmin2d_seconds"] / max(t["fmin2d_evaluations"], 1)
-        dd = d["profile"]["routines"].get("damped_double")
+        dd = d["profile"]["routines"].get("complex_factor_double")
         per_d = (f"; the default's double-precision Delta costs {_ms(dd['seconds'] / dd['points'])} "
                  "per point") if dd and dd["points"] else ""
         out.append(f"fMin2D evaluates whole grids per vectorised call, {_ms(per_f)} per point "
