@@ -252,7 +252,13 @@ def _why_root_search(rs) -> list:
                    f"all included{per_d}. The default search, "
                    + _profile_sentence(d["profile"]) + ".")
     if t["evaluation_ratio"] > 0.1:
-        out.append(f"Evaluations: {_g(t['evaluation_ratio'])} of fMin2D's, over 1/10.")
+        line = f"Evaluations: {_g(t['evaluation_ratio'])} of fMin2D's, over 1/10"
+        if "profile" in d:
+            pts = [(v["points"], k) for k, v in d["profile"]["routines"].items()
+                   if v["points"] != v["calls"]]
+            line += (f"; of the default's {t['default_evaluations']}, "
+                     + ", ".join(f"{n} in {_routine_text(k)}" for n, k in sorted(pts, reverse=True)))
+        out.append(line + ".")
     return out
 
 
