@@ -1,18 +1,32 @@
-"""The finite-element alternative: cubic-Hermite beam elements (:mod:`symtmm.fe`).
+"""symtmm's verified solve against the sparse finite-element model a competent user would write.
 
-For the paper's example 1, the first 10 natural frequencies of the FE model
-with 10 to 1000 elements per beam (consistent mass, dense
-:func:`scipy.linalg.eigh`) are compared with the independent global-matrix
-reference (:func:`benchmarks.references.ex1_omegas`), beside the time
-symtmm needs for 1e-12 (a 13-digit default solve), split over the library's
-routines (:func:`benchmarks.profiling.solve_profile`).
+For each model: the time of ``solve(model, count=10, digits=15)`` (every printed
+digit proved) beside the time of the sparse FE model of
+:mod:`benchmarks.sparse_fe` (scipy.sparse assembly, ``eigsh`` shift-invert) on
+the coarsest uniform mesh -- elements per beam -- whose first 10 frequencies
+are within 1e-6 relative of an independent reference. The ratio symtmm / FE is
+the target's measure (at most 1).
 
-The FE times are measured twice: in this process, with the BLAS threads
-numpy and scipy start by default, and in a child process with one BLAS
-thread (``OPENBLAS_NUM_THREADS=1`` and its kin). On a loaded two-core machine
-the default threads wait on each other: a 400-unknown ``eigh`` can take a
-hundred times longer than with one thread. The target compares symtmm with
-the faster of the two, what a user who knows this gets.
+The mesh is found by doubling the elements per beam from 2 until the error is
+at most 1e-6, then bisecting between the last two sizes (the error falls like
+``h**4``); every mesh tried is reported. The FE time is what the user pays
+for one solve on that mesh, numbers to frequencies (mesh, assembly, ``eigsh``),
+the best of :data:`REPEAT` runs, measured twice: in this process with the BLAS
+threads numpy and scipy start by default, and in a child process with one BLAS
+thread (``OPENBLAS_NUM_THREADS=1`` and its kin); the faster counts. symtmm's
+time is the best of :data:`REPEAT` solves; one more, profiled
+(:mod:`benchmarks.profiling`), says where its time goes.
+
+References, none computed by symtmm (:mod:`benchmarks.references`):
+
+* example 1 -- the global coefficient matrix in mpmath, roots bracketed on a grid;
+* example 3 -- the decoupled families of identical pinned-pinned beams (Green's
+  function), which keep the triple root ``(4 pi)**2``;
+* the chains -- the global coefficient matrix in double precision (each beam
+  cut at its own springs), each root located below a finite-element frequency
+  (an upper bound) and confirmed by a sign change across ``1e-11`` relative;
+* the beam over equal pinned spans -- the closed-form frequency equation of a
+  periodically supported beam (:func:`benchmarks.references.multispan_omegas`).
 """
 
 from __future__ import annotations
@@ -27,57 +41,163 @@ from pathlib import Path
 import mpmath
 import numpy as np
 
-from symtmm.solve import solve
-
-from . import references
-from .models import check_ex1_model, example, fe_input
+from . import references, sparse_fe
+from .models import chain, check_ex1_model, example, global_input, multispan
 from .profiling import solve_profile
 
-__all__ = ["run", "ELEMENTS", "ELEMENTS_QUICK", "fe_times"]
+__all__ = ["run", "CASES", "reference", "coarsest_mesh", "fe_seconds"]
 
-ELEMENTS = (10, 20, 50, 100, 200, 500, 1000)
-ELEMENTS_QUICK = (10, 20, 50, 100)
 COUNT = 10
+DIGITS = 15
+TOLERANCE = 1e-6
+#: Timed runs per measurement; the best counts (other work only ever adds time).
+REPEAT = 5
 ROOT = Path(__file__).resolve().parent.parent
 #: Environment variables that set the BLAS thread count of the usual builds.
-_ONE_THREAD = {k: "1" for k in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")}
+ONE_THREAD = {k: "1" for k in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")}
+
+#: name: (model builder, what the reference is, counts toward the target)
+CASES = {
+    "ex1": (lambda: example("paper_ex1_ff_cc"), "paper example 1", True),
+    "ex3": (lambda: example("paper_ex3_three_pp_coupled"), "paper example 3", True),
+    "chain10": (lambda: chain(10, 2), "chain, 10 levels, 2 springs per level", True),
+    "chain20": (lambda: chain(20, 2), "chain, 20 levels, 2 springs per level", True),
+    "multispan20": (lambda: multispan(20), "beam over 20 equal pinned spans", True),
+    "chain50": (lambda: chain(50, 2), "chain, 50 levels, 2 springs per level", False),
+}
+QUICK = ("ex1", "ex3", "multispan20")
+
+#: Elements per beam of the FE model that locates the chains' roots for the reference.
+LOCATOR_ELEMENTS = 16
 
 
-def _rel_errors(values, reference) -> float:
-    with mpmath.workdps(40):
-        return max(float(abs(mpmath.mpf(float(v)) - r) / r) for v, r in zip(values, reference))
+def _mp(value, dps: int = 50):
+    """An exact model constant at ``dps`` digits (no double rounding of the inputs)."""
+    import sympy
+    with mpmath.workdps(dps):
+        return mpmath.mpf(str(sympy.N(value, dps)))
 
 
-def fe_times(elements, repeat: int = 3, enough: float = 1.0) -> list:
-    """``(elements per beam, best seconds, frequencies)`` of example 1's FE model.
+def reference(name: str, model) -> tuple:
+    """``(omegas, text)``: the first :data:`COUNT` frequencies of a case, with multiplicity."""
+    if name == "ex1":
+        check_ex1_model(model)
+        return list(references.ex1_omegas(COUNT)), references.EX1_METHOD
+    if name == "ex3":
+        r = model.resolved()
+        b, s = r.beams[0], r.springs[0]
+        positions = [_mp(x) for x in sorted({sp.x for sp in r.springs})]
+        top, roots = 100.0, []
+        while len(roots) < COUNT:
+            top *= 2
+            roots = references.chain_family_roots(len(r.beams), _mp(b.EI), _mp(b.m),
+                                                  _mp(b.L), positions, _mp(s.k), 0, top, 1)
+        return [z.imag for z in roots[:COUNT]], (
+            "decoupled families of the three identical pinned-pinned beams (Laplacian "
+            "eigenvalues 0, 1, 3), Green's-function characteristic equation at 40 digits; "
+            "the 10th frequency is one of the triple root (4 pi)^2")
+    if name.startswith("multispan"):
+        spans = len(model.beams)
+        return references.multispan_omegas(spans, COUNT), (
+            f"closed form of a uniform beam over {spans} equal pinned spans: nu = n pi and "
+            f"the roots of sin nu cosh nu - cos nu sinh nu = cos(j pi/{spans}) "
+            "(sin nu - sinh nu), 40 digits")
+    beams, springs = global_input(model)
+    guesses = sparse_fe.frequencies(sparse_fe.fe_input(model), LOCATOR_ELEMENTS, COUNT)
+    return references.located_omegas(beams, springs, list(guesses)), (
+        "global coefficient matrix (each beam cut at its own springs), double precision, "
+        f"each root below a {LOCATOR_ELEMENTS}-element FE frequency, confirmed by a sign "
+        "change across 1e-11 relative")
 
-    The best of ``repeat`` runs; a run over ``enough`` seconds is not repeated
-    (with the default BLAS threads on a loaded machine a 100-element solve can
-    take seconds instead of hundredths).
+
+def rel_error(values, ref) -> float:
+    """Largest ``|value - reference| / reference`` (both lists ascending); a reference
+    0 (a rigid-body mode) is compared relative to the largest reference value.
+
+    Examples
+    --------
+    >>> rel_error([0.0, 2.0, 3.003], [0, 2, 3])
+    0.001
     """
-    from symtmm.fe import fe_frequencies
-
-    beams, springs = fe_input(example("paper_ex1_ff_cc"))
-    out = []
-    for n in elements:
-        best, omegas = np.inf, None
-        for _ in range(repeat):
-            t = time.perf_counter()
-            omegas = fe_frequencies(beams, springs, n, count=COUNT)
-            best = min(best, time.perf_counter() - t)
-            if best > enough:
-                break
-        out.append((n, best, [float(w) for w in omegas]))
-    return out
+    with mpmath.workdps(40):
+        ref = [mpmath.mpf(str(r)) for r in ref]
+        top = max(ref)
+        return max(float(abs(mpmath.mpf(str(v)) - r) / (r or top)) for v, r in zip(values, ref))
 
 
-def _fe_times_one_thread(elements, limit: float = 300.0):
-    """:func:`fe_times` in a child process with one BLAS thread; None if it fails."""
-    cmd = [sys.executable, "-m", "benchmarks.fe_compare", "one-thread",
-           *[str(n) for n in elements]]
+def _fe_error(fe, n: int, ref) -> float:
+    return rel_error([float(w) for w in sparse_fe.frequencies(fe, n, COUNT)], ref)
+
+
+def coarsest(error, tol: float = TOLERANCE, start: int = 2, limit: int = 4096) -> tuple:
+    """``(n, tried)``: the smallest ``n`` with ``error(n) <= tol``, and ``{n: error}`` tried.
+
+    A ladder of sizes growing by about 1.25 from ``start`` finds the first one within
+    ``tol`` (the FE error falls like ``n**-4``, so the ladder's previous size is within
+    ``1.25**4`` of the tolerance), then bisection between the two. The error does not
+    fall for ever: on fine meshes rounding takes over, and where it has grown to twice
+    its smallest value above ``tol`` the search stops with an ArithmeticError.
+
+    Examples
+    --------
+    >>> n, tried = coarsest(lambda n: 1.0 / n**4, tol=1e-6)
+    >>> n, len(tried) < 20
+    (32, True)
+    """
+    tried: dict = {}
+
+    def err(n):
+        if n not in tried:
+            tried[n] = error(n)
+        return tried[n]
+
+    lo, hi = None, start
+    while err(hi) > tol:
+        best = min(tried.values())
+        if hi >= limit or err(hi) > 2 * best:
+            raise ArithmeticError(f"the FE error stops falling above {tol:g} (smallest "
+                                  f"{best:.2g}; {err(hi):.2g} at {hi} elements per beam)")
+        lo, hi = hi, max(hi + 1, round(1.25 * hi))
+    while lo is not None and hi - lo > 1:
+        mid = (lo + hi) // 2
+        if err(mid) <= tol:
+            hi = mid
+        else:
+            lo = mid
+    return hi, tried
+
+
+def coarsest_mesh(fe, ref, tol: float = TOLERANCE) -> tuple:
+    """``(elements per beam, tried)``: the coarsest mesh within ``tol`` (:func:`coarsest`),
+    and every ``(elements per beam, dofs, error)`` tried."""
+    def error(n):
+        if sparse_fe.dof_count(fe, n) <= COUNT + 1:
+            return np.inf                   # too few dofs for eigsh
+        return _fe_error(fe, n, ref)
+
+    n, tried = coarsest(error, tol)
+    rows = [dict(elements_per_beam=k, dofs=sparse_fe.dof_count(fe, k),
+                 max_rel_error=None if e == np.inf else e) for k, e in sorted(tried.items())]
+    return n, rows
+
+
+def fe_seconds(fe, n: int, repeat: int = REPEAT) -> float:
+    """Best wall time of :func:`benchmarks.sparse_fe.frequencies` on the mesh."""
+    best = np.inf
+    for _ in range(repeat):
+        start = time.perf_counter()
+        sparse_fe.frequencies(fe, n, COUNT)
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def _one_thread(jobs, limit: float = 300.0):
+    """``fe_seconds`` of ``[(case, elements), ...]`` in a child process with one BLAS
+    thread; None if it fails."""
+    cmd = [sys.executable, "-m", "benchmarks.fe_compare", "one-thread", json.dumps(jobs)]
     try:
         out = subprocess.run(cmd, capture_output=True, text=True, timeout=limit, cwd=ROOT,
-                             env={**os.environ, **_ONE_THREAD}, check=False)
+                             env={**os.environ, **ONE_THREAD}, check=False)
     except subprocess.TimeoutExpired:
         return None
     if out.returncode != 0:
@@ -85,74 +205,64 @@ def _fe_times_one_thread(elements, limit: float = 300.0):
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def _symtmm(reference) -> dict:
-    """symtmm's 13-digit default solve: plain time, error, and the profiled split."""
-    model = example("paper_ex1_ff_cc")
+def _symtmm(model, ref) -> dict:
+    """Best time of :data:`REPEAT` verified solves, the error of the printed values,
+    and a profiled solve."""
+    from symtmm.solve import solve
+
     best = np.inf
-    for _ in range(3):          # the fastest of three (shared machine)
+    for _ in range(REPEAT if len(model.beams) < 40 else 2):
         start = time.perf_counter()
-        spec = solve(model, count=COUNT, digits=13)
+        spectrum = solve(model, count=COUNT, digits=DIGITS)
         best = min(best, time.perf_counter() - start)
-    with mpmath.workdps(40):
-        printed = [mpmath.mpf(e.to_dict()["imag"]) for e in spec]
-        error = max(float(abs(p - r) / r) for p, r in zip(printed, reference))
-    profile, _ = solve_profile(model, count=COUNT, digits=13)
-    return dict(digits=13, seconds=round(best, 4), max_rel_error=error,
-                evaluations=spec.evaluations, profile=profile)
-
-
-def _error_exponent(rows) -> tuple:
-    """Fitted exponent of the FE error against elements per beam, over the meshes where
-    the error still falls (finer ones meet rounding), and those meshes."""
-    pts = [(rows[0]["elements_per_beam"], rows[0]["max_rel_error"])]
-    for r in rows[1:]:
-        if r["max_rel_error"] >= pts[-1][1]:
-            break
-        pts.append((r["elements_per_beam"], r["max_rel_error"]))
-    if len(pts) < 2:
-        return None, [p[0] for p in pts]
-    slope = np.polyfit(np.log([p[0] for p in pts]), np.log([p[1] for p in pts]), 1)[0]
-    return float(slope), [p[0] for p in pts]
+    printed = [e.to_dict()["imag"] for e in spectrum for _ in range(e.multiplicity)][:COUNT]
+    profile, _ = solve_profile(model, count=COUNT, digits=DIGITS)
+    return dict(seconds=best, evaluations=spectrum.evaluations,
+                max_rel_error=rel_error(printed, ref), profile=profile)
 
 
 def run(quick: bool = False, progress=print) -> dict:
-    model = example("paper_ex1_ff_cc")
-    check_ex1_model(model)
-    progress("fe: global-matrix reference")
-    reference = list(references.ex1_omegas(COUNT))
-    progress("fe: symtmm to 1e-12")
-    sym = _symtmm(reference)
-    sizes = ELEMENTS_QUICK if quick else ELEMENTS
-    progress("fe: FE model, default BLAS threads")
-    default = fe_times(sizes)
-    progress("fe: FE model, one BLAS thread (child process)")
-    single = _fe_times_one_thread(sizes)
-    rows = []
-    for i, (n, seconds, omegas) in enumerate(default):
-        one = single[i][1] if single else None
-        rows.append(dict(elements_per_beam=n, seconds_default_threads=round(seconds, 4),
-                         seconds_one_thread=round(one, 4) if one is not None else None,
-                         seconds=round(min(seconds, one if one is not None else np.inf), 4),
-                         max_rel_error=_rel_errors(omegas, reference)))
-    reaching = [r for r in rows if r["max_rel_error"] <= 1e-6]
-    fe_1e6 = min(reaching, key=lambda r: r["seconds"]) if reaching else None
-    slope, slope_sizes = _error_exponent(rows)
-    met = bool(sym["max_rel_error"] <= 1e-12 and fe_1e6 is not None
-               and sym["seconds"] < fe_1e6["seconds"])
+    names = QUICK if quick else tuple(CASES)
+    cases = []
+    for name in names:
+        build, title, counted = CASES[name]
+        model = build()
+        progress(f"fe: {name}: reference")
+        start = time.perf_counter()
+        ref, text = reference(name, model)
+        ref_seconds = time.perf_counter() - start
+        fe = sparse_fe.fe_input(model)
+        progress(f"fe: {name}: coarsest FE mesh within {TOLERANCE:g}")
+        n, tried = coarsest_mesh(fe, ref)
+        progress(f"fe: {name}: symtmm, {DIGITS} digits")
+        sym = _symtmm(model, ref)
+        cases.append(dict(
+            name=name, title=title, counted=counted, beams=len(model.beams),
+            reference=dict(method=text, seconds=ref_seconds),
+            symtmm=sym,
+            fe=dict(elements_per_beam=n, dofs=sparse_fe.dof_count(fe, n),
+                    max_rel_error=_fe_error(fe, n, ref), tried=tried,
+                    seconds_default_threads=fe_seconds(fe, n))))
+    progress("fe: FE timings with one BLAS thread (child process)")
+    single = _one_thread([[c["name"], c["fe"]["elements_per_beam"]] for c in cases])
+    for i, c in enumerate(cases):
+        f = c["fe"]
+        f["seconds_one_thread"] = single[i] if single else None
+        f["seconds"] = min(f["seconds_default_threads"],
+                           f["seconds_one_thread"] if single else np.inf)
+        c["ratio"] = c["symtmm"]["seconds"] / f["seconds"]
+    counted = [c for c in cases if c["counted"]]
     return dict(
-        model="paper_ex1_ff_cc", count=COUNT,
-        reference=references.EX1_METHOD + " (the FE errors falling like h^4 confirm it once more)",
-        blas_threads_env=sorted(_ONE_THREAD), one_thread_ok=single is not None,
-        symtmm=sym, fe=rows, fe_error_exponent=slope, fe_exponent_sizes=slope_sizes,
-        fe_best=min(rows, key=lambda r: r["max_rel_error"]),
-        fe_fastest_to_1e6=fe_1e6,
-        target=dict(text="symtmm reaches 1e-12 faster than the FE model reaches 1e-6",
-                    symtmm_seconds=sym["seconds"],
-                    fe_seconds=fe_1e6["seconds"] if fe_1e6 else None,
-                    fe_elements=fe_1e6["elements_per_beam"] if fe_1e6 else None,
-                    met=met))
+        count=COUNT, digits=DIGITS, tolerance=TOLERANCE, repeat=REPEAT,
+        blas_threads_env=sorted(ONE_THREAD), one_thread_ok=single is not None, cases=cases,
+        target=dict(text=f"solve(count={COUNT}, digits={DIGITS}) takes at most the time of "
+                         f"the sparse FE model at {TOLERANCE:g} (ratio <= 1)",
+                    ratios={c["name"]: c["ratio"] for c in cases},
+                    met=bool(counted) and all(c["ratio"] <= 1 for c in counted)))
 
 
-if __name__ == "__main__" and len(sys.argv) >= 2 and sys.argv[1] == "one-thread":
-    # worker: python -m benchmarks.fe_compare one-thread N1 N2 ... (BLAS threads set by env)
-    print(json.dumps(fe_times([int(n) for n in sys.argv[2:]])))
+if __name__ == "__main__" and len(sys.argv) == 3 and sys.argv[1] == "one-thread":
+    # worker: python -m benchmarks.fe_compare one-thread '[["ex1", 80], ...]' (BLAS threads
+    # set by the environment)
+    print(json.dumps([fe_seconds(sparse_fe.fe_input(CASES[name][0]()), n)
+                      for name, n in json.loads(sys.argv[2])]))

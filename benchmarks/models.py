@@ -6,11 +6,11 @@ import random
 from fractions import Fraction
 from pathlib import Path
 
-from symtmm.model import Beam, Model, Spring
+from symtmm.model import Attachment, Beam, Model, RigidBody, Spring
 from symtmm.modelfile import load
 
 __all__ = ["EXAMPLES", "example", "clamped_clamped", "chain", "fe_input", "global_input",
-           "exact_global_input", "check_ex1_model"]
+           "exact_global_input", "check_ex1_model", "multispan"]
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -109,3 +109,25 @@ def check_ex1_model(model: Model) -> None:
     if global_input(model) != exact_global_input(EX1_BEAMS, EX1_SPRINGS):
         raise ValueError("examples/paper_ex1_ff_cc.toml no longer matches "
                          "benchmarks.references.EX1_BEAMS/EX1_SPRINGS")
+
+
+def multispan(spans: int = 20) -> Model:
+    """A uniform beam over ``spans`` equal pinned spans: one beam per span, joined end to end.
+
+    Beams ``s1 .. sN`` (``EI = m = L = 1``) over ``[i, i + 1]``; ``[[joint]]``-style
+    rigid joints (massless bodies holding two ends) at ``x = 1 .. N - 1``, each
+    pinned by the right end of the span before it; the outer ends are pinned.
+
+    Examples
+    --------
+    >>> m = multispan(3)
+    >>> [(b.left, b.right) for b in m.beams], len(m.bodies)
+    ([('pinned', 'pinned'), ('free', 'pinned'), ('free', 'pinned')], 2)
+    """
+    beams = tuple(Beam(f"s{i + 1}", EI=1, m=1, L=1, x0=i,
+                       left="pinned" if i == 0 else "free", right="pinned")
+                  for i in range(spans))
+    joints = tuple(RigidBody(f"pin{i}", (Attachment(f"s{i}", i), Attachment(f"s{i + 1}", i)))
+                   for i in range(1, spans))
+    return Model(beams, bodies=joints,
+                 title=f"uniform beam over {spans} equal pinned spans (joints of span ends)")

@@ -1,19 +1,13 @@
-"""Where a solve spends its time: seconds and calls of the library's inner routines.
+"""Where a solve spends its time: seconds, calls and points of the library's inner routines.
 
 The report says why a target is missed from numbers gathered in the same
-run, not from a separate profile: :func:`solve_profile` wraps the routines a
-solve is made of (each wrapper adds about a microsecond per call, against
-milliseconds per mpmath evaluation) and returns seconds and calls of each,
-the rest being everything else (bisection logic, bookkeeping, results).
-
-The routines timed do not call one another, so their times add up:
-
-* ``rigid_body_modes`` -- the exact rank of ``R(0)``;
-* ``count`` -- :meth:`symtmm.stiffness.StiffnessModel.count`, the
-  Wittrick--Williams count (double precision, mpmath where a pivot is small);
-* ``delta_double`` -- :meth:`symtmm.compile.Evaluator.log_delta`, the stable
-  double-precision ``Delta`` (``Evaluator.delta`` calls it);
-* ``delta_mpmath`` -- :meth:`symtmm.compile.Evaluator.delta_mp`.
+run, not from a separate profile: :func:`profile_call` wraps the routines
+:func:`benchmarks.kernel.internals` names (each wrapper adds about a
+microsecond per call) and returns the *own* time of each -- a routine's time
+without the timed routines it calls -- so the times add up to the whole, the
+rest being everything else (search logic, bookkeeping, results). A routine
+whose calls use different arithmetics is split by arithmetic
+(``factor_double``, ``factor_ball``, ``factor_mp``).
 """
 
 from __future__ import annotations
@@ -22,61 +16,70 @@ import functools
 import time
 from contextlib import contextmanager
 
-__all__ = ["timed_calls", "solve_profile", "ROUTINES"]
+__all__ = ["timed_calls", "profile_call", "solve_profile", "ROUTINE_TEXT"]
+
+#: What each timed routine is, for the report (a name's prefix before the arithmetic).
+ROUTINE_TEXT = {
+    "plan": "compiling the model into a stiffness plan",
+    "factor_double": "double-precision factorizations (counts and Delta)",
+    "factor_ball": "ball-arithmetic factorizations (the proofs)",
+    "factor_mp": "mpmath factorizations",
+    "rigid_body_modes": "the exact rank of R(0) (rigid-body modes)",
+    "complex_factor_double": "double-precision factorizations at complex points",
+    "complex_factor_ball": "ball factorizations at complex points",
+    "complex_factor_mp": "mpmath factorizations at complex points",
+    "enclose_ball": "Arb enclosures of Delta over boxes (the damped proofs)",
+    "mode_shapes": "mode shapes (branch tracking)",
+}
 
 
-def _routines() -> dict:
-    from symtmm.compile import Evaluator
-    from symtmm.roots import undamped
-    from symtmm.stiffness import StiffnessModel
-
-    return {"rigid_body_modes": (undamped, "rigid_body_modes"),
-            "count": (StiffnessModel, "count"),
-            "delta_double": (Evaluator, "log_delta"),
-            "delta_mpmath": (Evaluator, "delta_mp")}
-
-
-#: Names of the routines :func:`solve_profile` times.
-ROUTINES = ("rigid_body_modes", "count", "delta_double", "delta_mpmath")
-
-
-def _wrap(fn, stat: dict):
+def _wrap(fn, name: str, key, stats: dict, stack: list):
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
-        if stat["depth"]:           # a recursive call is inside the outer one's time
-            return fn(*args, **kwargs)
-        stat["depth"] += 1
-        t = time.perf_counter()
+        sub, points = key(args, kwargs) if key else (None, 1)
+        label = f"{name}_{sub}" if sub else name
+        children = [0.0]
+        stack.append(children)
+        start = time.perf_counter()
         try:
             return fn(*args, **kwargs)
         finally:
-            stat["seconds"] += time.perf_counter() - t
+            elapsed = time.perf_counter() - start
+            stack.pop()
+            if stack:
+                stack[-1][0] += elapsed
+            stat = stats.setdefault(label, dict(seconds=0.0, calls=0, points=0))
+            stat["seconds"] += elapsed - children[0]
             stat["calls"] += 1
-            stat["depth"] -= 1
+            stat["points"] += points
     return wrapper
 
 
 @contextmanager
 def timed_calls(targets: dict):
-    """Seconds and calls of ``owner.attr`` for each ``name: (owner, attr)`` in the block.
+    """Own seconds, calls and points of ``owner.attr`` for each ``name: (owner, attr, key)``.
+
+    ``key(args, kwargs)`` returns ``(suffix, points)`` of a call (None: no suffix,
+    one point). The statistics are keyed by ``name`` or ``name_suffix``.
 
     Examples
     --------
     >>> import math
     >>> class Box:
     ...     sqrt = staticmethod(math.sqrt)
-    >>> with timed_calls({"sqrt": (Box, "sqrt")}) as stats:
+    >>> with timed_calls({"sqrt": (Box, "sqrt", None)}) as stats:
     ...     _ = [Box.sqrt(2.0) for _ in range(3)]
     >>> stats["sqrt"]["calls"], Box.sqrt is math.sqrt
     (3, True)
     """
-    stats = {name: dict(seconds=0.0, calls=0, depth=0) for name in targets}
+    stats: dict = {}
+    stack: list = []
     saved = []
-    for name, (owner, attr) in targets.items():
+    for name, (owner, attr, key) in targets.items():
         original = owner.__dict__[attr] if isinstance(owner, type) else getattr(owner, attr)
         saved.append((owner, attr, original))
         fn = original.__func__ if isinstance(original, staticmethod) else original
-        wrapped = _wrap(fn, stats[name])
+        wrapped = _wrap(fn, name, key, stats, stack)
         setattr(owner, attr, staticmethod(wrapped) if isinstance(original, staticmethod)
                 else wrapped)
     try:
@@ -84,32 +87,36 @@ def timed_calls(targets: dict):
     finally:
         for owner, attr, original in saved:
             setattr(owner, attr, original)
-        for stat in stats.values():
-            del stat["depth"]
 
 
-def solve_profile(model, **solve_kw) -> tuple:
-    """One default solve with its time split over :data:`ROUTINES`.
+def profile_call(fn) -> tuple:
+    """``(profile, result)`` of ``fn()`` with its time split over the routines of
+    :func:`benchmarks.kernel.internals`.
 
-    Returns
-    -------
-    (dict, Spectrum)
-        The profile: ``seconds`` (the whole solve), ``roots`` (with
-        multiplicity), ``evaluations`` (the spectrum's count), ``routines``
-        (seconds, calls and share of the time of each), ``other_seconds`` and
-        ``mpmath_evaluations_per_root``; and the solve's result.
+    The profile: ``seconds`` (the whole call), ``routines`` (own seconds, calls,
+    points and share of each routine that ran), ``other_seconds``, and
+    ``evaluations`` when the result has them.
     """
-    from symtmm.solve import solve
+    from .kernel import internals
 
-    with timed_calls(_routines()) as stats:
+    with timed_calls(internals().profiled) as stats:
         start = time.perf_counter()
-        spectrum = solve(model, **solve_kw)
+        result = fn()
         seconds = time.perf_counter() - start
     for stat in stats.values():
         stat["share"] = stat["seconds"] / seconds if seconds else None
-    roots = sum(e.multiplicity for e in spectrum)
-    profile = dict(seconds=seconds, roots=roots, evaluations=spectrum.evaluations,
-                   routines=stats,
-                   other_seconds=seconds - sum(s["seconds"] for s in stats.values()),
-                   mpmath_evaluations_per_root=stats["delta_mpmath"]["calls"] / max(roots, 1))
+    profile = dict(seconds=seconds, routines=dict(sorted(stats.items())),
+                   other_seconds=seconds - sum(s["seconds"] for s in stats.values()))
+    if hasattr(result, "evaluations"):
+        profile["evaluations"] = int(result.evaluations)
+    return profile, result
+
+
+def solve_profile(model, **solve_kw) -> tuple:
+    """``(profile, spectrum)`` of one :func:`symtmm.solve.solve` (see :func:`profile_call`);
+    the profile also holds ``roots`` (with multiplicity)."""
+    from symtmm.solve import solve
+
+    profile, spectrum = profile_call(lambda: solve(model, **solve_kw))
+    profile["roots"] = sum(e.multiplicity for e in spectrum)
     return profile, spectrum

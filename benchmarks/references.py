@@ -32,6 +32,7 @@ Nothing here calls symtmm: these functions take plain numbers.
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 from fractions import Fraction
 
@@ -255,9 +256,11 @@ class _GlobalLayout:
     """Unknowns and equations of the global matrix: 4 unknowns per beam and segment.
 
     ``beams``: ``(EI, m, left, right)`` over ``[0, L]``; ``springs``:
-    ``(a, b, x, k)`` with ``b = None`` for a spring to the ground and ``x``
-    strictly inside ``(0, L)`` (a number or an exact string such as ``"3/10"``).
-    Beam ``i`` has the wave number ``nu_i = beta_i L = ratio_i Omega`` with
+    ``(a, b, x, k)`` with ``b = None`` for a spring to the ground and ``0 <= x <= L``
+    (a number or an exact string such as ``"3/10"``); a spring at an end enters
+    the shear condition of every end it holds there. Each beam is cut where its
+    own springs act, so a chain of many levels keeps a few segments per beam. Beam
+    ``i`` has the wave number ``nu_i = beta_i L = ratio_i Omega`` with
     ``Omega = beta_1 L``.
     """
 
@@ -267,12 +270,17 @@ class _GlobalLayout:
         self.L = Fraction(str(L))
         self.springs = [(a, b, Fraction(str(x)) / self.L, Fraction(str(k)))
                         for a, b, x, k in springs]
-        if any(not 0 < x < 1 for _, _, x, _ in self.springs):
-            raise ValueError("springs must lie strictly inside the span")
-        cuts = sorted({x for _, _, x, _ in self.springs})
-        self.points = [Fraction(0), *cuts, Fraction(1)]
-        self.lengths = [b - a for a, b in zip(self.points, self.points[1:])]
-        self.size = 4 * len(self.beams) * len(self.lengths)
+        if any(not 0 <= x <= 1 for _, _, x, _ in self.springs):
+            raise ValueError("springs must lie on the span")
+        #: per beam: its cut points (ends included) and its segment lengths
+        self.points = [[Fraction(0), *sorted({x for a, b, x, _ in self.springs
+                                              if i in (a, b) and 0 < x < 1}), Fraction(1)]
+                       for i in range(len(self.beams))]
+        self.lengths = [[b - a for a, b in itertools.pairwise(p)] for p in self.points]
+        self._first = [0]
+        for lengths in self.lengths:
+            self._first.append(self._first[-1] + 4 * len(lengths))
+        self.size = self._first[-1]
         EI1, m1 = self.beams[0][:2]
         #: ``ratio_i**4``, from ``beta_i**4 = m_i omega**2 / EI_i``
         self.ratio4 = [(m * EI1) / (m1 * EI) for EI, m, _, _ in self.beams]
@@ -283,7 +291,7 @@ class _GlobalLayout:
         return Omega ** 2 * mpmath.sqrt(_mpf(EI1) / _mpf(m1)) / _mpf(self.L) ** 2
 
     def _column(self, beam: int, segment: int) -> int:
-        return 4 * (beam * len(self.lengths) + segment)
+        return self._first[beam] + 4 * segment
 
     def entries(self, rows_at, kappa) -> list:
         """``(row, column, value)`` of the matrix.
@@ -293,45 +301,54 @@ class _GlobalLayout:
         ``k`` in beam ``i``'s units, ``k L**3 / (EI_i nu_i**3)``.
         """
         out, r = [], 0
-        last = len(self.lengths) - 1
         for i, (_, _, left, right) in enumerate(self.beams):
-            for seg, xi, kind in ((0, Fraction(0), left), (last, self.lengths[-1], right)):
+            last = len(self.lengths[i]) - 1
+            for seg, xi, kind, x, sign in ((0, Fraction(0), left, Fraction(0), 1),
+                                           (last, self.lengths[i][-1], right, Fraction(1), -1)):
                 at = rows_at(i, xi)
                 for d in _END_ROWS[kind]:
-                    out += [(r, self._column(i, seg) + j, at[d][j]) for j in range(4)]
+                    out += [(r, self._column(i, seg) + j, sign * at[d][j]) for j in range(4)]
+                    if d == 3:
+                        # the shear at a left end is +F, at a right end -F (Q+ - Q- = F,
+                        # no beam beyond the end): the interior jump with one side gone
+                        out += self._spring_terms(r, i, x, rows_at, kappa)
                     r += 1
-        for s in range(1, last + 1):
-            for i in range(len(self.beams)):
-                minus, plus = rows_at(i, self.lengths[s - 1]), rows_at(i, Fraction(0))
+        for i in range(len(self.beams)):
+            for s in range(1, len(self.lengths[i])):
+                minus, plus = rows_at(i, self.lengths[i][s - 1]), rows_at(i, Fraction(0))
                 for d in range(4):
                     # Y, Y', Y'' continuous; the shear row also balances the springs
                     out += [(r, self._column(i, s - 1) + j, -minus[d][j]) for j in range(4)]
                     out += [(r, self._column(i, s) + j, plus[d][j]) for j in range(4)]
                     if d == 3:
-                        out += self._spring_terms(r, i, s, rows_at, kappa)
+                        out += self._spring_terms(r, i, self.points[i][s], rows_at, kappa)
                     r += 1
         if r != self.size:
             raise AssertionError("equations and unknowns differ in number")
         return out
 
-    def _spring_terms(self, r, i, s, rows_at, kappa) -> list:
-        """The springs at cut ``s`` in beam ``i``'s shear row.
+    def _spring_terms(self, r, i, x, rows_at, kappa) -> list:
+        """The springs at ``x`` in beam ``i``'s shear row.
 
         ``EI_i (Y_i'''(x+) - Y_i'''(x-)) = F_i`` with ``F_i = k (Y_other - Y_i)``
         (``-k Y_i`` to the ground), so the row gets ``+kappa Y_i - kappa Y_other``;
-        each ``Y`` is taken at the right end of its beam's segment left of the cut.
+        each ``Y`` is taken at the right end of its beam's segment left of the cut
+        (every beam a spring touches is cut there), at a left end at the start of
+        its first segment.
         """
         out = []
-        for a, b, x, k in self.springs:
-            if x != self.points[s] or i not in (a, b):
+        for a, b, xs, k in self.springs:
+            if xs != x or i not in (a, b):
                 continue
             other = b if i == a else a
             kk = kappa(i, k)
             for beam, sign in ((i, 1), (other, -1)):
                 if beam is None:
                     continue
-                y = rows_at(beam, self.lengths[s - 1])[0]
-                out += [(r, self._column(beam, s - 1) + j, sign * kk * y[j]) for j in range(4)]
+                s = self.points[beam].index(x)
+                seg, xi = (0, Fraction(0)) if s == 0 else (s - 1, self.lengths[beam][s - 1])
+                y = rows_at(beam, xi)[0]
+                out += [(r, self._column(beam, seg) + j, sign * kk * y[j]) for j in range(4)]
         return out
 
 
@@ -545,3 +562,217 @@ def ex1_omegas(count: int = 10, dps: int = 40) -> tuple:
     ['14.1371654913', '14.1440577596']
     """
     return tuple(global_matrix_omegas(EX1_BEAMS, EX1_SPRINGS, count, dps=dps))
+
+
+# -- chains of many levels: the global matrix in double precision, roots located by FE ---
+def _sparse_sign_logdet(layout: _GlobalLayout, Omega: float) -> tuple:
+    """``(sign, log|det|)`` of the global matrix at one real ``Omega`` (sparse LU).
+
+    ``det A = det P_r det P_c prod diag U`` of SuperLU's ``P_r A P_c = L U`` (``L``
+    with a unit diagonal); a permutation's sign is ``(-1)**(n - cycles)``.
+    """
+    import scipy.sparse
+    import scipy.sparse.linalg
+
+    nus = [Omega * float(q) ** 0.25 for q in layout.ratio4]
+    EIs = [float(b[0]) for b in layout.beams]
+    L3 = float(layout.L) ** 3
+    memo = {}
+
+    def rows_at(i, xi):
+        if (i, xi) not in memo:
+            z = nus[i] * float(xi)
+            memo[i, xi] = _basis_rows(math.cos(z), math.sin(z), math.cosh(z), math.sinh(z))
+        return memo[i, xi]
+
+    r, c, v = zip(*layout.entries(rows_at, lambda i, k: float(k) * L3 / (EIs[i] * nus[i] ** 3)))
+    A = scipy.sparse.csc_matrix((v, (r, c)), shape=(layout.size, layout.size))
+    try:
+        lu = scipy.sparse.linalg.splu(A)
+    except RuntimeError:            # an exactly zero pivot: a root in double precision
+        return 0.0, -math.inf
+    d = lu.U.diagonal()
+    if np.any(d == 0):
+        return 0.0, -math.inf
+    sign = float(np.prod(np.sign(d))) * _permutation_sign(lu.perm_r) * \
+        _permutation_sign(lu.perm_c)
+    return sign, float(np.sum(np.log(np.abs(d))))
+
+
+def _permutation_sign(perm) -> int:
+    """``+1`` or ``-1``: the sign of a permutation given as an index array.
+
+    Examples
+    --------
+    >>> _permutation_sign([0, 1, 2]), _permutation_sign([1, 0, 2]), _permutation_sign([1, 2, 0])
+    (1, -1, 1)
+    """
+    seen, cycles = [False] * len(perm), 0
+    for start in range(len(perm)):
+        if not seen[start]:
+            cycles += 1
+            j = start
+            while not seen[j]:
+                seen[j] = True
+                j = perm[j]
+    return -1 if (len(perm) - cycles) % 2 else 1
+
+
+def located_omegas(beams, springs, guesses, L=1, width: float = 1e-3,
+                   confirm: float = 1e-11) -> list:
+    """Natural frequencies from the global matrix, each near an upper bound in ``guesses``.
+
+    For models too large for :func:`global_matrix_omegas` (a chain of 50 levels
+    has some 1000 unknowns: an mpmath determinant takes seconds, a grid scan
+    thousands of them). ``guesses`` are frequencies from a conforming finite-element
+    model (Rayleigh-Ritz: each is an upper bound of its exact frequency) accurate
+    to well within ``width``. Each root is decided by the exact global matrix, in
+    double precision (sparse LU; its segments are short, so every entry is of
+    order one): a sign change over ``[g (1 - width), g (1 + 1e-6)]``, the same sign
+    between consecutive brackets, Brent's method inside, and a sign change
+    across ``root (1 -+ confirm)``.
+
+    Parameters
+    ----------
+    beams, springs, L
+        As for :func:`global_matrix_omegas`.
+    guesses : sequence of float
+        Frequencies ``omega``, ascending.
+    width : float
+        Relative width of the bracket below each guess (narrowed to half the gap
+        between close guesses).
+    confirm : float
+        Relative half-width of the final sign change: the accuracy claimed.
+
+    Returns
+    -------
+    list of mpmath.mpf
+        ``omega`` of each root (as the double-precision root).
+
+    Examples
+    --------
+    Two identical pinned-pinned beams joined by springs: the in-phase ones are
+    ``Omega = n pi``:
+
+    >>> pp = [(1, 1, "pinned", "pinned")] * 2
+    >>> w = located_omegas(pp, [(0, 1, "3/10", 100), (0, 1, "7/10", 100)], [9.8697, 24.66])
+    >>> [round(float(mpmath.sqrt(x) / mpmath.pi), 10) for x in w]
+    [1.0, 1.5805782375]
+    """
+    import scipy.optimize
+
+    layout = _GlobalLayout(beams, springs, L)
+    EI1, m1 = (float(v) for v in layout.beams[0][:2])
+    scale = math.sqrt(EI1 / m1) / float(layout.L) ** 2
+
+    def Omega(w):
+        return math.sqrt(w / scale)
+
+    g = [Omega(w) for w in guesses]
+    brackets = []
+    for i, x in enumerate(g):
+        lo = x * (1 - width)
+        if i:
+            lo = max(lo, 0.5 * (g[i - 1] + x))
+        brackets.append((lo, x * (1 + 1e-6)))
+    if any(a[1] >= b[0] for a, b in itertools.pairwise(brackets)):
+        raise ArithmeticError("guesses closer than 1e-6: refine the finite-element model")
+    signs = [[_sparse_sign_logdet(layout, e)[0] for e in b] for b in brackets]
+    for i, ((sa, sb), (a, b)) in enumerate(zip(signs, brackets)):
+        if sa * sb >= 0:
+            raise ArithmeticError(f"no sign change below guess {i + 1} "
+                                  f"(Omega in [{a:.12g}, {b:.12g}])")
+        if i and signs[i - 1][1] != sa:
+            raise ArithmeticError(f"a sign change between guesses {i} and {i + 1}")
+    roots = []
+    for a, b in brackets:
+        _, ref = _sparse_sign_logdet(layout, b)
+
+        def f(x, ref=ref):
+            s, la = _sparse_sign_logdet(layout, x)
+            return s * math.exp(min(la - ref, 700.0))
+
+        x = scipy.optimize.brentq(f, a, b, xtol=1e-15 * b, rtol=1e-15)
+        lo, hi = f(x * (1 - confirm)), f(x * (1 + confirm))
+        if lo * hi >= 0:
+            raise ArithmeticError(f"the root near Omega = {x:.15g} is not confirmed to "
+                                  f"{confirm:g}")
+        roots.append(x)
+    with mpmath.workdps(30):
+        return [layout.omega(mpmath.mpf(x)) for x in roots]
+
+
+# -- a uniform beam over equal pinned spans ------------------------------------------------
+def multispan_function(nu, j: int, spans: int):
+    """``F_j(nu)``: zero at the frequencies of band family ``j`` of a beam over ``spans`` spans.
+
+    A uniform beam, pinned at both ends and at ``spans - 1`` equally spaced
+    intermediate supports. On a span ``0 <= x <= l`` with ``Y = 0`` at both ends
+    and end slopes ``theta_0, theta_1``, the curvatures are ``Y''(0) = p theta_0 +
+    q theta_1`` and ``Y''(l) = -(q theta_0 + p theta_1)``, with (``nu = beta l``)
+
+        p = beta (sin nu cosh nu - cos nu sinh nu) / (cos nu cosh nu - 1)
+        q = -beta (sin nu - sinh nu) / (cos nu cosh nu - 1)
+
+    (solve ``Y = A cos + B sin + C cosh + D sinh`` for the four end values).
+    Continuity of the slope and of the moment at support ``k`` gives
+    ``q theta_(k-1) + 2 p theta_k + q theta_(k+1) = 0`` and the pinned outer ends
+    ``p theta_0 + q theta_1 = 0 = q theta_(N-1) + p theta_N``, solved by
+    ``theta_k = cos(k mu)`` with ``sin(N mu) = 0`` and ``cos mu = -p/q`` (the
+    classical propagation constant of a periodically supported beam):
+    ``mu = j pi / N``, ``j = 1 .. N - 1``, and
+
+        F_j(nu) = sin nu cosh nu - cos nu sinh nu - cos(j pi / N) (sin nu - sinh nu).
+
+    The remaining frequencies, one per band, are the pinned-pinned ones of a
+    single span, ``nu = n pi`` (``sin nu = 0``: every span moves as a
+    pinned-pinned beam, neighbours in opposite or equal phase).
+
+    Examples
+    --------
+    Two spans: ``j = 1`` gives ``p = 0``, spans pinned-clamped, ``tan nu = tanh nu``:
+
+    >>> with mpmath.workdps(20):
+    ...     nu = mpmath.findroot(lambda v: multispan_function(v, 1, 2), 3.9)
+    ...     print(mpmath.nstr(nu, 15), mpmath.nstr(mpmath.tan(nu) - mpmath.tanh(nu), 3))
+    3.92660231204792 0.0
+    """
+    c = mpmath.cos(j * mpmath.pi / spans)
+    return (mpmath.sin(nu) * mpmath.cosh(nu) - mpmath.cos(nu) * mpmath.sinh(nu)
+            - c * (mpmath.sin(nu) - mpmath.sinh(nu)))
+
+
+def multispan_omegas(spans: int, count: int, EI=1, m=1, l=1, dps: int = 40) -> list:
+    """The lowest ``count`` natural frequencies of a uniform beam over equal pinned spans.
+
+    Every band ``n pi < nu < nu_cc`` (``nu_cc`` the ``n``-th clamped-clamped root,
+    where ``cos mu = (-1)**(n+1)``) holds ``nu = n pi`` and one root of each
+    :func:`multispan_function`, ``j = 1 .. spans - 1``: ``spans`` roots. Each is
+    bracketed by a sign change over the band and found by the Anderson-Björck
+    method in mpmath; the frequencies are ``nu**2 sqrt(EI/m) / l**2``.
+
+    Examples
+    --------
+    Two spans: ``pi`` (pinned-pinned spans), then pinned-clamped spans:
+
+    >>> [mpmath.nstr(mpmath.sqrt(w), 10) for w in multispan_omegas(2, 3, dps=20)]
+    ['3.141592654', '3.926602312', '6.283185307']
+    """
+    out = []
+    with mpmath.workdps(dps):
+        cc = [mpmath.findroot(lambda x: mpmath.cos(x) - mpmath.sech(x),
+                              (n + mpmath.mpf(1) / 2) * mpmath.pi) for n in range(1, count + 2)]
+        band = 1
+        while len(out) < count:
+            lo, hi = band * mpmath.pi, cc[band - 1]
+            nus = [lo]
+            for j in range(1, spans):
+                f = functools.partial(multispan_function, j=j, spans=spans)
+                a, b = lo * (1 + mpmath.mpf(10) ** (5 - dps)), hi
+                if f(a) * f(b) >= 0:
+                    raise ArithmeticError(f"no sign change of F_{j} in band {band}")
+                nus.append(mpmath.findroot(f, (a, b), solver="anderson"))
+            out += sorted(nus)
+            band += 1
+        scale = mpmath.sqrt(mpmath.mpf(EI) / m) / mpmath.mpf(l) ** 2
+        return [nu * nu * scale for nu in out[:count]]

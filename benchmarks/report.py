@@ -8,9 +8,17 @@ tables it sits beside.
 
 from __future__ import annotations
 
-import statistics
+__all__ = ["render", "TARGETS"]
 
-__all__ = ["render"]
+#: Section -> the target it carries, in the order of the issue.
+TARGETS = {
+    "fe": "verified 15-digit solve / sparse FE at 1e-6, at most 1",
+    "scaling": "cost per evaluation against size, exponent at most 1.2 at 15 and 50 digits",
+    "precision": "30 and 50 digits at most 2x the 15-digit solve",
+    "root_search": "damped example 4 faster than fMin2D with at most 1/10 of its evaluations",
+    "sweep": "51-step sweep of example 1 faster than 51 sparse FE solves at 1e-6",
+    "evaluator": "batched double Delta at most 5x its transcendental functions",
+}
 
 
 def _g(x, digits=3) -> str:
@@ -43,6 +51,17 @@ def _pct(x) -> str:
     return "–" if x is None else f"{100 * x:.0f} %"
 
 
+def _ms(seconds) -> str:
+    """Seconds as milliseconds for prose.
+
+    Examples
+    --------
+    >>> _ms(0.01234), _ms(2.5)
+    ('12.3 ms', '2.5e+03 ms')
+    """
+    return f"{_g(seconds * 1e3)} ms"
+
+
 def _table(header, rows) -> list:
     out = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
     out += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
@@ -53,6 +72,45 @@ def _met(flag) -> str:
     return "**met**" if flag else "**missed**"
 
 
+# -- profiles ----------------------------------------------------------------------------------
+def _routine_text(label: str) -> str:
+    from .profiling import ROUTINE_TEXT
+    return ROUTINE_TEXT.get(label, label)
+
+
+def _profile_sentence(p) -> str:
+    """Where a profiled call spent its time, largest share first.
+
+    Examples
+    --------
+    >>> p = {"seconds": 0.2, "other_seconds": 0.02, "routines": {
+    ...     "factor_ball": {"seconds": 0.12, "calls": 4, "points": 40, "share": 0.6},
+    ...     "plan": {"seconds": 0.06, "calls": 2, "points": 2, "share": 0.3}}}
+    >>> _profile_sentence(p)[:86]
+    '0.2 s: 60 % in ball-arithmetic factorizations (the proofs) (4 calls, 40 points, 3 ms p'
+    """
+    parts = []
+    for label, s in sorted(p["routines"].items(), key=lambda kv: -kv[1]["seconds"]):
+        if not s["calls"]:
+            continue
+        if s["points"] != s["calls"]:
+            per = (f"{s['calls']} calls, {s['points']} points, "
+                   f"{_ms(s['seconds'] / s['points'])} per point")
+        elif s["calls"] > 1:
+            per = f"{s['calls']} calls, {_ms(s['seconds'] / s['calls'])} each"
+        else:
+            per = f"one call, {_ms(s['seconds'])}"
+        parts.append(f"{_pct(s['share'])} in {_routine_text(label)} ({per})")
+    return (f"{_g(p['seconds'])} s: " + ", ".join(parts)
+            + f", {_pct(p['other_seconds'] / p['seconds'])} elsewhere (search logic, "
+            "bookkeeping)")
+
+
+def _largest(p, n: int = 2) -> list:
+    """The ``n`` routines with the most own time: ``(label, stat)``."""
+    return sorted(p["routines"].items(), key=lambda kv: -kv[1]["seconds"])[:n]
+
+
 # -- machine ---------------------------------------------------------------------------------
 def _machine(r) -> list:
     m = r["machine"]
@@ -61,21 +119,270 @@ def _machine(r) -> list:
     return ["## Machine and commands", "",
             f"* {m['cpu']}, {m['cores']} cores, {m['platform']}, Python {m['python']}",
             f"* {pk}" + (f" (not installed: {', '.join(missing)})" if missing else "")
-            + f"; mpmath backend `{m.get('mpmath_backend', '?')}` (`mpmath.libmp.BACKEND`: "
-            "'gmpy' when gmpy2 is installed, much faster than 'python' at these precisions); "
-            f"{m['gcc'] or 'no C compiler'}",
+            + f"; mpmath backend `{m.get('mpmath_backend', '?')}`; proofs in "
+            f"{'Arb balls (python-flint)' if m.get('certified') else 'mpmath at two precisions'}"
+            f"; {m['gcc'] or 'no C compiler'}",
             f"* commit {m['commit']}, {m['date']}",
             (f"* load average (1, 5, 15 min) before: {r['load_before']}, after: "
-             f"{r['load_after']}. The machine is shared: other processes ran beside the "
-             "benchmark, so every time is the minimum of several repetitions (other work only "
-             "ever adds time)"),
-            f"* command: `{r['command']}`"
-            + " (`--json` for the raw numbers, `-o docs/benchmarks.md` to write this file)",
+             f"{r['load_after']}. Other processes may run beside the benchmark: every time is "
+             "the best of several runs (other work only ever adds time)"),
+            f"* command: `{r['command']}`",
             "* seconds per section: " + ", ".join(f"{k} {v}" for k, v in r["seconds"].items()),
             ""]
 
 
-# -- 1. root search ------------------------------------------------------------------------
+# -- the targets table -------------------------------------------------------------------------
+def _ratios(d: dict) -> str:
+    return ", ".join(f"{k} {_g(v)}" for k, v in d.items())
+
+
+def _measured(name, sec) -> str:
+    t = sec["target"]
+    if name == "fe":
+        return "symtmm / FE: " + _ratios(t["ratios"])
+    if name == "scaling":
+        return (f"exponent {_g(t['exponent_15'])} (15 digits), {_g(t['exponent_50'])} "
+                f"(50 digits)")
+    if name == "precision":
+        return "; ".join(f"{m}: " + ", ".join(f"{d} digits {_g(v)}x" for d, v in r.items())
+                         for m, r in t["ratios"].items())
+    if name == "root_search":
+        return (f"time {_g(t['default_seconds'])} s / {_g(t['fmin2d_seconds'])} s = "
+                f"{_g(t['seconds_ratio'])}; evaluations {t['default_evaluations']} / "
+                f"{t['fmin2d_evaluations']} = {_g(t['evaluation_ratio'])}")
+    if name == "sweep":
+        return (f"{_g(sec['symtmm']['seconds'])} s / {_g(sec['fe']['seconds'])} s = "
+                f"{_g(t['ratio'])}")
+    if name == "evaluator":
+        return "Delta / transcendentals: " + _ratios(t["ratios"])
+    return "–"
+
+
+def _targets(r) -> list:
+    rows = [[i, TARGETS[name], f"failed: {r[name]['error']}" if "error" in r[name]
+             else _measured(name, r[name]), _met(r[name]["target"]["met"])]
+            for i, name in enumerate(TARGETS, 1) if name in r]
+    return ["## Targets", ""] + _table(["#", "target", "measured", "verdict"], rows)
+
+
+# -- why -----------------------------------------------------------------------------------------
+def _why_fe(fe) -> list:
+    out = []
+    for c in fe["cases"]:
+        s, f = c["symtmm"], c["fe"]
+        verdict = "within" if c["ratio"] <= 1 else "over"
+        line = (f"{c['name']}: symtmm {_g(s['seconds'])} s, FE {_g(f['seconds'])} s "
+                f"({f['elements_per_beam']} elements per beam, {f['dofs']} dofs), ratio "
+                f"{_g(c['ratio'])}, {verdict} the target"
+                + ("" if c["counted"] else " (reported, not part of the target)") + ".")
+        if c["ratio"] > 1:
+            p = s["profile"]
+            big = [f"{_routine_text(k)} alone {_g(v['seconds'])} s ({_g(v['seconds'] / f['seconds'])}x "
+                   "the whole FE solve)" for k, v in _largest(p)]
+            line += " Profiled solve, " + _profile_sentence(p) + ". " + "; ".join(big) + "."
+        out.append(line)
+    return out
+
+
+def _why_scaling(sc) -> list:
+    rows = sc["rows"]
+    lo, hi = rows[0], rows[-1]
+    t = sc["target"]
+    out = [(f"From {lo['levels']} to {hi['levels']} levels the size (segments x levels) grows "
+            f"{_g(hi['size'] / lo['size'])}x, the compiled kernel's freedoms "
+            f"{_g(hi['freedoms'] / lo['freedoms'])}x (half-bandwidth {lo['band']} to "
+            f"{hi['band']}), the time per evaluation {_g(hi['double_seconds'] / lo['double_seconds'])}x "
+            f"in double precision and {_g(hi['high_seconds'] / lo['high_seconds'])}x at "
+            f"{sc['high_digits']} digits.")]
+    e = sc["exponents"]
+    out.append("Exponents against the other measures of size: levels "
+               f"{_g(e['levels']['double'])} / {_g(e['levels']['high'])}, segments cut per beam "
+               f"{_g(e['own_segments']['double'])} / {_g(e['own_segments']['high'])}, kernel "
+               f"freedoms {_g(e['freedoms']['double'])} / {_g(e['freedoms']['high'])} (double / "
+               f"{sc['high_digits']} digits).")
+    if not t["met"]:
+        per = [(r["levels"], r["double_seconds"] / r["freedoms"], r["high_seconds"] / r["freedoms"])
+               for r in rows]
+        out.append("Cost per freedom and point, smallest to largest model: "
+                   + ", ".join(f"{n} levels {_g(d * 1e6)} us / {_g(h * 1e3)} ms"
+                               for n, d, h in per) + ".")
+    return out
+
+
+def _why_precision(pr) -> list:
+    out = []
+    for name, c in pr["cases"].items():
+        base = c["profiles"]["15"]
+        out.append(f"{name}: {_g(c['seconds']['15'])} s at 15 digits; "
+                   + ", ".join(f"{_g(c['ratio'][d])}x at {d}" for d in c["ratio"])
+                   + "; evaluations " + " / ".join(str(v) for v in c["evaluations"].values())
+                   + ".")
+        for d, ratio in c["ratio"].items():
+            if ratio <= 2:
+                continue
+            p = c["profiles"][d]
+            grew = []
+            for label, s in p["routines"].items():
+                b = base["routines"].get(label, dict(seconds=0.0, points=0))
+                if s["seconds"] - b["seconds"] > 0.1 * (p["seconds"] - base["seconds"]):
+                    grew.append(f"{_routine_text(label)} {_g(b['seconds'])} s over {b['points']} "
+                                f"points at 15 digits, {_g(s['seconds'])} s over {s['points']} "
+                                f"at {d}")
+            out.append(f"{name} at {d} digits is over 2x; what grew (profiled): "
+                       + ("; ".join(grew) or "no single routine") + ".")
+    return out
+
+
+def _why_root_search(rs) -> list:
+    t = rs["target"]
+    case = next(c for c in rs["cases"] if c["name"] == t["case"])
+    d = case["methods"]["default"]
+    out = [(f"Example 4, the paper's rectangle: default {_g(t['default_seconds'])} s and "
+            f"{t['default_evaluations']} evaluations, fMin2D {_g(t['fmin2d_seconds'])} s and "
+            f"{t['fmin2d_evaluations']} evaluations (fMin2D misses "
+            f"{case['methods']['fmin2d']['missed']}, the default {t['missed']}).")]
+    if d["status"] != "ok":
+        out.append(f"The default search stopped: {d['status']}.")
+    elif t["seconds_ratio"] >= 1:
+        per_f = t["fmin2d_seconds"] / max(t["fmin2d_evaluations"], 1)
+        dd = d["profile"]["routines"].get("complex_factor_double")
+        per_d = (f"; the default's double-precision Delta costs {_ms(dd['seconds'] / dd['points'])} "
+                 "per point") if dd and dd["points"] else ""
+        out.append(f"fMin2D evaluates whole grids per vectorised call, {_ms(per_f)} per point "
+                   f"all included{per_d}. The default search, "
+                   + _profile_sentence(d["profile"]) + ".")
+    if t["evaluation_ratio"] > 0.1:
+        line = f"Evaluations: {_g(t['evaluation_ratio'])} of fMin2D's, over 1/10"
+        if "profile" in d:
+            pts = [(v["points"], k) for k, v in d["profile"]["routines"].items()
+                   if v["points"] != v["calls"]]
+            line += (f"; of the default's {t['default_evaluations']}, "
+                     + ", ".join(f"{n} in {_routine_text(k)}" for n, k in sorted(pts, reverse=True)))
+        out.append(line + ".")
+    return out
+
+
+def _why_sweep(sw) -> list:
+    s, f = sw["symtmm"], sw["fe"]
+    steps = sw["steps"]
+    out = [(f"symtmm {_g(s['seconds'])} s for {steps} steps ({_g(s['seconds'] / steps)} s per "
+            f"step at {sw['digits']} digits, mode shapes included for the branch tracking), the "
+            f"FE model {_g(f['seconds'])} s ({_ms(f['seconds'] / steps)} per step, "
+            f"{f['elements_per_beam']} elements per beam).")]
+    if not sw["target"]["met"]:
+        big = [f"{_routine_text(k)} alone {_g(v['seconds'])} s ({_g(v['seconds'] / f['seconds'])}x "
+               "the FE loop)" for k, v in _largest(s["profile"])]
+        out.append("Profiled sweep, " + _profile_sentence(s["profile"]) + ". "
+                   + "; ".join(big) + ".")
+    return out
+
+
+def _why_evaluator(ev) -> list:
+    out = []
+    for name, m in ev["models"].items():
+        per = m["seconds_per_point"]
+        top = ", ".join(f"{k} {_pct(v['share'])}" for k, v in m["profile"]["own_time"].items())
+        out.append(f"{name}: {m['kinds']} distinct segment kinds ({m['pieces']} pieces, "
+                   f"{m['freedoms']} freedoms, half-bandwidth {m['band']}): Delta "
+                   f"{_g(per['delta'] * 1e6)} us per point, its transcendental functions "
+                   f"{_g(per['transcendental'] * 1e6)} us, ratio {_g(m['ratio_to_transcendental'])}"
+                   + (". Own time in batch calls (cProfile): " + top if m["ratio_to_transcendental"] > 5
+                      else "") + ".")
+    return out
+
+
+_WHY = {"fe": _why_fe, "scaling": _why_scaling, "precision": _why_precision,
+        "root_search": _why_root_search, "sweep": _why_sweep, "evaluator": _why_evaluator}
+
+
+def _findings(r) -> list:
+    out = ["## Met or missed, and why", "",
+           ("Generated from this run's numbers: its timings and the profiles it gathered "
+            "(own time of the library's routines in one more, profiled run)."), ""]
+    for i, name in enumerate(TARGETS, 1):
+        if name not in r:
+            continue
+        out += [f"**{i}. {TARGETS[name]}** — {_met(r[name]['target']['met'])}", ""]
+        if "error" in r[name]:
+            out += [f"* The section stopped with {r[name]['error']}:", "", "```",
+                    *r[name]["trace"], "```", ""]
+            continue
+        out += [f"* {line}" for line in _WHY[name](r[name])] + [""]
+    return out
+
+
+# -- sections --------------------------------------------------------------------------------
+def _fe(fe) -> list:
+    out = ["## 1. Verified solve against a sparse finite-element model", "",
+           (f"symtmm: `solve(model, count={fe['count']}, digits={fe['digits']})`, every printed "
+            f"digit proved, the best of {fe['repeat']} runs (2 at 50 levels). FE: the model a "
+            "competent user writes (benchmarks/sparse_fe.py): scipy.sparse assembly of "
+            "cubic-Hermite Euler-Bernoulli elements with consistent mass, boundary conditions "
+            "by removing dofs, joints by sharing them, springs added into K, "
+            "`eigsh(K, k=10, M=M, sigma=-1, which='LM')`, on the coarsest uniform mesh "
+            f"(elements per beam) within {fe['tolerance']:g} of the reference; its time is "
+            "mesh + assembly + eigsh, the best of "
+            f"{fe['repeat']} runs with the default BLAS threads and with one "
+            f"({', '.join(fe['blas_threads_env'])} = 1, child process), the faster."), ""]
+    rows = []
+    for c in fe["cases"]:
+        s, f = c["symtmm"], c["fe"]
+        rows.append([c["title"], c["beams"], f["elements_per_beam"], f["dofs"],
+                     _g(f["max_rel_error"], 2), _g(f["seconds_default_threads"]),
+                     _g(f["seconds_one_thread"]), _g(s["seconds"]), s["evaluations"],
+                     _g(s["max_rel_error"], 2), f"**{_g(c['ratio'])}**"])
+    out += _table(["model", "beams", "FE elements/beam", "FE dofs", "FE error",
+                   "FE s (default threads)", "FE s (1 thread)", "symtmm s", "evaluations",
+                   "symtmm error", "symtmm / FE"], rows)
+    out.append("Errors: largest relative error of the first 10 frequencies against the "
+               "reference (symtmm: its printed 15-digit values). References:")
+    out.append("")
+    out += [f"* {c['name']}: {c['reference']['method']} ({_g(c['reference']['seconds'])} s)."
+            for c in fe["cases"]]
+    out += ["", "Meshes tried (elements per beam: error):", ""]
+    out += [f"* {c['name']}: " + ", ".join(f"{t['elements_per_beam']}: "
+                                           f"{_g(t['max_rel_error'], 2)}" for t in c["fe"]["tried"])
+            for c in fe["cases"]]
+    return out + [""]
+
+
+def _scaling(sc) -> list:
+    out = ["## 2. Cost per evaluation against model size", "",
+           (f"Models {sc['model']}, frequencies up to {sc['omega_max']:g} rad/s. Size: segments "
+            "x levels (the spring positions cut the span, every level runs through every "
+            "segment). Kernel: pieces, distinct segment kinds, freedoms and half-bandwidth of "
+            f"the compiled dynamic stiffness. Per evaluation: double precision in batches of "
+            f"{sc['batch']} frequencies, {sc['high_digits']} digits ({sc['high_arithmetic']}) "
+            f"in batches of {sc['high_batch']}, per point, each the best of {sc['repeat']} "
+            "timings taken in rounds over all sizes."), ""]
+    rows = [[r["levels"], r["segments"], r["size"], r["own_segments"], r["pieces"], r["kinds"],
+             r["freedoms"], r["band"], _g(r["prepare_seconds"]), _g(r["double_seconds"] * 1e6),
+             _g(r["high_seconds"] * 1e3)] for r in sc["rows"]]
+    out += _table(["levels", "segments", "size", "segments cut per beam", "pieces", "kinds",
+                   "freedoms", "band", "plan s", "15 digits us", f"{sc['high_digits']} digits ms"],
+                  rows)
+    out += _table(["size measure", "exponent, 15 digits", f"exponent, {sc['high_digits']} digits"],
+                  [[k, _g(v["double"]), _g(v["high"])] for k, v in sc["exponents"].items()])
+    return out
+
+
+def _precision(pr) -> list:
+    out = ["## 3. The cost of more digits", "",
+           (f"`solve(model, count={pr['count']}, digits=D)`, the best of {pr['repeat']} rounds "
+            "(each round solves at every D once)."), ""]
+    ds = [str(d) for d in pr["digits"]]
+    rows = [[name] + [_g(c["seconds"][d]) for d in ds] + [c["evaluations"][d] for d in ds]
+            + [f"{_g(c['ratio'][d])}x" for d in ds[1:]] for name, c in pr["cases"].items()]
+    out += _table(["model"] + [f"{d} digits s" for d in ds] + [f"{d} digits evaluations"
+                                                                for d in ds]
+                  + [f"{d} / 15" for d in ds[1:]], rows)
+    for name, c in pr["cases"].items():
+        out.append(f"{name}, profiled at " + "; at ".join(
+            f"{d} digits " + _profile_sentence(c["profiles"][d]) for d in ds) + ".")
+        out.append("")
+    return out
+
+
 def _method_rows(case) -> list:
     rows = []
     for name, m in case["methods"].items():
@@ -87,30 +394,6 @@ def _method_rows(case) -> list:
                      f"{m['found']}/{m['reference']}", _g(m.get("digits"))])
     return _table(["method", "status", "evaluations", "seconds", "max rel. error", "missed",
                    "spurious", "found/ref.", "digits"], rows)
-
-
-#: the routines a profile times, in the order they are reported
-_ROUTINES = {"delta_mpmath": "mpmath evaluations of Delta",
-             "delta_double": "double-precision evaluations of Delta",
-             "count": "Wittrick-Williams counts",
-             "rigid_body_modes": "the exact rank of R(0)"}
-
-
-def _profile_sentence(p) -> str:
-    """Where a profiled default solve spent its time, in one sentence."""
-    r = p["routines"]
-    parts = []
-    for key, what in _ROUTINES.items():
-        s = r[key]
-        if s["calls"]:
-            per = s["seconds"] / s["calls"] * 1e3
-            calls = f"{s['calls']} calls, {_g(per)} ms each" if s["calls"] > 1 else \
-                f"one call, {_g(per)} ms"
-            parts.append(f"{_pct(s['share'])} in {what} ({calls})")
-    return (f"{_g(p['seconds'])} s: " + ", ".join(parts)
-            + f", {_pct(p['other_seconds'] / p['seconds'])} elsewhere; "
-            f"{_g(p['evaluations'] / max(p['roots'], 1))} evaluations per root, "
-            f"{_g(p['mpmath_evaluations_per_root'])} of them in mpmath")
 
 
 def _cxroots_sentence(cx) -> str | None:
@@ -129,15 +412,11 @@ def _case(case) -> list:
     out += _method_rows(case)
     d = case["methods"]["default"]
     for other in ("fmin1d", "fmin2d"):
-        if f"evaluation_ratio_default_over_{other}" not in case:
-            continue
-        o = case["methods"][other]
-        ratio_s = d["seconds"] / max(o["seconds"], 1e-9)
-        out.append(f"Evaluations default / {other}: "
-                   f"{case[f'evaluation_ratio_default_over_{other}']:.3f}; "
-                   + _speed_phrase(ratio_s, other)
-                   + (f"; {other} misses {o['missed']} and is off by up to "
-                      f"{_g(o['max_rel_error'], 2)}." if o["missed"] else "."))
+        key = f"evaluation_ratio_default_over_{other}"
+        if key in case:
+            o = case["methods"][other]
+            out.append(f"Default / {other}: evaluations {case[key]:.3f}, wall time "
+                       f"{_g(d['seconds'] / max(o['seconds'], 1e-9))}.")
     if "profile" in d:
         out.append("Default search, " + _profile_sentence(d["profile"]) + ".")
     if "reference_check" in case:
@@ -151,435 +430,91 @@ def _case(case) -> list:
 
 
 def _root_search(rs) -> list:
-    out = ["## 1. Root search", "",
+    out = ["## 4. Root search", "",
            ("Evaluations: one per point at which Delta, R or an eigenvalue count is evaluated "
             "(double or multiple precision alike). Error: the largest |found - reference| / "
             "|reference| over the reference eigenvalues that were found; missed: reference "
             "eigenvalues (with multiplicity) no found value matches within 1e-3 relative; "
-            "spurious: found values that match none. `digits` is what the method itself "
-            "reports as correct."), ""]
+            "spurious: found values that match none. `digits`: what the method reports as "
+            "correct. The paper's rectangle of example 4 carries the target; the undamped "
+            "cases and the small rectangle (with cxroots) show the same searches elsewhere."),
+           ""]
     for case in rs["cases"]:
         out += _case(case)
-    t = rs["target"]
-    out += [f"**Target** — {t['text']}: {_met(t['met'])} ("
-            + "; ".join(f"{x['case']}: ratio {x['ratio']:.3f}, error {_g(x['max_rel_error'], 2)}, "
-                        f"missed {x['missed']}" for x in t["results"]) + ")", ""]
     return out
 
 
-# -- 2. evaluator --------------------------------------------------------------------------
+def _sweep(sw) -> list:
+    s, f, ref = sw["symtmm"], sw["fe"], sw["reference"]
+    out = ["## 5. A sweep: the paper's figure 10", "",
+           (f"Example 1, `{sw['parameter']}` from {sw['start']} to {sw['stop']} in "
+            f"{sw['steps']} steps, first {sw['count']} frequencies: `symtmm.sweep.sweep` with "
+            f"its defaults ({sw['digits']} digits, branches tracked by mode shapes), jobs=1, "
+            f"{_g(s['seconds'])} s (best of two runs in the full benchmark). FE: one solve per "
+            f"step on the coarsest mesh within 1e-6 at every step, {f['elements_per_beam']} "
+            f"elements per beam: {_g(f['seconds_default_threads'])} s (default BLAS threads), "
+            f"{_g(f['seconds_one_thread'])} s (one thread), best of 3 loops."), "",
+           (f"Reference at each step: the {ref['exact']}; where roots are multiple or too close "
+            f"for that (x1 = {', '.join(ref['extrapolated_at']) or 'none'}) the "
+            f"{ref['extrapolated']}, which differs from the exact values by at most "
+            f"{_g(ref['extrapolated_error'], 2)} at the other steps. The symtmm sweep's "
+            f"values differ from the reference by at most "
+            f"{_g(s['max_rel_difference_from_reference'], 2)} over all steps."),
+           "", "Meshes tried (elements per beam: worst error over the steps): "
+           + ", ".join(f"{t['elements_per_beam']}: {_g(t['max_rel_error'], 2)}"
+                       for t in f["tried"]) + ".", ""]
+    return out
+
+
 def _evaluator(ev) -> list:
-    head = ev["models"][0]
-    pts = head.get("points", {})
-    out = ["## 2. Evaluator", "",
-           (f"Evaluations of Delta(lam) per second at points -sigma + i omega "
-            f"(0 <= sigma <= 50, 1 <= omega <= 300; {pts.get('vector', '?')} per vectorised "
-            f"batch, {pts.get('naive', '?')} for the naive product, {pts.get('mpmath', '?')} "
-            f"for mpmath; the minimum time of {pts.get('repeat', '?')} repetitions, 3 for "
-            "naive and mpmath). `symtmm`: `Evaluator.delta` on the whole array (numpy, "
-            "vectorised, columns re-orthonormalised along the span: stable at any mode); "
-            "`symtmm_plain`: `np.linalg.det(Evaluator.R(lam))`, the same propagation without "
-            "re-orthonormalisation; `naive_numpy`: per point, each segment's 4x4 matrix from "
-            "the closed form, the stacked 4n x 4n matrices multiplied in a Python loop, "
-            "`np.linalg.det` (benchmarks/baselines.py); `mpmath_30/60`: `Evaluator.delta_mp` "
-            "per point; `generated_c`: `symtmm codegen --lang c` as generated, `gcc -O2`, the "
-            "loop over points inside C (clock_gettime); `generated_c_ctypes`: the same "
-            "function called once per point from Python."), ""]
-    keys = list(head["points_per_second"])
-    rows = [[f"{m['model']} ({m['levels']} levels, {m['springs']} springs)"]
-            + [f"{_g(m['points_per_second'][k])} ({_g(m['ratio_to_naive_numpy'][k])}x)"
-               for k in keys] for m in ev["models"]]
-    out += _table(["model"] + keys, rows)
-    out.append("Points per second (ratio to naive_numpy).")
-    out.append("")
-    acc_keys = list(head["relative_error_vs_mpmath_60"])
-    rows = [[m["model"], _g(m["digits_lost_max"], 2)]
-            + [f"{_g(m['relative_error_vs_mpmath_60'][k]['median'], 2)} / "
-               f"{_g(m['relative_error_vs_mpmath_60'][k]['max'], 2)}" for k in acc_keys]
-            for m in ev["models"]]
-    out += [(f"Relative error against `Evaluator.delta_mp` at 60 digits on the first "
-            f"{pts.get('accuracy', '?')} points, median / max (digits lost: "
-            "`Evaluator.digits_lost`, about sum |beta| L / ln 10, the cancellation of the plain "
-            "product):"), ""]
-    out += _table(["model", "digits lost (max)"] + acc_keys, rows)
-    out += _evaluator_findings(ev)
-    t = ev["target"]
-    out += ["", f"**Target** — {t['text']}: {_met(t['met'])} (ratio {t['ratio']:.1f} on "
-            f"{ev['model']}; " + ", ".join(f"{k} {v}" for k, v in t["by_model"].items()) + ")",
-            ""]
-    return out
-
-
-def _accurate(m, key, tol=1e-12) -> bool:
-    e = m["relative_error_vs_mpmath_60"].get(key)
-    return e is not None and e["max"] <= tol
-
-
-def _evaluator_findings(ev) -> list:
-    out = []
-    for m in ev["models"]:
-        acc = m["relative_error_vs_mpmath_60"]
-        good = [k for k in acc if _accurate(m, k)]
-        bad = [k for k in acc if not _accurate(m, k)]
-        line = (f"{m['model']}: with up to {_g(m['digits_lost_max'], 2)} digits lost to "
-                "cancellation, " + (", ".join(good) or "no backend") + " stay within 1e-12 "
-                "of the 60-digit value at every point")
-        if bad:
-            line += ("; " + ", ".join(f"{k} is off by up to {_g(acc[k]['max'], 2)}"
-                                      for k in bad))
-        out.append(line + ".")
-    return out + [""]
-
-
-# -- 3. finite elements ----------------------------------------------------------------------
-def _fe(fe) -> list:
-    s = fe["symtmm"]
-    out = ["## 3. Finite elements", "",
-           (f"Model {fe['model']}, first {fe['count']} frequencies. Reference: "
-            f"{fe['reference']}. FE: `symtmm.fe.fe_frequencies` (cubic Hermite, consistent "
-            "mass, dense `scipy.linalg.eigh`, Rayleigh-quotient polish), timed with the BLAS "
-            "threads numpy/scipy start by default and, in a child process, with one BLAS "
-            f"thread ({', '.join(fe.get('blas_threads_env', []))} = 1); `seconds` is the "
-            "faster of the two, each the minimum of 3 runs (one run where it takes over "
-            "1 s)."), "",
-           (f"symtmm, `solve(model, count={fe['count']}, digits={s['digits']})`: "
-            f"{_g(s['seconds'])} s (the fastest of three runs), {s['evaluations']} evaluations, "
-            f"largest error of the printed values {_g(s['max_rel_error'], 2)}. A profiled run: "
-            + _profile_sentence(s["profile"]) + "."), ""]
-    out += _table(["elements per beam", "seconds (default threads)", "seconds (one thread)",
-                   "seconds", "max rel. error"],
-                  [[r["elements_per_beam"], _g(r["seconds_default_threads"]),
-                    _g(r["seconds_one_thread"]), _g(r["seconds"]), _g(r["max_rel_error"], 2)]
-                   for r in fe["fe"]])
-    if fe.get("fe_error_exponent") is not None:
-        sizes = fe.get("fe_exponent_sizes") or []
-        out.append(f"FE error against elements per beam: fitted exponent "
-                   f"{fe['fe_error_exponent']:.2f} over {sizes[0]}-{sizes[-1]} elements, "
-                   "where it still falls (h^4 expected).")
-    b = fe["fe_best"]
-    out.append(f"Smallest FE error: {_g(b['max_rel_error'], 2)} with "
-               f"{b['elements_per_beam']} elements per beam ({_g(b['seconds'])} s).")
-    t = fe["target"]
-    out += ["", (f"**Target** — {t['text']}: {_met(t['met'])} (symtmm {_g(t['symtmm_seconds'])} "
-                 f"s to 1e-12; FE fastest to 1e-6: {_g(t['fe_seconds'])} s"
-                 + (f" with {t['fe_elements']} elements per beam" if t.get("fe_elements")
-                    else "") + ")"), ""]
-    return out
-
-
-# -- 4. scaling ------------------------------------------------------------------------------
-def _scaling(sc) -> list:
-    out = ["## 4. Scaling", "",
-           (f"Models: {sc['model']}; springs per level {sc['fixed_springs_per_level']} when "
-            f"the levels vary, {sc['fixed_levels']} levels when the springs vary. Delta: the "
-            f"vectorised evaluator on a batch of {sc.get('batch', '?')} points at every size "
-            f"(per point) and `delta_mp` at 30 digits at one point, each the minimum of "
-            f"{sc.get('repeat', '?')} timings. Full solves: first 10 frequencies, 15 digits, in "
-            f"a child process, limit {sc['solve_limit_seconds']:g} s per solve."), ""]
-    rows = [[r["levels"], r["springs_per_level"], r["segments"],
-             r.get("distinct_segments", "–"), _g(r.get("evaluator_construction_seconds")),
-             _g(r["numpy_seconds_per_point"] * 1e6),
-             _g(r["mpmath30_seconds_per_evaluation"] * 1e3)]
-            for r in sc["eval_levels"] + sc["eval_springs"]]
-    out += ["Time per evaluation of Delta:", ""]
-    out += _table(["levels", "springs/level", "segments", "distinct", "Evaluator() s",
-                   "numpy us/point",
-                   "mpmath 30 digits ms"], rows)
-    seen, rows = set(), []
-    for r in sc["solve_levels"] + sc["solve_springs"]:
-        key = (r["levels"], r["springs_per_level"])
-        if key in seen:
-            continue
-        seen.add(key)
-        rows.append([r["levels"], r["springs_per_level"], r["status"], _g(r.get("seconds")),
-                     r.get("evaluations", "–"), r.get("mpmath_evaluations", "–"),
-                     _pct(r.get("mpmath_share")), _g(r.get("rigid_body_modes_seconds"))])
-    out += ["Full solves:", ""]
-    out += _table(["levels", "springs/level", "status", "seconds", "evaluations",
-                   "of them mpmath", "time in mpmath", "rigid_body_modes, s"], rows)
-    out += ["Fitted exponents (log-log least squares; all sizes / largest three):", ""]
-    out += _table(["quantity", "all sizes", "largest three"],
-                  [[k, _g(v), _g(sc.get("exponents_largest_three", {}).get(k))]
-                   for k, v in sc["exponents"].items()])
-    t = sc["target"]
-    out += [(f"**Target** — {t['text']}: {_met(t['met'])} (numpy {_g(t['exponent_numpy'])}, "
-             f"mpmath {_g(t['exponent_mpmath'])}; rounds {_band(t.get('rounds_numpy'))} and "
-             f"{_band(t.get('rounds_mpmath'))})"), ""]
-    return out
-
-
-# -- findings ---------------------------------------------------------------------------------
-def _root_search_findings(rs) -> list:
-    t = rs["target"]
-    out = [f"Root search: {_met(t['met'])}."]
-    for x in t["results"]:
-        case = next(c for c in rs["cases"] if c["name"] == x["case"])
-        fails = []
-        if x["ratio"] > 0.1:
-            fails.append(f"{x['ratio']:.3f} of fmin1d's evaluations")
-        if x["max_rel_error"] is None or x["max_rel_error"] > 1e-12:
-            fails.append(f"error {_g(x['max_rel_error'], 2)}")
-        if x["missed"]:
-            fails.append(f"{x['missed']} missed")
-        verdict = ("met (" if not fails else "missed: " + ", ".join(fails) + " (") + \
-            f"evaluations {x['ratio']:.3f} of fmin1d's, error {_g(x['max_rel_error'], 2)})"
-        d = case["methods"]["default"]
-        out.append(f"{x['case']}: {verdict}. Wall time: default {_g(d['seconds'])} s, "
-                   f"fmin1d {_g(case['methods']['fmin1d']['seconds'])} s: "
-                   + _speed_phrase(x["seconds_ratio"], "fmin1d")
-                   + (", although it makes far fewer evaluations, because "
-                      + _why_slow(d["profile"]) if x["seconds_ratio"] > 1 else "") + ".")
-    return out + [""]
-
-
-def _speed_phrase(ratio: float, other: str) -> str:
-    """The default search against ``other`` by the ratio of their wall times.
-
-    Examples
-    --------
-    >>> _speed_phrase(2.5, "fmin1d")
-    'the default search is slower in wall time than fmin1d (2.50x)'
-    >>> _speed_phrase(0.96, "fmin1d")[-44:]
-    '1.04x, within the noise of a shared machine)'
-    """
-    out = (f"the default search is {'slower' if ratio > 1 else 'faster'} in wall time than "
-           f"{other} ({max(ratio, 1 / ratio):.2f}x")
-    return out + (", within the noise of a shared machine)" if abs(ratio - 1) < 0.1 else ")")
-
-
-def _why_slow(p) -> str:
-    """Why a search with few evaluations still takes longer: its costliest routines.
-
-    Examples
-    --------
-    >>> r = {"count": {"calls": 10, "seconds": 0.2, "share": 0.9},
-    ...      "delta_mpmath": {"calls": 0, "seconds": 0.0, "share": 0.0}}
-    >>> _why_slow({"routines": r})[:72]
-    'its evaluations are expensive: 10 Wittrick-Williams counts at 20 ms each'
-    """
-    used = sorted((v["share"], k) for k, v in p["routines"].items() if v["calls"])
-    parts = []
-    for share, key in reversed(used):
-        s = p["routines"][key]
-        if share >= 0.1 or not parts:
-            parts.append(f"{s['calls']} {_ROUTINES.get(key, key)} at "
-                         f"{_g(s['seconds'] / s['calls'] * 1e3)} ms each ({_pct(share)} of its time)")
-    out = ("its evaluations are expensive: " + ", ".join(parts)
-           + ", while fmin1d evaluates whole grids in one vectorised call")
-    if p["routines"].get("count", {}).get("share", 0) > 0.5:
-        # the clusters of exact multiple roots: see symtmm.roots.undamped, step 4
-        out += ("; counts dominate where roots are multiple: Delta's sign cannot tell m "
-                "coincident roots apart, so each cluster is isolated by bisection on counts "
-                "down to double-precision width (about 3.3 counts per digit) and then proved "
-                "by two counts in high precision at the ends of a bracket of relative width "
-                "10^-(D+22)")
-    return out
-
-
-def _evaluator_findings_text(ev) -> list:
-    t = ev["target"]
-    head = ev["models"][0]
-    r = head["ratio_to_naive_numpy"]
-    rate = head["points_per_second"]
-    out = [(f"Evaluator: {_met(t['met'])} (Evaluator.delta is {_g(r['symtmm'])}x the naive "
-           f"product on {head['model']}).")]
-    prof = head["delta_profile"]
-    shares = ", ".join(f"{name} {_pct(v['share'])}" for name, v in prof["own_time"].items())
-    single = head["seconds_per_single_point_call"]
-    err = head["relative_error_vs_mpmath_60"]
-    qr = sum(v["share"] for name, v in prof["own_time"].items() if name.endswith(":qr"))
-    out.append(
-        f"Measured causes: the naive per-point product costs {_g(1e6 / rate['naive_numpy'])} us "
-        f"per point, Evaluator.delta {_g(1e6 / rate['symtmm'])} us in a batch of "
-        f"{prof['points']}. Own time of the functions of one such call (cProfile): {shares}"
-        + (f"; {_pct(qr)} of it is the batched `np.linalg.qr` that re-orthonormalises the "
-           "columns after every propagation step, the price of stability" if qr else "")
-        + f". The plain vectorised product, `symtmm_plain`, is {_g(r['symtmm_plain'])}x the "
-        "naive product" + (", which would meet the target" if (r["symtmm_plain"] or 0) >= 100
-                           else ", short of 100x too")
-        + f", but its error reaches {_g(err['symtmm_plain']['max'], 2)} at these points (up to "
-        f"{_g(head['digits_lost_max'], 2)} digits cancel) where Evaluator.delta stays within "
-        f"{_g(err['symtmm']['max'], 2)}: at high modes the stable evaluation is the accurate "
-        "one, the plain product (and the naive one) is not.")
-    c = r.get("generated_c")
-    if c:
-        out.append(f"The generated C (the stable algorithm too, Gram-Schmidt after every step; "
-                   f"error up to {_g(err['generated_c']['max'], 2)}) takes "
-                   f"{_g(1e6 / rate['generated_c'])} us per point, {_g(c)}x the naive product: "
-                   + ("compiled code does reach 100x here." if c >= 100 else
-                      "compiled code does not reach 100x on this model either."))
-    out.append(f"A single-point call of Evaluator.delta takes {_g(single['symtmm'] * 1e3)} ms "
-               f"(`symtmm_plain`: {_g(single['symtmm_plain'] * 1e3)} ms), some "
-               f"{_g(single['symtmm'] * rate['symtmm'])} times its per-point cost in a batch: "
-               "what the default search pays for each double-precision evaluation.")
-    return out + [""]
-
-
-def _fe_findings(r) -> list:
-    fe = r["fe"]
-    t = fe["target"]
-    s = fe["symtmm"]
-    p = s["profile"]
-    out = [(f"Finite elements: {_met(t['met'])} (symtmm {_g(s['seconds'])} s to 1e-12 at "
-           f"digits=13, error {_g(s['max_rel_error'], 2)}; the FE model reaches 1e-6 in "
-           f"{_g(t['fe_seconds'])} s).")]
-    if not t["met"] and t["fe_seconds"]:
-        rt = p["routines"]
-        outside = p["seconds"] - rt["delta_mpmath"]["seconds"]
-        out.append(f"symtmm is {_g(s['seconds'] / t['fe_seconds'])}x slower. Where its time "
-                   f"goes, in a profiled run of {_profile_sentence(p)}. Outside the mpmath "
-                   f"evaluations that run still spends {_g(outside)} s, {_g(outside / t['fe_seconds'])}x the FE time, in "
-                   "double-precision evaluations made one point per call, counts and "
-                   "bookkeeping.")
-    grid = _grid_bisection_ex1(r)
-    if grid:
-        out.append(f"Multiple precision is not what 1e-12 needs on this model: the "
-                   f"grid-bisection baseline, double precision only on the stable "
-                   f"Evaluator.delta, reaches {_g(grid['max_rel_error'], 2)} with "
-                   f"{grid['missed']} missed ({grid['evaluations']} evaluations, "
-                   f"{_g(grid['seconds'])} s, section 1).")
-    rows = [x for x in fe["fe"] if x["seconds_one_thread"] is not None]
-    slow = [x for x in rows if x["seconds_default_threads"] > 2 * x["seconds_one_thread"]]
-    if slow:
-        x = max(slow, key=lambda x: x["seconds_default_threads"] / x["seconds_one_thread"])
-        out.append(f"The BLAS threads matter on this shared machine: with "
-                   f"{x['elements_per_beam']} elements per beam the FE solve took "
-                   f"{_g(x['seconds_default_threads'])} s with the default threads and "
-                   f"{_g(x['seconds_one_thread'])} s with one.")
-    return out + [""]
-
-
-def _grid_bisection_ex1(r):
-    for case in r.get("root_search", {}).get("cases", []):
-        if case["name"].startswith("ex1"):
-            return case["methods"].get("grid_bisection")
-    return None
-
-
-def _scaling_findings(sc) -> list:
-    t = sc["target"]
-    e, e3 = sc["exponents"], sc["exponents_largest_three"]
-    out = [(f"Scaling: {_met(t['met'])} (springs exponent over the largest three sizes, "
-           f"median over rounds: numpy {_g(t['exponent_numpy'])}, mpmath "
-           f"{_g(t['exponent_mpmath'])}; fitted to the minima {_g(t.get('minima_numpy'))} and "
-           f"{_g(t.get('minima_mpmath'))}; over all sizes {_g(e['eval_numpy_vs_springs'])} and "
-           f"{_g(e['eval_mpmath_vs_springs'])}).")]
-    out += _springs_noise(sc)
-    out.append(f"In the levels the cost per evaluation grows with exponent "
-               f"{_g(e3['eval_numpy_vs_levels'])} (numpy) and {_g(e3['eval_mpmath_vs_levels'])}"
-               " (mpmath) over the largest three sizes: every spring position cuts every level, "
-               "so n levels carry 2n columns through n (n s + 1) segments (n^3 s for the "
-               "plain product, plus n^4 s for the stable evaluator's QR steps in the limit).")
-    if (t["exponent_numpy"] or 0) < 0.85:
-        big = sc["eval_springs"][-1]
-        out.append("The numpy exponent below 1 is not an artefact of the batch, which is the "
-                   "same at every size: segments of equal constants share one matrix per call "
-                   f"(at {big['springs_per_level']} springs per level, "
-                   f"{big.get('distinct_segments', '?')} distinct of {big['segments']}: spring "
-                   "positions on a 1/1000 grid repeat lengths), so what grows is the "
-                   "propagation and re-orthonormalisation per interval, beside fixed costs "
-                   "per call.")
-    solves = [x for x in sc["solve_levels"] + sc["solve_springs"] if x.get("seconds")]
-    if solves:
-        share = statistics.median(x["mpmath_share"] for x in solves)
-        evals = statistics.median(x["evaluations"] for x in solves)
-        n_mp = statistics.median(x["mpmath_evaluations"] for x in solves)
-        top = max(sc["eval_levels"], key=lambda x: x["levels"])
-        t_mp = top["mpmath30_seconds_per_evaluation"]
-        out.append(f"A full solve makes about {_g(evals)} evaluations whatever the size "
-                   f"(median), {_g(n_mp)} of them in mpmath, which take a median {_pct(share)} "
-                   f"of its time; one mpmath evaluation at {top['levels']} levels takes "
-                   f"{_g(t_mp)} s, so a solve at that size would spend about "
-                   f"{_g(n_mp * t_mp)} s in mpmath alone.")
-    late = [x for x in sc["solve_levels"] + sc["solve_springs"] if not x.get("seconds")]
-    if late:
-        out.append("Not finished: " + ", ".join(f"{x['levels']} levels x "
-                                                f"{x['springs_per_level']} springs "
-                                                f"({x['status']})" for x in late) + ".")
-    return out + [""]
-
-
-def _band(values) -> str:
-    """``lo-hi`` of the exponents fitted to single rounds.
-
-    Examples
-    --------
-    >>> _band([1.2, 0.9, 1.05]), _band([])
-    ('0.9-1.2', '–')
-    """
-    values = [v for v in values or [] if v is not None]
-    return f"{_g(min(values))}-{_g(max(values))}" if values else "–"
-
-
-def _springs_noise(sc) -> list:
-    """The springs exponents of single rounds and the cost per segment, smallest to
-    largest size: whether a verdict near the threshold is the machine's noise."""
-    t = sc["target"]
-    rows = sc["eval_springs"]
-    lo, hi = rows[0], rows[-1]
-    line = (f"Fitted to single rounds of timings (each round times every size once, within "
-            f"about a second) the exponents span {_band(t.get('rounds_numpy'))} (numpy) and "
-            f"{_band(t.get('rounds_mpmath'))} (mpmath): the noise of this machine. Per segment, from {lo['springs_per_level']} to "
-            f"{hi['springs_per_level']} springs per level: numpy "
-            f"{_g(lo['numpy_seconds_per_point'] / lo['segments'] * 1e6)} -> "
-            f"{_g(hi['numpy_seconds_per_point'] / hi['segments'] * 1e6)} us per point, mpmath "
-            f"{_g(lo['mpmath30_seconds_per_evaluation'] / lo['segments'] * 1e3)} -> "
-            f"{_g(hi['mpmath30_seconds_per_evaluation'] / hi['segments'] * 1e3)} ms.")
-    rounds = [v for v in (t.get("rounds_numpy") or []) + (t.get("rounds_mpmath") or [])
-              if v is not None]
-    if not t["met"] and rounds and min(rounds) <= 1.15:
-        line += (" Some rounds stay within 1.15: the miss may be the timing noise of the "
-                 "shared machine rather than a super-linear cost.")
-    elif not t["met"]:
-        line += " Every round exceeds 1.15: the cost per segment itself grows."
-    return [line]
-
-
-def _findings(r) -> list:
-    out = ["## Targets: met or missed, and why", "",
-           ("Generated from this run's numbers (timings, accuracies and the profiles gathered "
-           "in the run)."), ""]
-    if "root_search" in r:
-        out += _root_search_findings(r["root_search"])
-    if "evaluator" in r:
-        out += _evaluator_findings_text(r["evaluator"])
-    if "fe" in r:
-        out += _fe_findings(r)
-    if "scaling" in r:
-        out += _scaling_findings(r["scaling"])
+    out = ["## 6. The batched double-precision Delta", "",
+           (f"A batch of {ev['batch']} frequencies in [1, {ev['omega_max']:g}] rad/s. `Delta`: "
+            "the kernel's double-precision Delta and count (one factorization). "
+            "`transcendental`: numpy cos, cosh, sin, sinh on one argument per distinct segment "
+            "kind and point. `naive numpy`: per point, the stacked transfer matrices multiplied "
+            "in a Python loop (benchmarks/baselines.py). `generated C`: `symtmm codegen --lang "
+            "c`, gcc -O2, the loop over points timed inside C. Microseconds per point, best of "
+            f"several runs. Accuracy: |log|Delta| - log|Delta_50||, median / max over "
+            f"{ev['accuracy_points']} points."), ""]
+    rows = []
+    for name, m in ev["models"].items():
+        per = m["seconds_per_point"]
+        rows.append([name, m["kinds"], m["pieces"], m["freedoms"], m["band"]]
+                    + [_g(per[k] * 1e6 if per[k] is not None else None)
+                       for k in ("delta", "transcendental", "naive_numpy", "generated_c")]
+                    + [f"**{_g(m['ratio_to_transcendental'])}**",
+                       (f"{_g(m['log_delta_error']['median'], 2)} / "
+                        f"{_g(m['log_delta_error']['max'], 2)}")])
+    out += _table(["model", "kinds", "pieces", "freedoms", "band", "Delta us",
+                   "transcendental us", "naive numpy us", "generated C us",
+                   "Delta / transcendental", "accuracy"], rows)
     return out
 
 
 def render(r: dict) -> str:
     out = ["# Benchmarks", "",
-           "symtmm against the alternatives a user would pick instead: the paper's grid "
-           "searches (`fmin1d`, `fmin2d`), a sign-change grid with bisection, cxroots, a "
-           "naive numpy transfer-matrix product, mpmath, the generated C code and a "
-           "cubic-Hermite finite-element model. Generated by `benchmarks/run.py`"
-           + (" (quick run: small sizes only)" if r.get("quick") else "") + ".", ""]
-    out += ["## How to run", "",
-            "```",
-            "python benchmarks/run.py -o docs/benchmarks.md   # full run (large sizes)",
-            "python benchmarks/run.py --quick                 # small sizes, under a minute",
-            "python benchmarks/run.py --json > run.json       # the raw numbers",
-            "python benchmarks/run.py --from-json run.json -o docs/benchmarks.md",
-            "python benchmarks/run.py --sections evaluator    # one section",
-            "```", "",
-            ("cxroots is optional (`pip install cxroots`, or the `bench` extra); without it its rows read "
-             "\"not installed\". The generated C needs gcc. The time each section took is in "
-             "the machine section below."), ""]
+           "The targets of issue 11 (\"Fast and certified by default\"), measured side by side "
+           "in one run: symtmm's verified solve against the sparse finite-element model a "
+           "competent user would write, its cost against model size and precision, the damped "
+           "search against the paper's fMin2D, a parameter sweep, and the batched Delta against "
+           "the transcendental functions it evaluates. Generated by `benchmarks/run.py`"
+           + (" (quick run: small sizes only, not the targets' full measure)"
+              if r.get("quick") else "") + ".", "",
+           "## How to run", "", "```",
+           "python benchmarks/run.py --json > docs/benchmarks.json   # full run, ~3 minutes",
+           "python benchmarks/run.py --from-json docs/benchmarks.json -o docs/benchmarks.md",
+           "python benchmarks/run.py --quick                          # small sizes, <1 minute",
+           "python benchmarks/run.py --sections fe sweep              # some sections",
+           "```", "",
+           ("cxroots is optional (`pip install cxroots`, or the `bench` extra); without it its "
+            "row reads \"not installed\". The generated C needs gcc. References are computed "
+            "in the run, none by symtmm (benchmarks/references.py)."), ""]
     out += _machine(r)
-    targets = r.get("targets", {})
-    if targets:
-        out += ["## Targets", ""]
-        out += _table(["section", "target"], [[k, _met(v)] for k, v in targets.items()])
-        out += _findings(r)
-    if "root_search" in r:
-        out += _root_search(r["root_search"])
-    if "evaluator" in r:
-        out += _evaluator(r["evaluator"])
-    if "fe" in r:
-        out += _fe(r["fe"])
-    if "scaling" in r:
-        out += _scaling(r["scaling"])
+    out += _targets(r)
+    out += _findings(r)
+    sections = {"fe": _fe, "scaling": _scaling, "precision": _precision,
+                "root_search": _root_search, "sweep": _sweep, "evaluator": _evaluator}
+    for name, fn in sections.items():
+        if name in r and "error" not in r[name]:
+            out += fn(r[name])
     return "\n".join(out)

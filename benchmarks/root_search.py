@@ -7,8 +7,13 @@ evaluated, whatever the precision), seconds, the largest relative error of
 the eigenvalues found, and the reference eigenvalues missed (with
 multiplicity). The default search's time is split over the library's
 routines (:func:`benchmarks.profiling.solve_profile`), so the report can say
-where its time goes: its evaluations are fewer than the grid searches', but
-many are in mpmath, and wall time is reported beside evaluations.
+where its time goes.
+
+The target is the paper's damped example 4 (``omega_max = 1500``,
+``sigma_max = 3000``, the region of its table 2): the default search must be
+faster in wall time than the paper's fMin2D and need at most 1/10 of its
+evaluations. Both are timed :data:`DAMPED_REPEAT` times (the best counts; one
+of the default's runs is the profiled one).
 """
 
 from __future__ import annotations
@@ -19,16 +24,19 @@ import time
 import mpmath
 import sympy
 
-from symtmm.compile import Evaluator
 from symtmm.solve import solve
 
 from . import references
 from .baselines import cxroots_search, grid_bisection
 from .compare import match
+from .kernel import internals
 from .models import check_ex1_model, clamped_clamped, example
 from .profiling import solve_profile
 
-__all__ = ["run"]
+__all__ = ["run", "DAMPED_REPEAT"]
+
+#: Timed runs of each method on the paper's damped rectangle (the best counts).
+DAMPED_REPEAT = 2
 
 
 def _first_guess(model) -> float:
@@ -72,30 +80,52 @@ def _timed_solve(model, method, **kw):
     return spectrum, time.perf_counter() - start
 
 
-def _default_row(model, reference, **kw) -> dict:
+def _default_row(model, reference, repeat: int = 1, **kw) -> dict:
     """The default search, timed with its time split over the library's routines
-    (:func:`benchmarks.profiling.solve_profile`)."""
-    profile, spectrum = solve_profile(model, **kw)
-    row = _spectrum_row(spectrum, reference, profile["seconds"])
+    (:func:`benchmarks.profiling.solve_profile`); with ``repeat > 1`` the best of that
+    many runs, the profiled one among them. A solve that stops with an error is a row
+    with its message, every reference eigenvalue missed."""
+    from symtmm.errors import ComputationError
+
+    start = time.perf_counter()
+    try:
+        profile, spectrum = solve_profile(model, **kw)
+    except ComputationError as exc:
+        return _row([], reference, 0, time.perf_counter() - start,
+                    status=f"error: {exc}"[:200])
+    seconds = profile["seconds"]
+    for _ in range(repeat - 1):
+        seconds = min(seconds, _timed_solve(model, "default", **kw)[1])
+    row = _spectrum_row(spectrum, reference, seconds)
     row["profile"] = profile
     return row
+
+
+def _best_solve(model, method, repeat, **kw):
+    """``(spectrum, best seconds)`` of ``repeat`` solves."""
+    spectrum, seconds = _timed_solve(model, method, **kw)
+    for _ in range(repeat - 1):
+        seconds = min(seconds, _timed_solve(model, method, **kw)[1])
+    return spectrum, seconds
 
 
 def _undamped_case(name, model, count, reference, reference_text, digits=15) -> dict:
     methods = {"default": _default_row(model, reference, count=count, digits=digits)}
     spectrum, seconds = _timed_solve(model, "fmin1d", count=count, digits=digits)
     methods["fmin1d"] = _spectrum_row(spectrum, reference, seconds)
-    ev = Evaluator(model)
     # the model's rigid-body modes (lam = 0) are no sign change: report them as the
     # grid search would be told them, from the reference
     rigid = [z for z in reference if z == 0]
-    g = grid_bisection(ev.delta, count - len(rigid), _first_guess(model))
+    g = grid_bisection(internals().transfer_delta(model), count - len(rigid),
+                       _first_guess(model))
     found = rigid + [complex(0, w) for w in g.omegas]
     methods["grid_bisection"] = _row(found, reference, g.evaluations, g.seconds, None,
                                      notes=g.notes)
     case = dict(name=name, kind="undamped", count=count, reference=reference_text,
                 methods=methods)
     d, f = methods["default"], methods["fmin1d"]
+    if d["status"] != "ok":
+        return case
     case["evaluation_ratio_default_over_fmin1d"] = d["evaluations"] / max(f["evaluations"], 1)
     case["seconds_ratio_default_over_fmin1d"] = d["seconds"] / max(f["seconds"], 1e-9)
     return case
@@ -136,10 +166,10 @@ def case_ex2(quick: bool) -> dict:
                           "closed form (n pi)^2, each of multiplicity 3")
 
 
-def case_ex4(quick: bool, cxroots_budget: float, W: float = 1500.0, S: float = 3000.0,
-             name: str = "ex4_damped_table2") -> dict:
+def case_ex4(cxroots_budget: float | None, W: float = 1500.0, S: float = 3000.0,
+             name: str = "ex4_damped_table2", repeat: int = 1) -> dict:
     """The paper's damped example 4 (table 2): Im lam <= W, -S <= Re lam <= 0 (the paper's
-    region: W = 1500, S = 3000)."""
+    region: W = 1500, S = 3000); cxroots too unless ``cxroots_budget`` is None."""
     model = example("paper_ex4_damped")
     r = model.resolved()
     b = r.beams[0]
@@ -152,14 +182,18 @@ def case_ex4(quick: bool, cxroots_budget: float, W: float = 1500.0, S: float = 3
             "(Laplacian eigenvalues 0, 1, 3) give single pinned-pinned beams with grounded "
             "spring/dashpots mu (k + c lam); Green's-function characteristic equation, roots "
             "followed from the undamped ones as c grows, 40 digits")
-    methods = {"default": _default_row(model, reference, omega_max=W, sigma_max=S, digits=15)}
-    spectrum, seconds = _timed_solve(model, "fmin2d", omega_max=W, sigma_max=S, digits=15)
+    methods = {"default": _default_row(model, reference, repeat, omega_max=W, sigma_max=S,
+                                       digits=15)}
+    spectrum, seconds = _best_solve(model, "fmin2d", repeat, omega_max=W, sigma_max=S,
+                                    digits=15)
     methods["fmin2d"] = _spectrum_row(spectrum, reference, seconds)
-    ev = Evaluator(model)
     # the same rectangle, its edges moved off the undamped modes on Re lam = 0 and off
     # the real axis (cxroots needs no zero on the contour)
-    cx = cxroots_search(ev.delta, (-S, 1.0), (1.0, W), cxroots_budget)
-    if cx.status == "not installed":
+    cx = None if cxroots_budget is None else cxroots_search(
+        internals().transfer_delta(model), (-S, 1.0), (1.0, W), cxroots_budget)
+    if cx is None:
+        pass
+    elif cx.status == "not installed":
         methods["cxroots"] = dict(status="not installed")
     else:
         found = [complex(z) for z, k in zip(cx.roots, cx.multiplicities) for _ in range(k)]
@@ -167,19 +201,23 @@ def case_ex4(quick: bool, cxroots_budget: float, W: float = 1500.0, S: float = 3
         row = _row(found, reference, cx.evaluations, cx.seconds, None, cx.status)
         row["counted_in_rectangle"] = cx.counted
         row["budget_seconds"] = cxroots_budget
-        row["notes"] = [(f"cxroots.Rectangle([{-S:g}, 1], [1, {W:g}]).roots on Evaluator.delta "
-                        "(transfer-matrix Delta, double precision, vectorised), "
-                        "int_method='romb', derivative by cxroots' own finite differences")]
+        row["notes"] = [(f"cxroots.Rectangle([{-S:g}, 1], [1, {W:g}]).roots on the "
+                         "transfer-matrix Delta (double precision, vectorised), "
+                         "int_method='romb', derivative by cxroots' own finite differences")]
         methods["cxroots"] = row
+    d, f = methods["default"], methods["fmin2d"]
+    if d["status"] != "ok":
+        return dict(name=name, kind="damped", omega_max=W, sigma_max=S, reference=text,
+                    methods=methods)
     return dict(name=name, kind="damped", omega_max=W, sigma_max=S,
                 reference=text, methods=methods,
-                evaluation_ratio_default_over_fmin2d=methods["default"]["evaluations"]
-                / max(methods["fmin2d"]["evaluations"], 1))
+                evaluation_ratio_default_over_fmin2d=d["evaluations"] / max(f["evaluations"], 1),
+                seconds_ratio_default_over_fmin2d=d["seconds"] / max(f["seconds"], 1e-9))
 
 
 def run(quick: bool = False, progress=print) -> dict:
-    """All root-search cases; ``quick`` takes fewer modes of the clamped-clamped beam, the
-    small damped rectangle instead of the paper's and no cross-checks."""
+    """All root-search cases; ``quick`` takes fewer modes of the clamped-clamped beam, no
+    example 2 and no cross-check, and gives cxroots 5 s on the small rectangle."""
     cases = []
     progress("root_search: example 1, first 10")
     cases.append(case_ex1(quick))
@@ -188,25 +226,21 @@ def run(quick: bool = False, progress=print) -> dict:
     if not quick:
         progress("root_search: example 2, 30 roots with multiplicity 3")
         cases.append(case_ex2(quick))
-        progress("root_search: example 4 (damped)")
-        cases.append(case_ex4(quick, cxroots_budget=300.0))
-    # a corner of the same plane: a smaller task for every method, cxroots included
-    progress("root_search: example 4, small rectangle")
-    cases.append(case_ex4(quick, cxroots_budget=5.0 if quick else 120.0, W=200.0, S=300.0,
+    progress("root_search: example 4 (damped), the paper's rectangle")
+    paper = case_ex4(None, repeat=1 if quick else DAMPED_REPEAT)
+    cases.append(paper)
+    # a corner of the same plane: a task small enough for cxroots too
+    progress("root_search: example 4, small rectangle, with cxroots")
+    cases.append(case_ex4(5.0 if quick else 60.0, W=200.0, S=300.0,
                           name="ex4_damped_small_rectangle"))
-    targets = []
-    for case in cases:
-        if case["kind"] != "undamped":
-            continue
-        d = case["methods"]["default"]
-        targets.append(dict(
-            case=case["name"],
-            ratio=case["evaluation_ratio_default_over_fmin1d"],
-            seconds_ratio=case["seconds_ratio_default_over_fmin1d"],
-            max_rel_error=d["max_rel_error"], missed=d["missed"],
-            met=bool(case["evaluation_ratio_default_over_fmin1d"] <= 0.1
-                     and d["max_rel_error"] is not None and d["max_rel_error"] <= 1e-12
-                     and d["missed"] == 0)))
+    d, f = paper["methods"]["default"], paper["methods"]["fmin2d"]
+    ratio = paper.get("evaluation_ratio_default_over_fmin2d", math.inf)
+    seconds_ratio = paper.get("seconds_ratio_default_over_fmin2d", math.inf)
     return dict(cases=cases, target=dict(
-        text="default needs at most 1/10 of fmin1d's evaluations, reaches 1e-12, misses none",
-        results=targets, met=all(t["met"] for t in targets)))
+        text="damped example 4 (omega_max 1500, sigma_max 3000): the default search is faster "
+             "in wall time than fMin2D, with at most 1/10 of its evaluations, none missed",
+        case=paper["name"], evaluation_ratio=ratio, seconds_ratio=seconds_ratio,
+        default_seconds=d["seconds"], fmin2d_seconds=f["seconds"],
+        default_evaluations=d["evaluations"], fmin2d_evaluations=f["evaluations"],
+        missed=d["missed"], max_rel_error=d["max_rel_error"],
+        met=bool(seconds_ratio < 1 and ratio <= 0.1 and d["missed"] == 0)))

@@ -17,13 +17,15 @@ import shutil
 import subprocess
 import sys
 import time
+import traceback
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-SECTIONS = ("root_search", "evaluator", "fe", "scaling")
+#: In the order of the targets of issue 11.
+SECTIONS = ("fe", "scaling", "precision", "root_search", "sweep", "evaluator")
 
 
 def _load() -> list:
@@ -60,9 +62,19 @@ def _gcc() -> str | None:
 
 
 def _commit() -> str | None:
-    out = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True,
-                         text=True, cwd=ROOT, check=False)
-    return out.stdout.strip() or None
+    """The commit measured, ``-dirty`` if files other than the report's own differ (the
+    documented command writes docs/benchmarks.json while it runs)."""
+    def git(*args):
+        out = subprocess.run(["git", *args], capture_output=True, text=True, cwd=ROOT,
+                             check=False)
+        return out.stdout.strip() if out.returncode == 0 else None
+
+    head = git("rev-parse", "--short", "HEAD")
+    if head is None:
+        return None
+    changed = git("status", "--porcelain", "--untracked-files=no", "--", ".",
+                  ":!docs/benchmarks.json", ":!docs/benchmarks.md")
+    return head + ("-dirty" if changed else "")
 
 
 def _mpmath_backend() -> str:
@@ -74,27 +86,36 @@ def _mpmath_backend() -> str:
 
 def machine() -> dict:
     """What the numbers were measured on."""
+    from benchmarks.kernel import internals
+
     return dict(cpu=_cpu(), cores=os.cpu_count(), platform=platform.platform(),
                 python=platform.python_version(),
                 packages={m: _version(m) for m in ("symtmm", "numpy", "scipy", "mpmath", "sympy",
-                                                   "cxroots")},
-                mpmath_backend=_mpmath_backend(),
+                                                   "flint", "cxroots")},
+                mpmath_backend=_mpmath_backend(), certified=internals().certified,
                 gcc=_gcc(), commit=_commit(),
                 date=time.strftime("%Y-%m-%d %H:%M:%S %Z"))
 
 
 def run(quick: bool, sections, progress) -> dict:
-    from benchmarks import evaluator, fe_compare, root_search, scaling
+    from benchmarks import evaluator, fe_compare, precision, root_search, scaling, sweep_compare
 
-    modules = {"root_search": root_search, "evaluator": evaluator, "fe": fe_compare,
-               "scaling": scaling}
+    modules = {"fe": fe_compare, "scaling": scaling, "precision": precision,
+               "root_search": root_search, "sweep": sweep_compare, "evaluator": evaluator}
     result = dict(quick=quick, machine=machine(), load_before=_load(),
-                  command="python benchmarks/run.py" + (" --quick" if quick else ""))
+                  command="python benchmarks/run.py" + (" --quick" if quick else "")
+                  + ("" if tuple(sections) == SECTIONS else " --sections " + " ".join(sections)))
     start = time.perf_counter()
     seconds = {}
     for name in sections:
         t = time.perf_counter()
-        result[name] = modules[name].run(quick=quick, progress=progress)
+        try:
+            result[name] = modules[name].run(quick=quick, progress=progress)
+        except Exception as exc:  # noqa: BLE001 - a failed section is reported, the run goes on
+            progress(f"{name}: failed: {type(exc).__name__}: {exc}")
+            result[name] = dict(error=f"{type(exc).__name__}: {exc}"[:300],
+                                trace=traceback.format_exc().splitlines()[-6:],
+                                target=dict(met=False))
         seconds[name] = round(time.perf_counter() - t, 1)
     result["seconds"] = dict(seconds, total=round(time.perf_counter() - start, 1))
     result["load_after"] = _load()
