@@ -154,6 +154,9 @@ class Arithmetic:
 
     #: whether :meth:`decide` needs ``scale`` (balls carry their own error)
     needs_scale = True
+    #: the largest growth of ``|L||D||L^T|`` over the diagonal of ``K`` at which the
+    #: pivots' signs are still taken for the inertia of ``K`` (see numeric.stiffness)
+    growth_limit = float("inf")
 
     def widen(self, x, radius):
         """``x`` with ``radius`` (an exact rational: a truncation error) added to its
@@ -206,6 +209,7 @@ class Batch(Arithmetic):
     prec = 53
     #: a pivot below this fraction of the entries met so far has an untrusted sign
     TRUST = 1e-10
+    growth_limit = 1e4
 
     def _convert(self, value):
         return float(value)
@@ -282,6 +286,8 @@ class MP(Arithmetic):
     def __init__(self, prec: int):
         self.prec = int(prec)
         self.ctx = _mp_context(self.prec)
+        # (half the digits beyond double's may go to growth: the rest still decides)
+        self.growth_limit = 1e4 * 2.0 ** min((self.prec - 53) / 2, 900)
         ctx = self.ctx
         self.sqrt = _ufunc(ctx.sqrt)
         self.cos = _ufunc(ctx.cos)

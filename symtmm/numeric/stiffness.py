@@ -13,7 +13,7 @@ over a leading axis of points:
   with its sign and whether that sign can be trusted.
 
 The sign test follows the backward error of ``LDL^T`` (Higham, *Accuracy and
-Stability of Numerical Algorithms*, 2nd ed., thm. 10.? for Cholesky; the same
+Stability of Numerical Algorithms*, 2nd ed., chapter 10 for Cholesky; the same
 argument for ``LDL^T``): the computed factors are exact for ``K + E`` with
 ``|E| <= c u |L||D||L^T|``, whose diagonal at ``k`` is ``|K_kk| + sum_p
 |K^(p)_pk|**2 / |d_p|``. That sum is kept per freedom as the elimination goes
@@ -257,6 +257,14 @@ def _ldl(plan, ar: Arithmetic, K, det12) -> Factors:
                 r = ar.upper(Kb[:, :n - j, j]).astype(float)
                 scale[:, j:] += r * r / np.maximum(mag[:, :n - j], 1e-300)
     signs, decided = ar.decide(pivots, scale, n)
+    # Each decided pivot exceeds what the backward error E (|E| <= c u |L||D||L^T|) can do to
+    # it; the inertia of K + E is K's only while E stays below K's smallest eigenvalue,
+    # which a tiny pivot followed by a huge one (a nearly singular leading minor) breaks
+    # without any single pivot looking small. Such growth of |L||D||L^T| beyond the
+    # diagonal of K leaves the point undecided (balls need no such rule).
+    if not ar.rigorous:
+        base = np.max(ar.upper(K[:, :, 0]).astype(float), axis=1, initial=1e-300)
+        decided = decided & (scale <= ar.growth_limit * base[:, None])
     # a pivot after an undecided one is meaningless: the point is undecided from there on
     decided = np.logical_and.accumulate(decided, axis=1)
     return Factors(plan, ar, pivots, signs, decided, det12, K)

@@ -487,8 +487,22 @@ class _Search:
                                       == decimal_string(_exact_mpf(hi), D))
 
         a, b = ctx.mpf(a), ctx.mpf(b)
+        # the double-precision counts at the ends, this close to a cluster, are checked here
+        # (rounding can flip the signs of pivots through zero and pass the trust test):
+        # an end that holds a root the wrong side of it moves out until it does not
+        target = ca
         a, ca = self.count_off(a, b, digits)
-        cb = ca + k
+        step = (b - a) / 16
+        while ca > target and a - step > 0:
+            a, ca = self.count_off(a - step, a - 2 * step, digits)
+            step *= 4
+        cb_want = ca + k
+        b, cb = self.count_off(b, 2 * b - a, digits)
+        step = (b - a) / 16
+        while cb < cb_want:
+            b, cb = self.count_off(b + step, b + 2 * step, digits)
+            step *= 4
+        k = cb - ca
         tol = ctx.mpf(10) ** (-resolution)
         zoomed = self._zoom(a, b, k, resolution)
         if zoomed is not None:
