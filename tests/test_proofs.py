@@ -49,7 +49,9 @@ def test_thirty_triple_roots_of_three_identical_beams():
     from symtmm.modelfile import load
     from symtmm.results import decimal_string
 
-    spec = solve_undamped(load("examples/paper_ex2_three_pp.toml"), count=30, digits=15)
+    from pathlib import Path
+    example = Path(__file__).resolve().parent.parent / "examples" / "paper_ex2_three_pp.toml"
+    spec = solve_undamped(load(example), count=30, digits=15)
     assert [e.multiplicity for e in spec] == [3] * 10
     with mpmath.workdps(40):
         expected = [decimal_string((n * mpmath.pi) ** 2, 15) for n in range(1, 11)]
