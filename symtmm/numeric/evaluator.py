@@ -86,13 +86,22 @@ class Evaluator:
         self._extra_bits: dict = {}
 
     def plan(self, size: float) -> StiffnessPlan:
-        """The plan valid for ``|lam| <= size`` (one per doubling of the range)."""
+        """A plan valid for ``|lam| <= size``.
+
+        The plans are cut for the ranges ``size0 * 2**k``; one already built for a larger
+        range serves a smaller one while its pieces are at most twice as many as needed
+        (``4 x`` the range: Euler–Bernoulli pieces shorten like ``range**(-1/2)``), since
+        building a plan costs tens of evaluations.
+        """
         size = float(size)
         design = self.size
         while design < size * (1 + 1e-12):
             design *= 2.0
         plan = self._plans.get(design)
         if plan is None:
+            larger = [d for d in self._plans if design < d <= 4 * design]
+            if larger:
+                return self._plans[min(larger)]
             plan = self._plans[design] = StiffnessPlan(self.model, design * design)
         return plan
 

@@ -33,6 +33,7 @@ What the factorisation gives (:class:`Factors`):
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -109,6 +110,7 @@ def assemble(plan, ar: Arithmetic, lam2, lam=None):
     return K.reshape(B, n, w), det12
 
 
+@functools.lru_cache(maxsize=64)
 def _update_maps(w: int):
     """Index arrays of the rank-one update of ``LDL^T`` on the upper band (half-bandwidth ``b``).
 

@@ -217,19 +217,33 @@ class _Search:
 
     # -- the range ------------------------------------------------------------------------
     def top_for(self, count: int):
-        """``(omega, J(omega))`` with ``J(omega) >= count``, from a batch of doublings."""
-        hi = _first_guess(self.model)
-        while True:
-            grid = hi * 2.0 ** np.arange(6)
-            counts = self.counter.counts(grid)
-            for w, k in zip(grid, counts):
-                if k < 0:
-                    w, k = self.count_off(float(w), 2.0 * float(w))
-                if k >= count:
-                    return float(w), int(k)
-            hi = float(grid[-1]) * 2.0
-            if hi > 1e150:
-                raise ComputationError(f"fewer than {count} eigenvalues below 1e150 rad/s")
+        """``(omega, J(omega))`` with ``J(omega) >= count``: from Weyl's estimate, then up.
+
+        Along a beam the modes come one per ``pi`` of ``s L`` (``s`` its largest wave
+        number), so ``N(omega) ~ sum s L / pi`` plus about one per beam: the first
+        guess is where that reaches ``count`` plus the number of beams, and each miss
+        raises it by half. The plan is then cut for a range close to the one needed.
+        """
+        target = count + len(self.model.beams)
+        waves = [(b.segment(b.L), float(b.L)) for b in self.model.beams]
+
+        def weyl(w):
+            return sum(float(np.max(seg.wave_number(np.array(-w * w)))) * L
+                       for seg, L in waves) / math.pi
+
+        lo = hi = max(_first_guess(self.model), 1e-300)
+        while weyl(hi) < target and hi < 1e150:
+            lo, hi = hi, 2 * hi
+        for _ in range(40):
+            mid = math.sqrt(lo * hi)
+            lo, hi = (mid, hi) if weyl(mid) < target else (lo, mid)
+        w = hi
+        while w < 1e150:
+            w, k = self.count_off(w, 2.0 * w)
+            if k >= count:
+                return float(w), int(k)
+            w *= 1.5
+        raise ComputationError(f"fewer than {count} eigenvalues below 1e150 rad/s")
 
     # -- isolation -------------------------------------------------------------------------
     def isolate(self, top: float, c_top: int, wanted=None) -> list:
