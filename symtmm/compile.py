@@ -105,36 +105,31 @@ class Evaluator:
     def _arith(self, dps):
         return MP.from_digits(dps if dps is not None else mpmath.mp.dps)
 
+    def _point(self, lam, real: bool, dps):
+        """``(arithmetic, lam, lam**2)`` arrays of one point for the transfer walk."""
+        ar = self._arith(dps)
+        lam = mpmath.mpmathify(lam)
+        if not real:
+            return ar, ar.array([ar.number(lam)]), None
+        if self.damped:
+            raise ValueError("real arithmetic needs an undamped model")
+        w = lam.imag if isinstance(lam, mpmath.mpc) else None
+        x = ar.number(-(w ** 2)) if w is not None else ar.number(lam * lam)
+        return ar, None, ar.array([x])
+
     def R_mp(self, lam, real: bool = False, dps: int | None = None) -> mpmath.matrix:
         """``R(lam)`` at one eigenvalue in mpmath at ``dps`` digits (default: the ambient
         precision). ``real=True`` (undamped, ``lam = i omega``): in real arithmetic."""
         self.evaluations += 1
-        ar = self._arith(dps)
-        lam = mpmath.mpmathify(lam)
-        if real:
-            if self.damped:
-                raise ValueError("real arithmetic needs an undamped model")
-            w = lam.imag if isinstance(lam, mpmath.mpc) else None
-            x = ar.number(-(w ** 2)) if w is not None else ar.number(lam * lam)
-            R = transfer.boundary(self.plan, ar, lam2=ar.array([x]))[0]
-        else:
-            R = transfer.boundary(self.plan, ar, ar.array([ar.number(lam)]))[0]
+        ar, lam, lam2 = self._point(lam, real, dps)
+        R = transfer.boundary(self.plan, ar, lam, lam2)[0]
         return mpmath.matrix([[ar.to_mpmath(v) for v in row] for row in R])
 
     def delta_mp(self, lam, real: bool = False, dps: int | None = None):
         """``Delta(lam)`` in mpmath at ``dps`` digits (default: the ambient precision)."""
         self.evaluations += 1
-        ar = self._arith(dps)
-        lam = mpmath.mpmathify(lam)
-        if real:
-            if self.damped:
-                raise ValueError("real arithmetic needs an undamped model")
-            w = lam.imag if isinstance(lam, mpmath.mpc) else None
-            x = ar.number(-(w ** 2)) if w is not None else ar.number(lam * lam)
-            value = transfer.delta(self.plan, ar, lam2=ar.array([x]))[0]
-        else:
-            value = transfer.delta(self.plan, ar, ar.array([ar.number(lam)]))[0]
-        return ar.to_mpmath(value)
+        ar, lam, lam2 = self._point(lam, real, dps)
+        return ar.to_mpmath(transfer.delta(self.plan, ar, lam, lam2)[0])
 
     def delta_omega_mp(self, omega, dps: int | None = None):
         """``Delta(i omega)`` of an undamped model, real."""

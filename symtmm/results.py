@@ -8,7 +8,7 @@ from dataclasses import dataclass, field, replace
 
 import mpmath
 
-__all__ = ["Eigenvalue", "Spectrum", "decimal_string"]
+__all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string"]
 
 
 def decimal_string(value, digits: int) -> str:
@@ -28,6 +28,25 @@ def decimal_string(value, digits: int) -> str:
     ctx = _context(digits + 10)
     return ctx.nstr(ctx.mpf(value), digits, strip_zeros=False, min_fixed=-ctx.inf,
                     max_fixed=ctx.inf)
+
+
+def first(eigenvalues, count: int) -> list:
+    """The eigenvalues (in their order) up to ``count`` counted with multiplicity; a
+    multiple one that straddles ``count`` is kept whole.
+
+    Examples
+    --------
+    >>> e = [Eigenvalue(mpmath.mpc(0, w), m) for w, m in ((1, 1), (2, 3), (3, 1))]
+    >>> [x.multiplicity for x in first(e, 2)]
+    [1, 3]
+    """
+    kept, total = [], 0
+    for e in eigenvalues:
+        if total >= count:
+            break
+        kept.append(e)
+        total += e.multiplicity
+    return kept
 
 
 @functools.lru_cache(maxsize=32)

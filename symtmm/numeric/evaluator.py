@@ -41,7 +41,7 @@ from .arith import DOUBLE, Arithmetic, Ball
 from .plan import StiffnessPlan
 from .stiffness import Factors, factor
 
-__all__ = ["Evaluator", "exact_mpf"]
+__all__ = ["Evaluator", "exact_mpf", "exact_mpc"]
 
 
 def exact_mpf(x) -> mpmath.mpf:
@@ -52,7 +52,9 @@ def exact_mpf(x) -> mpmath.mpf:
     return mpmath.mp.make_mpf(mpmath.libmp.from_float(float(x)))
 
 
-def _exact_mpc(z) -> mpmath.mpc:
+def exact_mpc(z) -> mpmath.mpc:
+    """``z`` (a Python number or a number of any mpmath context) as a global mpmath complex
+    number, unrounded."""
     if hasattr(z, "_mpc_"):
         return mpmath.mp.make_mpc(z._mpc_)
     if hasattr(z, "_mpf_"):
@@ -118,7 +120,7 @@ class Evaluator:
             top = float(np.max(np.abs(lam), initial=0.0))
             self.evaluations += lam.size
             return factor(self.plan(top), ar, lam * lam, lam)
-        points = [_exact_mpc(z) if not hasattr(z, "mid") else z for z in lam]
+        points = [exact_mpc(z) if not hasattr(z, "mid") else z for z in lam]
         top = max((float(abs(complex(z.mid()) if hasattr(z, "mid") else complex(z)))
                    for z in points), default=0.0)
         self.evaluations += len(points)

@@ -69,7 +69,8 @@ from ..mesh import zero_order
 from ..model import Model
 from ..numeric.arith import MP, Ball, ball_available
 from ..numeric.evaluator import Evaluator
-from ..results import Eigenvalue, Spectrum, decimal_string
+from ..numeric.evaluator import exact_mpc as _global
+from ..results import Eigenvalue, Spectrum, decimal_string, first
 from .bracket import SEPARATION_DIGITS
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
 from .undamped import PROOFS, _first_guess, check_stable, omega_scale
@@ -119,17 +120,6 @@ def _scaled_dashpots(model: Model, factor) -> Model:
     """The same model with every dashpot coefficient multiplied by ``factor``."""
     springs = tuple(replace(s, c=s.c * factor) for s in model.springs)
     return replace(model, springs=springs)
-
-
-def _global(z) -> mpmath.mpc:
-    """A number of any mpmath context (or a Python complex) as a global one, unrounded."""
-    if hasattr(z, "_mpc_"):
-        return mpmath.mp.make_mpc(z._mpc_)
-    if hasattr(z, "_mpf_"):
-        return mpmath.mp.make_mpc((z._mpf_, mpmath.libmp.fzero))
-    z = complex(z)
-    return mpmath.mp.make_mpc((mpmath.libmp.from_float(z.real),
-                               mpmath.libmp.from_float(z.imag)))
 
 
 def _imaginary(z) -> mpmath.mpc:
@@ -1149,13 +1139,7 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
              and e.lam.imag <= W * (1 + tol) + tol]
     eigen.sort(key=lambda e: (e.lam.imag, e.lam.real))
     if count is not None:
-        kept, n = [], 0
-        for e in eigen:
-            if n >= count:
-                break
-            kept.append(e)
-            n += e.multiplicity
-        eigen = kept
+        eigen = first(eigen, count)
     notes.insert(0, f"search region: {-S:.6g} <= Re lam <= 0, 0 <= Im lam <= {W:.6g} "
                     f"({total} eigenvalue(s) with Im lam >= 0 counted in the enlarged region)")
     if search.idle:

@@ -46,7 +46,7 @@ from ..model import Model
 from ..numeric import transfer
 from ..numeric.arith import MP
 from ..numeric.evaluator import Evaluator
-from ..results import Eigenvalue, Spectrum, decimal_string
+from ..results import Eigenvalue, Spectrum, decimal_string, first
 from .damped import default_sigma_max
 from .undamped import omega_scale, rigid_body_modes
 
@@ -177,9 +177,22 @@ def _eigenvalue(re_bracket, im_bracket, digits, radius=0.0) -> Eigenvalue | None
                       ((re_lo, re_hi), (im_lo, im_hi)))
 
 
-def _dropped_note(n: int) -> str:
-    return (f"{n} minimum/minima not reported: not one digit of a root is backed there "
-            "(no root near, or rounding noise moved the minimum)")
+def _labelled(ds: Evaluator, boxes, digits: int, notes: list) -> list:
+    """The grid minima's boxes ``((re_lo, re_hi), (im_lo, im_hi))`` as eigenvalues with the
+    digits the distance to the nearest root backs; those that back none are counted in a
+    note."""
+    eigen, dropped = [], 0
+    for re, im in boxes:
+        radius = _root_distance(ds, complex(0.5 * (re[0] + re[1]), 0.5 * (im[0] + im[1])))
+        e = _eigenvalue(re, im, digits, radius)
+        if e is None:
+            dropped += 1
+        else:
+            eigen.append(e)
+    if dropped:
+        notes.append(f"{dropped} minimum/minima not reported: not one digit of a root is "
+                     "backed there (no root near, or rounding noise moved the minimum)")
+    return eigen
 
 
 def fmin1d(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
@@ -224,26 +237,14 @@ def fmin1d(model: Model, count: int | None = None, omega_max=None, sigma_max=Non
     eigen = []
     if rigid:
         eigen.append(Eigenvalue(mpmath.mpc(0, 0), rigid, digits, (0.0, 0.0)))
-    dropped = 0
     ds = Evaluator(model, 1.05 * band)
+    boxes = []
     for i in mins:
         lo, hi = _refine_1d(f, grid[i - 1], grid[i + 1])
-        radius = _root_distance(ds, 0.5j * (lo + hi))
-        e = _eigenvalue((0.0, 0.0), (lo, hi), digits, radius)
-        if e is None:
-            dropped += 1
-        else:
-            eigen.append(e)
-    if dropped:
-        notes.append(_dropped_note(dropped))
+        boxes.append(((0.0, 0.0), (lo, hi)))
+    eigen += _labelled(ds, boxes, digits, notes)
     if count is not None:
-        kept, n = [], 0
-        for e in sorted(eigen, key=lambda e: e.lam.imag):
-            if n >= count:
-                break
-            kept.append(e)
-            n += e.multiplicity
-        eigen = kept
+        eigen = first(sorted(eigen, key=lambda e: e.lam.imag), count)
     return _spectrum(model, eigen, digits, "fmin1d", ev.evaluations + ds.evaluations, start,
                      notes)
 
@@ -314,19 +315,13 @@ def fmin2d(model: Model, count: int | None = None, omega_max=None, sigma_max=Non
     if len(mins) > MAX_MINIMA:
         notes.append(f"{len(mins)} minima, only the {MAX_MINIMA} deepest refined")
         mins = mins[:MAX_MINIMA]
-    eigen, dropped = [], 0
     ds = Evaluator(model, 1.05 * abs(complex(S_max, W)))
+    boxes = []
     for i, j in mins:
         s_lo, s_hi, w_lo, w_hi = _refine_2d(f, s[max(i - 1, 0)], s[min(i + 1, GRID_2D - 1)],
                                             w[max(j - 1, 0)], w[min(j + 1, GRID_2D - 1)])
-        radius = _root_distance(ds, complex(-0.5 * (s_lo + s_hi), 0.5 * (w_lo + w_hi)))
-        e = _eigenvalue((-s_hi, -s_lo), (w_lo, w_hi), digits, radius)
-        if e is None:
-            dropped += 1
-        else:
-            eigen.append(e)
-    if dropped:
-        notes.append(_dropped_note(dropped))
+        boxes.append(((-s_hi, -s_lo), (w_lo, w_hi)))
+    eigen = _labelled(ds, boxes, digits, notes)
     if count is not None:
         eigen = sorted(eigen, key=lambda e: e.lam.imag)[:count]
     return _spectrum(model, eigen, digits, "fmin2d", ev.evaluations + ds.evaluations, start,

@@ -51,7 +51,7 @@ from ..mesh import static_nullity
 from ..model import Model
 from ..numeric.arith import MP
 from ..numeric.evaluator import exact_mpf as _exact_mpf
-from ..results import Eigenvalue, Spectrum, decimal_string
+from ..results import Eigenvalue, Spectrum, decimal_string, first
 from .bracket import SEPARATION_DIGITS
 from .count import Counter, digits_for, proof_arithmetic
 
@@ -685,13 +685,7 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
                 raise ComputationError(f"the count at omega_max is {got[0]}, not {c_top}")
     eigen.sort(key=lambda e: e.omega)
     if count is not None:
-        kept, total = [], 0
-        for e in eigen:
-            if total >= count:
-                break
-            kept.append(e)
-            total += e.multiplicity
-        eigen = kept
+        eigen = first(eigen, count)
     elif omega_max is not None:
         top = _exact_mpf(float(omega_max) * (1 + 4e-16))
         eigen = [e for e in eigen if e.omega <= top]
