@@ -1,12 +1,20 @@
-"""Shrinking a sign-change bracket: shared by the undamped and damped searches."""
+"""Shrinking brackets on the real line, many at once: shared by the undamped and damped
+searches.
+
+:func:`shrink` runs regula falsi with the Anderson–Björck scaling of the end
+that stays (so neither end sticks) on a batch of brackets, one evaluation of
+all the active ones per step. A bracket is bisected when two steps together
+have not halved it: superlinear near a simple root, and at worst a bisection
+every other step. Each new point lands at least a quarter of the final width
+inside the bracket: once the iterate is that close to the root, the next one
+falls on its other side and the bracket closes at once.
+"""
 
 from __future__ import annotations
 
-import mpmath
+import numpy as np
 
-from ..results import decimal_string
-
-__all__ = ["anderson_bjorck", "bracket_done", "SEPARATION_DIGITS"]
+__all__ = ["shrink", "SEPARATION_DIGITS"]
 
 #: Eigenvalues are told apart down to a relative distance of ``10**-(D + 2 +
 #: SEPARATION_DIGITS)`` (``D`` the digits asked for); closer ones are reported as one
@@ -14,86 +22,76 @@ __all__ = ["anderson_bjorck", "bracket_done", "SEPARATION_DIGITS"]
 SEPARATION_DIGITS = 20
 
 
-def bracket_done(a, b, digits: int, scale=1) -> bool:
-    """``[a, b]`` (mpmath numbers) is narrow enough to print ``digits`` digits.
+def shrink(a, b, fa, fb, probe, width: float, steps: int = 100):
+    """Shrink every bracket ``[a_i, b_i]`` (one root inside) to relative ``width``.
 
-    True when the relative width is below ``10**-(digits+2)`` and both ends round
-    to the same ``digits`` significant digits, so the midpoint prints correctly
-    rounded; or when the bracket is narrower than the working precision can
-    resolve. ``scale`` is the size of the numbers when the bracket holds 0.
-
-    Examples
-    --------
-    >>> with mpmath.workdps(30):
-    ...     bracket_done(mpmath.mpf("1.23456781"), mpmath.mpf("1.23456782"), 5)
-    True
-    """
-    limit = mpmath.mpf(10) ** -(mpmath.mp.dps - 5)
-    if a <= 0 <= b:
-        return b - a <= limit * scale
-    width = (b - a) / min(abs(a), abs(b))
-    if width > mpmath.mpf(10) ** (-(digits + 2)):
-        return False
-    return width <= limit or decimal_string(a, digits) == decimal_string(b, digits)
-
-
-def anderson_bjorck(f, a, b, fa, fb, done, tol=None):
-    """Shrink ``[a, b]`` with ``f(a) f(b) < 0`` until ``done(a, b)``.
-
-    Regula falsi with the Anderson–Björck scaling of the end that stays (so
-    neither end sticks), and a bisection whenever two steps together fail to
-    halve the bracket: superlinear near a simple root, and at worst a bisection
-    every other step.
-    With ``tol`` (the width ``done`` waits for), each step lands at least
-    ``tol/4`` inside the bracket: once the iterate is that close to the root,
-    the next step falls on its other side and the bracket closes at once.
+    Parameters
+    ----------
+    a, b, fa, fb : numpy.ndarray
+        Float brackets and the values there (scaled alike per bracket; their signs
+        differ, unless the caller's ``probe`` decides sides otherwise).
+    probe : callable
+        ``probe(c, idx) -> (fc, side)`` at the points ``c`` of the brackets ``idx``:
+        the values there and the side of the root each lies on (``-1`` left of it:
+        the new ``a``; ``+1`` right of it: the new ``b``; ``0`` undecided, which stops
+        that bracket there).
+    width : float
+        Relative width at which a bracket is done.
 
     Returns
     -------
-    (a, b)
-        The final bracket, or ``(c, c)`` where ``f(c)`` came out exactly 0.
+    list
+        Per bracket, the point of smallest ``|f|`` met inside it (an end may sit on a
+        neighbouring root, so the ends are not candidates).
 
     Examples
     --------
-    >>> with mpmath.workdps(30):
-    ...     lo, hi = anderson_bjorck(lambda x: x * x - 2, mpmath.mpf(1), mpmath.mpf(2),
-    ...                              mpmath.mpf(-1), mpmath.mpf(2),
-    ...                              lambda a, b: bracket_done(a, b, 25))
-    ...     print(decimal_string((lo + hi) / 2, 25))
-    1.414213562373095048801689
+    >>> import numpy as np
+    >>> f = lambda x: x * x - 2
+    >>> a, b = np.array([1.0, -2.0]), np.array([2.0, -1.0])
+    >>> def probe(c, idx):            # the side: where f has the sign it has at b
+    ...     v = f(c)
+    ...     return v, np.where(np.sign(v) == np.sign(f(b[idx])), 1, -1)
+    >>> [round(x, 12) for x in shrink(a, b, f(a), f(b), probe, 1e-13)]
+    [1.414213562373, -1.414213562373]
     """
-    previous = b - a               # the bracket's width at the start of the previous step
-    while not done(a, b):
-        width = b - a
-        c = b - fb * (b - a) / (fb - fa)
-        if not a < c < b:
-            c = (a + b) / 2
-        if tol is not None and width > tol:
-            c = min(max(c, a + tol / 4), b - tol / 4)
-        fc = f(c)
-        if fc == 0:
-            return c, c
-        if (fc > 0) == (fb > 0):
-            m = 1 - fc / fb
-            fa = fa * (m if m > 0 else mpmath.mpf(0.5))
-            b, fb = c, fc
-        else:
-            m = 1 - fc / fa
-            fb = fb * (m if m > 0 else mpmath.mpf(0.5))
-            a, fa = c, fc
-        # Regula falsi approaches a simple root from one side: the bracket need not
-        # halve at every step while the scaled far end catches up. Bisect only when
-        # two steps together have not halved it (bisecting every time would throw
-        # the far end's scaling away and cost a bisection per step).
-        stalled = b - a > 0.5 * previous
-        previous = width
-        if stalled:
-            mid = (a + b) / 2
-            fm = f(mid)
-            if fm == 0:
-                return mid, mid
-            if (fm > 0) == (fb > 0):
-                b, fb = mid, fm
+    a, b = np.array(a, dtype=float), np.array(b, dtype=float)
+    fa, fb = np.array(fa, dtype=float), np.array(fb, dtype=float)
+    R = a.size
+    previous = b - a
+    active = (b - a) > width * np.maximum(np.abs(a), np.abs(b))
+    bisect = np.zeros(R, dtype=bool)
+    best = 0.5 * (a + b)
+    best_f = np.full(R, np.inf)
+    for _ in range(steps):
+        idx = np.nonzero(active)[0]
+        if idx.size == 0:
+            break
+        A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
+        with np.errstate(all="ignore"):
+            c = B - FB * (B - A) / (FB - FA)
+        bad = ~np.isfinite(c) | (c <= A) | (c >= B) | bisect[idx] | (FA * FB > 0)
+        c = np.where(bad, 0.5 * (A + B), c)
+        guard = np.minimum(0.25 * width * np.maximum(np.abs(A), np.abs(B)), (B - A) / 4)
+        c = np.clip(c, A + guard, B - guard)
+        fc, side = probe(c, idx)
+        width_before = B - A
+        for j, i in enumerate(idx):
+            if not abs(fc[j]) >= best_f[i]:        # (also f = 0: at the root)
+                best[i], best_f[i] = c[j], abs(fc[j])
+            if side[j] == 0 or not np.isfinite(fc[j]):
+                active[i] = False
+                continue
+            if side[j] > 0:
+                m = 1 - fc[j] / fb[i]
+                fa[i] *= m if m > 0 else 0.5
+                b[i], fb[i] = c[j], fc[j]
             else:
-                a, fa = mid, fm
-    return a, b
+                m = 1 - fc[j] / fa[i]
+                fb[i] *= m if m > 0 else 0.5
+                a[i], fa[i] = c[j], fc[j]
+            # bisect next time when two steps together have not halved the bracket
+            bisect[i] = (b[i] - a[i]) > 0.5 * previous[i]
+            previous[i] = width_before[j]
+            active[i] = (b[i] - a[i]) > width * max(abs(a[i]), abs(b[i]))
+    return best.tolist()

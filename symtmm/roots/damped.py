@@ -71,7 +71,7 @@ from ..numeric.arith import MP, Ball, ball_available
 from ..numeric.evaluator import Evaluator
 from ..numeric.evaluator import exact_mpc as _global
 from ..results import Eigenvalue, Spectrum, decimal_string, first
-from .bracket import SEPARATION_DIGITS
+from .bracket import SEPARATION_DIGITS, shrink
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
 from .undamped import PROOFS, _first_guess, check_stable, omega_scale
 
@@ -762,37 +762,22 @@ class _Search:
         with np.errstate(all="ignore"):
             fa = sign[:R] * np.exp(np.minimum(la[:R] - ref, 700.0))
             fb = sign[R:] * np.exp(np.minimum(la[R:] - ref, 700.0))
-        best = 0.5 * (a + b)
-        active = (fa * fb < 0) & (b - a > 1e-13 * np.maximum(np.abs(a), np.abs(b)))
-        for _ in range(80):
-            idx = np.nonzero(active)[0]
-            if idx.size == 0:
-                break
-            A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-            with np.errstate(all="ignore"):
-                c = B - FB * (B - A) / (FB - FA)
-            c = np.where(np.isfinite(c) & (c > A) & (c < B), c, 0.5 * (A + B))
-            guard = (B - A) / 16
-            c = np.clip(c, A + guard, B - guard)
+
+        def probe(c, idx):
             lc, pc, okc = self.p.log_delta(c.astype(complex))
             with np.errstate(all="ignore"):
                 fc = np.where(np.cos(pc) < 0, -1.0, 1.0) * np.exp(np.minimum(lc - ref[idx], 700.0))
-            for j, i in enumerate(idx):
-                best[i] = c[j]
-                if not okc[j] or fc[j] == 0 or not np.isfinite(fc[j]):
-                    active[i] = False
-                    continue
-                if (fc[j] > 0) == (fb[i] > 0):
-                    m = 1 - fc[j] / fb[i]
-                    fa[i] *= m if m > 0 else 0.5
-                    b[i], fb[i] = c[j], fc[j]
-                else:
-                    m = 1 - fc[j] / fa[i]
-                    fb[i] *= m if m > 0 else 0.5
-                    a[i], fa[i] = c[j], fc[j]
-                active[i] = b[i] - a[i] > 1e-13 * max(abs(a[i]), abs(b[i]))
+            side = np.where(np.sign(fc) == np.sign(fb0[idx]), 1, -1)
+            return fc, np.where(okc & (fc != 0) & np.isfinite(fc), side, 0)
+
+        fb0 = fb.copy()
+        ok = fa * fb < 0
+        best = shrink(a[ok], b[ok], fa[ok], fb[ok], lambda c, i: probe(c, np.nonzero(ok)[0][i]),
+                      1e-13) if ok.any() else []
+        estimates = 0.5 * (a + b)
+        estimates[ok] = best
         outer = [(self._at(r.x0).real, self._at(r.x1).real) for r in rects]
-        return self._pairs(best.tolist(), outer)
+        return self._pairs(estimates.tolist(), outer)
 
     def _pairs(self, estimates, outer) -> list:
         """Real zeros proved by the signs of ``Delta`` at pairs about each estimate.

@@ -52,7 +52,7 @@ from ..model import Model
 from ..numeric.arith import MP
 from ..numeric.evaluator import exact_mpf as _exact_mpf
 from ..results import Eigenvalue, Spectrum, decimal_string, first
-from .bracket import SEPARATION_DIGITS
+from .bracket import SEPARATION_DIGITS, shrink
 from .count import Counter, digits_for, proof_arithmetic
 
 __all__ = ["solve_undamped", "rigid_body_modes", "check_stable", "omega_scale", "PROOFS"]
@@ -312,57 +312,22 @@ class _Search:
         with np.errstate(all="ignore"):
             fa = sg[:R] * np.exp(np.minimum(la[:R] - ref, 700.0))
             fb = sg[R:] * np.exp(np.minimum(la[R:] - ref, 700.0))
-        previous = b - a
-        active = (b - a) > _DOUBLE_REFINED * b
-        bisect = np.zeros(R, dtype=bool)
-        # the best estimate among the points inside (an end may sit on a neighbouring root)
-        best = 0.5 * (a + b)
-        best_f = np.full(R, np.inf)
-        for _ in range(100):
-            idx = np.nonzero(active)[0]
-            if idx.size == 0:
-                break
-            A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-            with np.errstate(all="ignore"):
-                c = B - FB * (B - A) / (FB - FA)
-            bad = ~np.isfinite(c) | (c <= A) | (c >= B) | bisect[idx] | (FA * FB > 0)
-            c = np.where(bad, 0.5 * (A + B), c)
-            # at least a quarter of the final width inside: once the iterate is that close to
-            # the root, the next point falls on its other side and the bracket closes at once
-            guard = np.minimum(0.25 * _DOUBLE_REFINED * B, (B - A) / 4)
-            c = np.clip(c, A + guard, B - guard)
+
+        def probe(c, idx):
             lc, sc, kc = self.counter.signed_log_delta(c)
             with np.errstate(all="ignore"):
                 fc = sc * np.exp(np.minimum(lc - ref[idx], 700.0))
-            left, right = kc == ca[idx], kc == ca[idx] + 1
+            side = np.where(kc == ca[idx], -1, np.where(kc == ca[idx] + 1, 1, 0))
             # an undecided count (a pivot near zero: the point is near the root): the sign of
             # Delta tells the side (one simple root inside, so Delta changes sign once); a
             # wrong side costs the proof stage a wider bracket, never a wrong result
-            unsure = kc < 0
-            by_sign = unsure & (FA * FB < 0) & (fc != 0) & np.isfinite(fc)
-            right = right | (by_sign & (np.sign(fc) == np.sign(FB)))
-            left = left | (by_sign & (np.sign(fc) == np.sign(FA)))
-            stop = ~(left | right)              # undecided (or inconsistent): leave it here
-            width_before = B - A
-            for j, i in enumerate(idx):
-                if not abs(fc[j]) >= best_f[i]:        # (also Delta = 0: at the root)
-                    best[i], best_f[i] = c[j], abs(fc[j])
-                if stop[j]:
-                    active[i] = False
-                    continue
-                if right[j]:
-                    m = 1 - fc[j] / fb[i]
-                    fa[i] *= m if m > 0 else 0.5
-                    b[i], fb[i] = c[j], fc[j]
-                else:
-                    m = 1 - fc[j] / fa[i]
-                    fb[i] *= m if m > 0 else 0.5
-                    a[i], fa[i] = c[j], fc[j]
-                # bisect next time when two steps together have not halved the bracket
-                bisect[i] = (b[i] - a[i]) > 0.5 * previous[i]
-                previous[i] = width_before[j]
-                active[i] = (b[i] - a[i]) > _DOUBLE_REFINED * b[i]
-        return best.tolist()
+            FA, FB = fa0[idx], fb0[idx]
+            by_sign = (kc < 0) & (FA * FB < 0) & (fc != 0) & np.isfinite(fc)
+            side = np.where(by_sign, np.where(np.sign(fc) == np.sign(FB), 1, -1), side)
+            return fc, side
+
+        fa0, fb0 = fa.copy(), fb.copy()        # (their signs: the scaling keeps them)
+        return shrink(a, b, fa, fb, probe, _DOUBLE_REFINED)
 
     # -- the digits, proved, all roots at once -------------------------------------------------
     def _evaluate(self, points):
