@@ -44,12 +44,12 @@ def test_thirty_triple_roots_of_three_identical_beams():
     """Example 2: three identical uncoupled pinned-pinned beams, every root (n pi)**2 three
     times; close to a triple root, double-precision counts under some meshes flip sign
     (a tiny pivot before a huge one), and must be redone rather than trusted."""
+    from pathlib import Path
+
     import mpmath
 
     from symtmm.modelfile import load
     from symtmm.results import decimal_string
-
-    from pathlib import Path
     example = Path(__file__).resolve().parent.parent / "examples" / "paper_ex2_three_pp.toml"
     spec = solve_undamped(load(example), count=30, digits=15)
     assert [e.multiplicity for e in spec] == [3] * 10

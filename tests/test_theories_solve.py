@@ -521,6 +521,26 @@ def test_a_buckled_model_is_refused(beam, unstable):
         solve_damped(Model((beam,), (Spring("b", "ground", "1/2", 0, c=1),)), omega_max=20)
 
 
+def test_stiff_shear_in_si_units_beside_a_unit_bending_stiffness():
+    """A Timoshenko cantilever with EI = 1 and kGA = 7e8 (a shear stiffness in SI units
+    beside a unit bending stiffness): its pieces are cut for the frequencies asked, not
+    for pi sqrt(EI/kGA) (which made 8,400 of them), and the frequencies are the roots of
+    Huang's clamped-free frequency equation."""
+    from test_theories_derive import _huang
+
+    from symtmm.numeric.plan import StiffnessPlan
+    beam = Beam("b", 1, 1, 1, left="clamped", right="free", theory="timoshenko",
+                rhoI="1/100", kGA=700000000)
+    model = Model((beam,))
+    assert StiffnessPlan(model.require_numeric(), 200.0**2).n < 50
+    spectrum = solve_undamped(model, count=5, digits=12)
+    huang = _huang({"EI": 1, "m": 1, "L": 1, "kGA": 700000000, "rhoI": sp.Rational(1, 100)})
+    with mpmath.workdps(40):
+        for e in spectrum:
+            ref = mpmath.findroot(huang, mpmath.mpf(e.omega))
+            assert e.to_dict()["imag"] == mpmath.nstr(ref, 12, strip_zeros=False)
+
+
 def test_compression_just_below_buckling_is_solved():
     """A pinned-sliding beam (half a pinned-pinned one of length 2L) at 0.99 of its buckling
     load pi**2 EI / (4 L**2): Y = sin(k x), k = (n - 1/2) pi / L, omega**2 = k**4 + N k**2;

@@ -278,13 +278,34 @@ class BeamSegment(FieldElement):
             kp, extra = kGA + N * (1 + eta), N * (1 + 1 / eta)
             if kp <= 0:
                 return 0.0
-        eps = 0.5                              # (u - v)**2 >= (1 - eps) u**2 - (1/eps - 1) v**2
-        coef_y = (kp * (1 - eps) + max(N, 0.0)) * q + kw
-        coef_psi = EI * q - kp * (1 / eps - 1) + extra
-        if coef_psi < 0:
-            return 0.0
-        bound = coef_y / m
-        return min(bound, coef_psi / rhoI) if rhoI > 0 else bound
+        # (u - v)**2 >= (1 - eps) u**2 - (1/eps - 1) v**2 for any 0 < eps < 1: the bound is
+        # min(coef_y / m, coef_psi / rhoI), coef_y falling and coef_psi rising with eps, so
+        # the best eps balances them (a stiff shear, kGA >> EI q, then gives about the
+        # Euler-Bernoulli EI q**2 / m, where eps = 1/2 would ask for pieces pi sqrt(EI/kGA)
+        # long)
+
+        def coefs(eps):
+            return ((kp * (1 - eps) + max(N, 0.0)) * q + kw) / m, EI * q - kp * (1 / eps - 1) + extra
+
+        if rhoI <= 0:
+            # no rotary inertia: psi carries no kinetic energy, coef_psi need only be >= 0
+            lo, hi = 1e-12, 1.0 - 1e-15
+            if coefs(hi)[1] < 0:
+                return 0.0
+            for _ in range(200):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (lo, mid) if coefs(mid)[1] >= 0 else (mid, hi)
+            return coefs(hi)[0]
+        lo, hi = 1e-12, 1.0 - 1e-15
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            y, p = coefs(mid)
+            if y > p / rhoI:
+                lo = mid
+            else:
+                hi = mid
+        best = max((min(coefs(e)[0], coefs(e)[1] / rhoI) for e in (lo, hi)), default=0.0)
+        return max(best, 0.0)
 
     def safe_length(self, omega2: float) -> float:
         """A piece length whose clamped-clamped modes all lie above ``omega2`` (x 1.1 margin).
