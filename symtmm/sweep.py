@@ -121,13 +121,12 @@ def value_string(value) -> str:
 def _solve_step(payload):
     """Solve one resolved model; return its spectrum and weighted tracking shapes."""
     model, count, sigma_max, digits, method, points = payload
-    from .compile import Evaluator
-    from .modes import _Walker, shapes_at
+    from .modes import ShapePlan, shapes_at
     from .solve import solve
 
     with _LOCK:
         spectrum = solve(model, count=count, sigma_max=sigma_max, digits=digits, method=method)
-        walker, ev = _Walker(model), Evaluator(model)
+        plan = ShapePlan(model)
         weights = []
         for beam in model.beams:
             w = np.full(points, float(beam.L) / (points - 1) * float(beam.m))
@@ -136,7 +135,7 @@ def _solve_step(payload):
         shapes = []
         for e in spectrum:
             vecs = []
-            for shape in shapes_at(model, e, points=points, walker=walker, evaluator=ev):
+            for shape in shapes_at(model, e, points=points, plan=plan):
                 vecs.append(np.concatenate([shape.beams[b.name].Y * w
                                             for b, w in zip(model.beams, weights)]))
             shapes.append(np.array(vecs))
