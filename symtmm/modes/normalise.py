@@ -126,13 +126,16 @@ class Energy:
         (``size x k``: the bodies' unknowns are constant along ``x``)."""
         G = self.G
         for index, value in self.inertia.bodies:
-            G = G + self.ar.exact(value) * np.outer(start[index, :], start[index, :])
+            G = G + np.outer(start[index, :], start[index, :]) * self.ar.exact(value)
         return G
 
 
 def _bilinear_F(ar, x, kappa, EI, Z):
     """The boundary form whose difference is ``4 kappa`` times the integrals of ``Y_a Y_b``
-    for all pairs of columns of ``Z`` (``4 x k``); ``x`` None at the segment's start."""
+    for all pairs of columns of ``Z`` (``4 x k``); ``x`` None at the segment's start.
+
+    Arrays stay on the left of numbers: an mpmath number on the left first tries to
+    convert the whole array (and prints it for the error it then swallows)."""
     Y, T, M, Q = Z
     d2, d3 = M / EI, Q / EI
 
@@ -141,7 +144,7 @@ def _bilinear_F(ar, x, kappa, EI, Z):
         return out + out.T
     out = sym(Y, d3) * ar.exact(sp.Rational(3, 2)) - sym(T, d2) / 2
     if x is not None:
-        out = out + x * (kappa * np.outer(Y, Y) - sym(T, d3) + np.outer(d2, d2))
+        out = out + (np.outer(Y, Y) * kappa - sym(T, d3) + np.outer(d2, d2)) * x
     return out
 
 

@@ -52,15 +52,18 @@ class ShapePlan:
         self.inertia = Inertia(self.plan)
         self._grids: dict = {}
 
-    def grid(self, points: int) -> transfer.Sampling:
-        """``points`` equally spaced exact points along every beam, both ends included: the
-        left end before its jumps, every other point after them."""
+    def grid(self, points: int) -> tuple:
+        """``points`` equally spaced exact points along every beam, both ends included (the
+        left end before its jumps, every other point after them): their
+        :class:`~symtmm.numeric.transfer.Sampling` and, per beam, their coordinates as floats.
+        """
         if points not in self._grids:
-            samples = []
+            samples, floats = [], []
             for beam in self.model.beams:
                 xs = [beam.x0 + beam.L * sp.Rational(i, points - 1) for i in range(points)]
                 samples.append(list(zip(xs, ["-"] + ["+"] * (points - 1))))
-            self._grids[points] = transfer.Sampling(self.plan, samples)
+                floats.append(np.array([float(x) for x in xs]))
+            self._grids[points] = (transfer.Sampling(self.plan, samples), floats)
         return self._grids[points]
 
 
@@ -151,7 +154,7 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
         V = null_space(ar, transfer.boundary(tp, ar, lam, lam2)[0], mult)
         E0 = ar.zeros((tp.size, mult), like=V)
         E0[tp.columns, :] = V
-    grid = shape_plan.grid(points)
+    grid, xs = shape_plan.grid(points)
     energy = Energy(shape_plan.inertia, ar, lam2, digits + 3) if real else None
     _, states = transfer.sample(tp, ar, grid, lam, lam2, start=E0[None], inner=DOUBLE,
                                 observe=energy)
@@ -172,9 +175,7 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
         beams = {}
         for lvl, beam in enumerate(model.beams):
             z = per_level[lvl, :, :, c] * sign
-            x = np.array([float(beam.x0 + beam.L * sp.Rational(i, points - 1))
-                          for i in range(points)])
-            beams[beam.name] = BeamShape(beam.name, x, z[:, 0], z[:, 1], z[:, 2], z[:, 3])
+            beams[beam.name] = BeamShape(beam.name, xs[lvl], z[:, 0], z[:, 1], z[:, 2], z[:, 3])
         left = tuple(ar.to_mpmath(E0[r, c] * sign) for r in range(E0.shape[0]))
         shapes.append(ModeShape(eigenvalue, beams, left, dps, number + c,
                                 _body_motion(tp.layout, left, real)))

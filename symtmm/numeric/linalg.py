@@ -168,7 +168,7 @@ def orthonormal(ar: Arithmetic, V, complete: bool = False):
     def project(v):
         for _ in range(2):
             for q in cols:
-                v = v - (_conj(ar, q) @ v) * q
+                v = v - q * (_conj(ar, q) @ v)
         return v
 
     for c in range(m):

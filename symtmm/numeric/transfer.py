@@ -166,7 +166,7 @@ class TransferPlan:
             # A = m l**4 / EI and F = kw l**4 / EI scale with the fourth power of the length
             r = lengths / one["l"]
             r4 = (r * r) * (r * r)
-            out["A"], out["F"] = one["A"] * r4, one["F"] * r4
+            out["A"], out["F"] = r4 * one["A"], r4 * one["F"]
         return [(family, out)]
 
     def piece_matrices(self, ar: Arithmetic, k: int, lam2, lengths) -> np.ndarray:
@@ -183,7 +183,7 @@ class TransferPlan:
         x = lam2 if self.even else lam
         out = []
         for cs in self.jump_coefficients(ar):
-            v = cs[-1] + 0 * x
+            v = 0 * x + cs[-1]          # the array on the left (see segments._c_series)
             for c in cs[-2::-1]:
                 v = v * x + c
             out.append(v)
