@@ -103,7 +103,7 @@ def _point(ar: Arithmetic, lam, real: bool) -> tuple:
     if real:
         w = ar.number(lam.imag)
         return None, ar.array([-(w * w)])
-    return ar.array([ar.number(mpmath.mpc(lam))]), None
+    return ar.array([ar.number(lam)]), None
 
 
 def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: int | None = None,

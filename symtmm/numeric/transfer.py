@@ -434,7 +434,8 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
     def watch(i, before, after):
         for slot, lvl, when in sampling.ends.get(i, ()):
             state = before if when == "before" else after
-            out[slot] = convert(ar, inner, state[:, 4 * lvl:4 * lvl + 4, :])
+            # a copy: the walk goes on changing ``after`` in place
+            out[slot] = convert(ar, inner, state[:, 4 * lvl:4 * lvl + 4, :].copy())
         for pos, items in sampling.inside.get(i, ()):
             lvl, k = plan.steps[i][1][pos]
             seg = plan.segments_of[sampling._interval[i]][pos]
