@@ -285,7 +285,8 @@ def _split(f, n: int) -> tuple:
 
 
 def _number(ar: Arithmetic, f):
-    """An exact fraction as a number of ``ar`` (rounded once; double ones not memoised)."""
+    """An exact fraction as a number of ``ar``, rounded once (in double not memoised: the
+    double arithmetic lives as long as the process, and offsets are many)."""
     if isinstance(ar, Batch):
         return f.numerator / f.denominator if isinstance(f, Fraction) else float(f)
     return ar.exact(sp.Rational(f.numerator, f.denominator) if isinstance(f, Fraction) else f)
@@ -323,7 +324,7 @@ class Sampling:
     ends : dict
         Step index -> ``[(slot, level, "before" | "after")]``: samples at a cut.
     inside : dict
-        Step index -> ``[(position in the step, [(slot, fraction of the segment)])]``:
+        Step index -> ``[(position in the step, segment, [(slot, fraction of its length)])]``:
         samples strictly inside a segment.
 
     Raises
@@ -335,27 +336,30 @@ class Sampling:
     def __init__(self, plan: TransferPlan, points):
         from ..assembly import _before, _same
 
+        points = [[(sp.sympify(x), side) for x, side in level] for level in points]
         self.slots = [(lvl, i) for lvl, level in enumerate(points) for i in range(len(level))]
         index = {key: n for n, key in enumerate(self.slots)}
         where: dict = {}
+        segments = iter(plan.segments_of)
         for i, ((kind, items), step) in enumerate(zip(plan.steps, plan.layout.steps)):
             if kind == "segments":
                 xs, xe = step.x_start, step.x_end
+                segs = next(segments)
                 for pos, (lvl, _k) in enumerate(items):
                     for n, (x, _side) in enumerate(points[lvl]):
                         slot = index[(lvl, n)]
-                        x = sp.sympify(x)
                         if _same(x, xs):
                             where.setdefault(slot, ("end", i, "before", lvl))
                         elif _same(x, xe):
                             where[slot] = ("end", i, "after", lvl)
                         elif _before(xs, x) and _before(x, xe):
-                            where[slot] = ("inside", i, pos, _fraction((x - xs) / (xe - xs)))
+                            where[slot] = ("inside", i, (pos, segs[pos]),
+                                           _fraction((x - xs) / (xe - xs)))
                 continue
             levels = sorted({row // 4 for row, _, _ in items if row < 4 * plan.layout.levels})
             for lvl in levels:
                 for n, (x, side) in enumerate(points[lvl]):
-                    if _same(sp.sympify(x), step.x):
+                    if _same(x, step.x):
                         slot = index[(lvl, n)]
                         if side == "+":
                             where[slot] = ("end", i, "after", lvl)
@@ -373,10 +377,8 @@ class Sampling:
                 self.ends.setdefault(i, []).append((slot, b, a))
             else:
                 inside.setdefault(i, {}).setdefault(a, []).append((slot, b))
-        self.inside = {i: sorted(groups.items()) for i, groups in inside.items()}
-        interval = iter(range(len(plan.segments_of)))
-        self._interval = {i: next(interval) for i, (kind, _) in enumerate(plan.steps)
-                          if kind == "segments"}
+        self.inside = {i: [(pos, seg, items) for (pos, seg), items in groups.items()]
+                       for i, groups in inside.items()}
 
     def __len__(self):
         return len(self.slots)
@@ -436,17 +438,17 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
             state = before if when == "before" else after
             # a copy: the walk goes on changing ``after`` in place
             out[slot] = convert(ar, inner, state[:, 4 * lvl:4 * lvl + 4, :].copy())
-        for pos, items in sampling.inside.get(i, ()):
+        for pos, seg, items in sampling.inside.get(i, ()):
             lvl, k = plan.steps[i][1][pos]
-            seg = plan.segments_of[sampling._interval[i]][pos]
             _inside(plan, ar, inner, k, seg, lam2, lam2_c, lam2_in,
                     before[:, 4 * lvl:4 * lvl + 4, :], items, out)
         if observe is not None:
             observe(i, before, after)
 
     E = propagate(plan, ar, lam, lam2, start, watch)
-    states = np.stack([out[n] for n in range(len(sampling))], axis=1) if len(sampling) else None
-    return E, states
+    if not len(sampling):
+        return E, inner.zeros((E.shape[0], 0, 4, E.shape[2]))
+    return E, np.stack([out[n] for n in range(len(sampling))], axis=1)
 
 
 def _inside(plan, ar, inner, k, seg, lam2, lam2_c, lam2_in, Z0, items, out):
