@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import json
 import os
-import threading
 import time
 from dataclasses import dataclass, field
 
@@ -39,6 +38,8 @@ import sympy as sp
 from .errors import ComputationError, ModelError
 from .expr import ExpressionError, exact_number, parse_expression
 from .model import Model
+from .numeric.arith import DOUBLE, MP
+from .numeric.linalg import orthonormal
 from .results import decimal_string
 
 __all__ = ["Sweep", "sweep", "sweep_values", "track_branches", "value_string"]
@@ -47,10 +48,6 @@ __all__ = ["Sweep", "sweep", "sweep_values", "track_branches", "value_string"]
 MAC_THRESHOLD = 0.5
 #: Sample points per beam of the shapes used for tracking.
 TRACK_POINTS = 33
-
-# mpmath keeps its working precision in one process-wide context: two threads of a
-# Dask worker must not compute at the same time.
-_LOCK = threading.Lock()
 
 
 def _exact(value, what: str) -> sp.Expr:
@@ -121,25 +118,23 @@ def value_string(value) -> str:
 def _solve_step(payload):
     """Solve one resolved model; return its spectrum and weighted tracking shapes."""
     model, count, sigma_max, digits, method, points = payload
-    from .compile import Evaluator
-    from .modes import _Walker, shapes_at
+    from .modes import ShapePlan, shapes_at
     from .solve import solve
 
-    with _LOCK:
-        spectrum = solve(model, count=count, sigma_max=sigma_max, digits=digits, method=method)
-        walker, ev = _Walker(model), Evaluator(model)
-        weights = []
-        for beam in model.beams:
-            w = np.full(points, float(beam.L) / (points - 1) * float(beam.m))
-            w[[0, -1]] /= 2                     # trapezoid rule
-            weights.append(np.sqrt(w))
-        shapes = []
-        for e in spectrum:
-            vecs = []
-            for shape in shapes_at(model, e, points=points, walker=walker, evaluator=ev):
-                vecs.append(np.concatenate([shape.beams[b.name].Y * w
-                                            for b, w in zip(model.beams, weights)]))
-            shapes.append(np.array(vecs))
+    spectrum = solve(model, count=count, sigma_max=sigma_max, digits=digits, method=method)
+    plan = ShapePlan(model)
+    weights = []
+    for beam in model.beams:
+        w = np.full(points, float(beam.L) / (points - 1) * float(beam.m))
+        w[[0, -1]] /= 2                     # trapezoid rule
+        weights.append(np.sqrt(w))
+    shapes = []
+    for e in spectrum:
+        vecs = []
+        for shape in shapes_at(model, e, points=points, plan=plan):
+            vecs.append(np.concatenate([shape.beams[b.name].Y * w
+                                        for b, w in zip(model.beams, weights)]))
+        shapes.append(np.array(vecs))
     return spectrum, shapes
 
 
@@ -242,9 +237,8 @@ def _run(payloads, jobs, scheduler, progress):
 # -----------------------------------------------------------------------------------
 
 def _orthonormal(vectors):
-    """Orthonormal columns spanning the rows of ``vectors`` (m x N)."""
-    Q, _ = np.linalg.qr(np.asarray(vectors).T)
-    return Q
+    """Orthonormal columns spanning the rows of ``vectors`` (m x N), always m of them."""
+    return orthonormal(DOUBLE, np.asarray(vectors).T, complete=True)
 
 
 def track_branches(clusters, threshold: float = MAC_THRESHOLD) -> list:
@@ -443,20 +437,21 @@ class Sweep:
         scale = self.omega_scale if not self.damped else None
         width = max((s.total for s in self.spectra), default=0)
         rows = []
+        # a private context: the ambient mpmath precision is neither read nor set
+        ctx = MP.from_digits(self.digits + 10).ctx
         for value, spectrum in zip(self.values, self.spectra):
             row = [value_string(value)]
-            with mpmath.workdps(self.digits + 10):
-                for e in spectrum:
-                    if scale:
-                        text = decimal_string(mpmath.sqrt(e.omega / spectrum.omega_scale[1]),
-                                              shown)
-                    elif self.damped:
-                        text = (f"{mpmath.nstr(e.lam.real, shown)}"
-                                f"{'+' if e.lam.imag >= 0 else '-'}"
-                                f"{mpmath.nstr(abs(e.lam.imag), shown)}i")
-                    else:
-                        text = decimal_string(e.omega, shown)
-                    row += [text] * e.multiplicity
+            for e in spectrum:
+                if scale:
+                    Om = ctx.sqrt(ctx.mpf(e.omega) / ctx.mpf(spectrum.omega_scale[1]))
+                    text = decimal_string(mpmath.mp.make_mpf(Om._mpf_), shown)
+                elif self.damped:
+                    text = (f"{ctx.nstr(ctx.mpf(e.lam.real), shown)}"
+                            f"{'+' if e.lam.imag >= 0 else '-'}"
+                            f"{ctx.nstr(abs(ctx.mpf(e.lam.imag)), shown)}i")
+                else:
+                    text = decimal_string(e.omega, shown)
+                row += [text] * e.multiplicity
             rows.append(row + [""] * (width + 1 - len(row)))
         head = [self.parameter] + [f"{'Omega' if scale else 'lam' if self.damped else 'omega'}_"
                                    f"{i}" for i in range(1, width + 1)]

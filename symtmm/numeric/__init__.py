@@ -5,7 +5,10 @@
 * :mod:`~symtmm.numeric.segments`: transfer matrices of beam segments;
 * :mod:`~symtmm.numeric.plan`: a model compiled for the dynamic-stiffness kernel;
 * :mod:`~symtmm.numeric.stiffness`: segment stiffness, assembly, banded LDL^T;
-* :mod:`~symtmm.numeric.transfer`: the transfer-matrix walk along the layout;
+* :mod:`~symtmm.numeric.transfer`: the transfer-matrix walk along the layout, and the
+  states it passes at sample points (mode shapes);
+* :mod:`~symtmm.numeric.linalg`: determinant, LU, null space, Gram–Schmidt, Cholesky;
+* :mod:`~symtmm.numeric.quadrature`: Gauss–Legendre rules at any precision;
 * :mod:`~symtmm.numeric.exact`: exact SymPy values as numbers.
 """
 

@@ -429,8 +429,7 @@ class Ball(Arithmetic):
         flint = self.flint
         if isinstance(z, (flint.arb, flint.acb)):
             return z
-        if isinstance(z, (mpmath.mpc, complex)):
-            z = mpmath.mpc(z) if isinstance(z, complex) else z
+        if isinstance(z, complex) or hasattr(z, "_mpc_"):
             return flint.acb(_arb_exact(z.real, flint), _arb_exact(z.imag, flint))
         return _arb_exact(z, flint)
 
@@ -508,11 +507,15 @@ def _mpf_of(exact_arb):
 
 
 def _arb_exact(x, flint):
-    """An mpmath ``mpf`` (or int/float) as an exact arb (no rounding on the way)."""
-    if not isinstance(x, mpmath.mpf):
-        with mpmath.workprec(1100):     # ints and floats are exact at this precision
-            x = mpmath.mpf(x)
-    sign, man, exp, _ = x._mpf_
+    """An mpmath ``mpf`` of any context (or an int or float) as an exact arb (no rounding on
+    the way, and the ambient mpmath precision untouched)."""
+    if hasattr(x, "_mpf_"):
+        value = x._mpf_
+    elif isinstance(x, (int, np.integer)):
+        value = libmp.from_int(int(x))
+    else:
+        value = libmp.from_float(float(x))
+    sign, man, exp, _ = value
     if man == 0:
         return flint.arb(0)
     value = flint.arb(flint.fmpz(int(man))) * flint.arb(2) ** int(exp)

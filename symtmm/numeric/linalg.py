@@ -1,8 +1,20 @@
 """Small dense linear algebra on arrays of any arithmetic (:mod:`symtmm.numeric.arith`).
 
-Gaussian elimination with partial pivoting, the pivot chosen by the largest
-upper bound of the magnitude (for balls, their midpoints' size: a ball's radius
-says nothing about which row is best).
+Written once for ``object`` arrays of mpmath numbers or balls and for numpy's
+own ``float64``/``complex128`` arrays: the operators and numpy's indexing do
+the work, the arithmetic supplies what differs (its precision, square roots).
+
+* :func:`det`: Gaussian elimination with partial pivoting, the pivot chosen by
+  the largest upper bound of the magnitude (for balls, their midpoints' size: a
+  ball's radius says nothing about which row is best);
+* :func:`lu` and :func:`lu_solve`: ``P A = L U`` with partial pivoting, a
+  pivot below ``eps |A|`` replaced by that guard (the classical guard of
+  inverse iteration, where ``A`` is singular on purpose);
+* :func:`null_space`: the near-null space of a square matrix by block inverse
+  iteration;
+* :func:`orthonormal`: modified Gram–Schmidt, twice;
+* :func:`cholesky` and :func:`lower_inverse`: ``G = L L^T`` of a symmetric
+  positive definite matrix and ``L^-1``.
 
 Examples
 --------
@@ -12,15 +24,23 @@ Examples
 >>> M = np.array([[ar.number(0), ar.number(2)], [ar.number(3), ar.number(4)]], dtype=object)
 >>> print(det(ar, M))
 -6.0
+>>> R = np.array([[ar.number(1), ar.number(2)], [ar.number(2), ar.number(4)]], dtype=object)
+>>> v = null_space(ar, R, 1)[:, 0]                 # R v = 0: v = (2, -1)/sqrt(5)
+>>> print(ar.ctx.nstr(v[0] / v[1], 20), abs(R @ v).max() < 1e-28)
+-2.0 True
 """
 
 from __future__ import annotations
 
-import numpy as np
+import random
 
+import numpy as np
+import sympy as sp
+
+from ..errors import ComputationError
 from .arith import Arithmetic
 
-__all__ = ["det"]
+__all__ = ["det", "lu", "lu_solve", "null_space", "orthonormal", "cholesky", "lower_inverse"]
 
 
 def det(ar: Arithmetic, M):
@@ -50,3 +70,206 @@ def det(ar: Arithmetic, M):
             f = A[k + 1:, k] / pivot
             A[k + 1:, k + 1:] = A[k + 1:, k + 1:] - f[:, None] * A[k, k + 1:][None, :]
     return value
+
+
+# -- helpers ---------------------------------------------------------------------------------
+def _eps(ar: Arithmetic):
+    """The unit roundoff ``2**-prec`` as a number of ``ar``."""
+    return ar.exact(sp.Integer(2) ** -ar.prec)
+
+
+def _sqrt(ar: Arithmetic, x):
+    """The square root of one nonnegative number of ``ar``."""
+    return ar.sqrt(np.array([x], dtype=object if not isinstance(x, float) else float))[0]
+
+
+def _conj(ar: Arithmetic, x):
+    """Complex conjugates (the array itself when it is real)."""
+    if not ar.is_complex(x):
+        return x
+    if x.dtype != object:
+        return np.conj(x)
+    return np.frompyfunc(lambda v: v.conjugate(), 1, 1)(x)
+
+
+def _norm2(v):
+    """``sum |v_i|**2`` of a vector (a number of the vector's arithmetic)."""
+    a = np.abs(v)
+    return np.sum(a * a)
+
+
+# -- LU ----------------------------------------------------------------------------------------
+def lu(ar: Arithmetic, A):
+    """``P A = L U`` with partial pivoting: ``(LU, perm)``, ``L`` unit lower below the diagonal.
+
+    A pivot smaller than ``eps max|A|`` (the matrix is singular to working
+    precision, as at an exact eigenvalue) is replaced by that guard with its
+    phase, so that solves stay finite: what inverse iteration needs.
+    """
+    A = np.array(A, copy=True)
+    n = A.shape[0]
+    perm = np.arange(n)
+    eps = _eps(ar)
+    top = np.max(np.abs(A)) if A.size else 0
+    guard = top * eps if top != 0 else eps
+    for k in range(n):
+        p = k + int(np.argmax(np.abs(A[k:, k])))
+        if p != k:
+            A[[k, p]] = A[[p, k]]
+            perm[[k, p]] = perm[[p, k]]
+        pivot = A[k, k]
+        if abs(pivot) < guard:
+            pivot = A[k, k] = guard if pivot == 0 else guard * (pivot / abs(pivot))
+        if k + 1 < n:
+            f = A[k + 1:, k] / pivot
+            A[k + 1:, k] = f
+            A[k + 1:, k + 1:] = A[k + 1:, k + 1:] - np.outer(f, A[k, k + 1:])
+    return A, perm
+
+
+def lu_solve(ar: Arithmetic, factors, B):
+    """``A^-1 B`` from :func:`lu`'s ``factors`` for the columns of ``B`` (``n x m``)."""
+    LU, perm = factors
+    n = LU.shape[0]
+    y = np.array(B, copy=True)[perm]
+    for i in range(1, n):
+        y[i] = y[i] - LU[i, :i] @ y[:i]
+    for i in range(n - 1, -1, -1):
+        if i + 1 < n:
+            y[i] = y[i] - LU[i, i + 1:] @ y[i + 1:]
+        y[i] = y[i] / LU[i, i]
+    return y
+
+
+# -- orthonormal bases ---------------------------------------------------------------------------
+def orthonormal(ar: Arithmetic, V, complete: bool = False):
+    """Orthonormal columns spanning those of ``V`` (``n x m``), by modified Gram–Schmidt, twice.
+
+    A column that depends on the previous ones (what remains of it after the
+    projections is below ``2**(-prec/2)`` of its size) gives None; with
+    ``complete``, it is replaced by the coordinate axis farthest from the span
+    so far (as a Householder QR would), so the result always has ``m`` columns.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from symtmm.numeric.arith import DOUBLE
+    >>> Q = orthonormal(DOUBLE, np.array([[3.0, 1.0], [4.0, 2.0]]))
+    >>> np.round(Q.T @ Q, 12) + 0.0
+    array([[1., 0.],
+           [0., 1.]])
+    >>> orthonormal(DOUBLE, np.array([[1.0, 2.0], [1.0, 2.0]])) is None
+    True
+    """
+    n, m = V.shape
+    tol = ar.exact(sp.Integer(2) ** -(ar.prec // 2))
+    cols: list = []
+
+    def project(v):
+        for _ in range(2):
+            for q in cols:
+                v = v - q * (_conj(ar, q) @ v)
+        return v
+
+    for c in range(m):
+        v = V[:, c]
+        scale = np.max(np.abs(v)) if n else 0
+        norm = size = 0
+        if scale != 0:
+            v = v / scale
+            size = _sqrt(ar, _norm2(v))
+            v = project(v)
+            norm = _sqrt(ar, _norm2(v))
+        if scale == 0 or not norm > size * tol:
+            if not complete:
+                return None
+            best = None
+            for i in range(n):
+                e = np.zeros(n, dtype=V.dtype) if V.dtype != object else ar.zeros(n, like=V)
+                e[i] = ar.exact(1) if V.dtype == object else 1
+                e = project(e)
+                size_e = _norm2(e)
+                if best is None or size_e > best[0]:
+                    best = (size_e, e)
+            v, norm = best[1], _sqrt(ar, best[0])
+        cols.append(v / norm)
+    out = np.empty((n, m), dtype=V.dtype if V.dtype == object else np.result_type(V, float))
+    for c, q in enumerate(cols):
+        out[:, c] = q
+    return out
+
+
+def null_space(ar: Arithmetic, R, mult: int):
+    """Orthonormal columns spanning the near-null space of the square ``R``: ``mult`` of them.
+
+    Block inverse iteration: ``X <- orth(R^-1 X)`` twice from fixed pseudo-random
+    columns, ``R^-1`` applied through :func:`lu`. Near an eigenvalue the ``mult``
+    smallest singular values of ``R`` dominate ``R^-1``, so this spans the space of
+    their right singular vectors, as the singular value decomposition would, at the
+    cost of one LU factorisation; backward stable like the SVD, so the vectors are
+    as accurate as the eigenvalue. Where the iteration collapses (fewer than
+    ``mult`` independent directions), a private mpmath context's SVD decides.
+    """
+    n = R.shape[0]
+    if n == 0:
+        return ar.zeros((0, mult))
+    if mult > n:
+        raise ComputationError(f"multiplicity {mult} exceeds the size {n} of R")
+    factors = lu(ar, R)
+    rng = random.Random(20240607)          # fixed: the shapes are reproducible
+    X = ar.array([ar.exact(sp.Rational(rng.randrange(-2**20, 2**20), 2**20))
+                  for _ in range(n * mult)], (n, mult))
+    for _ in range(2):
+        X = orthonormal(ar, lu_solve(ar, factors, X))
+        if X is None:
+            return _svd_null_space(ar, R, mult)
+    return X
+
+
+def _svd_null_space(ar: Arithmetic, R, mult: int):
+    """The right singular vectors of the ``mult`` smallest singular values (columns)."""
+    ctx = getattr(ar, "ctx", None)
+    if ctx is None:
+        raise ComputationError("the null space of R is lost at this precision")
+    complex_ = ar.is_complex(R)
+    _, _, V = (ctx.svd_c if complex_ else ctx.svd_r)(ctx.matrix(R.tolist()))
+    n = R.shape[0]
+    # singular values come sorted by decreasing size; R = U S V, so R V^H = U S
+    out = ar.zeros((n, mult), like=R)
+    for c, row in enumerate(range(n - mult, n)):
+        for j in range(n):
+            out[j, c] = ctx.conj(V[row, j]) if complex_ else V[row, j]
+    return out
+
+
+# -- symmetric positive definite ---------------------------------------------------------------
+def cholesky(ar: Arithmetic, G):
+    """Lower triangular ``L`` with ``G = L L^T`` (``G`` real symmetric positive definite).
+
+    Raises
+    ------
+    ComputationError
+        If a pivot is not positive (``G`` is singular or indefinite to working precision).
+    """
+    n = G.shape[0]
+    L = ar.zeros((n, n), like=G) if G.dtype == object else np.zeros((n, n))
+    for j in range(n):
+        d = G[j, j] - (L[j, :j] @ L[j, :j] if j else 0)
+        if not d > 0:
+            raise ComputationError("the Gram matrix is not positive definite")
+        L[j, j] = _sqrt(ar, d)
+        for i in range(j + 1, n):
+            L[i, j] = (G[i, j] - (L[i, :j] @ L[j, :j] if j else 0)) / L[j, j]
+    return L
+
+
+def lower_inverse(ar: Arithmetic, L):
+    """``L^-1`` of a lower triangular ``L`` (by forward substitution)."""
+    n = L.shape[0]
+    inv = ar.zeros((n, n), like=L) if L.dtype == object else np.zeros((n, n), L.dtype)
+    one = ar.exact(1) if L.dtype == object else 1.0
+    for c in range(n):
+        for i in range(c, n):
+            acc = (one if i == c else 0) - (L[i, c:i] @ inv[c:i, c] if i > c else 0)
+            inv[i, c] = acc / L[i, i]
+    return inv

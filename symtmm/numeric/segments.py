@@ -80,7 +80,8 @@ def _c_series(ar: Arithmetic, x):
     inv = _inverse_factorials(ar, 4 * K + 4)
     out = []
     for j in range(4):
-        acc = inv[4 * (K - 1) + j] + 0 * x
+        # the array on the left: an mpmath number would first try (and fail) to convert it
+        acc = 0 * x + inv[4 * (K - 1) + j]
         for k in range(K - 2, -1, -1):
             acc = acc * x + inv[4 * k + j]
         out.append(ar.widen(acc, sp.Rational(2, math.factorial(4 * K + j))))

@@ -41,17 +41,21 @@ True
 
 from __future__ import annotations
 
+import math
+from fractions import Fraction
+
 import numpy as np
 import sympy as sp
 
 from ..assembly import Interval, Layout
 from ..elements.base import LAM
-from .arith import DOUBLE, Arithmetic, memo
+from .arith import DOUBLE, Arithmetic, Batch, memo
 from .linalg import det
 from .plan import _kind
 from .segments import transfer_matrices
 
-__all__ = ["TransferPlan", "propagate", "boundary", "delta", "log_delta", "NU_STEP"]
+__all__ = ["TransferPlan", "propagate", "boundary", "delta", "log_delta", "NU_STEP",
+           "digits_lost", "Sampling", "sample", "convert"]
 
 #: Largest ``|beta| l`` of one step of :func:`log_delta`: the columns grow by at most
 #: ``exp(NU_STEP)`` between two re-orthonormalisations.
@@ -81,9 +85,14 @@ class TransferPlan:
     columns, rows : list
         The unknowns at the left end, the conditions at the right end.
     steps : list
-        ``("segments", [(level, kind index)])`` or ``("jumps", [(row, col, power, index)])``.
+        ``("segments", [(level, kind index)])`` or ``("jumps", [(row, col, index)])``, in the
+        order of ``layout.steps`` (which holds their coordinates).
     kinds : list
         Distinct segment kinds ``(family, exact constants)``, ``"eb"`` first.
+    kind_segments : list
+        A segment element of each kind (for its wave numbers).
+    segments_of : list
+        Per interval, the segment elements of its ``"segments"`` step, in order.
     even : bool
         Every jump is a polynomial in ``lam**2`` (no dashpot).
     """
@@ -110,6 +119,10 @@ class TransferPlan:
         order = sorted(found, key=lambda k: (k[0] != "eb", found[k]))
         index = {found[k]: i for i, k in enumerate(order)}
         self.kinds = order
+        self.kind_segments = [None] * len(order)     # an element of each kind (wave numbers)
+        for kind, items in raw:
+            for _, i, seg in items if kind == "segments" else ():
+                self.kind_segments[index[i]] = seg
         self.even = all(all(c == 0 for c in cs[1::2]) for kind, items in raw if kind == "jumps"
                         for _, _, cs in items)
         self.coefficients: list = []       # per jump entry: exact coefficients
@@ -139,6 +152,28 @@ class TransferPlan:
             return StiffnessPlan._kind_tables(ar, kinds)
         return memo(self, ar, f"kinds/{divide}", build)
 
+    def piece_tables(self, ar: Arithmetic, k: int, lengths) -> list:
+        """Kind ``k`` cut to each of ``lengths`` (an array of numbers of ``ar``): the tables
+        of :func:`~symtmm.numeric.segments.transfer_matrices`, one segment per length."""
+        family = self.kinds[k][0]
+        tables = dict(self.kind_tables(ar))
+        j = k if family == "eb" else k - sum(f == "eb" for f, _ in self.kinds)
+        one = {name: column[j] for name, column in tables[family].items()}
+        n = len(lengths)
+        out = {name: ar.array([value] * n) for name, value in one.items()}
+        out["l"] = lengths
+        if family == "eb":
+            # A = m l**4 / EI and F = kw l**4 / EI scale with the fourth power of the length
+            r = lengths / one["l"]
+            r4 = (r * r) * (r * r)
+            out["A"], out["F"] = r4 * one["A"], r4 * one["F"]
+        return [(family, out)]
+
+    def piece_matrices(self, ar: Arithmetic, k: int, lam2, lengths) -> np.ndarray:
+        """Transfer matrices ``(B, P, 4, 4)`` of kind ``k`` over each of ``lengths`` ``(P,)``."""
+        with ar:
+            return transfer_matrices(ar, self.piece_tables(ar, k, lengths), lam2)
+
     def jump_coefficients(self, ar: Arithmetic) -> list:
         return memo(self, ar, "jumps", lambda: [[ar.exact(c) for c in cs]
                                                  for cs in self.coefficients])
@@ -148,38 +183,52 @@ class TransferPlan:
         x = lam2 if self.even else lam
         out = []
         for cs in self.jump_coefficients(ar):
-            v = cs[-1] + 0 * x
+            v = 0 * x + cs[-1]          # the array on the left (see segments._c_series)
             for c in cs[-2::-1]:
                 v = v * x + c
             out.append(v)
         return out
 
 
-def propagate(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None) -> np.ndarray:
+def propagate(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None, start=None,
+              observe=None) -> np.ndarray:
     """The columns of the unknowns at the right end: ``(B, size, len(columns))``.
 
     ``lam`` ``(B,)`` (complex for double, numbers of ``ar`` otherwise); or, for an
     undamped model, ``lam2`` alone (``lam**2``, real on the frequency axis).
+
+    ``start`` ``(B, size, k)``: other columns to carry, given as extended states
+    at the left (default the unit columns of the unknowns). ``observe(i, before,
+    after)`` is called after every step ``i`` of ``plan.steps`` with the states
+    before and after it (``after`` is the walk's own array: read it during the
+    call, do not keep or change it); the states at sample points
+    (:func:`sample`) and the mode shapes' energy integrals are read that way.
     """
     with ar:
         if lam2 is None:
             lam2 = lam * lam
         B = len(lam2)
         like = lam2 if lam is None else lam
-        E = ar.zeros((B, plan.size, len(plan.columns)), like=like)
-        one = ar.exact(1)
-        for j, c in enumerate(plan.columns):
-            E[:, c, j] = one
+        if start is None:
+            E = ar.zeros((B, plan.size, len(plan.columns)), like=like)
+            one = ar.exact(1)
+            for j, c in enumerate(plan.columns):
+                E[:, c, j] = one
+        else:
+            E = np.array(start, copy=True)
         U = transfer_matrices(ar, plan.kind_tables(ar), lam2) if plan.kinds else None
         values = plan.jump_values(ar, lam, lam2) if plan.coefficients else []
-        for kind, items in plan.steps:
+        for i, (kind, items) in enumerate(plan.steps):
+            before = E.copy() if observe is not None else None
             if kind == "segments":
                 for lvl, k in items:
                     blk = slice(4 * lvl, 4 * lvl + 4)
                     E[:, blk, :] = U[:, k] @ E[:, blk, :]
             else:
-                for row, col, i in items:
-                    E[:, row, :] = E[:, row, :] + values[i][:, None] * E[:, col, :]
+                for row, col, j in items:
+                    E[:, row, :] = E[:, row, :] + values[j][:, None] * E[:, col, :]
+            if observe is not None:
+                observe(i, before, E)
     return E
 
 
@@ -199,6 +248,244 @@ def delta(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None, real: bool = 
     R = boundary(plan, ar, lam, lam2)
     with ar:
         return ar.array([det(ar, R[p]) for p in range(R.shape[0])])
+
+
+def digits_lost(plan: TransferPlan, lam) -> float:
+    """Estimated decimal digits the plain product loses to cancellation at ``lam``.
+
+    Entries of a segment matrix grow like ``exp(|beta| l)``; the columns cancel
+    at most about ``sum |beta| L / ln 10`` digits over the beams.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> pp = TransferPlan(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)))
+    >>> round(digits_lost(pp, 1j * (12 * np.pi) ** 2), 2)       # 12 pi / ln 10
+    16.37
+    """
+    lam2 = complex(lam) ** 2
+    return sum(float(np.max(seg.wave_number(lam2))) * L
+               for seg, _, L in plan.levels) / math.log(10)
+
+
+# -- states at sample points -----------------------------------------------------------------
+def _fraction(value):
+    """An exact value as a ``Fraction`` when rational (fast to split), else as it is."""
+    value = sp.sympify(value)
+    return Fraction(int(value.p), int(value.q)) if value.is_Rational else value
+
+
+def _split(f, n: int) -> tuple:
+    """``(j, r)`` with ``f = j/n + r``, ``0 <= j < n``: the anchor below ``f`` and the rest."""
+    if isinstance(f, Fraction):
+        j = min(f.numerator * n // f.denominator, n - 1)
+        return j, f - Fraction(j, n)
+    j = min(int(sp.floor(f * n)), n - 1)
+    return j, f - sp.Rational(j, n)
+
+
+def _number(ar: Arithmetic, f):
+    """An exact fraction as a number of ``ar``, rounded once (in double not memoised: the
+    double arithmetic lives as long as the process, and offsets are many)."""
+    if isinstance(ar, Batch):
+        return f.numerator / f.denominator if isinstance(f, Fraction) else float(f)
+    return ar.exact(sp.Rational(f.numerator, f.denominator) if isinstance(f, Fraction) else f)
+
+
+def convert(ar: Arithmetic, target: Arithmetic, x):
+    """An array of numbers of ``ar`` as numbers of ``target`` (double: real where ``x`` is)."""
+    if target is ar:
+        return x
+    if isinstance(target, Batch):
+        z = ar.to_complex(x)
+        return z if ar.is_complex(x) else z.real
+    return np.frompyfunc(lambda v: target.number(ar.to_mpmath(v)), 1, 1)(x)
+
+
+class Sampling:
+    """Where sample points sit along the walk of a plan: exact, the same at every ``lam``.
+
+    Parameters
+    ----------
+    plan : TransferPlan
+    points : list
+        Per beam (level), a list of ``(x, side)``: ``x`` an exact global coordinate,
+        ``side`` ``"-"`` (the state before the jumps of the point elements at ``x``)
+        or ``"+"`` (after them).
+
+    The state at a beam's left end before its jumps is the one at its left (the
+    unknowns there); at its right end after its jumps the one the conditions
+    constrain; at a point without a station both sides are the same.
+
+    Attributes
+    ----------
+    slots : list
+        ``(level, i)`` of every sample, in order (the axis of :func:`sample`'s states).
+    ends : dict
+        Step index -> ``[(slot, level, "before" | "after")]``: samples at a cut.
+    inside : dict
+        Step index -> ``[(position in the step, segment, [(slot, fraction of its length)])]``:
+        samples strictly inside a segment.
+
+    Raises
+    ------
+    ValueError
+        If a point is not on its beam.
+    """
+
+    def __init__(self, plan: TransferPlan, points):
+        from ..assembly import _before, _same
+
+        points = [[(sp.sympify(x), side) for x, side in level] for level in points]
+        self.slots = [(lvl, i) for lvl, level in enumerate(points) for i in range(len(level))]
+        index = {key: n for n, key in enumerate(self.slots)}
+        where: dict = {}
+        segments = iter(plan.segments_of)
+        for i, ((kind, items), step) in enumerate(zip(plan.steps, plan.layout.steps)):
+            if kind == "segments":
+                xs, xe = step.x_start, step.x_end
+                segs = next(segments)
+                for pos, (lvl, _k) in enumerate(items):
+                    for n, (x, _side) in enumerate(points[lvl]):
+                        slot = index[(lvl, n)]
+                        if _same(x, xs):
+                            where.setdefault(slot, ("end", i, "before", lvl))
+                        elif _same(x, xe):
+                            where[slot] = ("end", i, "after", lvl)
+                        elif _before(xs, x) and _before(x, xe):
+                            where[slot] = ("inside", i, (pos, segs[pos]),
+                                           _fraction((x - xs) / (xe - xs)))
+                continue
+            levels = sorted({row // 4 for row, _, _ in items if row < 4 * plan.layout.levels})
+            for lvl in levels:
+                for n, (x, side) in enumerate(points[lvl]):
+                    if _same(x, step.x):
+                        slot = index[(lvl, n)]
+                        if side == "+":
+                            where[slot] = ("end", i, "after", lvl)
+                        else:
+                            where.setdefault(slot, ("end", i, "before", lvl))
+        missing = [key for key, n in index.items() if n not in where]
+        if missing:
+            lvl, n = missing[0]
+            raise ValueError(f"x = {points[lvl][n][0]} is not on beam "
+                             f"'{plan.model.beams[lvl].name}'")
+        self.ends: dict = {}
+        inside: dict = {}
+        for slot, (what, i, a, b) in sorted(where.items()):
+            if what == "end":
+                self.ends.setdefault(i, []).append((slot, b, a))
+            else:
+                inside.setdefault(i, {}).setdefault(a, []).append((slot, b))
+        self.inside = {i: [(pos, seg, items) for (pos, seg), items in groups.items()]
+                       for i, groups in inside.items()}
+
+    def __len__(self):
+        return len(self.slots)
+
+
+def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam2=None,
+           start=None, inner: Arithmetic | None = None, observe=None) -> tuple:
+    """The walk of :func:`propagate`, and the states at the points of ``sampling`` on the way.
+
+    Parameters
+    ----------
+    plan, ar, lam, lam2, start, observe
+        As for :func:`propagate` (one walk: ``observe`` sees every step too).
+    sampling : Sampling
+    inner : Arithmetic, optional
+        The arithmetic of the last short step to a point inside a segment (default
+        ``ar``). The walk reaches anchors ``h`` apart with ``|s| h <= 1`` (``s`` the
+        largest wave number at the points) in ``ar``; from an anchor on, a transfer
+        matrix over less than ``h`` loses at most a factor ``e`` in relative accuracy,
+        so double precision (:data:`~symtmm.numeric.arith.DOUBLE`) gives every sample
+        to about 15 digits however many digits the walk needs.
+
+    Returns
+    -------
+    E : numpy.ndarray
+        The columns at the right end, as :func:`propagate` returns them.
+    states : numpy.ndarray
+        ``(B, len(sampling), 4, k)``: ``[Y, Theta, M, Q]`` of the sample's beam for
+        each column, numbers of ``inner``.
+
+    Examples
+    --------
+    The first pinned-pinned mode, ``Y = sin(pi x)``, from its left state
+    ``(0, pi, 0, -pi**3)`` in mpmath, sampled in double precision:
+
+    >>> from symtmm.model import Beam, Model
+    >>> from symtmm.numeric.arith import MP
+    >>> pp = TransferPlan(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)))
+    >>> ar = MP(100)
+    >>> pi = ar.ctx.pi
+    >>> start = ar.array([ar.number(v) for v in (0, pi, 0, -pi**3)], (1, 4, 1))
+    >>> where = Sampling(pp, [[(sp.Rational(1, 6), "+"), (sp.Rational(1, 2), "+")]])
+    >>> _, states = sample(pp, ar, where, lam2=ar.array([-pi**4]), start=start, inner=DOUBLE)
+    >>> np.round(states[0, :, 0, 0], 12) + 0.0                   # sin(pi/6), sin(pi/2)
+    array([0.5, 1. ])
+    """
+    inner = ar if inner is None else inner
+    with ar:
+        if lam2 is None:
+            lam2 = lam * lam
+    lam2_c = ar.to_complex(lam2)
+    lam2_in = convert(ar, inner, lam2)
+    out: dict = {}
+
+    def watch(i, before, after):
+        for slot, lvl, when in sampling.ends.get(i, ()):
+            state = before if when == "before" else after
+            # a copy: the walk goes on changing ``after`` in place
+            out[slot] = convert(ar, inner, state[:, 4 * lvl:4 * lvl + 4, :].copy())
+        for pos, seg, items in sampling.inside.get(i, ()):
+            lvl, k = plan.steps[i][1][pos]
+            _inside(plan, ar, inner, k, seg, lam2, lam2_c, lam2_in,
+                    before[:, 4 * lvl:4 * lvl + 4, :], items, out)
+        if observe is not None:
+            observe(i, before, after)
+
+    E = propagate(plan, ar, lam, lam2, start, watch)
+    if not len(sampling):
+        return E, inner.zeros((E.shape[0], 0, 4, E.shape[2]))
+    return E, np.stack([out[n] for n in range(len(sampling))], axis=1)
+
+
+def _inside(plan, ar, inner, k, seg, lam2, lam2_c, lam2_in, Z0, items, out):
+    """States at points strictly inside one segment (kind ``k``) from its start ``Z0``."""
+    n = max(1, math.ceil(float(np.max(seg.wave_number(lam2_c), initial=0.0)) * float(seg.l)))
+    groups: dict = {}
+    for slot, f in items:
+        j, r = _split(f, n)
+        groups.setdefault(j, []).append((slot, r))
+    anchors = sorted(groups)
+    length = plan.kinds[k][1][2 if plan.kinds[k][0] == "eb" else 7]
+    with ar:
+        far = [j for j in anchors if j > 0]
+        reached = {0: Z0}
+        if far:
+            l_ar = ar.exact(length)
+            U = plan.piece_matrices(ar, k, lam2, ar.array([_number(ar, Fraction(j, n)) * l_ar
+                                                            for j in far]))
+            for q, j in enumerate(far):
+                reached[j] = U[:, q] @ Z0
+    l_in = inner.exact(length)
+    slots, lengths, sources = [], [], []
+    for j in anchors:
+        Zj = convert(ar, inner, reached[j])
+        for slot, r in groups[j]:
+            if r == 0:
+                out[slot] = Zj
+            else:
+                slots.append(slot)
+                lengths.append(_number(inner, r) * l_in)
+                sources.append(Zj)
+    if slots:
+        with inner:
+            U = plan.piece_matrices(inner, k, lam2_in, inner.array(lengths))
+            states = U @ np.stack(sources, axis=1)
+        for q, slot in enumerate(slots):
+            out[slot] = states[:, q]
 
 
 # -- double precision, stable at any mode ---------------------------------------------------

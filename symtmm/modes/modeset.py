@@ -1,0 +1,242 @@
+"""The results of a mode-shape computation: immutable value objects, no numerics.
+
+:class:`BeamShape` (one beam's samples), :class:`ModeShape` (one mode: its
+eigenvalue, its shape on every beam, the normalised left state that
+determines it) and :class:`ModeSet` (the modes of a model, with their table,
+JSON, HTML, LaTeX and plot).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+
+import mpmath
+import numpy as np
+
+from ..elements import STATE
+from ..model import Model
+from ..numeric.arith import MP
+from ..results import Eigenvalue, Spectrum, decimal_string
+
+__all__ = ["BeamShape", "ModeShape", "ModeSet"]
+
+
+@dataclass(frozen=True)
+class BeamShape:
+    """A mode shape sampled along one beam.
+
+    Attributes
+    ----------
+    name : str
+        The beam.
+    x : numpy.ndarray
+        Global coordinates of the sample points, both ends included.
+    Y, Theta, M, Q : numpy.ndarray
+        Displacement, slope, bending moment ``EI Y''`` and shear force
+        ``EI Y'''`` at the sample points (float for undamped, complex for
+        damped models).
+    """
+
+    name: str
+    x: np.ndarray
+    Y: np.ndarray
+    Theta: np.ndarray
+    M: np.ndarray
+    Q: np.ndarray
+
+    def __getitem__(self, variable: str) -> np.ndarray:
+        """One of ``"x", "Y", "Theta", "M", "Q"`` by name."""
+        if variable not in ("x",) + STATE:
+            raise KeyError(variable)
+        return getattr(self, variable)
+
+    def to_dict(self) -> dict:
+        """``{"x", "Y", "Theta", "M", "Q"}``; complex arrays as ``{"real", "imag"}``."""
+        out = {"x": [float(v) for v in self.x]}
+        for var in STATE:
+            arr = getattr(self, var)
+            if np.iscomplexobj(arr):
+                out[var] = {"real": [float(v) for v in arr.real],
+                            "imag": [float(v) for v in arr.imag]}
+            else:
+                out[var] = [float(v) for v in arr]
+        return out
+
+
+@dataclass(frozen=True)
+class ModeShape:
+    """One mode: its eigenvalue, its shape along every beam, and how to recompute it.
+
+    Attributes
+    ----------
+    eigenvalue : Eigenvalue
+    beams : dict
+        Beam name -> :class:`BeamShape`, in the model's beam order.
+    left_state : tuple
+        The normalised extended state (mpmath numbers) at the left, before
+        any jump: the beams' ``4 n`` variables at their left ends, then the
+        bodies' virtual variables (:class:`~symtmm.assembly.Layout`). With the
+        model it determines the shape everywhere (:func:`~symtmm.modes.evaluate_mode`).
+    dps : int
+        Decimal digits of the arithmetic the shape was computed in.
+    number : int
+        Position of the mode in its set (1-based, ascending by ``Im lam``).
+    bodies : dict
+        Rigid body (joint) name -> ``{"Y": Y_c, "Theta": Theta_c}``: the
+        deflection of its centre of mass and its rotation (``Theta`` only when
+        the body rotates, :attr:`~symtmm.model.RigidBody.rotates`); float
+        for undamped shapes, complex for damped ones.
+    """
+
+    eigenvalue: Eigenvalue
+    beams: dict
+    left_state: tuple
+    dps: int
+    number: int = 1
+    bodies: dict = field(default_factory=dict)
+
+    @property
+    def lam(self):
+        """The eigenvalue ``lam`` (mpmath)."""
+        return self.eigenvalue.lam
+
+    @property
+    def omega(self) -> float:
+        """``Im lam`` in rad/s, as a float."""
+        return float(self.eigenvalue.lam.imag)
+
+    @property
+    def damped(self) -> bool:
+        """True for a complex (damped) shape."""
+        return any(np.iscomplexobj(b.Y) for b in self.beams.values())
+
+    def to_dict(self) -> dict:
+        """The JSON object of one mode in ``symtmm modes --json``."""
+        ev = self.eigenvalue.to_dict()
+        out = {"eigenvalue": {"real": ev["real"], "imag": ev["imag"]},
+               "beams": {name: b.to_dict() for name, b in self.beams.items()}}
+        if self.bodies:
+            out["bodies"] = {name: {var: _json_number(v) for var, v in motion.items()}
+                             for name, motion in self.bodies.items()}
+        return out
+
+
+def _json_number(value):
+    """A float, or ``{"real", "imag"}`` for a complex number (as the arrays are written)."""
+    if isinstance(value, complex):
+        return {"real": value.real, "imag": value.imag}
+    return float(value)
+
+
+def _Omega(omega, scale, digits: int):
+    """``sqrt(omega / scale)`` to ``digits`` digits, as a global mpmath number."""
+    ctx = MP.from_digits(digits + 10).ctx
+    value = ctx.sqrt(ctx.mpf(omega) / ctx.mpf(scale))
+    return mpmath.mp.make_mpf(value._mpf_)
+
+
+@dataclass(frozen=True)
+class ModeSet:
+    """Mode shapes of a model, ascending by ``Im lam``; iterating gives :class:`ModeShape`.
+
+    Attributes
+    ----------
+    modes : tuple of ModeShape
+    model : Model
+        The (resolved) model the shapes belong to.
+    spectrum : Spectrum
+        The eigenvalues the shapes were computed at.
+    seconds : float
+        Time spent on the shapes (the eigenvalue search not included).
+    """
+
+    modes: tuple
+    model: Model
+    spectrum: Spectrum
+    seconds: float = 0.0
+    notes: tuple = field(default_factory=tuple)
+
+    def __iter__(self):
+        return iter(self.modes)
+
+    def __len__(self):
+        return len(self.modes)
+
+    def __getitem__(self, i):
+        return self.modes[i]
+
+    @property
+    def beam_names(self) -> list:
+        return [b.name for b in self.model.beams]
+
+    def to_dict(self) -> dict:
+        """The JSON object of ``symtmm modes --json``: ``{"modes": [...]}``."""
+        return {"modes": [m.to_dict() for m in self.modes]}
+
+    def to_json(self) -> str:
+        """:meth:`to_dict` as a JSON string."""
+        # compact: a shape has thousands of numbers
+        return json.dumps(self.to_dict(), separators=(",", ":"))
+
+    def _rows(self):
+        """Number, eigenvalue text, Omega text, and per beam the largest |Y|."""
+        scale = self.spectrum.omega_scale
+        rows = []
+        for mode in self.modes:
+            e = mode.eigenvalue
+            if scale and not mode.damped:
+                Om = decimal_string(_Omega(e.omega, scale[1], e.digits), e.digits)
+            else:
+                Om = ""
+            amps = [f"{float(np.max(np.abs(b.Y))):.4g}" for b in mode.beams.values()]
+            rows.append([str(mode.number), str(e), Om] + amps)
+        return rows
+
+    def _head(self):
+        ref = self.spectrum.omega_scale[0] if self.spectrum.omega_scale else ""
+        return (["#", "lam [1/s]", f"Omega (beam {ref})" if ref else "Omega"]
+                + [f"max|Y| {n}" for n in self.beam_names])
+
+    def table(self) -> str:
+        """A readable summary: eigenvalue and the largest displacement on each beam."""
+        head, rows = self._head(), self._rows()
+        widths = [max(len(h), *(len(r[k]) for r in rows)) if rows else len(h)
+                  for k, h in enumerate(head)]
+        lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths)),
+                 "  ".join("-" * w for w in widths)]
+        lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
+        damped = any(m.damped for m in self.modes)
+        points = len(next(iter(self.modes[0].beams.values())).x) if self.modes else 0
+        lines.append(f"{len(self.modes)} mode shape(s), {points} points per beam (max|Y| over "
+                     "those points); "
+                     + ("complex, largest |Y| = 1" if damped else
+                        "mass-normalised: kinetic energy sum of integral (m Y^2 + rhoI "
+                        "Theta^2) dx + masses + bodies = 1"))
+        lines += list(self.notes)
+        return "\n".join(lines)
+
+    def __str__(self) -> str:
+        return self.table()
+
+    def _repr_html_(self) -> str:
+        from html import escape
+        head, rows = self._head(), self._rows()
+        out = ["<table>", "<tr>" + "".join(f"<th>{escape(h)}</th>" for h in head) + "</tr>"]
+        out += ["<tr>" + "".join(f"<td>{escape(c)}</td>" for c in r) + "</tr>" for r in rows]
+        out.append("</table>")
+        return "".join(out)
+
+    def _repr_latex_(self) -> str:
+        head, rows = self._head(), self._rows()
+        cols = [r"\#", r"\lambda\ [1/\mathrm{s}]", r"\Omega"] + [
+            r"\max|Y|\ \mathrm{" + n.replace("_", r"\_") + "}" for n in self.beam_names]
+        lines = [r"\begin{array}{" + "r" * len(head) + "}", " & ".join(cols) + r" \\ \hline"]
+        lines += [" & ".join(r) + r" \\" for r in rows]
+        lines.append(r"\end{array}")
+        return "$" + "\n".join(lines) + "$"
+
+    def plot(self, **kwargs):
+        """The shapes as a matplotlib figure (see :func:`symtmm.plot.plot_modes`)."""
+        from ..plot import plot_modes
+        return plot_modes(self, **kwargs)

@@ -1,0 +1,232 @@
+"""Normalisation of mode shapes: the kinetic energy of the columns a walk carries.
+
+Undamped shapes are real and mass-normalised in the full kinetic energy: over
+the beams the integral of ``m Y**2 + rhoI Theta**2`` (``Theta`` the section's
+rotation: rotary inertia of Rayleigh and Timoshenko beams), plus
+``M Y**2 + J Theta**2`` of every lumped mass and ``M Y_c**2 + J Theta_c**2``
+of every rigid body (its unknowns in the extended state), which keeps the
+shapes of distinct frequencies orthogonal. :class:`Energy` gathers the Gram
+matrix of that energy for all columns at once, as an observer of the transfer
+walk (:func:`symtmm.numeric.transfer.propagate`):
+
+* an Euler–Bernoulli segment's integral has the closed form
+  ``[F]/(4 kappa)``, ``kappa = beta**4``,
+  ``F = x (kappa Y**2 - 2 Y' Y''' + Y''**2) + 3 Y Y''' - Y' Y''`` (from
+  ``Y'''' = kappa Y``), from the states at its two ends;
+* every other segment (and an Euler–Bernoulli one where ``kappa l**4`` is
+  small, where the closed form would cancel) is integrated by Gauss–Legendre
+  quadrature on pieces with ``|s| h <= 1``, with as many nodes as the digits
+  asked for need (:func:`~symtmm.numeric.quadrature.gauss_legendre_nodes`).
+
+The ``m`` shapes of a multiple eigenvalue are then made mass-orthonormal with
+the Cholesky factor of their Gram matrix (:func:`mass_orthonormaliser`).
+Damped shapes are complex and scaled so that the largest ``|Y|`` over all
+beams is ``1`` (:func:`complex_scaler`). Everything runs in the arithmetic of
+the walk (:mod:`symtmm.numeric.arith`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import sympy as sp
+
+from ..assembly import Station
+from ..elements import STATE
+from ..errors import ComputationError
+from ..numeric.arith import Arithmetic
+from ..numeric.linalg import cholesky, lower_inverse
+from ..numeric.quadrature import gauss_legendre, gauss_legendre_nodes
+
+__all__ = ["Inertia", "Energy", "mass_orthonormaliser", "complex_scaler"]
+
+#: Below this ``|kappa| l**4`` the closed-form integral would cancel; use quadrature.
+CLOSED_FORM_MIN = 1e-2
+
+
+class Inertia:
+    """Where a plan's lumped inertia sits: exact tables, the same at every eigenvalue.
+
+    Attributes
+    ----------
+    stations : dict
+        Step index -> ``[(displacement indices, exact mass matrix)]`` of the point
+        elements there with inertia (masses).
+    bodies : list
+        ``(index, exact M or J)``: the rigid bodies' deflection and rotation unknowns.
+    """
+
+    def __init__(self, plan):
+        self.plan = plan
+        self.stations: dict = {}
+        for i, step in enumerate(plan.layout.steps):
+            if not isinstance(step, Station):
+                continue
+            for element, levels in step.elements:
+                inertia = element.inertia()
+                if not inertia.is_zero_matrix:
+                    disp = [4 * levels[lvl] + STATE.index(var) for lvl, var in element.dofs]
+                    self.stations.setdefault(i, []).append((disp, inertia))
+        self.bodies = []
+        for bl in plan.layout.bodies:
+            if bl.body.M != 0:
+                self.bodies.append((bl.unknowns["Y"], bl.body.M))
+            if "Theta" in bl.unknowns and bl.body.J != 0:
+                self.bodies.append((bl.unknowns["Theta"], bl.body.J))
+
+
+class Energy:
+    """The kinetic-energy Gram matrix of the columns of one real walk, step by step.
+
+    Pass the instance as ``observe`` to :func:`~symtmm.numeric.transfer.propagate`
+    (or :func:`~symtmm.numeric.transfer.sample`), then read :meth:`gram` with the
+    left state.
+
+    Parameters
+    ----------
+    inertia : Inertia
+    ar : Arithmetic
+        The walk's arithmetic.
+    lam2 : array
+        ``(1,)``: the walk's ``lam**2`` (real).
+    digits : int
+        Correct digits the integrals must carry.
+    """
+
+    def __init__(self, inertia: Inertia, ar: Arithmetic, lam2, digits: int):
+        self.inertia = inertia
+        self.plan = inertia.plan
+        self.ar = ar
+        self.lam2 = lam2
+        self.lam2_c = complex(ar.to_complex(lam2)[0])
+        self.digits = digits
+        self.G = None
+
+    def _add(self, part):
+        self.G = part if self.G is None else self.G + part
+
+    def __call__(self, i, before, after):
+        kind, items = self.plan.steps[i]
+        if kind == "segments":
+            for lvl, k in items:
+                blk = slice(4 * lvl, 4 * lvl + 4)
+                self._add(segment_gram(self.plan, self.ar, k, self.lam2, self.lam2_c,
+                                       before[0, blk, :], after[0, blk, :], self.digits))
+            return
+        ar = self.ar
+        # lumped masses: d^T M d (displacements do not jump at the station)
+        for disp, inertia in self.inertia.stations.get(i, ()):
+            Mi = ar.array([ar.exact(v) for v in inertia], inertia.shape)
+            D = before[0, disp, :]
+            self._add(D.T @ Mi @ D)
+
+    def gram(self, start):
+        """The Gram matrix, the bodies' energy added from the left state ``start``
+        (``size x k``: the bodies' unknowns are constant along ``x``)."""
+        G = self.G
+        for index, value in self.inertia.bodies:
+            G = G + np.outer(start[index, :], start[index, :]) * self.ar.exact(value)
+        return G
+
+
+def _bilinear_F(ar, x, kappa, EI, Z):
+    """The boundary form whose difference is ``4 kappa`` times the integrals of ``Y_a Y_b``
+    for all pairs of columns of ``Z`` (``4 x k``); ``x`` None at the segment's start.
+
+    Arrays stay on the left of numbers: an mpmath number on the left first tries to
+    convert the whole array (and prints it for the error it then swallows)."""
+    Y, T, M, Q = Z
+    d2, d3 = M / EI, Q / EI
+
+    def sym(a, b):
+        out = np.outer(a, b)
+        return out + out.T
+    out = sym(Y, d3) * ar.exact(sp.Rational(3, 2)) - sym(T, d2) / 2
+    if x is not None:
+        out = out + (np.outer(Y, Y) * kappa - sym(T, d3) + np.outer(d2, d2)) * x
+    return out
+
+
+def segment_gram(plan, ar: Arithmetic, k: int, lam2, lam2_c: complex, Z0, Z1, digits: int):
+    """``integral of m Y_i Y_j + rhoI Theta_i Theta_j`` over one segment of kind ``k`` for
+    the columns of ``Z0`` (states at its start; ``Z1`` at its end).
+
+    Euler–Bernoulli segments (on a foundation too) use the closed form
+    ``[F]/(4 kappa)``, ``Y'''' = kappa Y``, unless ``|kappa| l**4`` is so small that
+    it would cancel; every other segment Gauss–Legendre quadrature (:func:`_quadrature`).
+    """
+    family, consts = plan.kinds[k]
+    if family == "eb":
+        EI, m, length, kw = (ar.exact(v) for v in consts)
+        kappa = -(lam2[0] * m + kw) / EI
+        l4 = length ** 4
+        if float(ar.upper(ar.array([kappa * l4]))[0]) >= CLOSED_FORM_MIN:
+            F1 = _bilinear_F(ar, length, kappa, EI, Z1)
+            F0 = _bilinear_F(ar, None, kappa, EI, Z0)
+            return (F1 - F0) * (m / (4 * kappa))
+        return _quadrature(plan, ar, k, lam2, lam2_c, Z0, m, None, digits)
+    return _quadrature(plan, ar, k, lam2, lam2_c, Z0, ar.exact(consts[5]), ar.exact(consts[4]),
+                       digits)
+
+
+def _quadrature(plan, ar, k, lam2, lam2_c, Z0, m, rhoI, digits):
+    """The kinetic-energy Gram matrix of one segment by Gauss–Legendre quadrature.
+
+    The segment is cut into pieces with ``|s| h <= 1``, each integrated by the rule
+    of :func:`~symtmm.numeric.quadrature.gauss_legendre_nodes`; the transfer matrices
+    to the nodes are the same on every piece and are computed once.
+    """
+    seg = plan.kind_segments[k]
+    pieces = max(1, math.ceil(float(np.max(seg.wave_number(lam2_c))) * float(seg.l)))
+    h = ar.exact(seg.l) / pieces
+    nodes, weights = gauss_legendre(ar, gauss_legendre_nodes(digits))
+    U = plan.piece_matrices(ar, k, lam2, ar.array(list(nodes * h) + [h]))[0]
+    to_nodes, step = U[:-1, :2, :], U[-1]
+    w = weights * h
+    out = None
+    Z = Z0
+    for p in range(pieces):
+        z = to_nodes @ Z                        # (nodes, 2, k): Y and Theta at the nodes
+        part = (z[:, 0, :].T * w) @ z[:, 0, :] * m
+        if rhoI is not None and rhoI != 0:
+            part = part + (z[:, 1, :].T * w) @ z[:, 1, :] * rhoI
+        out = part if out is None else out + part
+        if p + 1 < pieces:
+            Z = step @ Z
+    return out
+
+
+def mass_orthonormaliser(ar: Arithmetic, G):
+    """``T`` with ``T^T G T = I`` (``G`` symmetric positive definite): ``T = L^-T``, ``G = L L^T``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from symtmm.numeric.arith import MP
+    >>> ar = MP(100)
+    >>> G = ar.array([ar.number(v) for v in (4, 2, 2, 5)], (2, 2))
+    >>> T = mass_orthonormaliser(ar, G)
+    >>> bool(abs(T.T @ G @ T - np.eye(2)).max() < 1e-28)
+    True
+    """
+    try:
+        L = cholesky(ar, G)
+    except ComputationError:
+        raise ComputationError("mode shape with zero mass (null vector lost)") from None
+    return lower_inverse(ar, L).T
+
+
+def complex_scaler(ar: Arithmetic, Y):
+    """Diagonal ``T`` making each damped shape's largest ``|Y|`` equal to 1 (real).
+
+    ``Y``: ``(points, k)`` complex samples of the displacement of every column.
+    """
+    k = Y.shape[1]
+    T = ar.zeros((k, k), like=ar.array([ar.number(1j)]))
+    for c in range(k):
+        best = Y[int(np.argmax(np.abs(Y[:, c]))), c]
+        if best == 0:
+            raise ComputationError("mode shape vanishes (null vector lost)")
+        T[c, c] = 1 / ar.number(complex(best))
+    return T

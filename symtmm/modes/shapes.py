@@ -1,0 +1,323 @@
+"""Mode shapes computed on the numeric kernel: null vector, walk, normalisation.
+
+At an eigenvalue the work is done in a private mpmath context
+(:class:`~symtmm.numeric.arith.MP`) at :func:`working_digits` digits:
+
+1. ``R(lam)`` by the transfer walk (:func:`~symtmm.numeric.transfer.boundary`) and
+   its near-null space by block inverse iteration
+   (:func:`~symtmm.numeric.linalg.null_space`): the unknowns at the left;
+2. one walk of those columns along the layout
+   (:func:`~symtmm.numeric.transfer.sample`) gives the states at the sample
+   points (the last short step in double precision) and, through an observer,
+   the kinetic-energy Gram matrix (:class:`~symtmm.modes.normalise.Energy`);
+3. normalisation (:mod:`symtmm.modes.normalise`), and the results as global
+   mpmath numbers and numpy arrays (:mod:`symtmm.modes.modeset`).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import time
+
+import mpmath
+import numpy as np
+import sympy as sp
+
+from ..errors import ModelError
+from ..expr import ExpressionError, parse_expression
+from ..model import Model
+from ..numeric import transfer
+from ..numeric.arith import DOUBLE, MP, Arithmetic
+from ..numeric.linalg import null_space
+from ..results import Eigenvalue, Spectrum
+from .modeset import BeamShape, ModeSet, ModeShape
+from .normalise import Energy, Inertia, complex_scaler, mass_orthonormaliser
+
+__all__ = ["ShapePlan", "evaluate_mode", "mode_shapes", "shapes_at", "working_digits"]
+
+
+class ShapePlan:
+    """A model compiled once for its mode shapes: transfer plan, inertia, sample grids.
+
+    Parameters
+    ----------
+    model : Model
+        Numeric (every parameter has a value).
+    """
+
+    def __init__(self, model: Model):
+        self.model = model.require_numeric()
+        self.plan = transfer.TransferPlan(self.model)
+        self.inertia = Inertia(self.plan)
+        self._grids: dict = {}
+
+    def grid(self, points: int) -> tuple:
+        """``points`` equally spaced exact points along every beam, both ends included (the
+        left end before its jumps, every other point after them): their
+        :class:`~symtmm.numeric.transfer.Sampling` and, per beam, their coordinates as floats.
+        """
+        if points not in self._grids:
+            samples, floats = [], []
+            for beam in self.model.beams:
+                xs = [beam.x0 + beam.L * sp.Rational(i, points - 1) for i in range(points)]
+                samples.append(list(zip(xs, ["-"] + ["+"] * (points - 1))))
+                floats.append(np.array([float(x) for x in xs]))
+            self._grids[points] = (transfer.Sampling(self.plan, samples), floats)
+        return self._grids[points]
+
+
+@functools.lru_cache(maxsize=16)
+def _shape_plan(model: Model) -> ShapePlan:
+    """A plan per model, kept for repeated :func:`evaluate_mode` calls."""
+    return ShapePlan(model)
+
+
+def working_digits(plan, lam, digits: int) -> int:
+    """Decimal digits to compute a shape in: ``digits`` plus the cancellation, plus guard.
+
+    The cancellation is that of the plain transfer product at ``lam``
+    (:func:`~symtmm.numeric.transfer.digits_lost`, about ``sum |beta| L / ln 10``).
+
+    Parameters
+    ----------
+    plan : TransferPlan
+        Or an object that has one as ``plan`` (:class:`ShapePlan`,
+        :class:`symtmm.compile.Evaluator`).
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> pp = ShapePlan(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)))
+    >>> working_digits(pp, 1j * 10 * math.pi**2, 15)       # beta L = sqrt(10) pi: 4.3 digits
+    35
+    """
+    plan = getattr(plan, "plan", plan)
+    return max(int(digits), 15) + math.ceil(transfer.digits_lost(plan, complex(lam))) + 15
+
+
+def _point(ar: Arithmetic, lam, real: bool) -> tuple:
+    """``(lam, lam2)`` as arrays of one number of ``ar`` for :func:`~symtmm.numeric.transfer.
+    propagate`; ``real``: ``lam = i omega`` of an undamped model, walked in real arithmetic
+    in ``lam**2 = -omega**2`` alone."""
+    if real:
+        w = ar.number(lam.imag)
+        return None, ar.array([-(w * w)])
+    return ar.array([ar.number(lam)]), None
+
+
+def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: int | None = None,
+              number: int = 1, plan: ShapePlan | None = None) -> list:
+    """The mode shape(s) belonging to one eigenvalue: ``multiplicity`` of them.
+
+    Parameters
+    ----------
+    model : Model
+        Numeric (every parameter has a value).
+    eigenvalue : Eigenvalue
+        From :func:`symtmm.solve.solve`; its multiplicity sets the number of shapes.
+    points : int
+        Sample points per beam, both ends included (at least 2).
+    digits : int, optional
+        Digits the shape should carry; default the eigenvalue's.
+    number : int
+        Number of the first shape in its set.
+    plan : ShapePlan, optional
+        The model's plan, when shapes are computed at several eigenvalues.
+
+    Returns
+    -------
+    list of ModeShape
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> from symtmm.solve import solve
+    >>> pp = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
+    >>> ev = solve(pp, count=1)[0]
+    >>> (shape,) = shapes_at(pp, ev, points=5)
+    >>> np.round(shape.beams["b"].Y, 6) + 0.0         # sqrt(2) sin(pi x)
+    array([0.      , 1.      , 1.414214, 1.      , 0.      ])
+    """
+    model = model.require_numeric()
+    if points < 2:
+        raise ValueError("points must be at least 2")
+    shape_plan = plan or ShapePlan(model)
+    tp = shape_plan.plan
+    real = not model.damped and eigenvalue.lam.real == 0
+    digits = eigenvalue.digits if digits is None else digits
+    dps = working_digits(tp, eigenvalue.lam, digits)
+    ar = MP.from_digits(dps)
+    mult = eigenvalue.multiplicity
+    lam, lam2 = _point(ar, eigenvalue.lam, real)
+    with ar:
+        V = null_space(ar, transfer.boundary(tp, ar, lam, lam2)[0], mult)
+        E0 = ar.zeros((tp.size, mult), like=V)
+        E0[tp.columns, :] = V
+    grid, xs = shape_plan.grid(points)
+    energy = Energy(shape_plan.inertia, ar, lam2, digits + 3) if real else None
+    _, states = transfer.sample(tp, ar, grid, lam, lam2, start=E0[None], inner=DOUBLE,
+                                observe=energy)
+    states = states[0]                          # (samples, 4, mult), double
+    with ar:
+        T = (mass_orthonormaliser(ar, energy.gram(E0)) if real
+             else complex_scaler(ar, states[:, 0, :]))
+        E0 = E0 @ T
+    states = states @ (ar.to_complex(T).real if real else ar.to_complex(T))
+    per_level = states.reshape(len(model.beams), points, 4, mult)
+    shapes = []
+    for c in range(mult):
+        sign = 1
+        if real:
+            # make the largest displacement positive
+            Ys = per_level[:, :, 0, c].reshape(-1)
+            sign = -1 if Ys[np.argmax(np.abs(Ys))] < 0 else 1
+        beams = {}
+        for lvl, beam in enumerate(model.beams):
+            z = per_level[lvl, :, :, c] * sign
+            beams[beam.name] = BeamShape(beam.name, xs[lvl], z[:, 0], z[:, 1], z[:, 2], z[:, 3])
+        left = tuple(ar.to_mpmath(E0[r, c] * sign) for r in range(E0.shape[0]))
+        shapes.append(ModeShape(eigenvalue, beams, left, dps, number + c,
+                                _body_motion(tp.layout, left, real)))
+    return shapes
+
+
+def _body_motion(layout, state, real: bool) -> dict:
+    """Per rigid body, its ``Y`` and ``Theta`` (if it rotates) from the extended state."""
+    out = {}
+    for bl in layout.bodies:
+        motion = {}
+        for var in ("Y", "Theta"):
+            if var in bl.unknowns:
+                value = complex(state[bl.unknowns[var]])
+                motion[var] = value.real if real else value
+        out[bl.body.name] = motion
+    return out
+
+
+def evaluate_mode(model: Model, mode: ModeShape, beam: str, x, side: str = "+") -> np.ndarray:
+    """The state ``[Y, Theta, M, Q]`` of ``mode`` at global coordinates ``x`` on ``beam``.
+
+    Parameters
+    ----------
+    model : Model
+        The model the mode belongs to.
+    mode : ModeShape
+    beam : str
+        Beam name.
+    x : array_like
+        Global coordinates on the beam (floats, read as the decimals they print as,
+        exact values, or strings such as ``"1/3"``).
+    side : {"+", "-"}
+        At a station: the state after (``"+"``) or before (``"-"``) the jumps of
+        the point elements there, in the direction of increasing x.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(4, len(x))``, float for undamped modes, complex for damped.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> from symtmm.solve import solve
+    >>> pp = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
+    >>> (shape,) = shapes_at(pp, solve(pp, count=1)[0], points=3)
+    >>> z = evaluate_mode(pp, shape, "b", [0.25])
+    >>> round(float(z[0, 0]), 12) == round(math.sqrt(2) * math.sin(math.pi / 4), 12)
+    True
+    """
+    model = model.require_numeric()
+    if side not in ("+", "-"):
+        raise ValueError("side must be '+' or '-'")
+    lvl = model.beam_index(beam)
+    shape_plan = _shape_plan(model)
+    tp = shape_plan.plan
+    xs = [x] if np.ndim(x) == 0 else list(x)
+    points = [[] for _ in model.beams]
+    points[lvl] = [(_coordinate(v), side) for v in xs]
+    where = transfer.Sampling(tp, points)
+    real = not any(isinstance(v, mpmath.mpc) for v in mode.left_state)
+    ar = MP.from_digits(mode.dps)
+    lam, lam2 = _point(ar, mode.lam, real)
+    start = ar.array([ar.number(v) for v in mode.left_state], (1, tp.size, 1))
+    _, states = transfer.sample(tp, ar, where, lam, lam2, start=start, inner=DOUBLE)
+    out = states[0, :, :, 0].T
+    return out.real if real else out
+
+
+def _coordinate(value) -> sp.Expr:
+    """A coordinate as an exact number; a float is read as the decimal it prints as.
+
+    A string is read by the restricted parser of model files, never by ``sympify``.
+    """
+    if isinstance(value, mpmath.mpf):
+        man, exp = value.man_exp
+        return sp.Integer(int(man)) * sp.Integer(2) ** int(exp)
+    if isinstance(value, (float, np.floating)):
+        return sp.Rational(repr(float(value)))
+    if isinstance(value, np.integer):
+        return sp.Integer(int(value))
+    if isinstance(value, str):
+        try:
+            value = parse_expression(value)
+        except ExpressionError as exc:
+            raise ModelError(f"cannot read {value!r}: {exc}", field="x") from None
+        if not value.is_number:
+            raise ModelError(f"{value} is not a number", field="x")
+    return sp.sympify(value)
+
+
+def mode_shapes(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
+                points: int = 101, digits: int = 15, method: str = "default",
+                spectrum: Spectrum | None = None) -> ModeSet:
+    """Mode shapes of the first ``count`` modes (with multiplicity) of ``model``.
+
+    Parameters
+    ----------
+    model : Model
+        Every parameter must have a value.
+    count, omega_max, sigma_max, digits, method
+        Passed to :func:`symtmm.solve.solve` to find the eigenvalues.
+    points : int
+        Sample points per beam, both ends included.
+    spectrum : Spectrum, optional
+        Eigenvalues already found; then no search is made.
+
+    Returns
+    -------
+    ModeSet
+        One :class:`ModeShape` per eigenvalue and multiplicity.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> cf = Model((Beam("b", EI=1, m=1, L=1, left="clamped", right="free"),))
+    >>> modes = mode_shapes(cf, count=2, points=11)
+    >>> print(modes.table())                                      # doctest: +ELLIPSIS
+    #          lam [1/s]    Omega (beam b)  max|Y| b
+    -  -----------------  ----------------  --------
+    1  3.51601526850015i  1.87510406871196         2
+    2  22.0344915646668i  4.69409113297417         2
+    2 mode shape(s), 11 points per beam (max|Y| over those points); mass-normalised: ...
+    """
+    from ..solve import solve
+
+    model = model.require_numeric()
+    if spectrum is None:
+        spectrum = solve(model, count=count, omega_max=omega_max, sigma_max=sigma_max,
+                         digits=digits, method=method)
+    start = time.perf_counter()
+    plan = ShapePlan(model)
+    modes, number = [], 1
+    for e in spectrum:
+        shapes = shapes_at(model, e, points=points, number=number, plan=plan)
+        modes += shapes
+        number += len(shapes)
+    notes = []
+    if count is not None and len(modes) > count:
+        multiple = [e for e in spectrum if e.multiplicity > 1]
+        notes.append(f"{len(modes)} shapes for {count} requested: a multiple eigenvalue "
+                     f"(here {', '.join(str(e) for e in multiple)}) "
+                     "is given a basis of its whole eigenspace, mass-orthonormal")
+    return ModeSet(tuple(modes), model, spectrum, time.perf_counter() - start, tuple(notes))

@@ -1,0 +1,227 @@
+"""The kernel parts mode shapes stand on: sampling the transfer walk, pieces of segments,
+linear algebra, quadrature, and precision kept local.
+
+References, independent of the code under test:
+
+* the exact transfer matrices of the elements (SymPy closed forms,
+  :meth:`~symtmm.elements.beam.EulerBernoulliSegment.transfer_matrix`) and the jump
+  of a spring from its definition, ``Q+ - Q- = -k Y``;
+* SymPy's exact linear algebra on rational matrices (null space, Cholesky, solve);
+* ``integral of x**k over [0, 1] = 1/(k + 1)`` and numpy's Gauss–Legendre rule;
+* the pinned-pinned beam's mass-normalised first mode ``sqrt(2/(m L)) sin(pi x / L)``.
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+
+import mpmath
+import numpy as np
+import pytest
+import sympy as sp
+
+from symtmm.elements import EulerBernoulliSegment
+from symtmm.errors import ComputationError
+from symtmm.model import Beam, Mass, Model, Spring
+from symtmm.modes import evaluate_mode, shapes_at
+from symtmm.numeric import linalg
+from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
+from symtmm.numeric.quadrature import gauss_legendre, gauss_legendre_nodes
+from symtmm.numeric.transfer import Sampling, TransferPlan, sample
+from symtmm.results import Eigenvalue
+
+R = sp.Rational
+
+
+# -- sampling the walk --------------------------------------------------------------------
+
+SPRING_BEAM = Model((Beam("b", EI=2, m=3, L=1, left="pinned", right="free"),),
+                    (Spring("b", "ground", x="1/2", k=40),))
+LAM2 = -49                                   # lam = 7i, not an eigenvalue: any state will do
+START = (0, 1, 0, 2)                         # [Y, Theta, M, Q] at the pinned end
+POINTS = [(R(0), "-"), (R(3, 10), "+"), (R(1, 2), "-"), (R(1, 2), "+"), (R(17, 20), "+"),
+          (R(1), "+")]
+
+
+def spring_beam_reference(dps=40):
+    """The states at POINTS from the exact segment matrices and the spring's jump."""
+    seg = EulerBernoulliSegment(2, 3, 1)
+    lam = sp.sqrt(sp.Integer(LAM2))
+
+    def carry(z, length):
+        if length == 0:
+            return z
+        return seg.with_length(length).transfer_matrix(lam) * z
+    z0 = sp.Matrix(START)
+    half = carry(z0, R(1, 2))
+    after = half.copy()
+    after[3] -= 40 * half[0]                 # Q+ = Q- - k Y
+    out = []
+    for x, side in POINTS:
+        if x < R(1, 2) or (x == R(1, 2) and side == "-"):
+            z = carry(z0, x)
+        else:
+            z = carry(after, x - R(1, 2))
+        out.append([complex(sp.N(v, dps)).real for v in z])
+    return np.array(out)
+
+
+@pytest.mark.parametrize("walk, inner, tol", [
+    ("double", "double", 1e-13), ("mp", "double", 1e-14), ("mp", "mp", 1e-30),
+    pytest.param("ball", "ball", 1e-30, marks=pytest.mark.skipif(
+        not ball_available(), reason="python-flint not installed"))])
+def test_sampled_states_are_the_exact_ones(walk, inner, tol):
+    plan = TransferPlan(SPRING_BEAM)
+    arith = {"double": DOUBLE, "mp": MP(200), "ball": Ball(200)}
+    ar, inner_ar = arith[walk], arith[inner]
+    inner_ar = ar if walk == inner else inner_ar
+    start = ar.array([ar.exact(v) for v in START], (1, 4, 1))
+    _, states = sample(plan, ar, Sampling(plan, [POINTS]), lam2=ar.array([ar.exact(LAM2)]),
+                       start=start, inner=inner_ar)
+    ref = spring_beam_reference()
+    got = states[0, :, :, 0]
+    if inner == "ball":
+        for value, exact in zip(got.reshape(-1), ref.reshape(-1)):
+            # a ball that must hold the exact value: wider than the float reference only
+            assert abs(float(value.mid()) - exact) <= float(value.rad()) + 1e-14 * (1 + abs(exact))
+            assert float(value.rad()) < tol * (1 + abs(exact))
+        return
+    got = inner_ar.to_complex(got).real if got.dtype == object else got
+    assert np.max(np.abs(got - ref) / (1 + np.abs(ref))) < tol
+
+
+def test_samples_off_the_beam_are_refused():
+    plan = TransferPlan(SPRING_BEAM)
+    with pytest.raises(ValueError, match="not on beam 'b'"):
+        Sampling(plan, [[(R(6, 5), "+")]])
+
+
+PIECES = Model((Beam("e", EI=2, m=3, L=1, left="pinned", right="free"),
+                Beam("t", EI=1, m=1, L="6/5", left="clamped", right="free", theory="timoshenko",
+                     rhoI="1/50", kGA=60, N="-1/2", kw=5),
+                Beam("w", EI=1, m=2, L="3/4", left="free", right="free", kw=30)),
+               (Spring("e", "t", x="1/2", k=10),), masses=(Mass("w", "1/4", 1),))
+
+
+@pytest.mark.parametrize("lam", [7 * sp.I, R(-3, 2) + 4 * sp.I], ids=["axis", "damped"])
+def test_pieces_of_every_kind_are_the_exact_matrices(lam):
+    plan = TransferPlan(PIECES)
+    ar = MP(200)
+    lam2 = ar.array([ar.number(complex(sp.N(lam**2, 60)))])
+    lengths = [R(1, 7), R(1, 2)]
+    for k, seg in enumerate(plan.kind_segments):
+        U = plan.piece_matrices(ar, k, lam2, ar.array([ar.exact(v) for v in lengths]))[0]
+        for q, length in enumerate(lengths):
+            exact = seg.with_length(length).transfer_matrix(lam)
+            ref = np.array(sp.N(exact, 30).tolist(), dtype=complex)
+            got = ar.to_complex(U[q])
+            assert np.max(np.abs(got - ref)) < 1e-13 * np.max(np.abs(ref)), (k, length)
+
+
+# -- precision stays local ------------------------------------------------------------------
+
+def pinned_pinned_eigenvalue(digits):
+    with mpmath.workdps(digits + 20):
+        return Eigenvalue(mpmath.mpc(0, mpmath.pi**2), 1, digits)
+
+
+PP = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))
+
+
+def test_ambient_precision_is_neither_read_nor_set():
+    e = pinned_pinned_eigenvalue(35)
+    with mpmath.workprec(12):                # 3.6 digits: a shape read from it would show
+        (shape,) = shapes_at(PP, e, points=5, digits=35)
+        z = evaluate_mode(PP, shape, "b", ["1/4"])
+        assert mpmath.mp.prec == 12
+    with mpmath.workdps(50):
+        theta0 = shape.left_state[1]         # sqrt(2) pi: Y = sqrt(2) sin(pi x)
+        assert abs(abs(theta0) / (mpmath.sqrt(2) * mpmath.pi) - 1) < mpmath.mpf(10) ** -33
+    assert abs(abs(z[0, 0]) - 1) < 1e-14      # sqrt(2) sin(pi/4)
+    assert abs(shape.beams["b"].Y[2] - np.sqrt(2)) < 1e-14
+
+
+def test_threads_compute_shapes_independently():
+    two = Model((Beam("a", EI=1, m=1, L=1, left="clamped", right="free"),
+                 Beam("b", EI=2, m=1, L="3/4", left="pinned", right="pinned")),
+                (Spring("a", "b", x="1/2", k=25),))
+    jobs = [(PP, pinned_pinned_eigenvalue(d)) for d in (15, 30, 45)]
+    from symtmm.solve import solve
+    jobs += [(two, e) for e in solve(two, count=3, digits=20)]
+    serial = [shapes_at(m, e, points=9)[0] for m, e in jobs]
+    with ThreadPoolExecutor(max_workers=3) as pool:
+        threaded = list(pool.map(lambda job: shapes_at(job[0], job[1], points=9)[0], jobs * 2))
+    for a, b in zip(serial * 2, threaded):
+        assert a.left_state == b.left_state
+        for name in a.beams:
+            assert np.array_equal(a.beams[name].Y, b.beams[name].Y)
+
+
+# -- linear algebra --------------------------------------------------------------------------
+
+def _mp_matrix(ar, M):
+    return np.array([[ar.exact(v) for v in row] for row in M.tolist()], dtype=object)
+
+
+def test_null_space_spans_the_exact_one():
+    # rank 3 of 5: the exact null space from SymPy's rational elimination
+    A = sp.Matrix([[1, 2, 0, -1, 3], [2, -1, 1, 0, 1], [0, 1, 1, 2, -2]])
+    M = sp.Matrix.vstack(A, A[0, :] + 2 * A[1, :], A[2, :] - A[1, :])
+    exact = sp.Matrix.hstack(*M.nullspace())
+    P_exact = exact * (exact.T * exact).inv() * exact.T         # projector onto it
+    ar = MP(200)
+    V = linalg.null_space(ar, _mp_matrix(ar, M), 2)
+    assert ar.to_complex(V.T @ V).real == pytest.approx(np.eye(2), abs=1e-50)
+    P = ar.to_complex(V @ V.T).real
+    assert np.max(np.abs(P - np.array(P_exact.tolist(), dtype=float))) < 1e-50
+    with pytest.raises(ComputationError):
+        linalg.null_space(ar, _mp_matrix(ar, M), 6)
+
+
+def test_lu_solve_cholesky_and_triangular_inverse_are_exact_to_working_precision():
+    A = sp.Matrix([[4, -2, 1], [3, 6, -4], [2, 1, 8]])
+    B = sp.Matrix([[1, 0], [R(1, 3), 2], [-1, R(5, 7)]])
+    ar = MP(200)
+    X = linalg.lu_solve(ar, linalg.lu(ar, _mp_matrix(ar, A)), _mp_matrix(ar, B))
+    assert np.max(np.abs(ar.to_complex(X) - np.array(A.solve(B).tolist(), dtype=float))) < 1e-15
+    G = A.T * A                                                  # symmetric positive definite
+    L = linalg.cholesky(ar, _mp_matrix(ar, G))
+    L_exact = G.cholesky(hermitian=False)
+    with mpmath.workdps(60):
+        for got, want in zip(L.reshape(-1), L_exact):
+            assert abs(ar.to_mpmath(got) - mpmath.mpf(sp.N(want, 70))) < mpmath.mpf(10) ** -55
+    Linv = linalg.lower_inverse(ar, L)
+    assert np.max(np.abs(ar.to_complex(Linv @ L) - np.eye(3))) < 1e-50
+    with pytest.raises(ComputationError):
+        linalg.cholesky(ar, _mp_matrix(ar, sp.Matrix([[1, 2], [2, 1]])))
+
+
+def test_gram_schmidt_in_double_and_mpmath():
+    V = np.array([[1.0, 1.0, 2.0], [0.0, 1.0, 1.0], [1.0, 0.0, 1.0], [0.0, 2.0, 2.0]])
+    assert linalg.orthonormal(DOUBLE, V) is None                  # third = first + second
+    Q = linalg.orthonormal(DOUBLE, V, complete=True)
+    assert Q.T @ Q == pytest.approx(np.eye(3), abs=1e-15)
+    # the first two span what numpy's QR spans
+    Q2, _ = np.linalg.qr(V[:, :2])
+    assert np.abs(Q[:, :2].T @ Q2) @ np.abs(Q[:, :2].T @ Q2).T == pytest.approx(np.eye(2))
+    ar = MP(150)
+    C = np.array([[ar.number(complex(1, 1)), ar.number(2)], [ar.number(1j), ar.number(-1)],
+                  [ar.number(3), ar.number(complex(0, 2))]], dtype=object)
+    Qc = linalg.orthonormal(ar, C)
+    gram = np.conj(ar.to_complex(Qc)).T @ ar.to_complex(Qc)
+    assert gram == pytest.approx(np.eye(2), abs=1e-15)
+
+
+# -- quadrature -------------------------------------------------------------------------------
+
+def test_gauss_legendre_integrates_polynomials_to_working_precision():
+    ar = MP(330)
+    n = gauss_legendre_nodes(80)
+    nodes, weights = gauss_legendre(ar, n)
+    for k in (0, 1, 7, 2 * n - 1):
+        value = sum(weights * nodes**k)
+        assert abs(value - ar.ctx.mpf(1) / (k + 1)) < ar.ctx.mpf(10) ** -90, k
+    x, w = np.polynomial.legendre.leggauss(n)
+    nodes_d, weights_d = gauss_legendre(DOUBLE, n)
+    assert nodes_d == pytest.approx((x + 1) / 2, abs=1e-15)
+    assert weights_d == pytest.approx(w / 2, abs=1e-15)
