@@ -48,6 +48,8 @@ import sympy as sp
 from sympy.calculus.euler import euler_equations
 
 from symtmm.elements import BeamSegment, EulerBernoulliSegment
+from symtmm.numeric.arith import DOUBLE, MP
+from symtmm.numeric.segments import segment_matrix
 
 x, t, l = sp.symbols("x t l", real=True)
 EI, m, kGA, rhoI = sp.symbols("EI m kGA rhoI", positive=True)
@@ -192,9 +194,11 @@ with mpmath.workdps(50):
             assert size(mp_matrix(U, R(0)) - mpmath.eye(4)) < 1e-50
             # the library's numeric evaluators (series in (t, d), doubling) agree with it
             piece = segment.with_length(length)
-            got = mpmath.matrix(piece.evaluate_mp(lam2, piece.constants_mp(50)).tolist())
+            ar = MP.from_digits(50)
+            kernel_U = segment_matrix(ar, piece, ar.array([ar.number(lam2)]))[0]
+            got = mpmath.matrix([[ar.to_mpmath(x) for x in row] for row in kernel_U])
             assert size(got - Un) < 1e-44 * size(Un), (trial, size(got - Un))
-            numpy_U = piece.evaluate_numpy(np.array([complex(lam2)]))[0]
+            numpy_U = segment_matrix(DOUBLE, piece, np.array([complex(lam2)]))[0]
             reference = np.array(Un.tolist(), dtype=complex)
             assert np.max(np.abs(numpy_U - reference)) < 1e-12 * float(size(Un))
         # -- 5. N = rhoI = 0, rigid in shear: the Euler-Bernoulli segment

@@ -26,6 +26,8 @@ import sympy as sp
 
 from symtmm.elements import EulerBernoulliSegment
 from symtmm.elements.beam import stv_matrix
+from symtmm.numeric.arith import DOUBLE
+from symtmm.numeric.segments import segment_matrix
 
 x = sp.Symbol("x", real=True)
 l, EI, m, kw, beta = sp.symbols("l EI m kw beta", positive=True)
@@ -60,13 +62,14 @@ assert gap < 1e-30, gap
 
 # 4. the evaluator at lam = i omega is the closed form at beta**4 = (m omega**2 - kw)/EI
 omega = 5.0
-num = sample.evaluate_numpy(np.array(-omega**2), (2.0, 3.0, 1.4, 11.0))
+num = segment_matrix(DOUBLE, EulerBernoulliSegment(2, 3, sp.Rational(7, 5), kw=11),
+                     np.array([-omega**2]))[0].real
 beta_expected = ((3 * sp.Integer(5) ** 2 - 11) / sp.Integer(2)) ** sp.Rational(1, 4)
 ref = np.array(sp.N(stv_matrix(beta_expected, sp.Rational(7, 5), 2), 20).tolist(), dtype=float)
 assert np.allclose(num, ref, rtol=1e-13, atol=0), (num, ref)
 # and it is the bare segment at lam**2 + kw/m
-bare = EulerBernoulliSegment(2, 3, sp.Rational(7, 5)).evaluate_numpy(
-    np.array(-omega**2 + 11.0 / 3.0))
+bare = segment_matrix(DOUBLE, EulerBernoulliSegment(2, 3, sp.Rational(7, 5)),
+                      np.array([-omega**2 + 11.0 / 3.0]))[0].real
 assert np.allclose(num, bare, rtol=1e-14, atol=0), (num, bare)
 
 print("Winkler foundation segment: field equation, lam**2 shift, real static form and "

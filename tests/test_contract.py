@@ -24,8 +24,8 @@ from symtmm.elements import BeamSegment, EulerBernoulliSegment
 from symtmm.elements.base import LAM
 from symtmm.model import Attachment, Beam, Mass, Model, RigidBody, Spring
 from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
-from symtmm.numeric.plan import StiffnessPlan, _kind
-from symtmm.numeric.segments import transfer_matrices
+from symtmm.numeric.plan import StiffnessPlan
+from symtmm.numeric.segments import kind, kind_tables, transfer_matrices
 from symtmm.numeric.stiffness import factor
 
 R = sp.Rational
@@ -55,8 +55,8 @@ def _points(seed=7):
 
 def _kernel_matrix(ar, seg, lam):
     """The kernel's matrix of one segment at the exact ``lam``."""
-    family, consts = _kind(seg)
-    plan_like = StiffnessPlan._kind_tables(ar, [(family, consts)])
+    family, consts = kind(seg)
+    plan_like = kind_tables(ar, [(family, consts)])
     with ar:
         lam2 = ar.array([ar.number(mpmath.mpmathify(complex(sp.N(lam**2, 30))))
                          if ar.name == "double" else _exact_number(ar, lam**2)])

@@ -650,8 +650,6 @@ def test_two_supports_on_one_joint_are_refused():
 def _kernel_stiffness(seg, lam2):
     """A segment's dynamic stiffness at ``lam**2`` from the kernel's transfer matrix."""
     from symtmm.numeric.arith import DOUBLE
-    from symtmm.numeric.plan import StiffnessPlan, _kind
-    from symtmm.numeric.segments import transfer_matrices
-    U = transfer_matrices(DOUBLE, StiffnessPlan._kind_tables(DOUBLE, [_kind(seg)]),
-                          np.array([lam2], dtype=float))[0, 0]
+    from symtmm.numeric.segments import segment_matrix
+    U = segment_matrix(DOUBLE, seg, np.array([lam2], dtype=float))[0]
     return segment_stiffness(U)[0].real

@@ -30,27 +30,32 @@ def test_det_of_point_elements_is_one(element):
 
 @pytest.mark.parametrize("lam", RANDOM_LAMS)
 def test_segment_composition(lam):
-    """U(a + b) = U(b) U(a), numpy and mpmath."""
-    a, b = EulerBernoulliSegment(2, 3, "0.4"), EulerBernoulliSegment(2, 3, "0.7")
-    ab = EulerBernoulliSegment(2, 3, "1.1")
-    lam2 = np.array(lam * lam)
-    prod = b.evaluate_numpy(lam2) @ a.evaluate_numpy(lam2)
-    assert np.allclose(prod, ab.evaluate_numpy(lam2), rtol=1e-12, atol=1e-12 * np.abs(prod).max())
-    with mpmath.workdps(40):
-        l2 = mpmath.mpc(lam) ** 2
-        c = [tuple(mpmath.mpf(v) for v in ("2", "3", s)) for s in ("0.4", "0.7", "1.1")]
-        prod = b.evaluate_mp(l2, c[1]).dot(a.evaluate_mp(l2, c[0]))
-        direct = ab.evaluate_mp(l2, c[2])
-        err = max(abs(prod[i, j] - direct[i, j]) for i in range(4) for j in range(4))
-        assert err < mpmath.mpf(10) ** -35 * max(abs(v) for v in direct.flat)
+    """U(a + b) = U(b) U(a): the kernel's segment matrices in double and in mpmath."""
+    from symtmm.numeric.arith import DOUBLE, MP
+    from symtmm.numeric.segments import segment_matrix
+    R = sp.Rational
+    a, b = EulerBernoulliSegment(2, 3, R(2, 5)), EulerBernoulliSegment(2, 3, R(7, 10))
+    ab = EulerBernoulliSegment(2, 3, R(11, 10))
+    lam2 = np.array([lam * lam])
+    prod = segment_matrix(DOUBLE, b, lam2)[0] @ segment_matrix(DOUBLE, a, lam2)[0]
+    direct = segment_matrix(DOUBLE, ab, lam2)[0]
+    assert np.allclose(prod, direct, rtol=1e-12, atol=1e-12 * np.abs(prod).max())
+    ar = MP.from_digits(40)
+    l2 = ar.array([ar.number(mpmath.mpc(lam) ** 2)])
+    prod = segment_matrix(ar, b, l2)[0].dot(segment_matrix(ar, a, l2)[0])
+    direct = segment_matrix(ar, ab, l2)[0]
+    err = max(abs(prod[i, j] - direct[i, j]) for i in range(4) for j in range(4))
+    assert err < ar.ctx.mpf(10) ** -35 * max(abs(v) for v in direct.flat)
 
 
 @pytest.mark.parametrize("lam", RANDOM_LAMS[:3] + [1e-7j, 0.3 + 0j])
 def test_symbolic_equals_numeric_segment(lam):
+    from symtmm.numeric.arith import DOUBLE
+    from symtmm.numeric.segments import segment_matrix
     seg = EulerBernoulliSegment(sp.Rational(5, 2), sp.Rational(3, 4), sp.Rational(9, 10))
     exact = seg.transfer_matrix(LAM).subs(LAM, sp.nsimplify(lam)).evalf(40)
     exact = np.array(exact.tolist(), dtype=complex)
-    num = seg.evaluate_numpy(np.array(lam * lam))
+    num = segment_matrix(DOUBLE, seg, np.array([complex(lam * lam)]))[0]
     assert np.allclose(num, exact, rtol=1e-11, atol=1e-11 * np.abs(exact).max())
 
 
@@ -132,8 +137,6 @@ def test_global_stiffness_determinant_vanishes_with_delta():
 def _kernel_stiffness(seg, lam2):
     """A segment's dynamic stiffness at ``lam**2`` from the kernel's transfer matrix."""
     from symtmm.numeric.arith import DOUBLE
-    from symtmm.numeric.plan import StiffnessPlan, _kind
-    from symtmm.numeric.segments import transfer_matrices
-    U = transfer_matrices(DOUBLE, StiffnessPlan._kind_tables(DOUBLE, [_kind(seg)]),
-                          np.array([lam2], dtype=float))[0, 0]
+    from symtmm.numeric.segments import segment_matrix
+    U = segment_matrix(DOUBLE, seg, np.array([lam2], dtype=float))[0]
     return segment_stiffness(U)[0].real

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 
-import mpmath
 import sympy as sp
 
 __all__ = ["STATE", "Element", "FieldElement", "PointElement", "LAM"]
@@ -53,18 +52,6 @@ class FieldElement(Element):
     """An element with extent: maps the state at its left end to its right end."""
 
     levels = 1
-
-    def mp_constants(self) -> tuple:
-        """``constants_mp`` at the working precision, converted once per precision.
-
-        Every evaluation in mpmath needs them, and the element's constants never
-        change, so the conversion is kept on the element for all its users.
-        """
-        memo = self.__dict__.setdefault("_mp_constants", {})
-        prec = mpmath.mp.prec
-        if prec not in memo:
-            memo[prec] = self.constants_mp(mpmath.mp.dps)
-        return memo[prec]
 
 
 class PointElement(Element):

@@ -21,15 +21,12 @@ and no cancellation for short segments.
 
 from __future__ import annotations
 
-import math
-
-import mpmath
 import numpy as np
 import sympy as sp
 
 from .base import LAM, FieldElement
 
-__all__ = ["EulerBernoulliSegment", "stv_matrix", "c_functions_numpy", "c_functions_mp"]
+__all__ = ["EulerBernoulliSegment", "stv_matrix"]
 
 
 def stv_matrix(beta, l, EI) -> sp.Matrix:
@@ -67,68 +64,6 @@ def _c_matrix(c0, c1, c2, c3, x, l, EI, module=np):
 
 # Below |x| = 1 the series converges fast (16 terms are below 1e-300) and is
 # free of the cancellation the closed forms suffer for small b l.
-_SERIES_TERMS = 16
-_FACT = [math.factorial(n) for n in range(4 * _SERIES_TERMS + 4)]
-
-
-def c_functions_numpy(x):
-    """``c_0..c_3`` of a complex array ``x`` (vectorised, double precision).
-
-    Examples
-    --------
-    >>> c = c_functions_numpy(np.array([0.0, 16.0]))
-    >>> [complex(v[0]).real for v in c]
-    [1.0, 1.0, 0.5, 0.16666666666666666]
-    """
-    x = np.asarray(x, dtype=complex)
-    small = np.abs(x) < 1.0
-    out = [np.empty_like(x) for _ in range(4)]
-    if small.any():
-        xs = x[small]
-        for j in range(4):
-            acc = np.zeros_like(xs)
-            for k in reversed(range(_SERIES_TERMS)):
-                acc = acc * xs + 1.0 / _FACT[4 * k + j]
-            out[j][small] = acc
-    big = ~small
-    if big.any():
-        nu = x[big] ** 0.25
-        ch, co, sh, si = np.cosh(nu), np.cos(nu), np.sinh(nu), np.sin(nu)
-        out[0][big] = (ch + co) / 2
-        out[1][big] = (sh + si) / (2 * nu)
-        out[2][big] = (ch - co) / (2 * nu**2)
-        out[3][big] = (sh - si) / (2 * nu**3)
-    return out
-
-
-def c_functions_mp(x):
-    """``c_0..c_3`` of an mpmath number at the current working precision."""
-    if abs(x) < 1:
-        eps = mpmath.eps
-        result = []
-        for j in range(4):
-            term = mpmath.mpf(1) / _fact_mp(j)
-            acc, k = term, 0
-            while abs(term) > eps * abs(acc):
-                k += 1
-                term = term * x / ((4 * k + j) * (4 * k + j - 1) * (4 * k + j - 2) * (4 * k + j - 3))
-                acc += term
-            result.append(acc)
-        return result
-    nu = mpmath.root(x, 4)
-    ch, co, sh, si = mpmath.cosh(nu), mpmath.cos(nu), mpmath.sinh(nu), mpmath.sin(nu)
-    out = [(ch + co) / 2, (sh + si) / (2 * nu), (ch - co) / (2 * nu**2), (sh - si) / (2 * nu**3)]
-    if isinstance(x, mpmath.mpf):
-        # a real negative x (a foundation stiffer than the inertia) has a complex
-        # fourth root, but the c_j are real there: keep real arithmetic real
-        out = [mpmath.re(c) for c in out]
-    return out
-
-
-def _fact_mp(n):
-    return mpmath.mpf(math.factorial(n))
-
-
 class EulerBernoulliSegment(FieldElement):
     """A uniform Euler–Bernoulli beam segment.
 
@@ -174,13 +109,8 @@ class EulerBernoulliSegment(FieldElement):
         return EulerBernoulliSegment(self.EI, self.m, l, self.kw)
 
     def constants(self) -> tuple:
-        """``(EI, m, l, kw)`` as floats, for :meth:`evaluate_numpy`."""
+        """``(EI, m, l, kw)`` as floats (wave-number bounds and piece lengths)."""
         return (float(self.EI), float(self.m), float(self.l), float(self.kw))
-
-    def constants_mp(self, dps: int) -> tuple:
-        """``(EI, m, l, kw)`` at ``dps`` digits, for :meth:`evaluate_mp`."""
-        from ..numeric import to_mp
-        return (to_mp(self.EI, dps), to_mp(self.m, dps), to_mp(self.l, dps), to_mp(self.kw, dps))
 
     def wave_number(self, lam2, consts=None):
         """``|beta| = |(m lam**2 + kw)/EI|**(1/4)`` (numpy arrays or floats)."""
@@ -249,47 +179,3 @@ class EulerBernoulliSegment(FieldElement):
         """Transfer matrix at ``x = 0`` (``lam = 0`` without foundation): ``c_j(0) = 1/j!``."""
         cs = [sp.Integer(1), sp.Integer(1), sp.Rational(1, 2), sp.Rational(1, 6)]
         return sp.Matrix(_c_matrix(*cs, sp.Integer(0), self.l, self.EI))
-
-    def evaluate_numpy(self, lam2, consts=None, l=None) -> np.ndarray:
-        """Transfer matrices for an array of ``lam**2`` values: shape ``(..., 4, 4)``.
-
-        ``consts`` are ``(EI, m, l)`` or ``(EI, m, l, kw)`` as floats; with
-        three, the segment's own ``kw`` is used. ``l`` overrides the length (a
-        piece of the segment).
-        """
-        if consts is None:
-            consts = (float(self.EI), float(self.m), float(self.l))
-        EI, m = consts[:2]
-        l = consts[2] if l is None else l
-        kw = consts[3] if len(consts) > 3 else float(self.kw)
-        lam2 = np.asarray(lam2, dtype=complex)
-        x = -(lam2 * m + kw) * (l**4 / EI) if kw else -lam2 * (m * l**4 / EI)
-        c0, c1, c2, c3 = c_functions_numpy(x)
-        rows = _c_matrix(c0, c1, c2, c3, x, l, EI)
-        return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
-
-    def evaluate_mp(self, lam2, consts, l=None) -> np.ndarray:
-        """Transfer matrix for one mpmath ``lam**2`` at the working precision.
-
-        ``consts`` are ``(EI, m, l)`` or ``(EI, m, l, kw)`` as mpmath numbers
-        at that precision (three only without foundation). Returns a 4x4
-        object array. ``l`` overrides the length.
-        """
-        EI, m = consts[:2]
-        l = consts[2] if l is None else l
-        if len(consts) == 3 and self.kw != 0:
-            raise ValueError("a segment on a foundation needs the constants (EI, m, l, kw)")
-        kw = consts[3] if len(consts) > 3 else 0
-        x = -(lam2 * m + kw) * (l**4 / EI) if kw else -lam2 * (m * l**4 / EI)
-        c0, c1, c2, c3 = c_functions_mp(x)
-        rows = _c_matrix(c0, c1, c2, c3, x, l, EI)
-        out = np.empty((4, 4), dtype=object)
-        for i in range(4):
-            for j in range(4):
-                out[i, j] = rows[i][j]
-        return out
-
-    def nu(self, omega: float) -> float:
-        """``|beta| l`` at circular frequency ``omega`` (undamped), as a float."""
-        x = (float(self.m) * omega**2 - float(self.kw)) / float(self.EI)
-        return abs(x) ** 0.25 * float(self.l)

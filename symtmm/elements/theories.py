@@ -35,12 +35,12 @@ the exact matrix (:meth:`BeamSegment.transfer_matrix`) is written so. The
 plain Euler–Bernoulli beam is ``t = 0``, ``d = -beta**4`` (``a = 1``, ``b = c =
 0``), where ``alpha, beta`` are the ``c_j`` of :mod:`symtmm.elements.beam`.
 
-Numerically ``alpha, beta`` come from their power series in ``(t, d)`` for a
-segment short enough that ``max|r| h**2 <= 1``, then the doubling formulas
-``F0(2h) = 2 F0(h)**2 - 1``, ``F1(2h) = 2 F0(h) F1(h)`` (with ``G**2 = t G - d``)
-give the whole length: no branch of a square root to choose, no division by
-``r1 - r2`` (which vanishes where the two wave numbers meet), and the same
-routine in numpy, mpmath and generated code.
+Numerically (:mod:`symtmm.numeric.segments`, and the generated code) ``alpha,
+beta`` come from their power series in ``(t, d)`` for a segment short enough that
+``max|r| h**2 <= 1``, then the doubling formulas ``F0(2h) = 2 F0(h)**2 - 1``,
+``F1(2h) = 2 F0(h) F1(h)`` (with ``G**2 = t G - d``) give the whole length: no
+branch of a square root to choose, no division by ``r1 - r2`` (which vanishes
+where the two wave numbers meet).
 """
 
 from __future__ import annotations
@@ -62,7 +62,6 @@ THEORIES = {
     "timoshenko": ("rhoI", "kGA"),
 }
 
-_MAX_TERMS_DOUBLE = 14   # k/(2k)! < 1e-18 beyond: the series' error for max|r| h**2 <= 1
 
 
 class BeamSegment(FieldElement):
@@ -87,9 +86,9 @@ class BeamSegment(FieldElement):
     ``q = (pi/L)**2``, so ``Delta`` vanishes there:
 
     >>> seg = BeamSegment(1, 1, 1, rhoI=sp.Rational(1, 100))
-    >>> q = np.pi**2
-    >>> U = seg.evaluate_numpy(np.array([-q**2 / (1 + q / 100)]))[0]
-    >>> bool(abs(U[0, 1] * U[2, 3] - U[0, 3] * U[2, 1]) < 1e-12)   # det of rows Y, M; cols Theta, Q
+    >>> q = sp.pi**2
+    >>> U = seg.transfer_matrix(sp.I * sp.sqrt(q**2 / (1 + q / 100)))
+    >>> abs(sp.N(U[0, 1] * U[2, 3] - U[0, 3] * U[2, 1], 30)) < 1e-25   # rows Y, M; cols Theta, Q
     True
     """
 
@@ -182,63 +181,6 @@ class BeamSegment(FieldElement):
         """``(EI, m, l, kw, N, rhoI, kGA)`` as floats (``kGA`` infinite when rigid in shear)."""
         return (float(self.EI), float(self.m), float(self.l), float(self.kw), float(self.N),
                 float(self.rhoI), math.inf if self.kGA is None else float(self.kGA))
-
-    def constants_mp(self, dps: int) -> tuple:
-        """The same at ``dps`` digits (mpmath; ``kGA`` is None when rigid in shear)."""
-        from ..numeric import to_mp
-        return (to_mp(self.EI, dps), to_mp(self.m, dps), to_mp(self.l, dps),
-                to_mp(self.kw, dps), to_mp(self.N, dps), to_mp(self.rhoI, dps),
-                None if self.kGA is None else to_mp(self.kGA, dps))
-
-    def evaluate_numpy(self, lam2, consts=None, l=None) -> np.ndarray:
-        """Transfer matrices for an array of ``lam**2``: shape ``(..., 4, 4)``, complex.
-
-        ``l`` overrides the length (a piece of the segment).
-        """
-        EI, m, length, kw, N, rhoI, kGA = consts if consts is not None else self.constants()
-        length = length if l is None else l
-        lam2 = np.asarray(lam2, dtype=complex)
-        a, b, c, mu = _coefficients(lam2, m, kw, N, rhoI, kGA, np)
-        t = c / EI - b * mu
-        d = mu * (a * a - b * c) / EI
-        rho = np.abs(t) / 2 + np.sqrt(np.abs(t) ** 2 / 4 + np.abs(d))
-        grow = float(np.max(np.sqrt(rho), initial=0.0)) * length
-        j = max(0, math.ceil(math.log2(grow))) if grow > 1 else 0
-        h = length / 2**j
-        coef = _series(t, d, h, _MAX_TERMS_DOUBLE, np.zeros_like(t), np.ones_like(t))
-        for _ in range(j):
-            coef = _double(coef, t, d)
-        return _assemble_numpy(coef, a, b, c, mu, EI)
-
-    def evaluate_mp(self, lam2, consts, l=None) -> np.ndarray:
-        """Transfer matrix for one mpmath ``lam**2`` at the working precision (4x4 objects).
-
-        ``l`` overrides the length.
-        """
-        EI, m, length, kw, N, rhoI, kGA = consts
-        length = length if l is None else l
-        a, b, c, mu = _coefficients(lam2, m, kw, N, rhoI, kGA, None)
-        t = c / EI - b * mu
-        d = mu * (a * a - b * c) / EI
-        rho = abs(t) / 2 + mpmath.sqrt(abs(t) ** 2 / 4 + abs(d))
-        grow = mpmath.sqrt(rho) * length
-        j = max(0, int(mpmath.ceil(mpmath.log(grow, 2)))) if grow > 1 else 0
-        h = length / mpmath.mpf(2) ** j
-        # terms until k/(2k)! falls below the working precision (max|r| h**2 <= 1)
-        terms, bound = 2, mpmath.mpf(1)
-        while bound > mpmath.eps:
-            terms += 1
-            bound = mpmath.mpf(terms) / mpmath.factorial(2 * terms)
-        zero, one = (mpmath.mpf(0), mpmath.mpf(1))
-        coef = _series(t, d, h, terms + 1, zero, one)
-        for _ in range(j):
-            coef = _double(coef, t, d)
-        rows = _assemble(coef, a, b, c, mu, EI, None, None)
-        out = np.empty((4, 4), dtype=object)
-        for i in range(4):
-            for k in range(4):
-                out[i, k] = rows[i][k]
-        return out
 
     def wave_number(self, lam2, consts=None):
         """A bound on the largest wave number ``|s|`` at ``lam**2`` (numpy arrays or floats).
@@ -344,35 +286,6 @@ def _coefficients(lam2, m, kw, N, rhoI, kGA, module):
     return a, -1 / (kGA + N), N * a + rhoI * lam2, mu
 
 
-def _series(t, d, h, terms, zero, one):
-    """``(alpha0, beta0, alpha1, beta1)`` of ``F0, F1`` at length ``h`` from the series in ``(t, d)``.
-
-    ``q_k = p_k h**(2(k-1))`` with ``p_k = (r1**k - r2**k)/(r1 - r2)``: ``q_0 = 0``,
-    ``q_1 = 1``, ``q_k = T q_(k-1) - D q_(k-2)`` (``T = t h**2``, ``D = d h**4``);
-    ``G**k = p_k G - d p_(k-1) I`` gives ``beta0 = h**2 sum q_k/(2k)!``,
-    ``alpha0 = 1 - D sum q_(k-1)/(2k)!`` and likewise with ``(2k+1)!`` for ``F1``.
-    """
-    T, D = t * h * h, d * h**4
-    q_prev, q = zero + 0 * T, one + 0 * T          # q_0, q_1 (arrays when t is one)
-    s0b, s0a, s1b, s1a = 0 * T, 0 * T, 0 * T, 0 * T
-    for k in range(1, terms):
-        f2k = math.factorial(2 * k)
-        f2k1 = f2k * (2 * k + 1)
-        s0b = s0b + q / f2k
-        s0a = s0a + q_prev / f2k
-        s1b = s1b + q / f2k1
-        s1a = s1a + q_prev / f2k1
-        q_prev, q = q, T * q - D * q_prev
-    return (1 - D * s0a, h * h * s0b, h * (1 - D * s1a), h**3 * s1b)
-
-
-def _double(coef, t, d):
-    """``F0, F1`` at twice the length: ``F0(2h) = 2 F0**2 - I``, ``F1(2h) = 2 F0 F1``."""
-    a0, b0, a1, b1 = coef
-    return (2 * (a0 * a0 - d * b0 * b0) - 1, 2 * (2 * a0 * b0 + t * b0 * b0),
-            2 * (a0 * a1 - d * b0 * b1), 2 * (a0 * b1 + a1 * b0 + t * b0 * b1))
-
-
 def _assemble(coef, a, b, c, mu, EI, matrix, eye):
     """``U`` in the order ``[Y, Theta, M, Q]`` from ``alpha, beta`` of ``F0`` and ``F1``.
 
@@ -403,13 +316,3 @@ def _assemble(coef, a, b, c, mu, EI, matrix, eye):
             U[tq[i]][ym[k]] = low[i][k]
             U[tq[i]][tq[k]] = f0gp[i][k]
     return matrix(U) if matrix is not None else U
-
-
-def _assemble_numpy(coef, a, b, c, mu, EI):
-    rows = _assemble(coef, a, b, c, mu, EI, None, None)
-    shape = np.shape(coef[0])
-    out = np.empty(shape + (4, 4), dtype=complex)
-    for i in range(4):
-        for k in range(4):
-            out[..., i, k] = rows[i][k]
-    return out

@@ -9,9 +9,6 @@
   states it passes at sample points (mode shapes);
 * :mod:`~symtmm.numeric.linalg`: determinant, LU, null space, Gram–Schmidt, Cholesky;
 * :mod:`~symtmm.numeric.quadrature`: Gauss–Legendre rules at any precision;
-* :mod:`~symtmm.numeric.exact`: exact SymPy values as numbers.
+* :mod:`~symtmm.numeric.evaluator`: one model evaluated in batches, the searches'
+  entry point.
 """
-
-from .exact import to_float, to_mp
-
-__all__ = ["to_mp", "to_float"]

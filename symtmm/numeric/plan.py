@@ -42,7 +42,7 @@ import sympy as sp
 from ..elements import EulerBernoulliSegment
 from ..elements.base import LAM
 from .arith import DOUBLE, Arithmetic
-from .segments import eb_constants, theory_constants
+from .segments import kind, kind_tables
 
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "rcm_order", "wave_number_bound"]
 
@@ -148,14 +148,6 @@ def _bandwidth(pairs, position) -> int:
     return max((abs(position[a] - position[b]) for a, b in pairs), default=0)
 
 
-def _kind(seg) -> tuple:
-    """``(family, exact constants)`` of a segment: equal kinds have equal matrices."""
-    if isinstance(seg, EulerBernoulliSegment):
-        return ("eb", (seg.EI, seg.m, seg.l, seg.kw))
-    a, b, cN, _ = seg.coefficients(sp.Integer(0))
-    return ("theory", (seg.EI, a, b, cN, seg.rhoI, seg.m, seg.kw, seg.l))
-
-
 class StiffnessPlan:
     """The dynamic stiffness of a numeric model, compiled for ``|lam|**2 <= radius``.
 
@@ -215,7 +207,7 @@ class StiffnessPlan:
         kinds: dict = {}
         member_kind = []
         for _, seg, _, _ in mesh.segments:
-            k = _kind(seg)
+            k = kind(seg)
             kinds.setdefault(k, None)
             member_kind.append(k)
         ordered = sorted(kinds, key=lambda k: k[0] != "eb")
@@ -276,7 +268,7 @@ class StiffnessPlan:
         if not kinds:
             D = np.zeros((1, 0, 4, 4))
         else:
-            U = transfer_matrices(DOUBLE, self._kind_tables(DOUBLE, kinds), np.zeros(1))
+            U = transfer_matrices(DOUBLE, kind_tables(DOUBLE, kinds), np.zeros(1))
             D, _ = segment_stiffness(U)
         flat = np.real(D).reshape(-1)
         diag = [0.0] * n
@@ -289,17 +281,6 @@ class StiffnessPlan:
             elif idx == 0:
                 diag[target // w] += float(coef)
         return [abs(d) for d in diag]
-
-    @staticmethod
-    def _kind_tables(ar: Arithmetic, kinds) -> list:
-        eb = [c for f, c in kinds if f == "eb"]
-        th = [c for f, c in kinds if f == "theory"]
-        out = []
-        if eb:
-            out.append(("eb", eb_constants(ar, eb)))
-        if th:
-            out.append(("theory", theory_constants(ar, th)))
-        return out
 
     def tables(self, ar: Arithmetic) -> dict:
         """The plan's numbers in ``ar`` (converted once per arithmetic and precision).
@@ -321,5 +302,5 @@ class StiffnessPlan:
         targets = np.array([t for t, _, _ in self._triples], dtype=int)
         starts = np.concatenate([[0], np.nonzero(np.diff(targets))[0] + 1]).astype(int) \
             if targets.size else np.zeros(0, dtype=int)
-        return {"kinds": self._kind_tables(ar, self.kinds), "source": source, "coef": coef,
+        return {"kinds": kind_tables(ar, self.kinds), "source": source, "coef": coef,
                 "targets": targets[starts] if targets.size else targets, "starts": starts}

@@ -37,7 +37,7 @@ import sympy as sp
 from .arith import Arithmetic
 
 __all__ = ["eb_constants", "eb_matrices", "theory_constants", "theory_matrices",
-           "transfer_matrices", "stack_matrix"]
+           "transfer_matrices", "stack_matrix", "kind", "kind_tables", "segment_matrix"]
 
 
 def stack_matrix(rows) -> np.ndarray:
@@ -258,3 +258,46 @@ def transfer_matrices(ar: Arithmetic, kinds, lam2) -> np.ndarray:
         fn = eb_matrices if family == "eb" else theory_matrices
         parts.append(fn(ar, consts, lam2))
     return parts[0] if len(parts) == 1 else np.concatenate(parts, axis=1)
+
+
+# -- one segment element --------------------------------------------------------------------
+def kind(seg) -> tuple:
+    """``(family, exact constants)`` of a segment element: equal kinds have equal matrices.
+
+    ``"eb"``: ``(EI, m, l, kw)``; ``"theory"``: ``(EI, a, b, cN, rhoI, m, kw, l)`` (see
+    :func:`theory_constants`).
+    """
+    from ..elements import EulerBernoulliSegment
+    if isinstance(seg, EulerBernoulliSegment):
+        return ("eb", (seg.EI, seg.m, seg.l, seg.kw))
+    a, b, cN, _ = seg.coefficients(sp.Integer(0))
+    return ("theory", (seg.EI, a, b, cN, seg.rhoI, seg.m, seg.kw, seg.l))
+
+
+def kind_tables(ar: Arithmetic, kinds) -> list:
+    """The constants of segment kinds in ``ar``, grouped by family (``"eb"`` kinds must
+    come first, as :func:`transfer_matrices` returns them in that order)."""
+    eb = [c for f, c in kinds if f == "eb"]
+    th = [c for f, c in kinds if f == "theory"]
+    out = []
+    if eb:
+        out.append(("eb", eb_constants(ar, eb)))
+    if th:
+        out.append(("theory", theory_constants(ar, th)))
+    return out
+
+
+def segment_matrix(ar: Arithmetic, seg, lam2) -> np.ndarray:
+    """The transfer matrices ``(B, 4, 4)`` of one segment element at ``lam2`` ``(B,)``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from symtmm.elements import EulerBernoulliSegment
+    >>> from symtmm.numeric.arith import DOUBLE
+    >>> U = segment_matrix(DOUBLE, EulerBernoulliSegment(1, 1, 1), np.array([0.0]))
+    >>> float(U[0, 0, 3].real)                 # static: l**3 / (6 EI)
+    0.16666666666666666
+    """
+    with ar:
+        return transfer_matrices(ar, kind_tables(ar, [kind(seg)]), lam2)[:, 0]

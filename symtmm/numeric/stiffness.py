@@ -57,7 +57,9 @@ def segment_stiffness(U):
     Examples
     --------
     >>> from symtmm.elements import EulerBernoulliSegment
-    >>> U = EulerBernoulliSegment(1, 1, 1).evaluate_numpy(np.array(0.0)).real
+    >>> from symtmm.numeric.arith import DOUBLE
+    >>> from symtmm.numeric.segments import segment_matrix
+    >>> U = segment_matrix(DOUBLE, EulerBernoulliSegment(1, 1, 1), np.array([0.0]))[0].real
     >>> D, _ = segment_stiffness(U)
     >>> np.round(D, 12)    # the static beam stiffness matrix
     array([[ 12.,   6., -12.,   6.],

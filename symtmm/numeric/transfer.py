@@ -51,8 +51,8 @@ from ..assembly import Interval, Layout
 from ..elements.base import LAM
 from .arith import DOUBLE, Arithmetic, Batch, memo
 from .linalg import det
-from .plan import _kind
-from .segments import transfer_matrices
+from .segments import kind as segment_kind
+from .segments import kind_tables, transfer_matrices
 
 __all__ = ["TransferPlan", "propagate", "boundary", "delta", "log_delta", "NU_STEP",
            "digits_lost", "Sampling", "sample", "convert"]
@@ -111,7 +111,7 @@ class TransferPlan:
             if isinstance(step, Interval):
                 items = []
                 for lvl, seg in step.segments:
-                    items.append((lvl, found.setdefault(_kind(seg), len(found)), seg))
+                    items.append((lvl, found.setdefault(segment_kind(seg), len(found)), seg))
                 raw.append(("segments", items))
             else:
                 raw.append(("jumps", [(r, c, sp.Poly(sp.expand(v), LAM).all_coeffs()[::-1])
@@ -144,12 +144,11 @@ class TransferPlan:
     # -- numbers ----------------------------------------------------------------------------
     def kind_tables(self, ar: Arithmetic, divide: int = 1):
         """The kinds' constants in ``ar`` for pieces ``1/divide`` of their length."""
-        from .plan import StiffnessPlan
 
         def build():
             kinds = [_with_length(k, (k[1][2] if k[0] == "eb" else k[1][7]) / divide)
                      for k in self.kinds] if divide != 1 else self.kinds
-            return StiffnessPlan._kind_tables(ar, kinds)
+            return kind_tables(ar, kinds)
         return memo(self, ar, f"kinds/{divide}", build)
 
     def piece_tables(self, ar: Arithmetic, k: int, lengths) -> list:
