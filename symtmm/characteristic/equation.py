@@ -180,9 +180,6 @@ def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation
         if not expr.has(Om, *frequency_symbols):
             constant *= expr ** e
             continue
-        if expr == Om:
-            power += e
-            continue
         out_factors.append((expr, e))
     c_merge, p_merge, out_factors = _merge_factors(out_factors, Om)
     constant *= c_merge

@@ -118,7 +118,6 @@ class _Problem:
     omega_of: dict        # how Omega relates to the model's variable
     damped: bool
     sample: dict          # values ordering the symbolic positions
-    level_wave: dict      # level -> wave index (non-plain levels)
 
     def in_ring(self, expr) -> sp.Expr:
         """``expr`` in Omega written for the ring (``Omega -> 1/W``)."""
@@ -243,7 +242,7 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
     problem = _Problem(layout=layout, groups=groups, waves=waves, steps=steps, matrices={},
                        prefactor=prefactor, extra=[], relations={},
                        omega_of={"mu1": mu[ref], "L1": L1, "lam2": lam2},
-                       damped=model.damped, sample=sample, level_wave=level_wave)
+                       damped=model.damped, sample=sample)
     for kind, data in steps:
         if kind == "segments":
             for lvl, g in data:

@@ -213,6 +213,7 @@ class _Writer:
         return out
 
     def atoms_form(self, groups) -> sp.Expr:
+        """The polynomial in the segment functions: per outer factor, its monomials."""
         total = []
         for rest, inner in groups.items():
             s = sp.Add(*[cf * sp.Mul(*[a ** k for a, k in zip(self.atoms, mon) if k])
@@ -242,20 +243,20 @@ class _Writer:
                      for m, c in ring.terms(f).items()}) ** int(e) for f, e in parts])
         return factored if sp.count_ops(factored) < sp.count_ops(expr) else expr
 
-    def collected_forms(self, groups, harmonic_terms=None) -> tuple[sp.Expr, sp.Expr]:
+    def collected_forms(self, groups, harmonic_terms) -> tuple[sp.Expr, sp.Expr]:
         """The atoms and the harmonic form, each function with one coefficient.
 
         The forms above group by the outer factor (powers of ``Omega``, wave
         numbers, parameters); where many of those multiply the same functions
         (Timoshenko beams: polynomials in ``omega``), collecting by function is
-        shorter.
+        shorter. ``harmonic_terms`` holds :meth:`_harmonic_terms` of each group.
         """
         atoms: dict = {}
         harmonic: dict = {}
         for rest, inner in groups.items():
             for mon, cf in inner.items():
                 atoms.setdefault(mon, {})[rest] = Fraction(int(cf.p), int(cf.q))
-            parts = (harmonic_terms or {}).get(rest) or self._harmonic_terms(inner)
+            parts = harmonic_terms[rest]
             for key, v in parts.items():
                 harmonic.setdefault(key, {})[rest] = v
         key = ("collected", tuple(sorted(groups)), id(groups))
@@ -296,8 +297,8 @@ class _Writer:
                     acc[key] = acc.get(key, 0) + scale * vt * vh
         return {k: Fraction(v, den << top) for k, v in acc.items() if v != 0}
 
-    def harmonic_form(self, groups, terms=None) -> sp.Expr:
-        terms = terms or {rest: self._harmonic_terms(inner) for rest, inner in groups.items()}
+    def harmonic_form(self, terms) -> sp.Expr:
+        """The harmonic form: per outer factor, its :meth:`_harmonic_terms` ``terms``."""
         return sp.Add(*[self._outer(rest) * sp.Add(*[
             sp.Rational(v.numerator, v.denominator) * self._harmonic_function(key)
             for key, v in parts.items()]) for rest, parts in terms.items()])
@@ -324,7 +325,7 @@ class _Writer:
 
         estimate = [sum(outer(r) + sum(map(harmonic_ops, v)) for r, v in harmonic.items()),
                     sum(outer(r) + sum(map(atom_ops, v)) for r, v in groups.items())]
-        builders = [lambda: self.harmonic_form(groups, harmonic), lambda: self.atoms_form(groups)]
+        builders = [lambda: self.harmonic_form(harmonic), lambda: self.atoms_form(groups)]
         if len(groups) > 1:
             by_key: dict = {}
             for r, v in harmonic.items():
