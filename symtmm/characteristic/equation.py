@@ -1,4 +1,4 @@
-"""The result, :class:`CharacteristicEquation`, and the entry point :func:`characteristic_equation`.
+"""The result :class:`CharacteristicEquation` and the entry point :func:`characteristic_equation`.
 
 :func:`characteristic_equation` runs the steps of :mod:`symtmm.characteristic`
 (problem, algebra, determinant and factors, writer) and writes the factors in

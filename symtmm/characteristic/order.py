@@ -1,6 +1,7 @@
 """The order of the cuts along the beams when positions are symbolic.
 
-A derivation may keep parameters symbolic (``--symbolic``); the positions of
+A derivation may keep parameters symbolic (``symbolic`` of
+:func:`~symtmm.characteristic.characteristic_equation`); the positions of
 springs and bodies then are expressions, and the transfer walk needs their
 order. :func:`_prepare` drops the values of the symbolic parameters and keeps
 them (or, where the model allows only one order, random values) as a sample
