@@ -1,0 +1,341 @@
+"""The result :class:`CharacteristicEquation` and the entry point :func:`characteristic_equation`.
+
+:func:`characteristic_equation` runs the steps of :mod:`symtmm.characteristic`
+(problem, algebra, determinant and factors, writer) and writes the factors in
+``Omega`` and in the model's variable (``omega`` or ``lam``) with the wave
+numbers' definitions.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from ..elements.base import LAM
+from ..errors import ComputationError
+from ..model import Model
+from .algebra import _Algebra
+from .factor import _factorise
+from .order import _prepare
+from .problem import OMEGA, OMEGA_DIMLESS, _build_problem, _is_plain, _Problem, _wave_segment
+from .writer import _Writer
+
+__all__ = ["CharacteristicEquation", "characteristic_equation"]
+
+
+@dataclass(frozen=True)
+class CharacteristicEquation:
+    """A characteristic function in closed form: ``det R = constant * delta``.
+
+    Attributes
+    ----------
+    variable : sympy.Symbol
+        ``omega`` (rad/s, ``lam = I*omega``) for undamped models, ``lam`` for damped ones.
+    delta : sympy.Expr
+        The characteristic function in :attr:`variable`, constant factor removed.
+    constant : sympy.Expr
+        ``det R(lam) = constant * delta`` (independent of the frequency).
+    delta_Omega : sympy.Expr
+        The same function of ``Omega = beta_1 L_1`` (the paper's frequency parameter).
+    constant_Omega : sympy.Expr
+        ``det R = constant_Omega * delta_Omega``.
+    Omega : sympy.Expr
+        ``Omega`` as a function of :attr:`variable`.
+    power : int
+        ``delta_Omega = Omega**power * prod(f**e for f, e in factors)``.
+    factors : tuple of (sympy.Expr, int)
+        Factors in ``Omega`` with their multiplicities.
+    symbols : tuple of str
+        Model parameters left symbolic.
+    seconds : float
+        Time the derivation took.
+    notes : tuple of str
+        How the result is structured (e.g. kept factored).
+    definitions : dict
+        The wave numbers ``a_<beam>``, ``b_<beam>`` of beams that are not
+        plain Euler–Bernoulli beams, and ``Omega`` when the closed form uses it,
+        as functions of :attr:`variable`; :attr:`delta_Omega` and
+        :attr:`factors` are written in them, :attr:`delta` has them substituted.
+    """
+
+    variable: sp.Symbol
+    delta: sp.Expr
+    constant: sp.Expr
+    delta_Omega: sp.Expr
+    constant_Omega: sp.Expr
+    Omega: sp.Expr
+    power: int
+    factors: tuple
+    symbols: tuple = ()
+    seconds: float = 0.0
+    notes: tuple = field(default_factory=tuple)
+    model_name: str | None = None
+    definitions: dict = field(default_factory=dict)
+
+    @property
+    def equation(self) -> sp.Expr:
+        """``prod(f**e)`` in ``Omega`` (and wave numbers): the textbook frequency equation ``= 0``.
+
+        Powers of a single wave number (like ``Omega**power``) are left out.
+        """
+        return sp.Mul(*[f**e for f, e in self.factors if not f.is_Symbol])
+
+    def count_ops(self) -> int:
+        """Size of :attr:`delta_Omega` (the closed form) as SymPy counts operations."""
+        return int(sp.count_ops(self.delta_Omega))
+
+    def latex(self) -> str:
+        """LaTeX of ``delta`` in :attr:`variable`."""
+        return sp.latex(self.delta)
+
+    def to_dict(self) -> dict:
+        """The JSON contract ``{"variable", "delta", "latex"}`` plus the Omega form.
+
+        ``delta`` parses with :func:`sympy.sympify` into the function of
+        ``variable``; ``delta_Omega`` with ``Omega`` (and the wave numbers of
+        ``definitions``, each a function of ``variable``) likewise.
+        """
+        return {
+            "variable": str(self.variable),
+            "delta": str(self.delta),
+            "latex": self.latex(),
+            "Omega": str(self.Omega),
+            "delta_Omega": str(self.delta_Omega),
+            "latex_Omega": sp.latex(self.delta_Omega),
+            "power_Omega": self.power,
+            "factors_Omega": [{"factor": str(f), "multiplicity": e} for f, e in self.factors],
+            "constant": str(self.constant),
+            "symbols": list(self.symbols),
+            "count_ops": self.count_ops(),
+            "seconds": round(self.seconds, 3),
+            "notes": list(self.notes),
+            "model": self.model_name,
+            "definitions": {str(k): str(v) for k, v in self.definitions.items()},
+        }
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), indent=2)
+
+    def __str__(self) -> str:
+        return f"Delta({self.variable}) = {self.delta}"
+
+    def _repr_latex_(self) -> str:
+        """``Delta(variable) = ...`` typeset (Jupyter)."""
+        return f"$\\Delta({sp.latex(self.variable)}) = {self.latex()}$"
+
+
+def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation:
+    """The characteristic function of ``model`` in closed form.
+
+    Parameters
+    ----------
+    model : Model
+        Fields may contain parameters without value; they stay symbols.
+    symbolic : iterable of str
+        Parameters to keep symbolic although the model gives them a value;
+        that value then only orders cuts that the symbols cannot (``x1`` and
+        ``1 - x1``).
+
+    Returns
+    -------
+    CharacteristicEquation
+
+    Raises
+    ------
+    ModelError
+        A named parameter does not exist, or the order of the cuts depends on
+        a parameter without value.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> pp = Model((Beam("b", EI="EI", m="m", L="L", left="pinned", right="pinned"),))
+    >>> eq = characteristic_equation(pp)
+    >>> eq.delta_Omega
+    sin(Omega)*sinh(Omega)/Omega**2
+    >>> eq.Omega
+    L*m**(1/4)*sqrt(omega)/EI**(1/4)
+    """
+    start = time.perf_counter()
+    model_in = model
+    model, sample = _prepare(model, tuple(symbolic))
+    problem = _build_problem(model, sample)
+    alg = _Algebra(problem)
+    R = alg.boundary_matrix()
+    constant, factors = _factorise(alg, R)
+    Om = OMEGA_DIMLESS
+    writer = _Writer(alg, Om)
+    founded = [w.b for w in problem.waves if w.scaled]
+    pre_c, pre_p, pre_b = _split_powers(problem.prefactor, Om, founded)
+    power = pre_p
+    out_factors = [(bk, p) for bk, p in pre_b.items() if p]
+    frequency_symbols = [s for w in problem.waves for s in (w.a, w.b)]
+    for poly, e in factors:
+        m, expr, ratio = writer.best(poly)
+        constant *= ratio**e
+        power += m * e
+        if not expr.has(Om, *frequency_symbols):
+            constant *= expr ** e
+            continue
+        out_factors.append((expr, e))
+    c_merge, p_merge, out_factors = _merge_factors(out_factors, Om)
+    constant *= c_merge
+    power += p_merge
+    mu1, L1 = problem.omega_of["mu1"], problem.omega_of["L1"]
+    if problem.damped:
+        variable, lam = LAM, LAM
+        Omega_of_var = L1 * mu1 * sp.sqrt(sp.I * LAM)
+    else:
+        variable, lam = OMEGA, sp.I * OMEGA
+        Omega_of_var = L1 * mu1 * sp.sqrt(OMEGA)
+    definitions = _wave_definitions(problem, lam)
+    if problem.waves and not any(_is_plain(b) for b in problem.layout.model.beams):
+        # no plain beam: the frequency left in the coefficients is the model's variable
+        back = {Om: Omega_of_var}
+        c_poly, out_factors = _polynomials_in(variable, [(_tidy(f.xreplace(back)), e)
+                                                         for f, e in out_factors])
+        constant *= c_poly
+        c_disc, out_factors = _discriminants_back(problem, lam, variable, out_factors)
+        constant *= c_disc
+        scale = Omega_of_var ** power
+        power = 0
+    else:
+        definitions = {Om: Omega_of_var, **definitions}
+        scale = sp.Integer(1)
+    out_factors.sort(key=lambda fe: (sp.count_ops(fe[0]), str(fe[0])))
+    constant_Omega = sp.simplify(pre_c * constant)
+    delta_Omega = Om ** power * scale * sp.Mul(*[f**e for f, e in out_factors])
+    delta = delta_Omega.xreplace({Om: Omega_of_var, **definitions})
+    # what xreplace leaves as a constant factor in front of the power of the variable
+    c_scale, rest = delta.as_independent(variable, as_Add=False)
+    delta = rest
+    constant = sp.simplify(constant_Omega * c_scale)
+    if power == 0 and scale != 1:
+        # the closed form holds the variable's power itself; keep constant_Omega exact
+        c_form, rest_form = delta_Omega.as_independent(variable, *definitions, as_Add=False)
+        delta_Omega = rest_form
+        constant_Omega = sp.simplify(constant_Omega * c_form)
+    symbols = tuple(sorted(s.name for s in sp.sympify(delta).free_symbols
+                           if s not in (variable,)))
+    notes = []
+    if len(out_factors) > 1 or any(e > 1 for _, e in out_factors):
+        notes.append("kept factored: " + ", ".join(
+            f"{sp.count_ops(f)} ops x{e}" for f, e in out_factors))
+    if problem.waves:
+        notes.append("wave numbers: " + ", ".join(
+            f"{s} = {v}" for s, v in definitions.items() if s != Om))
+    return CharacteristicEquation(
+        variable=variable, delta=delta, constant=constant, delta_Omega=delta_Omega,
+        constant_Omega=constant_Omega, Omega=Omega_of_var, power=int(power),
+        factors=tuple(out_factors), symbols=symbols,
+        seconds=time.perf_counter() - start, notes=tuple(notes),
+        model_name=model_in.source or model_in.title or None, definitions=definitions)
+
+
+def _merge_factors(factors, Om):
+    """Numbers out, equal bases together: ``(2 b**2)**2 / (4 b**4)**2 -> b**-4 / 4``.
+
+    Returns the constant, the power of ``Om`` and the merged ``(base, exponent)``.
+    """
+    constant, power, merged = sp.Integer(1), 0, {}
+    for f, e in factors:
+        c, parts = f.as_coeff_mul()
+        constant *= c**e
+        for part in parts:
+            base, p = part.as_base_exp()
+            if base == Om:
+                power += p * e
+            else:
+                merged[base] = merged.get(base, 0) + p * e
+    return constant, int(power), [(b, int(e)) for b, e in merged.items() if e != 0]
+
+
+def _discriminants_back(problem: _Problem, lam, variable, factors):
+    """A polynomial factor in ``variable`` proportional to ``t**2 - 4 d`` of a wave is
+    ``(a**2 + b**2)**2``: written so, it cancels against the denominators."""
+    constant, out = sp.Integer(1), []
+    discs = []
+    for wave in problem.waves:
+        if wave.scaled:
+            continue
+        t, d = _wave_segment(wave.beam).invariants(sp.expand(lam**2))
+        discs.append((sp.expand(t**2 - 4 * d), wave.a**2 + wave.b**2))
+    for f, e in factors:
+        for disc, form in discs:
+            if f.free_symbols <= {variable} | disc.free_symbols and f.has(variable):
+                ratio = sp.simplify(f / disc)
+                if ratio.is_number and ratio != 0:
+                    constant *= ratio**e
+                    f, e = form, 2 * e
+                    break
+        out.append((f, e))
+    merged: dict = {}
+    for f, e in out:
+        merged[f] = merged.get(f, 0) + e
+    return constant, [(f, e) for f, e in merged.items() if e != 0]
+
+
+def _polynomials_in(variable, factors):
+    """Factors that are polynomials in ``variable`` only, multiplied and factored again in it.
+
+    Factored in ``Omega ~ sqrt(omega)``, ``omega**2 - c`` splits into
+    ``(k omega - sqrt(c)) (k omega + sqrt(c))``: refactored it is whole again.
+    """
+    plain, rest = [], []
+    for f, e in factors:
+        (plain if f.free_symbols <= {variable} and f.is_polynomial(variable) else rest).append(
+            (f, e))
+    if len(plain) < 2:
+        return sp.Integer(1), factors
+    out, constant = [], sp.Integer(1)
+    for sign in (1, -1):
+        product = sp.Mul(*[f ** (e * sign) for f, e in plain if e * sign > 0])
+        if product == 1:
+            continue
+        c, parts = sp.factor_list(sp.expand(product), variable)
+        constant *= c**sign
+        out += [(f, sign * int(e)) for f, e in parts]
+    return constant, rest + out
+
+
+def _tidy(expr: sp.Expr) -> sp.Expr:
+    """Powers of the frequency gathered (``sqrt(omega)**4 -> omega**2``)."""
+    return sp.powsimp(sp.expand_power_base(expr, force=True))
+
+
+def _wave_definitions(problem: _Problem, lam) -> dict:
+    """``{a: ..., b: ...}`` of every wave kind, in the model's variable (``lam = I omega``)."""
+    out = {}
+    for wave in problem.waves:
+        t, d = (sp.simplify(v) for v in _wave_segment(wave.beam).invariants(sp.expand(lam**2)))
+        if wave.equal:
+            out[wave.b] = sp.factor(-d) ** sp.Rational(1, 4)
+            continue
+        root = sp.sqrt(sp.factor(t**2 / 4 - d))
+        out[wave.a] = sp.sqrt(t / 2 + root)
+        out[wave.b] = sp.sqrt(-t / 2 + root)
+    return out
+
+
+def _split_powers(expr, x, others):
+    """``expr = c * x**p * prod(y**q)`` over ``others``: ``(c, p, {y: q})``."""
+    expr = sp.powsimp(sp.expand_power_base(sp.sympify(expr), force=True))
+    powers = {}
+    for y in others:
+        c, q = expr.as_coeff_exponent(y)
+        powers[y] = int(q)
+        expr = c
+    c, p = _split_power(expr, x)
+    return c, p, powers
+
+
+def _split_power(expr, x):
+    """``expr = c * x**p`` with ``c`` free of ``x``."""
+    expr = sp.powsimp(sp.expand_power_base(sp.sympify(expr), force=True))
+    c, p = expr.as_coeff_exponent(x)
+    if c.has(x):
+        raise ComputationError(f"cannot separate the power of {x} in {expr}")
+    return c, int(p)
