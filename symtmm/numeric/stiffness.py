@@ -170,9 +170,12 @@ class Factors:
         la, ph = ar.log_abs_arg(self.pivots)
         la12, ph12 = ar.log_abs_arg(self.det12)
         mult = self.plan.multiplicity
-        logabs = la.sum(axis=1) + (la12 * mult).sum(axis=1) + self.plan.log_constant
-        phase = ph.sum(axis=1) + (ph12 * mult).sum(axis=1)
-        return logabs, np.angle(np.exp(1j * phase))
+        # (a zero pivot before an infinite one, at a point the rounding put on a
+        # sub-structure's eigenvalue, gives nan: no value there, which callers read so)
+        with np.errstate(invalid="ignore"):
+            logabs = la.sum(axis=1) + (la12 * mult).sum(axis=1) + self.plan.log_constant
+            phase = ph.sum(axis=1) + (ph12 * mult).sum(axis=1)
+            return logabs, np.angle(np.exp(1j * phase))
 
     def _constant(self):
         ar, plan = self.ar, self.plan
