@@ -42,7 +42,8 @@ Modules: :mod:`~symtmm.modes.modeset` (the result objects),
 """
 
 from .modeset import BeamShape, ModeSet, ModeShape
-from .shapes import ShapePlan, evaluate_mode, mode_shapes, shapes_at, working_digits
+from .shapes import ShapePlan, displacements, evaluate_mode, mode_shapes, shapes_at, working_digits
 
-__all__ = ["BeamShape", "ModeSet", "ModeShape", "ShapePlan", "evaluate_mode", "mode_shapes",
+__all__ = ["BeamShape", "ModeSet", "ModeShape", "ShapePlan", "displacements", "evaluate_mode",
+           "mode_shapes",
            "shapes_at", "working_digits"]

@@ -34,7 +34,8 @@ from ..results import Eigenvalue, Spectrum
 from .modeset import BeamShape, ModeSet, ModeShape
 from .normalise import Energy, Inertia, complex_scaler, mass_orthonormaliser
 
-__all__ = ["ShapePlan", "evaluate_mode", "mode_shapes", "shapes_at", "working_digits"]
+__all__ = ["ShapePlan", "displacements", "evaluate_mode", "mode_shapes", "shapes_at",
+           "working_digits"]
 
 
 class ShapePlan:
@@ -180,6 +181,43 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
         shapes.append(ModeShape(eigenvalue, beams, left, dps, number + c,
                                 _body_motion(tp.layout, left, real)))
     return shapes
+
+
+def displacements(model: Model, eigenvalues, points: int, digits: int,
+                  plan: ShapePlan | None = None) -> list:
+    """``Y`` along every beam for many eigenvalues at once, unnormalised (sweeps' tracking).
+
+    The eigenvalues of one kind (undamped or not, one multiplicity) share one walk:
+    their null spaces at the largest precision any of them needs, then the states at
+    the samples of :meth:`ShapePlan.grid` in one batch. Returns, per eigenvalue,
+    ``(multiplicity, beams * points)`` floats (complex for damped models) in the
+    shapes' own scale: what a modal assurance criterion needs, no normalisation.
+    """
+    model = model.require_numeric()
+    shape_plan = plan or ShapePlan(model)
+    tp = shape_plan.plan
+    grid, _ = shape_plan.grid(points)
+    groups: dict = {}
+    for i, e in enumerate(eigenvalues):
+        real = not model.damped and e.lam.real == 0
+        groups.setdefault((real, e.multiplicity), []).append(i)
+    out: list = [None] * len(eigenvalues)
+    for (real, mult), idx in groups.items():
+        dps = max(working_digits(tp, eigenvalues[i].lam, digits) for i in idx)
+        ar = MP.from_digits(dps)
+        with ar:
+            pairs = [_point(ar, eigenvalues[i].lam, real) for i in idx]
+            lam = None if real else ar.array([p[0][0] for p in pairs])
+            lam2 = ar.array([p[1][0] for p in pairs]) if real else None
+            R = transfer.boundary(tp, ar, lam, lam2)
+            E0 = ar.zeros((len(idx), tp.size, mult), like=R)
+            for b in range(len(idx)):
+                E0[b][tp.columns, :] = null_space(ar, R[b], mult)
+        _, states = transfer.sample(tp, ar, grid, lam, lam2, start=E0, inner=DOUBLE)
+        for b, i in enumerate(idx):
+            Y = states[b, :, 0, :]                      # (samples, mult)
+            out[i] = (Y.real if real else Y).T
+    return out
 
 
 def _body_motion(layout, state, real: bool) -> dict:
