@@ -170,8 +170,11 @@ class Factors:
         la, ph = ar.log_abs_arg(self.pivots)
         la12, ph12 = ar.log_abs_arg(self.det12)
         mult = self.plan.multiplicity
-        logabs = la.sum(axis=1) + (la12 * mult).sum(axis=1) + self.plan.log_constant
-        phase = ph.sum(axis=1) + (ph12 * mult).sum(axis=1)
+        # a zero pivot (log -inf) beside an infinite one sums to NaN: the callers take a
+        # value that is not finite as no information (they bisect), so numpy need not warn
+        with np.errstate(invalid="ignore"):
+            logabs = la.sum(axis=1) + (la12 * mult).sum(axis=1) + self.plan.log_constant
+            phase = ph.sum(axis=1) + (ph12 * mult).sum(axis=1)
         return logabs, np.angle(np.exp(1j * phase))
 
     def _constant(self):
