@@ -403,6 +403,12 @@ KERNEL_FAILURES = [
                  marks=_kernel("ArithmeticError 'no piece length keeps the clamped modes above "
                                "omega' for a slender Timoshenko beam"),
                  id="slender-timoshenko-error"),
+    pytest.param((EXAMPLES / "paper_ex4_damped.toml").read_text(),
+                 ["solve", "--count", "2", "--digits", "300"],
+                 marks=_kernel("ValueError 'math domain error' in roots/damped.py refine_complex "
+                               "from 300 digits on (a box width below the double range is 0 "
+                               "in log10)"),
+                 id="damped-300-digits"),
     pytest.param(_SHORT_CANTILEVER, ["modes", "--count", "1"],
                  marks=_kernel("ValueError from mpmath.cholesky: the mass Gram matrix at "
                                "omega ~ 1e60 is not positive definite (modes)"),
