@@ -28,8 +28,9 @@ Why these values:
   the budgets are well above any model in the examples and the paper.
 * Command-line values: ``--count`` and the eigenvalues below ``--omega-max`` at
   most 1000 (the working precision grows with the highest mode; the searches
-  cannot reach beyond about that), ``--digits`` at most 500 (what the
-  refinements reach within their precision cap).
+  cannot reach beyond about that), ``--digits`` at most 500 (the undamped
+  refinement stops converging between 700 and 1000 digits, within its cap on
+  the working precision).
 * ``derive`` expands a determinant symbolically; its size can explode with
   the number of beams and distinct segments. A budget on the terms of any
   polynomial (a proxy for memory) and on the seconds spent turns an explosion
