@@ -234,7 +234,7 @@ def spliced_text(draw):
 
 FLAGS = st.sampled_from([[], ["--digits", "30"], ["--digits", "3"], ["--set", "K=1e-30"],
                          ["--set", "K=" + "(" * 50], ["--set", "x1=2"], ["--set", "nope=1"],
-                         ["--omega-max", "1e6"], ["--sigma-max", "0"]])
+                         ["--omega-max", "300"], ["--sigma-max", "0"]])
 
 
 def _check(tmp_path_factory, text, command, flags=()):
@@ -417,6 +417,11 @@ KERNEL_FAILURES = [
                  marks=_kernel("the search runs for minutes on a slender Timoshenko beam "
                                "(L = 1e4: 50 s)", slow=True),
                  id="slender-timoshenko-slow"),
+    pytest.param(_SHORT_CANTILEVER.replace("1e-30", "1"), ["solve", "--count", "100"],
+                 marks=_kernel("100 eigenvalues of a cantilever take 50 s and 0.7 GB (60 take "
+                               "4 s): the search's cost jumps with the highest mode; requests "
+                               "within the limit of 1000 run for minutes", slow=True),
+                 id="hundred-modes-slow"),
     pytest.param(_HEAVY_DASHPOT, ["solve", "--count", "2"],
                  marks=_kernel("the damped search runs past the time limit", slow=True),
                  id="heavy-dashpot-slow"),
