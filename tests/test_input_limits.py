@@ -391,24 +391,15 @@ def test_derive_with_coefficients_beyond_double_integers(tmp_path):
 # -- warnings ---------------------------------------------------------------------------------
 
 
-#: Kernel failures inside the field limits (symtmm/modes.py): the mass Gram matrix of a
-#: beam whose frequencies are near 1e60 rad/s is not positive definite in mpmath's Cholesky
-#: (ValueError). Fixing the kernel flips these.
-MODES_GRAM = pytest.mark.xfail(strict=True, reason="kernel: modes' Gram matrix at omega ~ 1e60 "
-                               "(ValueError from mpmath.cholesky)")
-
-
 @pytest.mark.parametrize("command, values", [
     (["solve", "--count", "2", "--json"], dict(EI="1e30", m="1e-30", L="1e-10")),
     (["solve", "--count", "2", "--json"], dict(EI="1e-30", m="1e30", L="1e10")),
     (["solve", "--count", "2", "--json"], dict(EI=1, m=1, L="1e30")),
     (["solve", "--count", "2", "--json"], dict(EI=1, m=1, L="1e-30")),
-    pytest.param(["modes", "--count", "1", "--json"], dict(EI="1e30", m="1e-30", L="1e-10"),
-                 marks=MODES_GRAM),
+    (["modes", "--count", "1", "--json"], dict(EI="1e30", m="1e-30", L="1e-10")),
     (["modes", "--count", "1", "--json"], dict(EI="1e-30", m="1e30", L="1e10")),
     (["modes", "--count", "1", "--json"], dict(EI=1, m=1, L="1e30")),
-    pytest.param(["modes", "--count", "1", "--json"], dict(EI=1, m=1, L="1e-30"),
-                 marks=MODES_GRAM),
+    (["modes", "--count", "1", "--json"], dict(EI=1, m=1, L="1e-30")),
 ])
 def test_no_warning_at_the_field_limits(tmp_path, values, command):
     run = run_file(tmp_path, cantilever(**values), *command, limit=60)
