@@ -60,7 +60,7 @@ COMMANDS = [
 CI = settings(max_examples=10, derandomize=True, deadline=None, database=None,
               suppress_health_check=list(HealthCheck), print_blob=True,
               phases=[Phase.explicit, Phase.generate])
-LONG = settings(max_examples=400, deadline=None, database=None,
+LONG = settings(max_examples=60, deadline=None, database=None,
                 suppress_health_check=list(HealthCheck), print_blob=True)
 
 
