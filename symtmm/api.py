@@ -45,6 +45,7 @@ from pathlib import Path
 
 from .characteristic import characteristic_equation
 from .codegen import generate
+from .limits import DERIVE_SECONDS
 from .model import Beam, Mass, Model, Spring
 from .modelfile import load as _load_file
 from .modelfile import loads as _loads_text
@@ -100,7 +101,7 @@ def loads(text: str, **parameters) -> Model:
     return _loads_text(text, parameters or None)
 
 
-def derive(model: Model, symbolic=()):
+def derive(model: Model, symbolic=(), max_seconds=DERIVE_SECONDS):
     """The characteristic function in closed form (``symtmm derive``).
 
     Parameters
@@ -108,6 +109,8 @@ def derive(model: Model, symbolic=()):
     model : Model
     symbolic : iterable of str
         Parameters to keep symbolic although the model gives them a value.
+    max_seconds : float or None
+        Time budget (``--max-seconds``); None for none.
 
     Returns
     -------
@@ -121,7 +124,7 @@ def derive(model: Model, symbolic=()):
     >>> derive(cc).delta_Omega
     (cos(Omega)*cosh(Omega) - 1)/Omega**4
     """
-    return characteristic_equation(model, symbolic)
+    return characteristic_equation(model, symbolic, max_seconds=max_seconds)
 
 
 def codegen(model: Model, lang: str, symbolic=()) -> str:

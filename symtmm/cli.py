@@ -16,15 +16,17 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import math
 import pkgutil
 import sys
 
 from . import __version__, commands
 from .errors import ComputationError, ModelError
+from .limits import FLAG_MAX
 from .text import printable
 
 __all__ = ["main", "load_model_arg", "add_model_arguments", "positive_int", "nonnegative",
-           "title_line"]
+           "whole_number", "real_number", "title_line"]
 
 
 class _Parser(argparse.ArgumentParser):
@@ -82,26 +84,47 @@ def load_model_arg(args):
     return load(args.model, overrides)
 
 
-def positive_int(text: str) -> int:
-    """Argument type: a whole number >= 1, with a one-line message otherwise."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
-    return value
+def whole_number(low: int, high: int):
+    """Argument type: a whole number in ``[low, high]``, a one-line message otherwise.
+
+    The bounds are those of :mod:`symtmm.limits`: a value no run can honour is
+    refused before the model is read.
+    """
+    def convert(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+        if value < low:
+            raise argparse.ArgumentTypeError(f"must be at least {low}, got {value}")
+        if value > high:
+            raise argparse.ArgumentTypeError(f"must be at most {high}, got {value}")
+        return value
+    return convert
 
 
-def nonnegative(text: str) -> float:
-    """Argument type: a finite number >= 0, with a one-line message otherwise."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not value >= 0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
-    return value
+def real_number(low: float = 0.0, high: float = FLAG_MAX, low_open: bool = False):
+    """Argument type: a finite number in ``[low, high]`` (``(low, high]`` if ``low_open``)."""
+    def convert(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"must be a finite number, got {text}")
+        if value < low or (low_open and value == low):
+            raise argparse.ArgumentTypeError(
+                f"must be {'greater than' if low_open else 'at least'} {low:g}, got {text}")
+        if value > high:
+            raise argparse.ArgumentTypeError(f"must be at most {high:g}, got {text}")
+        return value
+    return convert
+
+
+#: Argument type: a whole number >= 1 (and at most 10**9, beyond anything a run can use).
+positive_int = whole_number(1, 10**9)
+#: Argument type: a finite number >= 0 (at most :data:`symtmm.limits.FLAG_MAX`).
+nonnegative = real_number(0.0)
 
 
 def add_model_arguments(parser):
@@ -140,7 +163,9 @@ def main(argv=None) -> int:
         _error(f"symtmm: {exc}")
         return 2
     except ComputationError as exc:
-        _error(f"symtmm: computation failed: {exc}")
+        model = getattr(args, "model", None)
+        _error(f"symtmm: {model}: computation failed: {exc}" if model else
+               f"symtmm: computation failed: {exc}")
         return 1
     except KeyboardInterrupt:
         _error("symtmm: interrupted")

@@ -19,6 +19,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 import numbers
 import re
 from collections.abc import Iterable, Mapping
@@ -29,7 +30,23 @@ import sympy as sp
 
 from .elements.theories import THEORIES
 from .errors import ModelError
-from .expr import RESERVED_NAMES, ExpressionError, exact_number, parameter_symbol, parse_expression
+from .expr import (
+    RESERVED_NAMES,
+    ExpressionError,
+    decades,
+    exact_number,
+    parameter_symbol,
+    parse_expression,
+    substitute,
+)
+from .limits import (
+    FIELD_MAX,
+    FIELD_MIN,
+    MAX_BEAMS,
+    MAX_PARAMETER_DEPTH,
+    MAX_PARAMETERS,
+    MAX_POINTS_ON_BEAMS,
+)
 
 __all__ = ["Beam", "Spring", "Mass", "Attachment", "RigidBody", "Model", "BOUNDARY_CONDITIONS",
            "GROUND", "SPRING_KINDS"]
@@ -68,6 +85,45 @@ def _exact(value, field_name: str) -> sp.Expr:
     return expr
 
 
+def short(value) -> str:
+    """A number for a message: exact if short, else 6 significant digits.
+
+    Never the full decimal expansion of a long rational (whose text may exceed
+    what Python converts at all).
+
+    Examples
+    --------
+    >>> short(sp.Rational(3, 10)), short(sp.Rational(1, 3)), short(sp.Integer(10)**40)
+    ('3/10', '1/3', '1.00000e+40')
+    """
+    value = sp.sympify(value)
+    if value.is_Rational and max(abs(int(value.p)), int(value.q)) < 10**12:
+        return str(value)
+    if value.is_number:
+        return str(sp.N(value, 6))
+    text = str(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _check_magnitude(value: sp.Expr, field_name: str) -> None:
+    """A numeric field is 0 or within ``FIELD_MIN .. FIELD_MAX`` in magnitude (:mod:`symtmm.limits`).
+
+    Measured by :func:`symtmm.expr.decades`: a sum that cancels to almost
+    nothing (``pi - 3.14159265358979``) is measured by its value, not its parts.
+    """
+    if not value.is_number or value.is_zero:
+        return
+    if value.is_real is False:
+        raise ModelError("must be a real number", field=field_name)
+    try:
+        size = decades(value)
+    except ExpressionError as exc:
+        raise ModelError(str(exc), field=field_name) from None
+    if not math.log10(FIELD_MIN) <= size <= math.log10(FIELD_MAX):
+        raise ModelError(f"must be 0 or between {FIELD_MIN:g} and {FIELD_MAX:g} in magnitude, "
+                         f"got {short(value)}", field=field_name)
+
+
 def _check_sign(expr: sp.Expr, field_name: str, allow_zero: bool) -> None:
     if not expr.is_number:
         return
@@ -80,8 +136,8 @@ def _check_inside(x: sp.Expr, beam, field_name: str) -> None:
     """``x`` lies on ``beam`` (ends included), where both are numbers."""
     inside = [(x - beam.x0), (beam.x1 - x)]
     if all(d.is_number for d in inside) and any(d.is_negative for d in inside):
-        raise ModelError(f"x = {x} lies outside beam '{beam.name}' [{beam.x0}, {beam.x1}]",
-                         field=field_name)
+        raise ModelError(f"x = {short(x)} lies outside beam '{beam.name}' "
+                         f"[{short(beam.x0)}, {short(beam.x1)}]", field=field_name)
 
 
 @dataclass(frozen=True)
@@ -404,6 +460,9 @@ class Model:
         object.__setattr__(self, "springs", springs)
         object.__setattr__(self, "masses", tuple(self.masses))
         object.__setattr__(self, "bodies", tuple(self.bodies))
+        check_size(len(beams), len(springs) + len(self.masses) + sum(
+            len(getattr(b, "attachments", ())) for b in self.bodies), len(self.parameters),
+            self.source)
         params = {}
         for name, value in dict(self.parameters).items():
             if not isinstance(name, str) or not _IDENTIFIER.fullmatch(name):
@@ -433,6 +492,9 @@ class Model:
             if beam.name in names:
                 raise ModelError(f"duplicate beam name '{beam.name}'", field="beam.name")
             names.add(beam.name)
+        for name, expr in iter_fields(self):
+            # before anything computes with the values: the limits of symtmm.limits
+            _check_magnitude(self._value(expr, name), name)
         resolved = {b.name: self._resolved_beam(b) for b in self.beams}
         for beam in resolved.values():
             for attr in ("EI", "m", "L"):
@@ -536,9 +598,17 @@ class Model:
                 names = " -> ".join(s.name for s in chain + [sym])
                 raise ModelError(f"parameters refer to each other in a circle: {names}",
                                  field=f"parameters.{sym.name}", source=self.source)
+            if len(chain) >= MAX_PARAMETER_DEPTH:
+                raise ModelError(f"defined through a chain of more than {MAX_PARAMETER_DEPTH} "
+                                 "other parameters", field=f"parameters.{chain[0].name}",
+                                 source=self.source)
             expr = raw[sym]
             subs = {s: resolve(s, chain + [sym]) for s in expr.free_symbols if s in raw}
-            done[sym] = expr.xreplace(subs) if subs else expr
+            try:
+                done[sym] = substitute(expr, subs) if subs else expr
+            except ExpressionError as exc:
+                raise ModelError(str(exc), field=f"parameters.{sym.name}",
+                                 source=self.source) from None
             return done[sym]
 
         for sym in raw:
@@ -582,8 +652,18 @@ class Model:
                     expr = exact_number(expr)
             except ExpressionError as exc:
                 raise ModelError(f"cannot read {expr!r}: {exc}", source=self.source) from None
+        return self._value(expr)
+
+    def _value(self, expr: sp.Expr, field_name: str | None = None) -> sp.Expr:
+        """:meth:`value` of a SymPy expression, errors naming ``field_name``."""
         subs = self._substitution
-        return expr.xreplace(subs) if subs else expr
+        if not subs:
+            return expr
+        try:
+            return substitute(expr, subs)
+        except ExpressionError as exc:
+            message = str(exc) if field_name else f"cannot compute {short(expr)}: {exc}"
+            raise ModelError(message, field=field_name, source=self.source) from None
 
     def _resolved_beam(self, beam: Beam) -> Beam:
         return replace(beam, EI=self.value(beam.EI), m=self.value(beam.m),
@@ -679,6 +759,17 @@ class Model:
                              f"or with --set {free[0]}=VALUE", field="parameters",
                              source=self.source)
         return self.resolved()
+
+
+def check_size(beams: int, points: int, parameters: int, source: str | None = None) -> None:
+    """The size of a model within the budgets of :mod:`symtmm.limits`."""
+    for count, limit, what, where in ((beams, MAX_BEAMS, "beams", "beam"),
+                                      (points, MAX_POINTS_ON_BEAMS,
+                                       "springs, masses and rigid-body attachments", "spring"),
+                                      (parameters, MAX_PARAMETERS, "parameters", "parameters")):
+        if count > limit:
+            raise ModelError(f"{count} {what}; a model has at most {limit}", field=where,
+                             source=source)
 
 
 class _FrozenDict(dict):

@@ -37,14 +37,14 @@ from __future__ import annotations
 
 import sys
 from decimal import Decimal
-from pathlib import Path
 
 import sympy as sp
 
 from .elements.theories import THEORIES
 from .errors import ModelError
 from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
-from .model import GROUND, Attachment, Beam, Mass, Model, RigidBody, Spring
+from .limits import MAX_FILE_BYTES, MAX_PARAMETER_DEPTH
+from .model import GROUND, Attachment, Beam, Mass, Model, RigidBody, Spring, check_size
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -85,7 +85,12 @@ def load(path, overrides: dict | None = None) -> Model:
     """
     source = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        with open(path, "rb") as fh:
+            # one byte more than allowed tells a file that is too large without reading it all
+            data = fh.read(MAX_FILE_BYTES + 1)
+        if len(data) > MAX_FILE_BYTES:
+            raise ModelError(f"the file is larger than {MAX_FILE_BYTES} bytes", source=source)
+        text = data.decode("utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
         raise ModelError(f"cannot read the file: {reason}", source=source) from None
@@ -98,6 +103,14 @@ def loads(text: str, overrides: dict | None = None, source: str = "<string>") ->
         data = tomllib.loads(text, parse_float=Decimal)
     except tomllib.TOMLDecodeError as exc:
         raise ModelError(f"not valid TOML: {exc}", source=source) from None
+    except RecursionError:
+        # the TOML reader descends once per level of nested arrays and inline tables
+        raise ModelError("not valid TOML here: arrays or inline tables nested too deeply",
+                         source=source) from None
+    except ValueError:
+        # Python's limit on converting long digit strings to integers
+        raise ModelError("not valid TOML here: an integer with more than 4300 digits",
+                         source=source) from None
     try:
         return _build(data, overrides or {}, source)
     except ModelError as exc:
@@ -166,6 +179,10 @@ def _parameters(raw: dict, overrides: dict) -> dict:
         if name in active:
             raise ModelError("parameters refer to each other in a circle: "
                              + " -> ".join(active + [name]), field=f"parameters.{name}")
+        if len(active) >= MAX_PARAMETER_DEPTH:
+            # each level is a level of recursion here and in Model's resolution
+            raise ModelError(f"defined through a chain of more than {MAX_PARAMETER_DEPTH} other "
+                             "parameters", field=f"parameters.{active[0]}")
         active.append(name)
         field = "--set " + name if name in overrides else f"parameters.{name}"
 
@@ -197,6 +214,15 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
     springs_raw = data.get("spring", [])
     if not isinstance(springs_raw, list):
         raise ModelError("expected an array of tables: write [[spring]]", field="spring")
+    # the budgets first: nothing is parsed for a model that is too large anyway
+    tables = [data.get(t, []) for t in ("mass", "rigid", "joint")]
+    attachments = sum(len(t.get("attach", t.get("ends", []))) if isinstance(t, dict)
+                      and isinstance(t.get("attach", t.get("ends", [])), list) else 0
+                      for group in tables[1:] if isinstance(group, list) for t in group)
+    raw_params = data.get("parameters", {})
+    check_size(len(beams_raw), len(springs_raw) + (len(tables[0]) if isinstance(tables[0], list)
+                                                   else 0) + attachments,
+               len(raw_params) if isinstance(raw_params, dict) else 0)
 
     params = _parameters(data.get("parameters", {}), overrides)
     declared = data.get("parameters", {})

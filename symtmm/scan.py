@@ -192,6 +192,7 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
     >>> [str(e) for e in s.spectrum]
     ['9.869604401i', '39.47841760i', '88.82643961i']
     """
+    from .budget import check_search
     from .roots.undamped import omega_scale
     from .solve import solve
 
@@ -209,6 +210,8 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
         raise ModelError("need at least 3 points", field="--points")
     if spacing not in ("Omega", "omega"):
         raise ValueError("spacing must be 'Omega' or 'omega'")
+    # the curve costs about as much as a search up to omega_max (segments cut by wave number)
+    check_search(model, omega_max=omega_max, sigma_max=sigma_max)
     plan = transfer.TransferPlan(model)
     name, scale = omega_scale(model)
     if spacing == "Omega":

@@ -7,6 +7,7 @@ Methods are registered in :data:`METHODS`; each takes
 
 from __future__ import annotations
 
+from .budget import check_search
 from .errors import ModelError
 from .model import Model
 from .results import Spectrum
@@ -73,4 +74,5 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
     if count is None and omega_max is None:
         count = 10
     model = model.require_numeric()
+    check_search(model, count, omega_max, sigma_max)
     return METHODS[method](model, count, omega_max, sigma_max, digits)

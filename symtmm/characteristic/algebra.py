@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import sympy as sp
 
+from ..errors import ComputationError
+from .budget import spend
 from .problem import _W, _Problem
 from .ring import _rational, _Ring
 
@@ -100,7 +102,15 @@ class _Algebra:
         return (t + Dl) * half, (Dl - t) * half
 
     def from_expr(self, expr):
-        poly = sp.Poly(expr, *self.symbols, domain=sp.QQ)
+        try:
+            poly = sp.Poly(expr, *self.symbols, domain=sp.QQ)
+        except (sp.polys.polyerrors.CoercionFailed, sp.polys.polyerrors.PolynomialError):
+            # a number the closed form cannot hold exactly (a radical or constant met only
+            # here): say so rather than fail inside SymPy
+            raise ComputationError("the closed form cannot hold a number of this model exactly "
+                                   "(a radical or constant it meets only here); give such "
+                                   "fields rational values or keep them symbolic with "
+                                   "--symbolic") from None
         return self.ring.from_dict({mon: self.ring.coefficient(_rational(cf))
                                     for mon, cf in poly.as_dict().items()})
 
@@ -127,9 +137,13 @@ class _Algebra:
         """The normal form of ``p`` (see the class docstring)."""
         if p == 0:
             return p
+        spend(p)
         if self.ring.can_factor:
-            return self._reduce_flint(p)
-        return self._reduce_dict(p)  # pragma: no cover - depends on the installation
+            out = self._reduce_flint(p)
+        else:  # pragma: no cover - depends on the installation
+            out = self._reduce_dict(p)
+        spend(out)
+        return out
 
     def _reduce_flint(self, p):
         # division by the monomial x**q splits off the terms to rewrite (fast in C)
@@ -188,6 +202,7 @@ class _Algebra:
         for j, c in enumerate(cols):
             E[c][j] = ring.one
         for kind, data in self.problem.steps:
+            spend()
             if kind == "segments":
                 for lvl, g in data:
                     N = self.N[g] if g in self.N else self.N[(g, lvl)]

@@ -14,6 +14,7 @@ from itertools import combinations
 import sympy as sp
 
 from .algebra import _Algebra
+from .budget import spend, spend_product
 
 
 def _eliminate_constants(alg: _Algebra, M) -> tuple[sp.Rational, list]:
@@ -81,7 +82,9 @@ def _det_minors(M, zero, one):
                 m = minors.get(cols[:pos] + cols[pos + 1:])
                 if m is None or m == 0:
                     continue
+                spend_product(a, m)
                 acc = acc - a * m if (r - pos) % 2 else acc + a * m
+                spend(acc)
             if acc != 0:
                 new[cols] = acc
         minors = new

@@ -16,8 +16,10 @@ import sympy as sp
 
 from ..elements.base import LAM
 from ..errors import ComputationError
+from ..limits import DERIVE_SECONDS, DERIVE_TERMS
 from ..model import Model
 from .algebra import _Algebra
+from .budget import _BUDGET, budget, spend
 from .factor import _factorise
 from .order import _prepare
 from .problem import OMEGA, OMEGA_DIMLESS, _build_problem, _is_plain, _Problem, _wave_segment
@@ -127,7 +129,8 @@ class CharacteristicEquation:
         return f"$\\Delta({sp.latex(self.variable)}) = {self.latex()}$"
 
 
-def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation:
+def characteristic_equation(model: Model, symbolic=(), max_seconds: float | None = DERIVE_SECONDS,
+                            max_terms: int | None = DERIVE_TERMS) -> CharacteristicEquation:
     """The characteristic function of ``model`` in closed form.
 
     Parameters
@@ -138,6 +141,11 @@ def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation
         Parameters to keep symbolic although the model gives them a value;
         that value then only orders cuts that the symbols cannot (``x1`` and
         ``1 - x1``).
+    max_seconds : float or None
+        Time budget (default :data:`symtmm.limits.DERIVE_SECONDS`); None: none.
+    max_terms : int or None
+        Most terms of any polynomial on the way, a budget on memory (default
+        :data:`symtmm.limits.DERIVE_TERMS`); None: none.
 
     Returns
     -------
@@ -148,6 +156,9 @@ def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation
     ModelError
         A named parameter does not exist, or the order of the cuts depends on
         a parameter without value.
+    ComputationError
+        Over a budget (the message says what to change), or the closed form
+        cannot be written (a determinant that vanishes identically).
 
     Examples
     --------
@@ -160,8 +171,16 @@ def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation
     L*m**(1/4)*sqrt(omega)/EI**(1/4)
     """
     start = time.perf_counter()
+    token = _BUDGET.set(budget(max_seconds, max_terms))
+    try:
+        return _characteristic_equation(model, tuple(symbolic), start)
+    finally:
+        _BUDGET.reset(token)
+
+
+def _characteristic_equation(model: Model, symbolic: tuple, start: float) -> CharacteristicEquation:
     model_in = model
-    model, sample = _prepare(model, tuple(symbolic))
+    model, sample = _prepare(model, symbolic)
     problem = _build_problem(model, sample)
     alg = _Algebra(problem)
     R = alg.boundary_matrix()
@@ -174,6 +193,7 @@ def characteristic_equation(model: Model, symbolic=()) -> CharacteristicEquation
     out_factors = [(bk, p) for bk, p in pre_b.items() if p]
     frequency_symbols = [s for w in problem.waves for s in (w.a, w.b)]
     for poly, e in factors:
+        spend()
         m, expr, ratio = writer.best(poly)
         constant *= ratio**e
         power += m * e

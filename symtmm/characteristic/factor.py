@@ -16,6 +16,7 @@ import sympy as sp
 
 from ..errors import ComputationError
 from .algebra import _Algebra
+from .budget import spend
 from .determinant import _blocks, _det_minors, _eliminate_constants
 from .ring import _rational
 
@@ -25,7 +26,8 @@ def _normalise(alg: _Algebra, p):
     terms = alg.ring.terms(p)
     coeffs = [_rational(c) for c in terms.values()]
     den = math.lcm(*[int(c.q) for c in coeffs])
-    num = math.gcd(*[int(c.p * den / c.q) for c in coeffs])
+    # integers throughout: c.p * den / c.q would go through a float (wrong beyond 2**53)
+    num = math.gcd(*[int(c.p) * (den // int(c.q)) for c in coeffs])
     scale = sp.Rational(den, num)
     lead = max(terms)  # lex order on exponent tuples = the ring's order
     if _rational(terms[lead]) < 0:
@@ -77,6 +79,7 @@ def _factorise(alg: _Algebra, R):
             for h, e2 in _monomial_content(alg, g):
                 add(h, e * e2)
             return
+        spend(g)
         c2, parts = alg.ring.factor(g)
         constant *= _rational(c2) ** e
         for h, e2 in parts:
@@ -93,9 +96,11 @@ def _factorise(alg: _Algebra, R):
                 # too long to factor as it is (with the waves' Dl, iq it takes minutes):
                 # the normal form is far shorter, at the price of products it may hide
                 det = alg.reduce(det)
+            spend(det)
             content, first = alg.ring.factor(det)
             constant *= _rational(content)
         for f, e in first:
+            spend(f)
             e = int(e)
             q, cleared = alg.clear_inverse(f)
             g = alg.reduce(q)

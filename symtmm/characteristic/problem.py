@@ -123,6 +123,19 @@ class _Problem:
         """``expr`` in Omega written for the ring (``Omega -> 1/W``)."""
         return sp.expand(sp.sympify(expr).xreplace({OMEGA_DIMLESS: 1 / _W}))
 
+    def radicals(self, expr) -> sp.Expr:
+        """``expr`` with numeric radicals written in the symbols of :attr:`relations`.
+
+        For expressions built after those symbols were chosen (``b**(p/q)`` becomes
+        ``t**(p Q/q)`` where ``t**Q == b``); other radicals are left as they are.
+        """
+        subs = {}
+        for p in sp.sympify(expr).atoms(sp.Pow):
+            for t, (base, Q) in self.relations.items():
+                if p.base == base and p.exp.is_Rational and (p.exp * Q).is_Integer:
+                    subs[p] = t ** int(p.exp * Q)
+        return sp.expand(sp.sympify(expr).xreplace(subs)) if subs else expr
+
 
 def _is_founded(beam) -> bool:
     """Euler–Bernoulli on a foundation without axial force: ``a = b``, scaled like plain."""

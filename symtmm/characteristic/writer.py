@@ -16,6 +16,7 @@ from fractions import Fraction
 import sympy as sp
 
 from .algebra import _Algebra
+from .budget import spend
 from .factor import _normalise
 from .ring import _rational, _Ring
 
@@ -132,7 +133,7 @@ class _Writer:
             if not wave.t.is_number:
                 pairs.append((wave.t, a**2 - b**2))
             for expr, form in pairs:
-                poly = alg.from_expr(alg.problem.in_ring(expr))
+                poly = alg.from_expr(alg.problem.radicals(alg.problem.in_ring(expr)))
                 if poly == 0 or alg.ring.constant_value(poly) is not None:
                     continue
                 c, q = _normalise(alg, poly)
@@ -216,6 +217,7 @@ class _Writer:
         """The polynomial in the segment functions: per outer factor, its monomials."""
         total = []
         for rest, inner in groups.items():
+            spend()
             s = sp.Add(*[cf * sp.Mul(*[a ** k for a, k in zip(self.atoms, mon) if k])
                          for mon, cf in inner.items()])
             total.append(self._outer(rest) * s)
@@ -223,6 +225,8 @@ class _Writer:
 
     def _coefficient(self, by_rest: dict) -> sp.Expr:
         """``sum(v * outer(rest))``, factored (by python-flint) when that is shorter."""
+        spend()
+
         def written(terms):
             return sp.Add(*[sp.Rational(v.numerator, v.denominator) * self._outer(rest)
                             for rest, v in terms.items()])
@@ -280,6 +284,7 @@ class _Writer:
         """``{((kind, freq) trig, (kind, freq) hyperbolic): Fraction}`` of one group."""
         G = self.alg.groups
         expanded = []
+        spend()
         for mon, cf in inner.items():
             trig = tuple(mon[4 * g + i] for g in range(G) for i in (0, 1))
             hyp = tuple(mon[4 * g + i] for g in range(G) for i in (2, 3))
@@ -290,6 +295,7 @@ class _Writer:
         top = max(s for *_, s in expanded)
         acc: dict = {}
         for cf, ht, hh, shift in expanded:
+            spend()
             scale = int(cf.p) * (den // int(cf.q)) << (top - shift)
             for kt, vt in ht.items():
                 for kh, vh in hh.items():
@@ -343,5 +349,8 @@ class _Writer:
                          lambda: self.collected_forms(groups, harmonic)[0]]
         low = min(estimate)
         forms = [build() for build, n in zip(builders, estimate) if n <= 1.5 * low]
-        sizes = [sp.count_ops(f) for f in forms]
+        sizes = []
+        for f in forms:
+            spend()
+            sizes.append(sp.count_ops(f))
         return m, forms[sizes.index(min(sizes))], sp.Integer(1)

@@ -16,8 +16,9 @@ them substituted.
 
 from __future__ import annotations
 
-from ..cli import add_model_arguments, load_model_arg, title_line
+from ..cli import add_model_arguments, load_model_arg, real_number, title_line
 from ..errors import ModelError
+from ..limits import DERIVE_SECONDS
 
 HELP = "characteristic function Delta in closed form (SymPy, LaTeX, JSON)"
 
@@ -29,6 +30,10 @@ def add_arguments(parser):
     parser.add_argument("--json", action="store_true",
                         help='JSON: {"variable", "delta", "latex", ...}')
     parser.add_argument("--latex", action="store_true", help="print LaTeX only")
+    parser.add_argument("--max-seconds", type=real_number(0.0, 1e6, low_open=True),
+                        default=DERIVE_SECONDS, metavar="S",
+                        help=f"give up after S seconds (default {DERIVE_SECONDS:g}); the size "
+                             "of the polynomials is bounded too")
 
 
 def run(args) -> int:
@@ -37,7 +42,7 @@ def run(args) -> int:
     model = load_model_arg(args)
     names = [n.strip() for item in (args.symbolic or []) for n in item.split(",") if n.strip()]
     try:
-        eq = characteristic_equation(model, symbolic=names)
+        eq = characteristic_equation(model, symbolic=names, max_seconds=args.max_seconds)
     except ModelError as exc:
         raise exc.with_source(args.model) from None
     if args.json:

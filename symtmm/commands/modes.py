@@ -13,29 +13,23 @@ body that rotates).
 
 from __future__ import annotations
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int, title_line
+from ..cli import add_model_arguments, load_model_arg, nonnegative, title_line, whole_number
 from ..errors import ModelError
+from ..limits import MAX_DIGITS, MAX_EIGENVALUES, MAX_GRID_POINTS
 
 HELP = "mode shapes (Y, Theta, M, Q along every beam)"
 
 
-def _points(text):
-    import argparse
-    value = positive_int(text)
-    if value < 2:
-        raise argparse.ArgumentTypeError(f"need at least 2 points (both ends), got {value}")
-    return value
-
-
 def add_arguments(parser):
     add_model_arguments(parser)
-    parser.add_argument("--count", type=positive_int, default=None, metavar="N",
+    parser.add_argument("--count", type=whole_number(1, MAX_EIGENVALUES), default=None, metavar="N",
                         help="the first N modes, counted with multiplicity (default 6)")
-    parser.add_argument("--points", type=_points, default=101, metavar="P",
+    # at least 2: both ends
+    parser.add_argument("--points", type=whole_number(2, MAX_GRID_POINTS), default=101, metavar="P",
                         help="points per beam, both ends included (default 101)")
     parser.add_argument("--sigma-max", type=nonnegative, metavar="S",
                         help="damped models: search -S <= Re lam <= 0")
-    parser.add_argument("--digits", type=positive_int, default=15, metavar="D",
+    parser.add_argument("--digits", type=whole_number(1, MAX_DIGITS), default=15, metavar="D",
                         help="significant digits of the eigenvalues (default 15)")
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search (see symtmm solve)")

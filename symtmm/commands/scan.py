@@ -11,18 +11,21 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int, title_line
+from ..cli import (
+    add_model_arguments,
+    load_model_arg,
+    nonnegative,
+    real_number,
+    title_line,
+    whole_number,
+)
 from ..errors import ModelError
+from ..limits import MAX_DIGITS, MAX_GRID_POINTS
 
 HELP = "log10|Delta| along omega (and over the complex plane when damped), for plots"
 
 
-def _positive(text):
-    import argparse
-    value = nonnegative(text)
-    if value == 0:
-        raise argparse.ArgumentTypeError("must be positive")
-    return value
+_positive = real_number(0.0, low_open=True)
 
 
 def add_arguments(parser):
@@ -31,7 +34,7 @@ def add_arguments(parser):
                         help="highest circular frequency (rad/s)")
     parser.add_argument("--omega-min", type=nonnegative, default=0.0, metavar="W0",
                         help="lowest circular frequency (default 0)")
-    parser.add_argument("--points", type=positive_int, default=2000, metavar="N",
+    parser.add_argument("--points", type=whole_number(3, MAX_GRID_POINTS), default=2000, metavar="N",
                         help="grid points along omega (default 2000)")
     parser.add_argument("--spacing", choices=("Omega", "omega"), default="Omega",
                         help="grid equally spaced in Omega = beta L of the first beam "
@@ -40,7 +43,7 @@ def add_arguments(parser):
                         help="damped models: the map covers -S <= Re lam <= 0")
     parser.add_argument("--no-eigenvalues", action="store_true",
                         help="do not solve for the eigenvalues to mark")
-    parser.add_argument("--digits", type=positive_int, default=10, metavar="D",
+    parser.add_argument("--digits", type=whole_number(1, MAX_DIGITS), default=10, metavar="D",
                         help="digits of the marked eigenvalues (default 10)")
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search for the marks (see symtmm solve)")

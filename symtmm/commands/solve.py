@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int, title_line
+from ..cli import add_model_arguments, load_model_arg, nonnegative, title_line, whole_number
 from ..errors import ModelError
+from ..limits import MAX_DIGITS, MAX_EIGENVALUES
 
 HELP = "eigenvalues (natural frequencies), every printed digit correct"
 
@@ -11,13 +12,13 @@ HELP = "eigenvalues (natural frequencies), every printed digit correct"
 def add_arguments(parser):
     add_model_arguments(parser)
     group = parser.add_mutually_exclusive_group()
-    group.add_argument("--count", type=positive_int, metavar="N",
+    group.add_argument("--count", type=whole_number(1, MAX_EIGENVALUES), metavar="N",
                        help="the first N eigenvalues, counted with multiplicity (default 10)")
     group.add_argument("--omega-max", type=nonnegative, metavar="W",
                        help="all eigenvalues with 0 <= Im lam <= W (rad/s)")
     parser.add_argument("--sigma-max", type=nonnegative, metavar="S",
                         help="damped models: search -S <= Re lam <= 0 (default 2 W)")
-    parser.add_argument("--digits", type=positive_int, default=15, metavar="D",
+    parser.add_argument("--digits", type=whole_number(1, MAX_DIGITS), default=15, metavar="D",
                         help="significant digits, all correct (default 15)")
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search: default (count, isolate, refine), contour "

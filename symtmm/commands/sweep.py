@@ -11,18 +11,11 @@ from __future__ import annotations
 
 import sys
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, positive_int, title_line
+from ..cli import add_model_arguments, load_model_arg, nonnegative, title_line, whole_number
 from ..errors import ModelError
+from ..limits import MAX_DIGITS, MAX_EIGENVALUES, MAX_JOBS, MAX_STEPS
 
 HELP = "eigenvalues for equally spaced values of one parameter, branches tracked"
-
-
-def _steps(text):
-    import argparse
-    value = positive_int(text)
-    if value < 2:
-        raise argparse.ArgumentTypeError(f"need at least 2 steps (both ends), got {value}")
-    return value
 
 
 def add_arguments(parser):
@@ -31,17 +24,18 @@ def add_arguments(parser):
     parser.add_argument("--from", dest="start", required=True, metavar="A",
                         help="first value (exact: 0.3 means 3/10; expressions allowed)")
     parser.add_argument("--to", dest="stop", required=True, metavar="B", help="last value")
-    parser.add_argument("--steps", type=_steps, required=True, metavar="N",
+    # at least 2: both ends
+    parser.add_argument("--steps", type=whole_number(2, MAX_STEPS), required=True, metavar="N",
                         help="number of values, both ends included")
-    parser.add_argument("--count", type=positive_int, default=10, metavar="K",
+    parser.add_argument("--count", type=whole_number(1, MAX_EIGENVALUES), default=10, metavar="K",
                         help="eigenvalues per value, counted with multiplicity (default 10)")
-    parser.add_argument("--digits", type=positive_int, default=12, metavar="D",
+    parser.add_argument("--digits", type=whole_number(1, MAX_DIGITS), default=12, metavar="D",
                         help="significant digits, all correct (default 12 for sweeps)")
     parser.add_argument("--sigma-max", type=nonnegative, metavar="S",
                         help="damped models: search -S <= Re lam <= 0")
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search (see symtmm solve)")
-    parser.add_argument("--jobs", type=positive_int, default=None, metavar="J",
+    parser.add_argument("--jobs", type=whole_number(1, MAX_JOBS), default=None, metavar="J",
                         help="local worker processes (default: number of CPUs)")
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="run on a Dask cluster, e.g. tcp://host:8786 (needs symtmm[dask])")

@@ -1,0 +1,406 @@
+"""Every class of input that once crashed or hung the command line has a defined outcome.
+
+One test per class of the fuzzing report (issue 12), each with inputs of its own
+kind: the TOML reader's and the expression parser's recursion, extreme values
+(division by zero, overflow, NaN), huge integers and exponents (nested, and
+through parameters), command-line values beyond what a run can honour, and
+symbolic work in ``derive`` that explodes. Each run must meet the contract of
+:mod:`cli_contract` (one line on stderr, exit 2 for bad input, 1 for a failed
+computation, no warning, no traceback) within a few seconds, and say what is
+wrong where.
+"""
+
+import json
+import time
+
+import pytest
+from cli_contract import assert_contract, run_cli
+
+from symtmm.characteristic import characteristic_equation
+from symtmm.errors import ComputationError, ModelError
+from symtmm.expr import ExpressionError, parse_expression, substitute
+from symtmm.limits import DERIVE_TERMS, FIELD_MAX, FIELD_MIN, MAX_EIGENVALUES, MAX_NESTING
+from symtmm.model import Beam, Model
+from symtmm.modelfile import load, loads
+
+CANTILEVER = """
+[[beam]]
+name = "a"
+EI = {EI}
+m = {m}
+L = {L}
+left = "clamped"
+right = "free"
+"""
+
+PAIR = CANTILEVER + """
+[[beam]]
+name = "b"
+EI = 1
+m = 1
+L = 1
+left = "pinned"
+right = "pinned"
+
+[[spring]]
+between = ["a", "b"]
+x = {x}
+k = {k}
+"""
+
+
+def cantilever(EI=1, m=1, L=1, head=""):
+    return head + CANTILEVER.format(EI=EI, m=m, L=L)
+
+
+def run_file(tmp_path, text, *args, limit=30):
+    path = tmp_path / "model.toml"
+    path.write_text(text)
+    run = run_cli([args[0], path, *args[1:]], limit=limit)
+    assert_contract(run, limit)
+    return run
+
+
+def one_line(run):
+    return run.stderr.strip()
+
+
+# -- the TOML reader's recursion ---------------------------------------------------------
+
+
+@pytest.mark.parametrize("nest", ["[" * 3000 + "]" * 3000,
+                                  "{a=" * 3000 + "1" + "}" * 3000,
+                                  "[" * 3000 + "{a=1}" + "]" * 3000],
+                         ids=["arrays", "inline-tables", "both"])
+def test_toml_nested_too_deeply(tmp_path, nest):
+    run = run_file(tmp_path, cantilever(head=f"title = {nest}\n"), "solve", "--count", "2")
+    assert run.code == 2 and "nested too deeply" in one_line(run)
+
+
+def test_toml_integer_too_long_to_read(tmp_path):
+    run = run_file(tmp_path, cantilever(EI="1" * 5000), "derive")
+    assert run.code == 2 and "4300 digits" in one_line(run)
+
+
+def test_a_file_too_large(tmp_path):
+    run = run_file(tmp_path, cantilever(head="# " + "x" * 1_100_000 + "\n"), "solve")
+    assert run.code == 2 and "larger than" in one_line(run)
+
+
+# -- the expression parser's recursion ----------------------------------------------------
+
+
+@pytest.mark.parametrize("text", ["(" * 400 + "1" + ")" * 400,
+                                  "-" * 900 + "1",
+                                  "+-" * 400 + "1",
+                                  "2**" * 300 + "1",
+                                  "sqrt(" * 100 + "4" + ")" * 100],
+                         ids=["parentheses", "signs", "mixed-signs", "powers", "sqrt"])
+def test_expression_nested_too_deeply(tmp_path, text):
+    run = run_file(tmp_path, cantilever(EI=f'"{text}"'), "solve", "--count", "2")
+    assert run.code == 2
+    assert f"beam[1] (a).EI: nested deeper than {MAX_NESTING} levels" in one_line(run)
+
+
+def test_expression_nested_too_deeply_through_set(tmp_path):
+    run = run_file(tmp_path, cantilever(EI='"K"', head="[parameters]\nK = 1\n"),
+                   "solve", "--count", "2", "--set", "K=" + "-" * 900 + "1")
+    assert run.code == 2 and "--set K: nested deeper" in one_line(run)
+
+
+def test_nesting_at_the_limit_is_fine():
+    assert parse_expression("(" * (MAX_NESTING - 1) + "2" + ")" * (MAX_NESTING - 1)) == 2
+
+
+def test_parameters_resolving_to_a_deep_tree():
+    chain = "\n".join(f'p{i} = "1 + x*(1 + x*p{i + 1})"' for i in range(30))
+    text = cantilever(EI='"p0"', head=f"[parameters]\n{chain}\np30 = \"x\"\n")
+    with pytest.raises(ModelError, match="nested deeper than .* once its parameters"):
+        loads(text)
+
+
+def test_parameter_chain_too_long(tmp_path):
+    chain = "\n".join(f'p{i} = "p{i + 1}"' for i in range(900))
+    run = run_file(tmp_path, cantilever(EI='"p0"', head=f"[parameters]\n{chain}\np900 = 1\n"),
+                   "solve", "--count", "2")
+    assert run.code == 2 and "chain of more than" in one_line(run)
+
+
+# -- extreme values: ZeroDivisionError, OverflowError, NaN or inf to int --------------------
+
+
+@pytest.mark.parametrize("field, value, message", [
+    ("EI", "1e-999", "smaller than 1e-300"),
+    ("EI", '"1e-999"', "smaller than 1e-300"),
+    ("L", '"1e300"', "larger than 1e300"),
+    ("m", "1e400", "larger than 1e300"),
+    ("EI", "1e-31", "between 1e-30 and 1e+30"),
+    ("L", "2e30", "between 1e-30 and 1e+30"),
+    ("m", '"1e20 * 1e20"', "between 1e-30 and 1e+30"),
+    ("EI", '"pi - 3.14159265358979323846264338327950288419716939937510582097494"',
+     "between 1e-30 and 1e+30"),
+    ("EI", "nan", "not a finite number"),
+    ("EI", "inf", "not a finite number"),
+    ("m", "-inf", "not a finite number"),
+])
+@pytest.mark.parametrize("command", [["solve", "--count", "2"], ["derive"],
+                                     ["codegen", "--lang", "c"], ["modes", "--count", "1"]])
+def test_extreme_values_are_refused_before_computing(tmp_path, field, value, message, command):
+    values = dict(EI=1, m=1, L=1)
+    values[field] = value
+    run = run_file(tmp_path, cantilever(**values), *command, limit=10)
+    assert run.code == 2
+    assert one_line(run).endswith(f"beam[1] (a).{field}: " + one_line(run).split(": ")[-1])
+    assert message in one_line(run)
+
+
+@pytest.mark.parametrize("field, value", [("x", '"1e5000"'), ("k", '"1e-999999"'),
+                                          ("k", '"10**299"'), ("x", "1" + "0" * 400)])
+def test_spring_values_beyond_the_limits(tmp_path, field, value):
+    values = dict(EI=1, m=1, L=1, x="0.5", k=10)
+    values[field] = value
+    start = time.perf_counter()
+    run = run_file(tmp_path, PAIR.format(**values), "derive", limit=10)
+    assert run.code == 2 and f"spring[1].{field}:" in one_line(run)
+    assert time.perf_counter() - start < 5
+
+
+def test_values_at_the_limits_are_accepted():
+    model = loads(cantilever(EI=f"{FIELD_MAX:g}", m=f"{FIELD_MIN:g}", L=1))
+    assert model.beams[0].EI == 10**30
+
+
+def test_a_point_outside_its_beam_reports_short_numbers():
+    text = PAIR.format(EI=1, m=1, L=1, x='"1/3 + 1e20"', k=1)
+    with pytest.raises(ModelError, match=r"x = 1\.00000e\+20 lies outside"):
+        loads(text)
+
+
+# -- huge integers and exponents ------------------------------------------------------------
+
+
+@pytest.mark.parametrize("text, message", [
+    ("((2**999)**999)**999", "larger than 1e300"),
+    ("(2**99)**99", "larger than 1e300"),
+    ("2**1001", "exponent larger than 1000"),
+    ("2**-1000", "smaller than 1e-300"),
+    ("pi**1000", "larger than 1e300"),
+    ("1e299*10", "larger than 1e300"),
+])
+def test_powers_checked_before_they_are_built(text, message):
+    start = time.perf_counter()
+    with pytest.raises(ExpressionError, match=message):
+        parse_expression(text)
+    assert time.perf_counter() - start < 1
+
+
+@pytest.mark.parametrize("params, EI, message", [
+    ('e = "10**9"', "2**e", "exponent larger than 1000"),
+    ("e = 500", "10**e", "larger than 1e300"),
+    ("e = 200", "10**e", "between 1e-30 and 1e+30"),
+    ('e = "b**999"\nb = "c**999"\nc = 2', "e", "larger than 1e300"),
+    ('e = "x**500"\nx = "y**500"\ny = 10', "e", "larger than 1e300"),
+])
+def test_exponents_from_parameters(tmp_path, params, EI, message):
+    start = time.perf_counter()
+    run = run_file(tmp_path, cantilever(EI=f'"{EI}"', head=f"[parameters]\n{params}\n"),
+                   "solve", "--count", "2", limit=10)
+    assert run.code == 2 and message in one_line(run)
+    assert time.perf_counter() - start < 5
+
+
+def test_substitute_refuses_before_building():
+    from symtmm.expr import parameter_symbol
+    e = parameter_symbol("e")
+    with pytest.raises(ExpressionError, match="exponent larger"):
+        substitute(2**e, {e: parse_expression("10**9")})
+    assert substitute(2**e, {e: parse_expression("10")}) == 1024
+
+
+def test_large_integer_in_code_is_refused():
+    with pytest.raises(ModelError, match="larger than 1e300"):
+        Model((Beam("a", EI=10**400, m=1, L=1),))
+
+
+# -- command-line values -----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("args, message", [
+    (["solve", "--omega-max", "1e308"], "--omega-max: must be at most 1e+100"),
+    (["solve", "--omega-max", "inf"], "--omega-max: must be a finite number"),
+    (["solve", "--omega-max", "nan"], "--omega-max: must be a finite number"),
+    (["solve", "--omega-max", "1e50"], f"more than {MAX_EIGENVALUES} eigenvalues lie below"),
+    (["solve", "--omega-max", "1e9"], f"more than {MAX_EIGENVALUES} eigenvalues lie below"),
+    (["solve", "--count", str(10**6)], f"--count: must be at most {MAX_EIGENVALUES}"),
+    (["solve", "--digits", "100000"], "--digits: must be at most"),
+    (["solve", "--count", "2", "--sigma-max", "-1"], "--sigma-max: must be at least 0"),
+    (["modes", "--count", "1", "--points", str(10**9)], "--points: must be at most"),
+    (["modes", "--count", "1", "--points", "1"], "--points: must be at least 2"),
+    (["scan", "--omega-max", "1e60", "--no-eigenvalues"], "eigenvalues lie below"),
+    (["scan", "--omega-max", "10", "--points", str(10**8)], "--points: must be at most"),
+    (["sweep", "--param", "K", "--from", "1", "--to", "2", "--steps", str(10**9)],
+     "--steps: must be at most"),
+    (["sweep", "--param", "K", "--from", "1", "--to", "2", "--steps", "3", "--jobs",
+      str(10**7)], "--jobs: must be at most"),
+    (["derive", "--max-seconds", "0"], "--max-seconds: must be greater than 0"),
+])
+def test_command_line_values_out_of_range(tmp_path, args, message):
+    run = run_file(tmp_path, cantilever(EI='"K"', head="[parameters]\nK = 1\n"),
+                   *args, limit=10)
+    assert run.code == 2 and message in one_line(run)
+
+
+def test_damped_search_region_out_of_range(examples_dir):
+    run = run_cli(["solve", examples_dir / "paper_ex4_damped.toml", "--omega-max", "100",
+                   "--sigma-max", "1e40"], limit=10)
+    assert_contract(run, 10)
+    assert run.code == 2 and "--sigma-max: a search region reaching" in run.stderr
+
+
+def test_the_bound_on_eigenvalues_is_a_lower_bound(examples_dir):
+    """Below the limit the bound never exceeds the eigenvalues the solver finds."""
+    from symtmm.budget import eigenvalues_below
+    from symtmm.solve import solve
+
+    for name in ("paper_ex1_ff_cc.toml", "timoshenko_beam.toml", "rayleigh_axial_force.toml",
+                 "winkler_two_beams.toml", "rigid_body_on_beam.toml", "fork_tree.toml"):
+        model = load(examples_dir / name)
+        spectrum = solve(model, count=12, digits=6)
+        top = float(spectrum.eigenvalues[-1].omega)
+        found = sum(e.multiplicity for e in spectrum)
+        assert eigenvalues_below(model, top) <= found, name
+
+
+# -- derive: symbolic work that explodes ----------------------------------------------------
+
+RAYLEIGH_AND_DAMPED_SPRING = """
+[[beam]]
+name = "r"
+theory = "rayleigh"
+EI = 10
+m = 1
+L = 2
+rhoI = 0.3
+left = "free"
+right = "free"
+
+[[beam]]
+name = "e"
+EI = 1
+m = 0.7
+L = 1
+x0 = 0.5
+left = "clamped"
+right = "sliding"
+
+[[spring]]
+between = ["r", "e"]
+x = 1.3
+k = 1
+c = 2
+kind = "rotational"
+"""
+
+
+def test_derive_over_the_term_budget_stops_early():
+    """The model that grew to 10 GB: a smaller budget shows the same stop, quickly."""
+    model = loads(RAYLEIGH_AND_DAMPED_SPRING)
+    start = time.perf_counter()
+    with pytest.raises(ComputationError, match="beyond 20000 terms .* budget on memory"):
+        characteristic_equation(model, max_terms=20_000)
+    assert time.perf_counter() - start < 20
+
+
+@pytest.mark.slow
+def test_derive_over_the_term_budget_on_the_command_line(tmp_path):
+    run = run_file(tmp_path, RAYLEIGH_AND_DAMPED_SPRING, "derive", limit=120)
+    assert run.code == 1 and f"beyond {DERIVE_TERMS} terms" in one_line(run)
+    assert "model.toml: computation failed" in one_line(run)
+
+
+def test_derive_over_the_time_budget(tmp_path, examples_dir):
+    run = run_cli(["derive", examples_dir / "paper_ex4_damped.toml", "--max-seconds", "0.2"],
+                  limit=30)
+    assert_contract(run, 30)
+    assert run.code == 1 and "takes longer than 0.2 s (--max-seconds)" in run.stderr
+
+
+def test_derive_with_pi_in_a_coefficient_is_bounded(tmp_path):
+    text = """
+[[beam]]
+name = "t"
+theory = "timoshenko"
+EI = 1
+m = "10.5 - pi - pi/100"
+L = 1
+rhoI = 0.01
+kGA = 100
+left = "clamped"
+right = "free"
+
+[[beam]]
+name = "e"
+EI = 2
+m = "10.5 - pi - pi/100"
+L = 2
+left = "pinned"
+right = "sliding"
+"""
+    run = run_file(tmp_path, text, "derive", "--max-seconds", "3", limit=30)
+    assert run.code in (0, 1)
+
+
+def test_derive_with_a_radical_in_the_reference_beam(tmp_path):
+    """EI = 2**(1/3) of the Euler-Bernoulli beam reaches a Rayleigh beam's wave numbers."""
+    text = """
+[[beam]]
+name = "r"
+theory = "rayleigh"
+EI = 10
+m = 1
+L = 2
+rhoI = 0.3
+left = "clamped"
+right = "free"
+
+[[beam]]
+name = "e"
+EI = "2**(1/3)"
+m = 1
+L = 2
+left = "clamped"
+right = "free"
+
+[[spring]]
+between = ["r", "e"]
+x = 1
+k = 5
+"""
+    run = run_file(tmp_path, text, "derive", "--json", limit=60)
+    assert run.code == 0
+    assert json.loads(run.stdout)["variable"] == "omega"
+
+
+def test_derive_with_coefficients_beyond_double_integers(tmp_path):
+    """Normalising a factor divided integers through a float (overflow beyond 1e308)."""
+    run = run_file(tmp_path, PAIR.format(EI="1e30", m="1e-30", L=1, x=0.5, k="1e-30"),
+                   "derive", "--json", limit=60)
+    assert run.code == 0
+
+
+# -- warnings ---------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("command, values", [
+    (["solve", "--count", "2", "--json"], dict(EI="1e30", m="1e-30", L="1e-10")),
+    (["solve", "--count", "2", "--json"], dict(EI="1e-30", m="1e30", L="1e10")),
+    (["solve", "--count", "2", "--json"], dict(EI=1, m=1, L="1e30")),
+    (["solve", "--count", "2", "--json"], dict(EI=1, m=1, L="1e-30")),
+    (["modes", "--count", "1", "--json"], dict(EI="1e30", m="1e-30", L="1e-10")),
+    (["modes", "--count", "1", "--json"], dict(EI="1e-30", m="1e30", L="1e10")),
+    (["modes", "--count", "1", "--json"], dict(EI=1, m=1, L="1e30")),
+    (["modes", "--count", "1", "--json"], dict(EI=1, m=1, L="1e-30")),
+])
+def test_no_warning_at_the_field_limits(tmp_path, values, command):
+    run = run_file(tmp_path, cantilever(**values), *command, limit=60)
+    assert run.code == 0 and not run.warnings
