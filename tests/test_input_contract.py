@@ -399,16 +399,6 @@ def _kernel(reason, slow=False):
 #: kernel breaks the contract. Each is a strict xfail: when the kernel is fixed, it passes
 #: and the xfail fails, so the case moves out of this list.
 KERNEL_FAILURES = [
-    pytest.param(_SLENDER_TIMOSHENKO.format(L="1e20"), ["solve", "--count", "2"],
-                 marks=_kernel("ArithmeticError 'no piece length keeps the clamped modes above "
-                               "omega' for a slender Timoshenko beam"),
-                 id="slender-timoshenko-error"),
-    pytest.param((EXAMPLES / "paper_ex4_damped.toml").read_text(),
-                 ["solve", "--count", "2", "--digits", "300"],
-                 marks=_kernel("ValueError 'math domain error' in roots/damped.py refine_complex "
-                               "from 300 digits on (a box width below the double range is 0 "
-                               "in log10)"),
-                 id="damped-300-digits"),
     pytest.param(_SHORT_CANTILEVER.replace("1e-30", "1"), ["solve", "--count", "100"],
                  marks=_kernel("100 eigenvalues of a cantilever take 50 s and 0.7 GB (60 take "
                                "4 s): the search's cost jumps with the highest mode; requests "
@@ -428,12 +418,23 @@ def test_known_kernel_failures(tmp_path_factory, text, command):
     (_HEAVY_DASHPOT, ["solve", "--count", "2"]),
     (_SLENDER_TIMOSHENKO.format(L="1e10"), ["solve", "--count", "2"]),
     (_SHORT_CANTILEVER, ["modes", "--count", "1"]),
+    ((EXAMPLES / "paper_ex4_damped.toml").read_text(), ["solve", "--count", "2", "--digits",
+                                                         "300"]),
 ], ids=["rank-of-R0-solve", "rank-of-R0-modes", "heavy-dashpot", "slender-timoshenko",
-        "modes-gram-matrix"])
+        "modes-gram-matrix", "damped-300-digits"])
 def test_former_kernel_failures(tmp_path_factory, text, command):
     """Cases of the list above that the kernel now meets: the rank of R(0) of two free
     beams, one on a stiff foundation, was undecided at 120 digits (ArithmeticError); the
     damped search on a heavy dashpot, and the search on a slender Timoshenko beam, ran
     past the time limit; the mass Gram matrix of modes at omega ~ 1e60 was not positive
-    definite in mpmath's Cholesky (ValueError)."""
+    definite in mpmath's Cholesky (ValueError); the damped search at 300 digits took a
+    box width below the double range for 0 (ValueError)."""
     assert _check(tmp_path_factory, text, command).code == 0
+
+
+def test_a_beam_too_slender_for_the_search_says_so(tmp_path_factory):
+    """A Timoshenko beam 1e20 long with kGA = 1: its pieces would have to be shorter than
+    1e-12 of it (ArithmeticError before): a failed computation, in one line."""
+    run = _check(tmp_path_factory, _SLENDER_TIMOSHENKO.format(L="1e20"),
+                 ["solve", "--count", "2"])
+    assert run.code == 1 and "too many pieces" in run.stderr

@@ -264,7 +264,11 @@ class BeamSegment(FieldElement):
             hi = trial
             trial /= 2
             if trial < 1e-12 * length:
-                raise ArithmeticError("no piece length keeps the clamped modes above omega")
+                from ..errors import ComputationError
+                raise ComputationError(
+                    f"a piece of this segment (length {length:.6g}) would have to be shorter "
+                    f"than 1e-12 of it to keep its clamped-clamped modes above omega = "
+                    f"{math.sqrt(max(omega2, 0.0)):.6g}: too many pieces for the search")
         lo = trial
         for _ in range(40):
             mid = 0.5 * (lo + hi)

@@ -122,6 +122,12 @@ def _scaled_dashpots(model: Model, factor) -> Model:
     return replace(model, springs=springs)
 
 
+def _decades(small, big) -> int:
+    """How many decimal orders ``small`` lies below ``big`` (rounded up), from their binary
+    exponents: ``small`` may be far below the double range (thousands of digits asked)."""
+    return math.ceil((mpmath.mag(big) - mpmath.mag(small)) * math.log10(2)) + 1
+
+
 def _imaginary(z) -> mpmath.mpc:
     """``i Im z`` exactly (``mpmath.mpc(0, y)`` would round ``y`` to the ambient precision)."""
     return mpmath.mp.make_mpc((mpmath.libmp.fzero, _global(z).imag._mpf_))
@@ -513,7 +519,7 @@ class _Search:
                     s["box"] = min(10 * s["tol"], mpmath.mpf(10) ** (-(self.digits + 15))
                                    * abs(s["zf"]))
                     s["tol"] = s["box"] / 1000
-                    digits = max(digits, math.ceil(-math.log10(s["box"] / abs(s["zf"]))) + 10)
+                    digits = max(digits, _decades(s["box"], abs(s["zf"])) + 10)
                 tols.append(s["tol"])
             first = self._secants([s["z"] for s in todo], digits, tols)
             ok = []
@@ -545,7 +551,7 @@ class _Search:
                 z = s["done"].lam
                 items.append((z, min(mpmath.mpf(10) ** (-(D + 3)) * abs(z.imag),
                                      mpmath.mpf(10) ** (-(D + 15)) * abs(z))))
-            digits = max(math.ceil(-math.log10(r / abs(z))) for z, r in items) + 20
+            digits = max(_decades(r, abs(z)) for z, r in items) + 20
             for s, (z, r), ok in zip(idle, items, self._rouche(items, digits)):
                 if ok and _prints_alike(z.imag, r, D):
                     s["done"] = Eigenvalue(z, 1, D, _box(z, r), DAMPED_PROOFS["rouche_idle"])
