@@ -122,9 +122,9 @@ def _tally(monkeypatch):
 
     calls = {"n": 0}
     for module in (count, evaluator):
-        def factor(plan, ar, lam2, lam=None, original=module.factor):
+        def factor(plan, ar, lam2, lam=None, reverse=False, original=module.factor):
             calls["n"] += len(lam2)
-            return original(plan, ar, lam2, lam)
+            return original(plan, ar, lam2, lam, reverse)
         monkeypatch.setattr(module, "factor", factor)
     original_enclose = evaluator.Evaluator.enclose
 

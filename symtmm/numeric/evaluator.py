@@ -125,17 +125,19 @@ class Evaluator:
                    for z in points), default=0.0)
         self.evaluations += len(points)
 
-        def build(work):
-            values = work.array([work.number(z) for z in points])
+        def build(work, idx):
+            chosen = points if idx is None else [points[i] for i in idx]
+            values = work.array([work.number(z) for z in chosen])
             return values * values, values
         return self._factor(self.plan(top), ar, build, retry)
 
     def _factor(self, plan, ar, build, retry: bool = True) -> Factors:
-        """``factor`` at the points ``build(ar) -> (lam2, lam)`` gives, redone in balls with
-        more bits while pivots stay undecided (:meth:`_ball`)."""
+        """``factor`` at the points ``build(ar, idx) -> (lam2, lam)`` gives (``idx``: which
+        of them, None for all), redone in balls with more bits while pivots stay
+        undecided (:meth:`_ball`)."""
         if not ar.rigorous or not retry:
             with ar:
-                lam2, lam = build(ar)
+                lam2, lam = build(ar, None)
             return factor(plan, ar, lam2, lam)
         return self._ball(plan, ar, build)
 
@@ -146,31 +148,44 @@ class Evaluator:
         adds the radii of the row it subtracts): measured at ``prec`` bits as the largest
         relative radius of the pivots, that growth is roughly independent of the
         precision, so one retry with ``log2(growth)`` more bits decides every pivot not
-        genuinely close to zero. The extra bits are kept per plan for later calls.
+        genuinely close to zero. Only the undecided points are redone; when most points
+        needed it, the extra bits are kept for the plan's later calls.
         """
         extra = self._extra_bits.get(id(plan), 0)
-        fa = None
-        for attempt in range(6):
-            work = Ball(ar.prec + extra) if extra else ar
+        work = Ball(ar.prec + extra) if extra else ar
+        with work:
+            lam2, lam = build(work, None)
+        fa = factor(plan, work, lam2, lam)
+        bad = np.nonzero(~fa.trusted)[0]
+        if bad.size:
+            # first the freedoms the other way round: a nearly singular leading minor (a
+            # sub-structure's eigenvalue near the point) makes the radii explode, and no
+            # number of bits mends that
             with work:
-                lam2, lam = build(work)
-            if attempt:
-                self.evaluations += len(lam2)       # the points again, with more bits
-            fa = factor(plan, work, lam2, lam)
-            if fa.trusted.all():
+                lam2, lam = build(work, bad)
+            self.evaluations += bad.size
+            fa = fa.replaced(bad, factor(plan, work, lam2, lam, reverse=True))
+        for _ in range(2):
+            bad = np.nonzero(~fa.trusted)[0]
+            if bad.size == 0 or extra >= 16 * ar.prec:
                 return fa
             growth = 0.0
-            for p in fa.pivots.reshape(-1):
+            for p in fa.pivots[bad].reshape(-1):
                 mid, rad = abs(p.mid()), p.rad()
                 if mid != 0 and mid.is_finite() and rad.is_finite():
-                    growth = max(growth, float(rad / mid))
+                    ratio = float(rad / mid)
+                    growth = max(growth, ratio) if math.isfinite(ratio) else growth
             # the bits the radii ate, measured; when they ran out entirely (an infinite
             # pivot ball) at least twice the precision
             needed = math.log2(growth) + work.prec + 8 if growth > 0 else 0
-            if extra >= 16 * ar.prec:
-                return fa
             extra = max(extra + 32, int(needed)) if growth > 0 else max(2 * extra, ar.prec)
-            self._extra_bits[id(plan)] = extra
+            if 2 * bad.size > len(fa.trusted):
+                self._extra_bits[id(plan)] = extra
+            work = Ball(ar.prec + extra)
+            with work:
+                lam2, lam = build(work, bad)
+            self.evaluations += bad.size            # those points again, with more bits
+            fa = fa.replaced(bad, factor(plan, work, lam2, lam))
         return fa
 
     # -- values ------------------------------------------------------------------------------

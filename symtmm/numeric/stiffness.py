@@ -177,6 +177,20 @@ class Factors:
             phase = ph.sum(axis=1) + (ph12 * mult).sum(axis=1)
             return logabs, np.angle(np.exp(1j * phase))
 
+    def replaced(self, points, other: Factors) -> Factors:
+        """These factors with the rows of ``points`` taken from ``other`` (the same points
+        factorised again, at another precision)."""
+        def merge(mine, theirs):
+            if mine is None:
+                return None
+            out = mine.copy() if mine.dtype == object or theirs.dtype == mine.dtype \
+                else mine.astype(np.result_type(mine, theirs))
+            out[points] = theirs
+            return out
+        return Factors(self.plan, other.ar, merge(self.pivots, other.pivots),
+                       merge(self.signs, other.signs), merge(self.decided, other.decided),
+                       merge(self.det12, other.det12), merge(self.K, other.K))
+
     def _constant(self):
         ar, plan = self.ar, self.plan
         return ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
@@ -221,17 +235,32 @@ class Factors:
         return ar.array(out)
 
 
-def factor(plan, ar: Arithmetic, lam2, lam=None) -> Factors:
+def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Factors:
     """``LDL^T`` of ``K(lam)`` at the points ``lam2`` ``(B,)`` (``lam`` with dashpots).
 
     Without pivoting: the pivots are those of the leading principal minors, so
     their signs give the inertia (Sylvester). A pivot whose sign is not trusted is
     replaced by 1 to carry on with the other points; that point's results are
-    marked undecided.
+    marked undecided. ``reverse``: the freedoms in the opposite order (another set of
+    leading minors, the same inertia and determinant): where a leading minor is nearly
+    singular at a point (a sub-structure's eigenvalue), the other end's are not.
     """
     with ar:
         K, det12 = assemble(plan, ar, lam2, lam)
+        if reverse:
+            K = reversed_band(K)
         return _ldl(plan, ar, K, det12)
+
+
+def reversed_band(K) -> np.ndarray:
+    """The upper band ``(B, n, b + 1)`` of ``P K P`` with ``P`` the reversal of the freedoms:
+    ``K'[r, r + j] = K[n-1-r-j, n-1-r]``, stored at row ``n-1-r-j``, column ``j``."""
+    _, n, w = K.shape
+    out = np.zeros_like(K) if K.dtype != object else K.copy()
+    for j in range(w):
+        rows = np.arange(n - j)
+        out[:, rows, j] = K[:, n - 1 - rows - j, j]
+    return out
 
 
 def _ldl(plan, ar: Arithmetic, K, det12) -> Factors:

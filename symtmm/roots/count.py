@@ -99,8 +99,9 @@ class Counter(Evaluator):
         points = [exact_mpf(v) for v in omegas]
         self.evaluations += len(points)
 
-        def build(work):
-            pts = [work.number(v) for v in points]
+        def build(work, idx):
+            chosen = points if idx is None else [points[i] for i in idx]
+            pts = [work.number(v) for v in chosen]
             return work.array([p * p if positive else -(p * p) for p in pts]), None
         return self._factor(self.plan(max((float(v) for v in points), default=0.0)), ar, build)
 

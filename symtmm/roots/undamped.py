@@ -331,11 +331,28 @@ class _Search:
 
     # -- the digits, proved, all roots at once -------------------------------------------------
     def _evaluate(self, points):
-        """``(Delta(i w) as global mpmath numbers, J(w))`` at mpmath points, proof arithmetic."""
+        """``(Delta(i w) as global mpmath numbers, J(w), proved)`` at mpmath points.
+
+        In the proof arithmetic; a point whose ball count stays undecided (at high modes
+        the ball elimination can widen its radii beyond any precision while the
+        factorisation itself is sound) is counted again in mpmath at two precisions,
+        and if both agree that count is used, not proved (``proved`` False there).
+        """
         values, counts = self.counter.delta(points, self.hp)
         # (an undecided count may come with a ball of no finite midpoint: no value there)
-        return [mpmath.re(self.hp.to_mpmath(v)) if c >= 0 else None
-                for v, c in zip(values, counts)], counts
+        out = [mpmath.re(self.hp.to_mpmath(v)) if c >= 0 else None
+               for v, c in zip(values, counts)]
+        proved = np.full(len(points), self.hp.rigorous)
+        bad = [j for j, c in enumerate(counts) if c < 0]
+        if bad and self.hp.rigorous:
+            ar = MP(self.hp.prec)
+            first, c1 = self.counter.delta([points[j] for j in bad], ar)
+            c2 = self.counter.counts([points[j] for j in bad], MP(self.hp.prec + 64))
+            counts = np.array(counts)
+            for j, v, k1, k2 in zip(bad, first, c1, c2):
+                if k1 >= 0 and k1 == k2:
+                    counts[j], out[j], proved[j] = k1, mpmath.re(ar.to_mpmath(v)), False
+        return out, counts, proved
 
     def _checked(self, points, counts) -> bool:
         """Without balls, the counts again at a second precision must agree."""
@@ -388,6 +405,7 @@ class _Search:
         h = [ctx.mpf("1e-11")] * R
         target = ctx.mpf(10) ** (-(D + 3))
         done: list = [None] * R
+        by_balls = [self.hp.rigorous] * R       # the last pair of each root proved in balls
         for _ in range(60):
             tests, owner = [], []
             for i in range(R):
@@ -397,10 +415,11 @@ class _Search:
                     owner.append(i)
             if not owner:
                 break
-            values, counts = self._evaluate(tests)
+            values, counts, proved = self._evaluate(tests)
             for j, i in enumerate(owner):
                 (t1, t2), (f1, f2), (k1, k2) = (tests[2 * j:2 * j + 2], values[2 * j:2 * j + 2],
                                                 counts[2 * j:2 * j + 2])
+                by_balls[i] = bool(proved[2 * j] and proved[2 * j + 1])
                 for t, f, k in ((t1, f1, k1), (t2, f2, k2)):
                     if k == ca[i] and t > a[i]:
                         a[i], fa[i] = t, f
@@ -436,10 +455,11 @@ class _Search:
                              [k for i in range(R) for k in (ca[i], ca[i] + 1)]):
             raise _MorePrecision()
         out = []
-        for lo_i, hi_i in done:
+        for (lo_i, hi_i), balls in zip(done, by_balls):
             mid = (lo_i + hi_i) / 2
             bracket = (mpmath.mp.make_mpf(lo_i._mpf_), mpmath.mp.make_mpf(hi_i._mpf_))
-            out.append(Eigenvalue(_exact_mpc_imag(mid), 1, D, bracket, self.proof))
+            proof = self.proof if balls else PROOFS["mp"]
+            out.append(Eigenvalue(_exact_mpc_imag(mid), 1, D, bracket, proof))
         return out
 
     # -- clusters ------------------------------------------------------------------------------
