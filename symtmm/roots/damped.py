@@ -178,12 +178,17 @@ class _Problem:
         return self.kernel.evaluations + self.extra
 
     def spacing(self, z) -> float:
+        """The contours' first grid near ``z``: half of ``|lam|`` over the waves the beams
+        hold there (``Delta`` turns by about a radian per wave). Only a start: every step
+        is then halved until ``arg Delta`` changes by less than ``pi/4`` and both halves of
+        it pass as well (:mod:`symtmm.roots.contour`), so a coarser start costs passes,
+        not certainty (0.3 sampled example 4's region with 7,000 points, 0.5 with 4,300)."""
         a = max(abs(z), self.lam_ref)
         total = 0.0
         for seg, mu, L in self.waves:
             k = (mu * a * a) ** 0.25 if seg is None else float(np.max(seg.wave_number(-a * a)))
             total += k * L
-        return 0.3 * a / (1.0 + total)
+        return 0.5 * a / (1.0 + total)
 
     def min_step(self, z) -> float:
         return 1e-10 * max(abs(z), self.lam_ref)
