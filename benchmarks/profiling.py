@@ -24,7 +24,7 @@ ROUTINE_TEXT = {
     "factor_double": "double-precision factorizations (counts and Delta)",
     "factor_ball": "ball-arithmetic factorizations (the proofs)",
     "factor_mp": "mpmath factorizations",
-    "rigid_body_modes": "the exact rank of R(0) (rigid-body modes)",
+    "rigid_body_modes": "the exact static null space (rigid-body modes)",
     "complex_factor_double": "double-precision factorizations at complex points",
     "complex_factor_ball": "ball factorizations at complex points",
     "complex_factor_mp": "mpmath factorizations at complex points",
