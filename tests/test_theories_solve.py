@@ -541,6 +541,23 @@ def test_stiff_shear_in_si_units_beside_a_unit_bending_stiffness():
             assert e.to_dict()["imag"] == mpmath.nstr(ref, 12, strip_zeros=False)
 
 
+def test_a_model_in_si_units():
+    """A steel girder (Timoshenko, EI = 1.68e6 N m2, kGA = 8.1e8 N) under a deck, joined by
+    springs of 2.5e6 N/m: units of every size together, against the converged FE model."""
+    girder = dict(name="g", EI=1.68e6, m=47.0, L=6.0, x0=0.0, left="pinned", right="pinned",
+                  rhoI=0.0376, kGA=8.1e8)
+    deck = dict(name="d", EI=3.2e5, m=120.0, L=6.0, x0=0.0, left="pinned", right="pinned")
+    model = Model((Beam("g", "1.68e6", 47, 6, left="pinned", right="pinned",
+                        theory="timoshenko", rhoI="0.0376", kGA="8.1e8"),
+                   Beam("d", "3.2e5", 120, 6, left="pinned", right="pinned")),
+                  (Spring("g", "d", 2, "2.5e6"), Spring("g", "d", 4, "2.5e6")))
+    spectrum = solve_undamped(model, count=4, digits=12)
+    fe = fe_converged([girder, deck], [dict(between=["g", "d"], x=2.0, k=2.5e6),
+                                       dict(between=["g", "d"], x=4.0, k=2.5e6)], 12, count=4)
+    got = np.array([float(e.omega) for e in spectrum])
+    assert np.all(np.abs(got - fe["omega"]) <= 10 * fe["error"] + 1e-10 * got)
+
+
 def test_compression_just_below_buckling_is_solved():
     """A pinned-sliding beam (half a pinned-pinned one of length 2L) at 0.99 of its buckling
     load pi**2 EI / (4 L**2): Y = sin(k x), k = (n - 1/2) pi / L, omega**2 = k**4 + N k**2;
