@@ -14,12 +14,28 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["shrink", "SEPARATION_DIGITS"]
+__all__ = ["shrink", "scaled", "scaled_ends", "SEPARATION_DIGITS"]
 
 #: Eigenvalues are told apart down to a relative distance of ``10**-(D + 2 +
 #: SEPARATION_DIGITS)`` (``D`` the digits asked for); closer ones are reported as one
 #: eigenvalue with their multiplicity, as exact multiple eigenvalues are.
 SEPARATION_DIGITS = 20
+
+
+def scaled(logabs, sign, ref):
+    """Values ``sign * exp(logabs - ref)`` without overflow (``ref`` per bracket)."""
+    with np.errstate(all="ignore"):
+        return sign * np.exp(np.minimum(logabs - ref, 700.0))
+
+
+def scaled_ends(logabs, sign):
+    """``(fa, fb, ref)`` from ``log|f|`` and signs at the ends ``[a..., b...]`` of ``R``
+    brackets: each bracket's values scaled by its larger end, so that ``|f|`` of any size
+    (a determinant far beyond the double range) fits."""
+    R = len(logabs) // 2
+    ref = np.maximum(logabs[:R], logabs[R:])
+    ref = np.where(np.isfinite(ref), ref, 0.0)
+    return scaled(logabs[:R], sign[:R], ref), scaled(logabs[R:], sign[R:], ref), ref
 
 
 def shrink(a, b, fa, fb, probe, width: float, steps: int = 100):

@@ -71,7 +71,7 @@ from ..numeric.arith import MP, Ball, ball_available
 from ..numeric.evaluator import Evaluator
 from ..numeric.evaluator import exact_mpc as _global
 from ..results import Eigenvalue, Spectrum, decimal_string, first
-from .bracket import SEPARATION_DIGITS, shrink
+from .bracket import SEPARATION_DIGITS, scaled, scaled_ends, shrink
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
 from .undamped import PROOFS, _first_guess, check_stable, omega_scale
 
@@ -765,19 +765,12 @@ class _Search:
             a = [self._at(r.x0, MP(256).ctx).real for r in rects]
             b = [self._at(r.x1, MP(256).ctx).real for r in rects]
             return self._pairs([(x + y) / 2 for x, y in zip(a, b)], list(zip(a, b)))
-        R = len(rects)
         la, ph, _ = self.p.log_delta(np.concatenate([a, b]).astype(complex))
-        sign = np.where(np.cos(ph) < 0, -1.0, 1.0)
-        ref = np.maximum(la[:R], la[R:])
-        ref = np.where(np.isfinite(ref), ref, 0.0)
-        with np.errstate(all="ignore"):
-            fa = sign[:R] * np.exp(np.minimum(la[:R] - ref, 700.0))
-            fb = sign[R:] * np.exp(np.minimum(la[R:] - ref, 700.0))
+        fa, fb, ref = scaled_ends(la, np.where(np.cos(ph) < 0, -1.0, 1.0))
 
         def probe(c, idx):
             lc, pc, okc = self.p.log_delta(c.astype(complex))
-            with np.errstate(all="ignore"):
-                fc = np.where(np.cos(pc) < 0, -1.0, 1.0) * np.exp(np.minimum(lc - ref[idx], 700.0))
+            fc = scaled(lc, np.where(np.cos(pc) < 0, -1.0, 1.0), ref[idx])
             side = np.where(np.sign(fc) == np.sign(fb0[idx]), 1, -1)
             return fc, np.where(okc & (fc != 0) & np.isfinite(fc), side, 0)
 

@@ -52,7 +52,7 @@ from ..model import Model
 from ..numeric.arith import MP
 from ..numeric.evaluator import exact_mpf as _exact_mpf
 from ..results import Eigenvalue, Spectrum, decimal_string, first
-from .bracket import SEPARATION_DIGITS, shrink
+from .bracket import SEPARATION_DIGITS, scaled, scaled_ends, shrink
 from .count import Counter, digits_for, proof_arithmetic
 
 __all__ = ["solve_undamped", "rigid_body_modes", "check_stable", "omega_scale", "PROOFS"]
@@ -305,18 +305,12 @@ class _Search:
         a = np.array([x[0] for x in brackets], dtype=float)
         b = np.array([x[2] for x in brackets], dtype=float)
         ca = np.array([x[1] for x in brackets], dtype=int)
-        R = len(a)
         la, sg, _ = self.counter.signed_log_delta(np.concatenate([a, b]))
-        ref = np.maximum(la[:R], la[R:])
-        ref = np.where(np.isfinite(ref), ref, 0.0)
-        with np.errstate(all="ignore"):
-            fa = sg[:R] * np.exp(np.minimum(la[:R] - ref, 700.0))
-            fb = sg[R:] * np.exp(np.minimum(la[R:] - ref, 700.0))
+        fa, fb, ref = scaled_ends(la, sg)
 
         def probe(c, idx):
             lc, sc, kc = self.counter.signed_log_delta(c)
-            with np.errstate(all="ignore"):
-                fc = sc * np.exp(np.minimum(lc - ref[idx], 700.0))
+            fc = scaled(lc, sc, ref[idx])
             side = np.where(kc == ca[idx], -1, np.where(kc == ca[idx] + 1, 1, 0))
             # an undecided count (a pivot near zero: the point is near the root): the sign of
             # Delta tells the side (one simple root inside, so Delta changes sign once); a
