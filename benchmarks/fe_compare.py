@@ -191,10 +191,11 @@ def fe_seconds(fe, n: int, repeat: int = REPEAT) -> float:
     return best
 
 
-def _one_thread(jobs, limit: float = 300.0):
-    """``fe_seconds`` of ``[(case, elements), ...]`` in a child process with one BLAS
-    thread; None if it fails."""
-    cmd = [sys.executable, "-m", "benchmarks.fe_compare", "one-thread", json.dumps(jobs)]
+def one_thread(module: str, *args: str, limit: float = 300.0):
+    """The JSON last printed by ``python -m MODULE one-thread ARGS...``, run in a child
+    process with one BLAS thread (the FE timing a user pinning threads would see); None
+    if it fails or takes longer than ``limit`` seconds."""
+    cmd = [sys.executable, "-m", module, "one-thread", *args]
     try:
         out = subprocess.run(cmd, capture_output=True, text=True, timeout=limit, cwd=ROOT,
                              env={**os.environ, **ONE_THREAD}, check=False)
@@ -203,6 +204,11 @@ def _one_thread(jobs, limit: float = 300.0):
     if out.returncode != 0:
         return None
     return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def _one_thread(jobs):
+    """``fe_seconds`` of ``[(case, elements), ...]`` with one BLAS thread; None if it fails."""
+    return one_thread("benchmarks.fe_compare", json.dumps(jobs))
 
 
 def _symtmm(model, ref) -> dict:

@@ -21,15 +21,13 @@ sweep's values are compared with the reference at every step.
 from __future__ import annotations
 
 import json
-import os
-import subprocess
 import sys
 import time
 
 import numpy as np
 
 from . import references, sparse_fe
-from .fe_compare import ONE_THREAD, ROOT, TOLERANCE, coarsest, rel_error
+from .fe_compare import TOLERANCE, coarsest, one_thread, rel_error
 from .models import example
 from .profiling import profile_call
 
@@ -146,16 +144,8 @@ def run(quick: bool = False, progress=print) -> dict:
                     ratio=seconds / fe_seconds, met=bool(seconds < fe_seconds)))
 
 
-def _one_thread(steps: int, n: int, limit: float = 300.0):
-    cmd = [sys.executable, "-m", "benchmarks.sweep_compare", "one-thread", str(steps), str(n)]
-    try:
-        out = subprocess.run(cmd, capture_output=True, text=True, timeout=limit, cwd=ROOT,
-                             env={**os.environ, **ONE_THREAD}, check=False)
-    except subprocess.TimeoutExpired:
-        return None
-    if out.returncode != 0:
-        return None
-    return json.loads(out.stdout.strip().splitlines()[-1])
+def _one_thread(steps: int, n: int):
+    return one_thread("benchmarks.sweep_compare", str(steps), str(n))
 
 
 if __name__ == "__main__" and len(sys.argv) == 4 and sys.argv[1] == "one-thread":
