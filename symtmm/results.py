@@ -8,6 +8,8 @@ from dataclasses import dataclass, field, replace
 
 import mpmath
 
+from .display import html_table, latex_array, latex_text
+
 __all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string"]
 
 
@@ -248,15 +250,10 @@ class Spectrum:
 
     def _repr_html_(self) -> str:
         """An HTML table (Jupyter)."""
-        from html import escape
         head, rows = self._display_rows()
-        out = ["<table>", "<tr>" + "".join(f"<th>{escape(h)}</th>" for h in head) + "</tr>"]
-        out += ["<tr>" + "".join(f"<td>{escape(c)}</td>" for c in r) + "</tr>" for r in rows]
-        out.append("</table>")
-        out.append(f"<small>{self.total} eigenvalue(s) with multiplicity, {self.digits} "
-                   f"significant digits; method {escape(self.method)}, {self.evaluations} "
-                   f"evaluations, {self.seconds:.3f} s</small>")
-        return "".join(out)
+        return html_table(head, rows, note=(
+            f"{self.total} eigenvalue(s) with multiplicity, {self.digits} significant digits; "
+            f"method {self.method}, {self.evaluations} evaluations, {self.seconds:.3f} s"))
 
     def _repr_latex_(self) -> str:
         """A LaTeX array (Jupyter, documents)."""
@@ -265,9 +262,6 @@ class Spectrum:
                "Re λ [1/s]": r"\mathrm{Re}\,\lambda\ [1/\mathrm{s}]",
                "Im λ = ω [rad/s]": r"\mathrm{Im}\,\lambda = \omega\ [\mathrm{rad/s}]",
                "mult.": r"\mathrm{mult.}"}
-        cols = [tex.get(h, r"\Omega\ (\mathrm{beam\ " + h[8:-1].replace("_", r"\_") + "})")
-                for h in head]
-        lines = [r"\begin{array}{" + "r" * len(cols) + "}", " & ".join(cols) + r" \\ \hline"]
-        lines += [" & ".join(r) + r" \\" for r in rows]
-        lines.append(r"\end{array}")
-        return "$" + "\n".join(lines) + "$"
+        ref = self.omega_scale[0] if self.omega_scale else ""
+        return latex_array([tex.get(h, r"\Omega\ (" + latex_text("beam " + ref) + ")")
+                            for h in head], rows)

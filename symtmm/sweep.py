@@ -35,6 +35,7 @@ import mpmath
 import numpy as np
 import sympy as sp
 
+from .display import html_table, latex_array, latex_text
 from .errors import ComputationError, ModelError
 from .expr import ExpressionError, exact_number, parse_expression
 from .model import Model
@@ -474,22 +475,14 @@ class Sweep:
         return self.table()
 
     def _repr_html_(self) -> str:
-        from html import escape
-        head, rows = self._rows(min(8, self.digits))
-        out = ["<table>", "<tr>" + "".join(f"<th>{escape(h)}</th>" for h in head) + "</tr>"]
-        out += ["<tr>" + "".join(f"<td>{escape(c)}</td>" for c in r) + "</tr>" for r in rows]
-        out.append("</table>")
-        return "".join(out)
+        return html_table(*self._rows(min(8, self.digits)))
 
     def _repr_latex_(self) -> str:
         head, rows = self._rows(min(8, self.digits))
-        cols = [r"\mathrm{" + head[0].replace("_", r"\_") + "}"] + [
-            h.replace("Omega", r"\Omega").replace("omega", r"\omega").replace("lam", r"\lambda")
-            .replace("_", "_{", 1) + "}" for h in head[1:]]
-        lines = [r"\begin{array}{" + "r" * len(head) + "}", " & ".join(cols) + r" \\ \hline"]
-        lines += [" & ".join(r) + r" \\" for r in rows]
-        lines.append(r"\end{array}")
-        return "$" + "\n".join(lines) + "$"
+        symbol = r"\Omega" if self.omega_scale and not self.damped else (
+            r"\lambda" if self.damped else r"\omega")
+        return latex_array([latex_text(self.parameter)]
+                           + [f"{symbol}_{{{i}}}" for i in range(1, len(head))], rows)
 
     def plot(self, **kwargs):
         """The branches as a matplotlib figure (see :func:`symtmm.plot.plot_sweep`)."""

@@ -12,6 +12,7 @@ import sympy as sp
 from symtmm import api
 from symtmm.cli import main
 from symtmm.compile import Evaluator
+from symtmm.display import html_table, latex_text
 from symtmm.errors import ComputationError, ModelError
 from symtmm.model import Beam, Model, Spring
 from symtmm.plot import Figure, plot_modes, plot_scan, plot_scan_map, plot_sweep, save_figure
@@ -205,6 +206,40 @@ def test_rich_representations():
     modes = api.modes(PP, count=1, points=5, spectrum=spectrum)
     assert "<table>" in modes._repr_html_() and "\\begin{array}" in modes._repr_latex_()
     assert "mass-normalised" in str(modes)
+
+
+def _braces_pair(latex: str) -> bool:
+    """The unescaped braces of ``latex`` pair up (no text closed a group it did not open)."""
+    depth = 0
+    for k, c in enumerate(latex):
+        if c in "{}" and latex[k - 1] != "\\":
+            depth += 1 if c == "{" else -1
+            if depth < 0:
+                return False
+    return depth == 0
+
+
+def test_display_escapes_any_text():
+    """The notebook tables show text as written: markup in it stays text."""
+    text = "b_1 <i>{x}</i> \\href{y}$&%#^~"
+    latex = latex_text(text)
+    assert _braces_pair(latex) and "\\href" not in latex and "\\backslash href\\{y\\}" in latex
+    for special in "$&%#^~_":
+        assert special not in latex.replace("\\" + special, "").replace("\\hat{}", "")
+    html = html_table([text], [[text]], note=text)
+    assert "<i>" not in html and html.count("&lt;i&gt;") == 3
+
+
+def test_rich_representations_name_with_underscores():
+    model = Model((Beam("upper_beam_1", EI="EI_a", m=3, L=1, left="pinned", right="pinned"),),
+                  parameters={"EI_a": 2})
+    spectrum = api.solve(model, count=1, digits=8)
+    modes = api.modes(model, count=1, points=5, spectrum=spectrum)
+    for latex in (spectrum._repr_latex_(), modes._repr_latex_()):
+        assert "upper\\_beam\\_1}" in latex and _braces_pair(latex[1:-1])
+    sw = api.sweep(model, "EI_a", 2, 3, 2, count=1, digits=6)
+    assert sw._repr_html_().count("<tr>") == 3 and sw._repr_latex_().count("\\\\") == 3
+    assert "\\mathrm{EI\\_a}" in sw._repr_latex_()
 
 
 def test_api_load_with_overrides(examples_dir):

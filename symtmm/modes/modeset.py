@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import mpmath
 import numpy as np
 
+from ..display import html_table, latex_array, latex_text
 from ..elements import STATE
 from ..model import Model
 from ..numeric.arith import MP
@@ -220,21 +221,12 @@ class ModeSet:
         return self.table()
 
     def _repr_html_(self) -> str:
-        from html import escape
-        head, rows = self._head(), self._rows()
-        out = ["<table>", "<tr>" + "".join(f"<th>{escape(h)}</th>" for h in head) + "</tr>"]
-        out += ["<tr>" + "".join(f"<td>{escape(c)}</td>" for c in r) + "</tr>" for r in rows]
-        out.append("</table>")
-        return "".join(out)
+        return html_table(self._head(), self._rows())
 
     def _repr_latex_(self) -> str:
-        head, rows = self._head(), self._rows()
         cols = [r"\#", r"\lambda\ [1/\mathrm{s}]", r"\Omega"] + [
-            r"\max|Y|\ \mathrm{" + n.replace("_", r"\_") + "}" for n in self.beam_names]
-        lines = [r"\begin{array}{" + "r" * len(head) + "}", " & ".join(cols) + r" \\ \hline"]
-        lines += [" & ".join(r) + r" \\" for r in rows]
-        lines.append(r"\end{array}")
-        return "$" + "\n".join(lines) + "$"
+            r"\max|Y|\ " + latex_text(n) for n in self.beam_names]
+        return latex_array(cols, self._rows())
 
     def plot(self, **kwargs):
         """The shapes as a matplotlib figure (see :func:`symtmm.plot.plot_modes`)."""
