@@ -160,12 +160,18 @@ def test_example4_cli_json(capsys, ex4_reference):
 
 
 # -- digits -----------------------------------------------------------------------------------
+@pytest.mark.parametrize("ambient", [None, 8, 400], ids=["default", "8 bits", "400 bits"])
 @pytest.mark.parametrize("digits", [6, 15, 30])
-def test_every_printed_digit_correct(digits):
-    """A pinned-pinned beam with a spring and a dashpot to the ground at 3/10."""
+def test_every_printed_digit_correct(digits, ambient):
+    """A pinned-pinned beam with a spring and a dashpot to the ground at 3/10; whatever
+    the ambient mpmath precision (the search never reads it)."""
     model = Model((Beam("a", EI=1, m=1, L=1, left="pinned", right="pinned"),),
                   (Spring("a", "ground", x="3/10", k=20, c=4),))
-    spec = solve_damped(model, omega_max=100, digits=digits)
+    if ambient is None:
+        spec = solve_damped(model, omega_max=100, digits=digits)
+    else:
+        with mpmath.workprec(ambient):
+            spec = solve_damped(model, omega_max=100, digits=digits)
     refs = pp_damped_roots(1, 1, 1, [(Fraction(3, 10), 20, 4)], 200, dps=60)
     refs = sorted((z for z in refs if z.imag <= 100), key=lambda z: z.imag)
     assert len(spec) == len(refs) == 3
@@ -173,6 +179,18 @@ def test_every_printed_digit_correct(digits):
         d = e.to_dict()
         assert_digits_correct(d["real"], ref.real, digits)
         assert_digits_correct(d["imag"], ref.imag, digits)
+
+
+def test_a_box_straddling_a_rounding_boundary_is_not_accepted():
+    """Re z = 1 + 5e-20 -+ 1e-22 straddles the 20-digit rounding boundary: the ends of
+    the box print differently, also under the default (53-bit) ambient precision."""
+    from symtmm.roots.damped import _box, _prints_alike
+    with mpmath.workdps(60):
+        z = mpmath.mpc(1 + mpmath.mpf("5e-20"), 2)
+        r = mpmath.mpf("1e-22")
+    re_ends, im_ends = _box(z, r)
+    assert not _prints_alike(re_ends, 20) and _prints_alike(im_ends, 20)
+    assert _prints_alike(re_ends, 19)
 
 
 # -- finite elements with a damping matrix -----------------------------------------------------

@@ -146,12 +146,26 @@ def _box(z, r) -> tuple:
             (_global(im - r).real, _global(im + r).real))
 
 
-def _prints_alike(x, err, digits) -> bool:
-    """``x - err`` and ``x + err`` print alike with ``digits`` digits (0 always does)."""
-    if x == 0:
-        return True
-    return decimal_string(_global(x - err).real, digits) == \
-        decimal_string(_global(x + err).real, digits)
+def _prints_alike(ends, digits) -> bool:
+    """The ends ``(lo, hi)`` of an interval print alike with ``digits`` digits."""
+    lo, hi = ends
+    return decimal_string(_global(lo).real, digits) == decimal_string(_global(hi).real, digits)
+
+
+# Tolerances and box sizes: 64 bits are plenty for them, and building them in this
+# private context keeps the ambient mpmath precision out of every decision.
+_TOL = MP(64).ctx
+
+
+def _tol(k: int, scale=1) -> mpmath.mpf:
+    """``10**k |scale|`` to 64 bits, as a global mpmath number (unrounded)."""
+    return _global(_TOL.mpf(10) ** k * abs(_TOL.mpc(scale))).real
+
+
+def _log_arg(v) -> tuple:
+    """``(log|v|, arg v)`` as floats, in a private context (``v`` any mpmath number)."""
+    c = _TOL.mpc(v)
+    return float(_TOL.log(abs(c))), float(_TOL.arg(c))
 
 
 class _Problem:
@@ -237,9 +251,10 @@ class _Problem:
             for i, a, b in zip(bad, first, second):
                 if a is None or b is None or a == 0 or b == 0:
                     continue
-                la, ph = float(mpmath.log(abs(a))), float(mpmath.arg(a))
-                if not self.balls and (abs(la - float(mpmath.log(abs(b)))) > 1e-6 or abs(
-                        math.remainder(ph - float(mpmath.arg(b)), 2 * math.pi)) > 1e-6):
+                la, ph = _log_arg(a)
+                lb, pb = _log_arg(b)
+                if not self.balls and (abs(la - lb) > 1e-6
+                                       or abs(math.remainder(ph - pb, 2 * math.pi)) > 1e-6):
                     continue
                 logabs[i], phase[i], ok[i] = la, ph, True
         return logabs, phase, ok
@@ -268,7 +283,8 @@ class _LocalFunction:
         ok = np.zeros(u.shape, dtype=bool)
         for i, v in enumerate(values):
             if v is not None and v != 0:
-                logabs[i], phase[i], ok[i] = float(mpmath.log(abs(v))), float(mpmath.arg(v)), True
+                logabs[i], phase[i] = _log_arg(v)
+                ok[i] = True
         return logabs, phase, ok
 
 
@@ -517,13 +533,13 @@ class _Search:
                 target = min(abs(s["zf"].real) or abs(s["zf"]), abs(s["zf"].imag) or abs(s["zf"]))
                 if conservative:
                     target = abs(s["zf"].imag) or abs(s["zf"])
-                s["tol"] = mpmath.mpf(10) ** (-(self.digits + 4 + s["tighter"])) * target
+                s["tol"] = _tol(-(self.digits + 4 + s["tighter"]), target)
                 if self.p.balls and self.origin is None:
                     # the box Rouche's theorem proves (see _rouche), and the estimate well
                     # inside it
-                    s["box"] = min(10 * s["tol"], mpmath.mpf(10) ** (-(self.digits + 15))
-                                   * abs(s["zf"]))
-                    s["tol"] = s["box"] / 1000
+                    s["box"] = min(_tol(-(self.digits + 3 + s["tighter"]), target),
+                                   _tol(-(self.digits + 15), s["zf"]))
+                    s["tol"] = _tol(-3, s["box"])
                     digits = max(digits, _decades(s["box"], abs(s["zf"])) + 10)
                 tols.append(s["tol"])
             first = self._secants([s["z"] for s in todo], digits, tols)
@@ -554,11 +570,10 @@ class _Search:
             items = []
             for s in idle:
                 z = s["done"].lam
-                items.append((z, min(mpmath.mpf(10) ** (-(D + 3)) * abs(z.imag),
-                                     mpmath.mpf(10) ** (-(D + 15)) * abs(z))))
+                items.append((z, min(_tol(-(D + 3), z.imag), _tol(-(D + 15), z))))
             digits = max(_decades(r, abs(z)) for z, r in items) + 20
             for s, (z, r), ok in zip(idle, items, self._rouche(items, digits)):
-                if ok and _prints_alike(z.imag, r, D):
+                if ok and _prints_alike(_box(z, r)[1], D):
                     s["done"] = Eigenvalue(z, 1, D, _box(z, r), DAMPED_PROOFS["rouche_idle"])
         for s in state:
             out.append(s["done"] if isinstance(s["done"], Eigenvalue) else None)
@@ -576,14 +591,16 @@ class _Search:
             z = s["za"]
             if conservative:
                 z = _imaginary(z)
-            elif abs(z.real) < mpmath.mpf(10) ** (-(D + 25)) * abs(z):
+            elif _TOL.mpf(abs(z.real)) < _tol(-(D + 25), z):
                 rest.append(s)
                 continue
             tried.append((s, z))
         proved = self._rouche([(z, s["box"]) for s, z in tried], digits + 10)
         for (s, z), ok in zip(tried, proved):
             r = s["box"]
-            if ok and all(_prints_alike(part, r, D) for part in (z.real, z.imag) if part != 0):
+            box = _box(z, r)
+            if ok and all(_prints_alike(ends, D) for part, ends in zip((z.real, z.imag), box)
+                          if part != 0):
                 s["done"] = Eigenvalue(z, 1, D, _box(z, r), DAMPED_PROOFS["rouche"])
             else:
                 rest.append(s)
@@ -683,8 +700,8 @@ class _Search:
             zb_c = ctx.mpc(0, zb_c.imag)
             ok_re = True
         if ok_re and ok_im:
-            if s["tighter"] >= 30 or all(_prints_alike(part, err, self.digits)
-                                         for part in (zb_c.real, zb_c.imag)):
+            if s["tighter"] >= 30 or all(_prints_alike((part - err, part + err), self.digits)
+                                         for part in (zb_c.real, zb_c.imag) if part != 0):
                 s["done"] = Eigenvalue(_global(zb_c), 1, self.digits, None,
                                        DAMPED_PROOFS["agree"])
                 return
@@ -709,7 +726,7 @@ class _Search:
 
     def _idle(self, z, digits, m) -> bool:
         """``z`` is also an ``m``-fold zero of the model without and with doubled dashpots."""
-        tol = mpmath.mpf(10) ** (-(self.digits + (20 if m == 1 else 2))) * abs(z)
+        tol = _tol(-(self.digits + (20 if m == 1 else 2)), z)
         for factor in (0, 2):
             kernel = self.p.auxiliary(factor)
             before = kernel.evaluations
@@ -797,7 +814,7 @@ class _Search:
         scale = max(max(abs(float(x)), abs(float(y))) for x, y in outer)
         digits = self._digits_for(scale) + 5
         R = len(estimates)
-        target = mpmath.mpf(10) ** (-(D + 3))
+        target = _tol(-(D + 3))
         while digits <= MAX_DIGITS:
             ctx = MP.from_digits(digits + 20).ctx
             a = [ctx.mpf(x) for x, _ in outer]
