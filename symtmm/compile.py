@@ -106,16 +106,12 @@ class Evaluator:
         return MP.from_digits(dps if dps is not None else mpmath.mp.dps)
 
     def _point(self, lam, real: bool, dps):
-        """``(arithmetic, lam, lam**2)`` arrays of one point for the transfer walk."""
+        """``(arithmetic, lam, lam**2)`` arrays of one point for the transfer walk, built in
+        the arithmetic (the ambient precision is only the default of ``dps``)."""
         ar = self._arith(dps)
-        lam = mpmath.mpmathify(lam)
-        if not real:
-            return ar, ar.array([ar.number(lam)]), None
-        if self.damped:
+        if real and self.damped:
             raise ValueError("real arithmetic needs an undamped model")
-        w = lam.imag if isinstance(lam, mpmath.mpc) else None
-        x = ar.number(-(w ** 2)) if w is not None else ar.number(lam * lam)
-        return ar, None, ar.array([x])
+        return (ar, *transfer.point(ar, ar.number(ar.ctx.mpmathify(lam)), real))
 
     def R_mp(self, lam, real: bool = False, dps: int | None = None) -> mpmath.matrix:
         """``R(lam)`` at one eigenvalue in mpmath at ``dps`` digits (default: the ambient
@@ -133,4 +129,5 @@ class Evaluator:
 
     def delta_omega_mp(self, omega, dps: int | None = None):
         """``Delta(i omega)`` of an undamped model, real."""
-        return self.delta_mp(mpmath.mpc(0, omega), real=True, dps=dps)
+        ctx = self._arith(dps).ctx
+        return self.delta_mp(ctx.mpc(0, ctx.mpmathify(omega)), real=True, dps=dps)

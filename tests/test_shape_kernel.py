@@ -141,6 +141,21 @@ def test_ambient_precision_is_neither_read_nor_set():
     assert abs(shape.beams["b"].Y[2] - np.sqrt(2)) < 1e-14
 
 
+def test_explicit_digits_of_the_evaluator_ignore_the_ambient_precision():
+    """Delta of a pinned-pinned beam at its first eigenvalue, pi**2 given to 70 digits,
+    vanishes to about 60 digits whatever the ambient precision (it was 1e-16 when the
+    point was squared in the ambient context)."""
+    from symtmm.compile import Evaluator
+    ev = Evaluator(PP)
+    with mpmath.workdps(70):
+        w = +mpmath.pi ** 2
+        lam = mpmath.mpc(0, w)
+    for value in (ev.delta_mp(lam, real=True, dps=60), ev.delta_omega_mp(w, dps=60),
+                  ev.delta_mp(lam, dps=60), ev.delta_omega_mp(mpmath.nstr(w, 70), dps=60)):
+        assert abs(value) < 1e-55
+    assert abs(ev.delta_mp(mpmath.mpc(0, 10), real=True, dps=60)) > 1e-3
+
+
 def test_threads_compute_shapes_independently():
     two = Model((Beam("a", EI=1, m=1, L=1, left="clamped", right="free"),
                  Beam("b", EI=2, m=1, L="3/4", left="pinned", right="pinned")),

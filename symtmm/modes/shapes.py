@@ -28,7 +28,7 @@ from ..errors import ModelError
 from ..expr import ExpressionError, parse_expression
 from ..model import Model
 from ..numeric import transfer
-from ..numeric.arith import DOUBLE, MP, Arithmetic
+from ..numeric.arith import DOUBLE, MP
 from ..numeric.linalg import null_space
 from ..results import Eigenvalue, Spectrum
 from .modeset import BeamShape, ModeSet, ModeShape
@@ -97,16 +97,6 @@ def working_digits(plan, lam, digits: int) -> int:
     return max(int(digits), 15) + math.ceil(transfer.digits_lost(plan, complex(lam))) + 15
 
 
-def _point(ar: Arithmetic, lam, real: bool) -> tuple:
-    """``(lam, lam2)`` as arrays of one number of ``ar`` for :func:`~symtmm.numeric.transfer.
-    propagate`; ``real``: ``lam = i omega`` of an undamped model, walked in real arithmetic
-    in ``lam**2 = -omega**2`` alone."""
-    if real:
-        w = ar.number(lam.imag)
-        return None, ar.array([-(w * w)])
-    return ar.array([ar.number(lam)]), None
-
-
 def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: int | None = None,
               number: int = 1, plan: ShapePlan | None = None) -> list:
     """The mode shape(s) belonging to one eigenvalue: ``multiplicity`` of them.
@@ -150,7 +140,7 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
     dps = working_digits(tp, eigenvalue.lam, digits)
     ar = MP.from_digits(dps)
     mult = eigenvalue.multiplicity
-    lam, lam2 = _point(ar, eigenvalue.lam, real)
+    lam, lam2 = transfer.point(ar, eigenvalue.lam, real)
     with ar:
         V = null_space(ar, transfer.boundary(tp, ar, lam, lam2)[0], mult)
         E0 = ar.zeros((tp.size, mult), like=V)
@@ -206,7 +196,7 @@ def displacements(model: Model, eigenvalues, points: int, digits: int,
         dps = max(working_digits(tp, eigenvalues[i].lam, digits) for i in idx)
         ar = MP.from_digits(dps)
         with ar:
-            pairs = [_point(ar, eigenvalues[i].lam, real) for i in idx]
+            pairs = [transfer.point(ar, eigenvalues[i].lam, real) for i in idx]
             lam = None if real else ar.array([p[0][0] for p in pairs])
             lam2 = ar.array([p[1][0] for p in pairs]) if real else None
             R = transfer.boundary(tp, ar, lam, lam2)
@@ -277,7 +267,7 @@ def evaluate_mode(model: Model, mode: ModeShape, beam: str, x, side: str = "+") 
     where = transfer.Sampling(tp, points)
     real = not any(isinstance(v, mpmath.mpc) for v in mode.left_state)
     ar = MP.from_digits(mode.dps)
-    lam, lam2 = _point(ar, mode.lam, real)
+    lam, lam2 = transfer.point(ar, mode.lam, real)
     start = ar.array([ar.number(v) for v in mode.left_state], (1, tp.size, 1))
     _, states = transfer.sample(tp, ar, where, lam, lam2, start=start, inner=DOUBLE)
     out = states[0, :, :, 0].T

@@ -189,6 +189,17 @@ class TransferPlan:
         return out
 
 
+def point(ar: Arithmetic, lam, real: bool) -> tuple:
+    """``(lam, lam2)`` as arrays of one number of ``ar`` for :func:`propagate`; ``real``:
+    ``lam = i omega`` of an undamped model, walked in real arithmetic in ``lam**2 =
+    -omega**2`` alone (squared in ``ar``, at its precision)."""
+    if real:
+        w = ar.number(lam.imag)
+        with ar:
+            return None, ar.array([-(w * w)])
+    return ar.array([ar.number(lam)]), None
+
+
 def propagate(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None, start=None,
               observe=None) -> np.ndarray:
     """The columns of the unknowns at the right end: ``(B, size, len(columns))``.
