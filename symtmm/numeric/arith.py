@@ -46,6 +46,13 @@ from ..errors import ComputationError
 __all__ = ["Arithmetic", "Batch", "MP", "Ball", "ball_available", "memo", "DOUBLE"]
 
 
+# Tables of :meth:`Arithmetic.cached`, keyed by arithmetic, precision and table. A
+# table is immutable once built; two threads building the same one at once both get a
+# correct table, and one of them is kept.
+_SHARED: dict = {}
+_SHARED_MAX = 4096
+
+
 class Arithmetic:
     """What every arithmetic provides to the kernel (see the module docstring).
 
@@ -81,12 +88,23 @@ class Arithmetic:
         return False
 
     def cached(self, key, build):
-        """``build()`` once per arithmetic (tables of constants the kernel reuses)."""
-        cache = self.__dict__.setdefault("_cache", {})
-        hit = cache.get(key)
+        """``build()`` once per kind of arithmetic and precision (tables of constants the
+        kernel reuses: Gauss–Legendre rules, 1/k!, exact values converted).
+
+        Shared by every arithmetic object of the same :attr:`key`: the searches make a
+        new one per root and precision, and rebuilding a 300-bit quadrature rule each
+        time cost more than the root. Bounded: the oldest entries go first.
+        """
+        full = self.key + (key,)
+        hit = _SHARED.get(full)
         if hit is None:
             with self:
-                hit = cache[key] = build()
+                hit = build()
+            if len(_SHARED) >= _SHARED_MAX:
+                # (dicts keep insertion order: drop the oldest quarter)
+                for old in list(_SHARED)[:_SHARED_MAX // 4]:
+                    _SHARED.pop(old, None)
+            _SHARED[full] = hit
         return hit
 
     # -- numbers ---------------------------------------------------------------------
@@ -315,7 +333,8 @@ class MP(Arithmetic):
 
     def number(self, z):
         ctx = self.ctx
-        if isinstance(z, (mpmath.mpc, complex)):
+        # (any context's mpc: the global one's or another private one's)
+        if isinstance(z, complex) or hasattr(z, "_mpc_"):
             return ctx.mpc(z)
         return ctx.mpf(z)
 
