@@ -350,6 +350,51 @@ right = "sliding"
     assert run.code in (0, 1)
 
 
+def test_derive_with_pi_in_a_timoshenko_mass():
+    """pi in a coefficient is a generator of the ring like any symbol (it was refused as an
+    "unexpected term"). Reference: the pinned-pinned Timoshenko beam's closed form, mode n:
+    a^4 EI - w^2 m - w^2 a^2 (rhoI + EI m / kGA) + w^4 rhoI m / kGA = 0, a = n pi / L,
+    and the pinned-pinned Euler-Bernoulli beam's (n pi)^2."""
+    import mpmath
+    import sympy as sp
+
+    from symtmm import api
+    model = api.loads("""
+[[beam]]
+name = "a"
+theory = "timoshenko"
+EI = 1
+m = "10.5 - pi - pi/100"
+rhoI = 0.01
+kGA = 100
+L = 1
+left = "pinned"
+right = "pinned"
+
+[[beam]]
+name = "b"
+EI = 1
+m = 1
+L = 1
+left = "pinned"
+right = "pinned"
+""")
+    ce = api.derive(model, max_seconds=30)
+    delta = sp.lambdify(ce.variable, ce.delta, "mpmath")
+    with mpmath.workdps(40):
+        m, rhoI, kGA = 10.5 - mpmath.pi - mpmath.pi / 100, mpmath.mpf("0.01"), 100
+        roots = [mpmath.pi ** 2]                                   # beam b, n = 1
+        for n in (1, 2):
+            a = n * mpmath.pi
+            # w^4 (rhoI m / kGA) - w^2 (m + a^2 (rhoI + m / kGA)) + a^4 = 0: the lower root
+            A, B, C = rhoI * m / kGA, m + a * a * (rhoI + m / kGA), a ** 4
+            roots.append(mpmath.sqrt((B - mpmath.sqrt(B * B - 4 * A * C)) / (2 * A)))
+        for w in roots:
+            h = w * mpmath.mpf(10) ** -12
+            at, beside = abs(delta(w)), max(abs(delta(w - h)), abs(delta(w + h)))
+            assert at < beside * 1e-6, (w, at, beside)
+
+
 def test_derive_with_a_radical_in_the_reference_beam(tmp_path):
     """EI = 2**(1/3) of the Euler-Bernoulli beam reaches a Rayleigh beam's wave numbers."""
     text = """

@@ -286,7 +286,7 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
         extra = [g for g in info["gens"] if g not in known]
     for g in extra:
         allowed = {_W} | {w.Wb for w in waves if w.scaled}
-        if g.free_symbols & ({Om} | known - allowed) or not (g.is_Symbol or g.is_Pow or g == sp.I):
+        if g.free_symbols & ({Om} | known - allowed) or not (g.is_Symbol or g.is_Pow or g.is_number):
             raise ComputationError(f"unexpected term {g} in the transfer matrices")
     problem.extra = extra
     problem.relations = roots
