@@ -237,11 +237,17 @@ class Layout:
             new(unknowns, "Y", levels[0], "Y")
             if rot:
                 new(unknowns, "Theta", levels[0], "Theta")
+            # (an elastic attachment's force follows from the two deflections: no unknown
+            # of its own and no compatibility equation)
             for i, (att, lvl) in enumerate(zip(body.attachments, levels)):
+                if att.elastic:
+                    continue
                 new(unknowns, ("F", i), lvl, "Q")
                 if not att.hinged:
                     new(unknowns, ("C", i), lvl, "M")
             for i, (att, lvl) in enumerate(zip(body.attachments, levels)):
+                if att.elastic:
+                    continue
                 new(equations, ("Y", i), lvl, "Y")
                 if not att.hinged:
                     new(equations, ("Theta", i), lvl, "Theta")
@@ -264,6 +270,19 @@ class Layout:
                 if not _same(att.x, x):
                     continue
                 d = att.x - body.xc                  # arm from the centre of mass
+                if att.elastic:
+                    # F = (k + c lam)(Y_c + d Theta_c - Y) on the beam (Q+ - Q- = F), and
+                    # into the body's equations of motion where it is: the sum of F_i
+                    s = att.k + att.c * LAM
+                    force = [(u["Y"], s), (4 * lvl, -s)]
+                    if rot and d != 0:
+                        force.append((u["Theta"], s * d))
+                    for col, value in force:
+                        yield (4 * lvl + 3, col, value)
+                        yield (e["force"], col, value)
+                        if rot and d != 0:
+                            yield (e["moment"], col, d * value)
+                    continue
                 # the body's force and couple on the beam: Q+ - Q- = F, M+ - M- = -C
                 yield (4 * lvl + 3, u[("F", i)], sp.Integer(1))
                 # compatibility: the beam's deflection (and rotation) are the body's there
@@ -282,6 +301,8 @@ class Layout:
             if body.M != 0:
                 yield (e["force"], u["Y"], body.M * lam2)
             for i, att in enumerate(body.attachments):
+                if att.elastic:
+                    continue                        # (added at its own station)
                 yield (e["force"], u[("F", i)], sp.Integer(1))
                 if rot:
                     d = att.x - body.xc

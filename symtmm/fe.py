@@ -27,8 +27,9 @@ Masses
     Dicts with keys ``beam``, ``x``, ``M`` and optionally ``J`` (rotary
     inertia acting on ``Theta``).
 Rigid bodies
-    Dicts with keys ``attach`` (a list of dicts ``{"beam", "x", "hinged"}``,
-    ``hinged`` optional and False by default) and optionally ``name``, ``M``,
+    Dicts with keys ``attach`` (a list of dicts ``{"beam", "x", "hinged", "k"}``,
+    ``hinged`` optional and False by default; with ``k`` a spring joins the beam
+    to the body's point there instead: a sprung mass) and optionally ``name``, ``M``,
     ``J`` (about the centre of mass) and ``xc`` (the centre of mass, default
     the first attachment's ``x``). The body moves as ``Y(x) = Y_c + (x - xc)
     Theta_c``; at each attachment the beam's ``Y`` is the body's, and so is its
@@ -280,16 +281,22 @@ def _normalise_bodies(bodies, beams):
             hinged = point.get("hinged", False)
             if not isinstance(hinged, (bool, np.bool_)):
                 raise ValueError(f"'hinged' of an attachment of {what} must be True or False")
+            k = point.get("k")
+            if k is not None:
+                k = _nonnegative_float(k, f"k of an attachment of {what}")
+                if _nonnegative_float(point.get("c", 0.0) or 0.0, "c") != 0.0:
+                    raise ValueError(f"c of an attachment of {what} must be zero (the finite-"
+                                     "element model is undamped)")
             if any(n == name and abs(x - x2) <= _position_tolerance(beams[name])
-                   for n, x2, _ in attach):
+                   for n, x2, _, _ in attach):
                 raise ValueError(f"{what} is attached twice to beam {name!r} at x={x!r}")
-            attach.append((name, x, bool(hinged)))
+            attach.append((name, x, bool(hinged) and k is None, k))
         M = _nonnegative_float(body.get("M", 0.0) or 0.0, f"M of {what}")
         J = _nonnegative_float(body.get("J", 0.0) or 0.0, f"J of {what}")
         xc = body.get("xc")
         xc = attach[0][1] if xc is None else _number(xc, f"xc of {what}")
         # The rotation is a dof of its own unless nothing feels or fixes it (a pin joint).
-        rotates = J != 0.0 or any(not h or x != xc for _, x, h in attach)
+        rotates = J != 0.0 or any((not h and k is None) or x != xc for _, x, h, k in attach)
         parsed.append({"attach": attach, "M": M, "J": J, "xc": xc, "rotates": rotates,
                        "what": what})
     return parsed
@@ -474,12 +481,11 @@ def _assemble_beam(K, M, beam, nodes, element_dofs):
     np.add.at(M, (rows, cols), Me.reshape(len(lengths), d * d))
 
 
-def _add_spring(K, dof_a, dof_b, k):
-    K[dof_a, dof_a] += k
-    if dof_b is not None:
-        K[dof_b, dof_b] += k
-        K[dof_a, dof_b] -= k
-        K[dof_b, dof_a] -= k
+def _add_spring(K, stretch, k):
+    """``K += k v v^T`` for the stretch ``v . u`` given as ``{dof: coefficient}``."""
+    for a, ca in stretch.items():
+        for b, cb in stretch.items():
+            K[a, b] += k * ca * cb
 
 
 def _boundary_constraints(beam, first_dof, n_nodes):
@@ -533,7 +539,7 @@ def _build(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1
     for name, beam in beams.items():
         positions = [x for a, b, x, _, _ in springs if name in (a, b)]
         positions += [x for n, x, _, _ in masses if n == name]
-        positions += [x for body in bodies for n, x, _ in body["attach"] if n == name]
+        positions += [x for body in bodies for n, x, _, _ in body["attach"] if n == name]
         nodes[name] = _beam_nodes(beam, positions, elements_per_beam, refine)
         first_dof[name] = total
         total += _beam_dof_count(beam, nodes[name])
@@ -554,12 +560,12 @@ def _build(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1
     def node_dof(name, x, local):
         return first_dof[name] + 2 * _nearest_node(nodes[name], x) + local
 
-    spring_dofs = []
+    spring_dofs = []               # (stretch {dof: coefficient}, k) of every spring
     for name_a, name_b, x, k, local in springs:
-        dof_a = node_dof(name_a, x, local)
-        dof_b = None if name_b is None else node_dof(name_b, x, local)
-        _add_spring(K, dof_a, dof_b, k)
-        spring_dofs.append((dof_a, dof_b, k))
+        stretch = {node_dof(name_a, x, local): 1.0}
+        if name_b is not None:
+            stretch[node_dof(name_b, x, local)] = -1.0
+        spring_dofs.append((stretch, k))
     for name, x, mass, inertia in masses:
         M[node_dof(name, x, 0), node_dof(name, x, 0)] += mass
         M[node_dof(name, x, 1), node_dof(name, x, 1)] += inertia
@@ -567,14 +573,19 @@ def _build(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1
         M[yc, yc] += body["M"]
         if tc is not None:
             M[tc, tc] += body["J"]
-        for name, x, hinged in body["attach"]:
-            # Y_beam - Y_c - (x - xc) Theta_c = 0, and Theta_beam - Theta_c = 0 unless hinged
+        for name, x, hinged, k in body["attach"]:
+            # Y_beam - Y_c - (x - xc) Theta_c: zero, or the stretch of a spring k
             row = {node_dof(name, x, 0): 1.0, yc: -1.0}
             if tc is not None and x != body["xc"]:
                 row[tc] = -(x - body["xc"])
+            if k is not None:
+                spring_dofs.append((row, k))
+                continue
             constraints.append(row)
             if not hinged:
                 constraints.append({node_dof(name, x, 1): 1.0, tc: -1.0})
+    for stretch, k in spring_dofs:
+        _add_spring(K, stretch, k)
 
     T, kept = _reduction(constraints, total)
     K = T.T @ K @ T
@@ -615,8 +626,8 @@ def _strain_energy(energy_terms, vectors):
     energy = np.zeros(vectors.shape[1])
     for beam, lengths, dofs in energy_terms["beams"]:
         energy += _beam_strain_energy(beam, lengths, full[dofs])
-    for dof_a, dof_b, k in energy_terms["springs"]:
-        stretch = full[dof_a] - (0.0 if dof_b is None else full[dof_b])
+    for terms, k in energy_terms["springs"]:
+        stretch = sum(c * full[dof] for dof, c in terms.items())
         energy += k * stretch * stretch
     return energy
 

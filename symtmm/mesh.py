@@ -19,6 +19,7 @@ import math
 import sympy as sp
 
 from .assembly import point_elements
+from .elements import Coupling
 from .errors import ModelError
 from .model import Model
 
@@ -109,6 +110,20 @@ class Mesh:
             ks = (0, 1) if body.rotates else (0,)
             masses = (body.M, body.J)[:len(ks)]
             self.body_places.append((tuple(combo(("b", bi, k)) for k in ks), masses))
+            for att in body.attachments:
+                if att.elastic:
+                    # a spring from the beam's deflection to the body's point above it,
+                    # Y_c + (x - xc) Theta_c: a coupling on those two combinations
+                    at = {}
+                    d = _canonical(att.x - body.xc)
+                    for v, f in [(("b", bi, 0), 1)] + ([(("b", bi, 1), d)] if body.rotates
+                                                        and d != 0 else []):
+                        for i, c in combo(v):
+                            at[i] = at.get(i, 0) + f * c
+                    point = tuple(sorted((i, c) for i, c in at.items() if c != 0))
+                    beam = combo(("n", self._node(att.beam, att.x), 0))
+                    self.point_places.append(
+                        ((beam, point), Coupling(att.beam, body.name, att.k, att.c)))
         self.bandwidth = 0
         for places in (self.segment_places + [p for p, _ in self.point_places]
                        + [p for p, _ in self.body_places]):
@@ -180,6 +195,8 @@ class Mesh:
         constraints = []
         for bi, body in enumerate(self.model.bodies):
             for att in body.attachments:
+                if att.elastic:
+                    continue                # a spring, not a constraint (see point_places)
                 node = self._node(att.beam, att.x)
                 d = _canonical(att.x - body.xc)
                 c = {("n", node, 0): sp.Integer(1), ("b", bi, 0): sp.Integer(-1)}

@@ -48,8 +48,8 @@ from .limits import (
     MAX_POINTS_ON_BEAMS,
 )
 
-__all__ = ["Beam", "Spring", "Mass", "Attachment", "RigidBody", "Model", "BOUNDARY_CONDITIONS",
-           "GROUND", "SPRING_KINDS"]
+__all__ = ["Beam", "Spring", "Mass", "Attachment", "RigidBody", "oscillator", "Model",
+           "BOUNDARY_CONDITIONS", "GROUND", "SPRING_KINDS"]
 
 #: Boundary conditions and the state variables (of Y, Theta, M, Q) they set to zero.
 BOUNDARY_CONDITIONS: Mapping[str, tuple[str, str]] = {
@@ -346,22 +346,46 @@ class Attachment:
     """Where a rigid body holds a beam: the point ``x`` of beam ``beam``.
 
     A rigid attachment makes the beam's deflection and rotation there those
-    of the body; a hinged one only its deflection (the beam turns freely).
+    of the body; a hinged one only its deflection (the beam turns freely); an
+    elastic one (``k`` given) joins the beam's deflection to the body's point
+    above it by a spring ``k`` and dashpot ``c``: the force ``(k + c lam)(Y_body
+    - Y_beam)`` acts on the beam and its opposite on the body (a sprung mass).
 
     Examples
     --------
     >>> Attachment("a", "1/2", hinged=True).x
     1/2
+    >>> Attachment("a", "1/2", k=100, c="1/10").elastic
+    True
     """
 
     beam: str
     x: sp.Expr
     hinged: bool = False
+    k: sp.Expr | None = None
+    c: sp.Expr = 0  # made exact in __post_init__
 
     def __post_init__(self):
-        object.__setattr__(self, "x", _exact(self.x, f"attachment on {self.beam}.x"))
+        where = f"attachment on {self.beam}"
+        object.__setattr__(self, "x", _exact(self.x, f"{where}.x"))
         if not isinstance(self.hinged, bool):
-            raise ModelError("expected true or false", field=f"attachment on {self.beam}.hinged")
+            raise ModelError("expected true or false", field=f"{where}.hinged")
+        if self.k is None:
+            if self.c != 0:
+                raise ModelError("a dashpot needs an elastic attachment (give k)",
+                                 field=f"{where}.c")
+            return
+        if self.hinged:
+            raise ModelError("an elastic attachment is not also hinged", field=f"{where}.hinged")
+        for attr in ("k", "c"):
+            value = _exact(getattr(self, attr), f"{where}.{attr}")
+            object.__setattr__(self, attr, value)
+            _check_sign(value, f"{where}.{attr}", allow_zero=True)
+
+    @property
+    def elastic(self) -> bool:
+        """True when a spring (and dashpot) joins the beam to the body."""
+        return self.k is not None
 
 
 @dataclass(frozen=True)
@@ -371,7 +395,9 @@ class RigidBody:
     It moves in the plane of the beams as ``Y(x) = Y_c + (x - xc) Theta_c``
     and holds them at its :class:`Attachment` points: carried by one beam, or
     linking several (joints of beam ends, trees, closed loops). A joint of beam
-    ends is a massless body whose attachments share one ``x``.
+    ends is a massless body whose attachments share one ``x``; a sprung mass
+    (tuned mass damper) a body held by elastic attachments only
+    (:func:`oscillator`).
 
     Parameters
     ----------
@@ -416,12 +442,58 @@ class RigidBody:
     def rotates(self) -> bool:
         """Whether the body's rotation is an unknown of its own.
 
-        Not when every attachment is a hinge at the centre of mass and ``J = 0``:
-        then nothing fixes or feels the rotation (a pin joint of beam ends).
+        Not when every attachment is a hinge or a spring at the centre of mass and
+        ``J = 0``: then nothing fixes or feels the rotation (a pin joint of beam ends,
+        a sprung mass).
         """
-        if self.J != 0 or any(not a.hinged for a in self.attachments):
+        if self.J != 0 or any(not (a.hinged or a.elastic) for a in self.attachments):
             return True
         return any(sp.simplify(a.x - self.xc) != 0 for a in self.attachments)
+
+
+def oscillator(name: str, beams, x, M, k, c=0) -> RigidBody:
+    """A sprung mass (tuned mass damper): mass ``M`` on a spring ``k`` and dashpot ``c``.
+
+    On one beam, or between two (Gürgöze and Erol's double beam: the mass joined
+    to each by its own spring and dashpot), at the global coordinate ``x``; the
+    mass moves transversely only. It is a :class:`RigidBody` held by elastic
+    attachments, so every formulation treats it as one: its deflection is a
+    freedom of the dynamic stiffness (no pole at its own frequency ``sqrt(k/M)``
+    enters the count) and a virtual state variable of the transfer walk.
+
+    Parameters
+    ----------
+    name : str
+    beams : str or sequence of str
+        The beam carrying it, or the two it joins.
+    x : number or str
+    M : number or str
+        The mass (positive).
+    k, c : number or str, or a sequence of one per beam
+        Spring stiffness and dashpot coefficient.
+
+    Examples
+    --------
+    >>> tmd = oscillator("tmd", "b", x="1/2", M="1/10", k=10)
+    >>> tmd.rotates, [(a.beam, a.k) for a in tmd.attachments]
+    (False, [('b', 10)])
+    >>> both = oscillator("m", ("a", "b"), x=1, M=1, k=(2, 3), c=(0, "1/2"))
+    >>> [(a.beam, a.k, a.c) for a in both.attachments]
+    [('a', 2, 0), ('b', 3, 1/2)]
+    """
+    beams = (beams,) if isinstance(beams, str) else tuple(beams)
+    if len(beams) not in (1, 2) or not all(isinstance(b, str) for b in beams):
+        raise ModelError("expected one beam or two", field=f"body '{name}'.beam")
+
+    def per_beam(value, what):
+        values = tuple(value) if isinstance(value, (list, tuple)) else (value,) * len(beams)
+        if len(values) != len(beams):
+            raise ModelError(f"expected one {what} per beam ({len(beams)})",
+                             field=f"body '{name}'.{what}")
+        return values
+    ks, cs = per_beam(k, "k"), per_beam(c, "c")
+    return RigidBody(name, tuple(Attachment(b, x, k=kb, c=cb) for b, kb, cb in zip(beams, ks, cs)),
+                     M=M, xc=x)
 
 
 @dataclass(frozen=True)
@@ -548,6 +620,17 @@ class Model:
                 seen.add((att.beam, x))
             for attr in ("M", "J"):
                 _check_sign(self.value(getattr(body, attr)), f"{where}.{attr}", allow_zero=True)
+            for att in body.attachments:
+                if att.elastic:
+                    for attr in ("k", "c"):
+                        _check_sign(self.value(getattr(att, attr)), f"{where}.{attr}",
+                                    allow_zero=True)
+            if all(a.elastic for a in body.attachments):
+                M = self.value(body.M)
+                if M.is_number and not M.is_positive:
+                    # nothing but springs would hold a massless point: no motion of its own
+                    raise ModelError("a body held by springs only needs a mass M > 0",
+                                     field=f"{where}.M")
             self._check_supports(body, resolved)
 
     def _check_supports(self, body: RigidBody, resolved: dict) -> None:
@@ -559,6 +642,8 @@ class Model:
         """
         rows = []
         for att in body.attachments:
+            if att.elastic:
+                continue                # a spring does not pass a support on to the body
             beam, x = resolved[att.beam], self.value(att.x)
             for end, bc in ((beam.x0, beam.left), (beam.x1, beam.right)):
                 d = x - end
@@ -672,9 +757,12 @@ class Model:
                        kGA=None if beam.kGA is None else self.value(beam.kGA))
 
     def _resolved_body(self, body: RigidBody) -> RigidBody:
+        def resolved(a):
+            if a.elastic:
+                return replace(a, x=self.value(a.x), k=self.value(a.k), c=self.value(a.c))
+            return replace(a, x=self.value(a.x))
         return replace(body, M=self.value(body.M), J=self.value(body.J), xc=self.value(body.xc),
-                       attachments=tuple(replace(a, x=self.value(a.x))
-                                         for a in body.attachments))
+                       attachments=tuple(resolved(a) for a in body.attachments))
 
     def resolved(self) -> Model:
         """The same model with every parameter value substituted into the fields.
@@ -725,7 +813,8 @@ class Model:
             if beam.kGA is not None:
                 syms |= beam.kGA.free_symbols
         for body in resolved.bodies:
-            for expr in (body.M, body.J, body.xc, *(a.x for a in body.attachments)):
+            for expr in (body.M, body.J, body.xc, *(a.x for a in body.attachments),
+                         *(e for a in body.attachments if a.elastic for e in (a.k, a.c))):
                 syms |= expr.free_symbols
         for spring in self.resolved().springs:
             for attr in ("x", "k", "c"):
@@ -738,7 +827,27 @@ class Model:
     @property
     def damped(self) -> bool:
         """True when some dashpot coefficient is not identically zero."""
-        return any(not self.value(s.c).is_zero for s in self.springs)
+        return any(not self.value(c).is_zero for c in self._dashpots())
+
+    def _dashpots(self):
+        yield from (s.c for s in self.springs)
+        yield from (a.c for b in self.bodies for a in b.attachments if a.elastic)
+
+    def with_dashpots_scaled(self, factor) -> Model:
+        """A copy with every dashpot coefficient multiplied by ``factor`` (0: undamped).
+
+        Examples
+        --------
+        >>> m = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),),
+        ...           (Spring("b", "ground", "1/2", 1, 2),))
+        >>> m.damped, m.with_dashpots_scaled(0).damped
+        (True, False)
+        """
+        springs = tuple(replace(s, c=s.c * factor) for s in self.springs)
+        bodies = tuple(replace(b, attachments=tuple(
+            replace(a, c=a.c * factor) if a.elastic else a for a in b.attachments))
+            for b in self.bodies)
+        return replace(self, springs=springs, bodies=bodies)
 
     def beam(self, name: str) -> Beam:
         """The beam called ``name``."""
@@ -809,3 +918,6 @@ def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
             yield f"body '{body.name}'.{attr}", getattr(body, attr)
         for att in body.attachments:
             yield f"body '{body.name}'.attach", att.x
+            if att.elastic:
+                yield f"body '{body.name}'.k", att.k
+                yield f"body '{body.name}'.c", att.c

@@ -44,7 +44,17 @@ from .elements.theories import THEORIES
 from .errors import ModelError
 from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
 from .limits import MAX_FILE_BYTES, MAX_PARAMETER_DEPTH
-from .model import GROUND, Attachment, Beam, Mass, Model, RigidBody, Spring, check_size
+from .model import (
+    GROUND,
+    Attachment,
+    Beam,
+    Mass,
+    Model,
+    RigidBody,
+    Spring,
+    check_size,
+    oscillator,
+)
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -53,7 +63,7 @@ else:  # pragma: no cover
 
 __all__ = ["load", "loads", "parse_assignment"]
 
-_TOP = {"title", "parameters", "beam", "spring", "mass", "rigid", "joint"}
+_TOP = {"title", "parameters", "beam", "spring", "mass", "rigid", "joint", "oscillator"}
 _BEAM_REQUIRED = ("name", "EI", "m", "L", "left", "right")
 _BEAM_OPTIONAL = ("x0", "kw", "theory", "N", "rhoI", "kGA")
 _RIGID_REQUIRED = ("attach",)
@@ -66,6 +76,8 @@ _SPRING_REQUIRED = ("between", "x", "k")
 _SPRING_OPTIONAL = ("c", "kind")
 _MASS_REQUIRED = ("beam", "x", "M")
 _MASS_OPTIONAL = ("J",)
+_OSCILLATOR_REQUIRED = ("x", "M", "k")
+_OSCILLATOR_OPTIONAL = ("name", "beam", "between", "c")
 
 
 def load(path, overrides: dict | None = None) -> Model:
@@ -215,10 +227,11 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
     if not isinstance(springs_raw, list):
         raise ModelError("expected an array of tables: write [[spring]]", field="spring")
     # the budgets first: nothing is parsed for a model that is too large anyway
-    tables = [data.get(t, []) for t in ("mass", "rigid", "joint")]
-    attachments = sum(len(t.get("attach", t.get("ends", []))) if isinstance(t, dict)
-                      and isinstance(t.get("attach", t.get("ends", [])), list) else 0
-                      for group in tables[1:] if isinstance(group, list) for t in group)
+    tables = [data.get(t, []) for t in ("mass", "rigid", "joint", "oscillator")]
+    attachments = sum(len(t.get("attach", t.get("ends", t.get("between", [None]))))
+                      if isinstance(t, dict)
+                      and isinstance(t.get("attach", t.get("ends", t.get("between", []))), list)
+                      else 0 for group in tables[1:] if isinstance(group, list) for t in group)
     raw_params = data.get("parameters", {})
     check_size(len(beams_raw), len(springs_raw) + (len(tables[0]) if isinstance(tables[0], list)
                                                    else 0) + attachments,
@@ -303,6 +316,10 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
             known_names |= {s.name for s in value.free_symbols}
 
     bodies, body_fields = _bodies(data, {b.name: b for b in beams}, known_names)
+    oscillators, oscillator_fields = _oscillators(data, {b.name for b in beams}, known_names,
+                                                  {b.name for b in bodies})
+    bodies += oscillators
+    body_fields.update(oscillator_fields)
 
     names = {b.name for b in beams}
     for i, mass in enumerate(masses, 1):
@@ -405,6 +422,65 @@ def _bodies(data: dict, beams: dict, known_names: set) -> tuple:
     return out, where_of
 
 
+def _oscillators(data: dict, beams: set, known_names: set, taken: set) -> tuple:
+    """The ``[[oscillator]]`` tables (sprung masses) as bodies held by springs.
+
+    ``beam = "a"`` carries it; ``between = ["a", "b"]`` joins it to two beams, each
+    by its own spring and dashpot (``k`` and ``c`` a value for both, or a list of two).
+    """
+    raw_list = data.get("oscillator", [])
+    if not isinstance(raw_list, list):
+        raise ModelError("expected an array of tables: write [[oscillator]]", field="oscillator")
+    out, where_of = [], {}
+    for i, raw in enumerate(raw_list, 1):
+        where = f"oscillator[{i}]"
+        _check_keys(raw, _OSCILLATOR_REQUIRED, _OSCILLATOR_OPTIONAL, where)
+        if ("beam" in raw) == ("between" in raw):
+            raise ModelError('give either beam = "a" or between = ["a", "b"]', field=where)
+        if "beam" in raw:
+            on, key = [raw["beam"]], "beam"
+        else:
+            on, key = raw["between"], "between"
+            if not isinstance(on, list) or len(on) != 2:
+                raise ModelError('expected two beam names, e.g. ["upper", "lower"]',
+                                 field=f"{where}.between")
+        for name in on:
+            if not isinstance(name, str):
+                raise ModelError(f"expected a beam name, got {_kind(name)}", field=f"{where}.{key}")
+            if name not in beams:
+                raise ModelError(f"unknown beam '{name}'", field=f"{where}.{key}")
+        if len(set(on)) != len(on):
+            raise ModelError("the two beams must differ", field=f"{where}.between")
+        name = raw.get("name", f"oscillator{i}")
+        if not isinstance(name, str):
+            raise ModelError(f"expected a string, got {_kind(name)}", field=f"{where}.name")
+        if name in taken:
+            raise ModelError(f"duplicate body name '{name}'", field=f"{where}.name")
+        taken.add(name)
+
+        x, M = _number(raw["x"], f"{where}.x"), _number(raw["M"], f"{where}.M")
+        ks = _per_beam(raw.get("k"), len(on), f"{where}.k")
+        cs = _per_beam(raw.get("c", 0), len(on), f"{where}.c")
+        try:
+            body = oscillator(name, on, x, M, ks, cs)
+        except ModelError as exc:
+            raise ModelError(exc.message, field=_rename(exc.field, where)) from None
+        out.append(body)
+        where_of[name] = where
+        for value in [x, M, *ks, *cs]:
+            known_names |= {sym.name for sym in sp.sympify(value).free_symbols}
+    return out, where_of
+
+
+def _per_beam(value, count: int, where: str) -> list:
+    """A value for every beam: one for all, or a list of one per beam."""
+    if isinstance(value, list):
+        if len(value) != count:
+            raise ModelError(f"expected one value per beam ({count})", field=where)
+        return [_number(v, where) for v in value]
+    return [_number(value, where)] * count
+
+
 def _rename(field: str | None, where: str) -> str:
     """Replace the model's own field prefix by the file's (``beam[2] (lower).EI``)."""
     if not field:
@@ -419,7 +495,10 @@ def _spring_field(field: str | None, springs, beams, masses=(), bodies=None) -> 
         return field
     for name, where in (bodies or {}).items():
         if field.startswith(f"body '{name}'."):
-            return f"{where}." + field.rsplit(".", 1)[-1]
+            attr = field.rsplit(".", 1)[-1]
+            if where.startswith("oscillator") and attr == "attach":
+                attr = "x"                  # (an oscillator's one point is its x)
+            return f"{where}.{attr}"
     for i, s in enumerate(springs, 1):
         if field.startswith(f"spring {s.a}-{s.b}."):
             return f"spring[{i}]." + field.rsplit(".", 1)[-1]

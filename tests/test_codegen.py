@@ -64,6 +64,7 @@ def _models():
         "ex1": (load(EXAMPLES + "paper_ex1_ff_cc.toml"), ()),
         "ex3_symbolic": (load(EXAMPLES + "paper_ex3_three_pp_coupled.toml"), ("K", "x1")),
         "mixed": (loads(MIXED, source="mixed.toml"), ()),
+        "sprung_masses": (load(EXAMPLES + "tuned_mass_damper.toml"), ()),
     }
 
 

@@ -29,7 +29,7 @@ from scipy.optimize import brentq
 from symtmm.compile import Evaluator
 from symtmm.elements import BeamSegment
 from symtmm.fe import fe_converged, fe_frequencies, fe_matrices
-from symtmm.model import Attachment, Beam, Model, RigidBody, Spring
+from symtmm.model import Attachment, Beam, Model, RigidBody, Spring, oscillator
 from symtmm.solve import solve
 
 # -- helpers ------------------------------------------------------------------------------
@@ -46,6 +46,7 @@ def fe_input(model: Model) -> dict:
                for s in model.springs]
     masses = [dict(beam=p.beam, x=float(p.x), M=float(p.M), J=float(p.J)) for p in model.masses]
     bodies = [dict(attach=[dict(beam=a.beam, x=float(a.x), hinged=a.hinged)
+                           | ({"k": float(a.k)} if a.elastic else {})
                            for a in b.attachments], M=float(b.M), J=float(b.J), xc=float(b.xc))
               for b in model.bodies]
     return dict(beams=beams, springs=springs, masses=masses, bodies=bodies)
@@ -393,6 +394,19 @@ COUPLED = {
          Beam("v", "1/2", "3/4", "4/5", x0=1, left="free", right="pinned", theory="timoshenko",
               rhoI="1/500", kGA=100)),
         bodies=(RigidBody("j", (Attachment("t", 1), Attachment("u", 1), Attachment("v", 1))),)),
+    # sprung masses: one on a Timoshenko cantilever, one between two beams (Gurgoze and
+    # Erol's double beam), each spring of its own stiffness
+    "sprung-masses": Model(
+        (Beam("a", 1, 1, 1, left="clamped", right="free", theory="timoshenko", rhoI="1/400",
+              kGA=150),
+         Beam("b", "3/2", 1, "9/10", left="pinned", right="pinned")),
+        bodies=(oscillator("tmd", "a", x="7/10", M="1/10", k=9),
+                oscillator("m", ("a", "b"), x="2/5", M="1/5", k=(30, 70)))),
+    # a rigid body on two springs at a distance from its centre of mass: it rocks
+    "body-on-springs": Model(
+        (Beam("a", 1, 1, 1, left="pinned", right="pinned"),),
+        bodies=(RigidBody("r", (Attachment("a", "1/5", k=40), Attachment("a", "3/4", k=60)),
+                          M="3/10", J="1/40", xc="1/2"),)),
 }
 COUNT = 5
 

@@ -77,10 +77,9 @@ class Counter(Evaluator):
     """
 
     def __init__(self, model, omega_design: float):
-        from dataclasses import replace
         model = model.require_numeric()
         if model.damped:
-            model = replace(model, springs=tuple(replace(s, c=0) for s in model.springs))
+            model = model.with_dashpots_scaled(0)
         super().__init__(model, omega_design)
 
     # -- batches ------------------------------------------------------------------------

@@ -59,7 +59,6 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import replace
 
 import mpmath
 import numpy as np
@@ -114,12 +113,6 @@ def default_sigma_max(omega_max: float) -> float:
 def _reference_frequency(model: Model) -> float:
     """Half the lowest pinned-pinned frequency of any beam: the scale near ``lam = 0``."""
     return 0.5 * _first_guess(model)
-
-
-def _scaled_dashpots(model: Model, factor) -> Model:
-    """The same model with every dashpot coefficient multiplied by ``factor``."""
-    springs = tuple(replace(s, c=s.c * factor) for s in model.springs)
-    return replace(model, springs=springs)
 
 
 def _decades(small, big) -> int:
@@ -262,7 +255,7 @@ class _Problem:
     def auxiliary(self, factor) -> Evaluator:
         """The kernel of the model with every dashpot scaled by ``factor``."""
         if factor not in self._aux:
-            self._aux[factor] = Evaluator(_scaled_dashpots(self.model, factor),
+            self._aux[factor] = Evaluator(self.model.with_dashpots_scaled(factor),
                                           self.kernel.size)
         return self._aux[factor]
 
