@@ -10,7 +10,7 @@ import mpmath
 
 from .display import html_table, latex_array, latex_text
 
-__all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string"]
+__all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string", "enclosed_string"]
 
 
 def decimal_string(value, digits: int) -> str:
@@ -49,6 +49,48 @@ def first(eigenvalues, count: int) -> list:
         kept.append(e)
         total += e.multiplicity
     return kept
+
+
+def _printed_interval(ctx, text: str):
+    """The numbers that print as ``text`` (:func:`decimal_string`, rounded to nearest) in
+    the interval context ``ctx``: ``text`` plus or minus half a unit of its last digit
+    (widened by a millionth of that for the rounding on the way)."""
+    if text == "0":
+        return ctx.mpf(0)
+    places = len(text.split(".", 1)[1]) if "." in text else 0
+    half = ctx.mpf(10) ** -places * ctx.mpf("0.500001")
+    value = ctx.mpf(text)
+    return ctx.mpf([(value - half).a, (value + half).b])
+
+
+def _meet(ctx, x, ends):
+    """The interval ``x`` narrowed to ``[lo, hi]`` (both enclose the same number)."""
+    lo, hi = ctx.mpf(ends[0]), ctx.mpf(ends[1])
+    a = max(x.a, lo.a)
+    b = min(x.b, hi.b)
+    return ctx.mpf([a, b]) if a <= b else x
+
+
+def enclosed_string(x, digits: int) -> str:
+    """The interval ``x`` (an mpmath interval) to as many significant digits, at most
+    ``digits``, as both of its ends print alike; ``"?"`` if not even one.
+
+    Examples
+    --------
+    >>> import mpmath.ctx_iv
+    >>> iv = mpmath.ctx_iv.MPIntervalContext()
+    >>> enclosed_string(iv.mpf(["0.123441", "0.123446"]), 6)
+    '0.1234'
+    >>> enclosed_string(iv.mpf(["0.12344", "0.12346"]), 6)     # 0.1234 or 0.1235
+    '0.123'
+    """
+    # (the ends unrounded: mpmath.mpf would round them to the ambient precision)
+    lo, hi = (mpmath.mp.make_mpf(end) for end in x._mpi_)
+    for d in range(digits, 0, -1):
+        text = decimal_string(lo, d)
+        if text == decimal_string(hi, d):
+            return text
+    return "?"
 
 
 @functools.lru_cache(maxsize=32)
@@ -107,6 +149,48 @@ class Eigenvalue:
                "multiplicity": self.multiplicity}
         if self.proof:
             out["proof"] = self.proof
+        return out
+
+    def quantities(self) -> dict:
+        """The engineer's quantities, each with the digits it is known to: ``"hz"`` (the
+        damped frequency ``Im lam / 2 pi`` in Hz), ``"abs"`` (``|lam|``, the undamped natural
+        frequency of the mode in rad/s) and ``"zeta"`` (the damping ratio ``-Re lam / |lam|``).
+
+        Each follows, in interval arithmetic, from the proved enclosure of the eigenvalue
+        (:attr:`bracket`) and the numbers that print as its :attr:`digits` digits, so
+        every digit shown is right (a digit or two fewer where the enclosure is not
+        narrower than the printed digits).
+
+        Examples
+        --------
+        With a proved enclosure (here exact), all the digits; from the printed digits
+        alone, a digit less where their rounding interval straddles a boundary:
+
+        >>> exact = Eigenvalue(mpmath.mpc(-3, 4), digits=6, bracket=((-3, -3), (4, 4)))
+        >>> exact.quantities()
+        {'hz': '0.636620', 'abs': '5.00000', 'zeta': '0.600000'}
+        >>> Eigenvalue(mpmath.mpc(-3, 4), digits=6).quantities()["zeta"]
+        '0.60000'
+        """
+        import mpmath.ctx_iv
+        iv = mpmath.ctx_iv.MPIntervalContext()
+        iv.prec = int(3.33 * self.digits) + 40
+        d = self.to_dict()
+        re, im = _printed_interval(iv, d["real"]), _printed_interval(iv, d["imag"])
+        box = self.bracket
+        if box is not None and len(box) == 2 and not isinstance(box[0], tuple):
+            box = ((0, 0), box) if d["real"] == "0" else None      # an undamped bracket
+        if box is not None:
+            re, im = (_meet(iv, x, ends) for x, ends in ((re, box[0]), (im, box[1])))
+        size = iv.sqrt(re * re + im * im)
+        out = {"hz": enclosed_string(im / (2 * iv.pi), self.digits),
+               "abs": enclosed_string(size, self.digits)}
+        if d["real"] == "0":
+            out["zeta"] = "0"
+        elif d["imag"] == "0":
+            out["zeta"] = "1"           # a real eigenvalue: no oscillation
+        else:
+            out["zeta"] = enclosed_string(-re / size, self.digits)
         return out
 
     def __str__(self) -> str:
@@ -179,12 +263,25 @@ class Spectrum:
         """The same spectrum labelled with ``name`` (the model file, in JSON)."""
         return replace(self, model_name=name)
 
+    @property
+    def damped(self) -> bool:
+        """True when some eigenvalue has a real part (the model has dashpots that act)."""
+        return any(e.lam.real != 0 for e in self.eigenvalues)
+
+    def _eigenvalue_dict(self, e: Eigenvalue) -> dict:
+        q = e.quantities()
+        out = e.to_dict() | {"hz": q["hz"]}
+        if self.damped:
+            out |= {"abs": q["abs"], "zeta": q["zeta"]}
+        return out
+
     def to_dict(self) -> dict:
-        """The JSON object of ``symtmm solve --json``."""
+        """The JSON object of ``symtmm solve --json``: per eigenvalue also ``"hz"`` and, in a
+        damped spectrum, ``"abs"`` and ``"zeta"`` (:meth:`Eigenvalue.quantities`)."""
         return {
             "model": self.model_name,
             "digits": self.digits,
-            "eigenvalues": [e.to_dict() for e in self.eigenvalues],
+            "eigenvalues": [self._eigenvalue_dict(e) for e in self.eigenvalues],
             "stats": {"evaluations": self.evaluations, "seconds": round(self.seconds, 6),
                       "method": self.method},
         }
@@ -193,24 +290,36 @@ class Spectrum:
         """:meth:`to_dict` as a JSON string."""
         return json.dumps(self.to_dict(), indent=2)
 
-    def table(self) -> str:
-        """A readable table (the ``symtmm solve`` output)."""
-        damped = any(e.lam.real != 0 for e in self.eigenvalues)
-        head = ["#", "Re lam [1/s]", "Im lam = omega [rad/s]"] if damped else \
-            ["#", "omega [rad/s]"]
-        ref = None
-        if self.omega_scale and not damped:
-            ref = self.omega_scale[0]
-            head.append(f"Omega (beam {ref})")
+    def _rows(self, unicode: bool):
+        """Header and rows of the tables (text, HTML, LaTeX): damped spectra show
+        ``|lam|`` and the damping ratio, undamped ones ``Omega`` of the reference beam."""
+        damped = self.damped
+        ref = self.omega_scale[0] if self.omega_scale and not damped else None
+        if damped:
+            head = (["#", "Re λ [1/s]", "Im λ = ω [rad/s]", "|λ| [rad/s]", "ζ"] if unicode else
+                    ["#", "Re lam [1/s]", "Im lam = omega [rad/s]", "|lam| [rad/s]", "zeta"])
+        else:
+            head = ["#", "ω [rad/s]" if unicode else "omega [rad/s]"]
+        if ref:
+            head.append(f"Ω (beam {ref})" if unicode else f"Omega (beam {ref})")
         head.append("mult.")
         rows = []
         for i, e in enumerate(self.eigenvalues, 1):
             d = e.to_dict()
-            row = [str(i)] + ([d["real"]] if damped else []) + [d["imag"]]
+            row = [str(i)]
+            if damped:
+                q = e.quantities()
+                row += [d["real"], d["imag"], q["abs"], q["zeta"]]
+            else:
+                row.append(d["imag"])
             if ref:
                 row.append(decimal_string(self._Omega(e.omega), self.digits))
-            row.append(str(e.multiplicity))
-            rows.append(row)
+            rows.append(row + [str(e.multiplicity)])
+        return head, rows
+
+    def table(self) -> str:
+        """A readable table (the ``symtmm solve`` output)."""
+        head, rows = self._rows(unicode=False)
         widths = [max(len(h), *(len(r[k]) for r in rows)) if rows else len(h)
                   for k, h in enumerate(head)]
         lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths))]
@@ -233,20 +342,7 @@ class Spectrum:
     # -- Jupyter --------------------------------------------------------------------
     def _display_rows(self):
         """Header and rows shared by the HTML and LaTeX forms."""
-        damped = any(e.lam.real != 0 for e in self.eigenvalues)
-        ref = self.omega_scale[0] if self.omega_scale and not damped else None
-        head = ["#", "Re λ [1/s]", "Im λ = ω [rad/s]"] if damped else ["#", "ω [rad/s]"]
-        if ref:
-            head.append(f"Ω (beam {ref})")
-        head.append("mult.")
-        rows = []
-        for i, e in enumerate(self.eigenvalues, 1):
-            d = e.to_dict()
-            row = [str(i)] + ([d["real"]] if damped else []) + [d["imag"]]
-            if ref:
-                row.append(decimal_string(self._Omega(e.omega), self.digits))
-            rows.append(row + [str(e.multiplicity)])
-        return head, rows
+        return self._rows(unicode=True)
 
     def _repr_html_(self) -> str:
         """An HTML table (Jupyter)."""
@@ -261,6 +357,7 @@ class Spectrum:
         tex = {"#": r"\#", "ω [rad/s]": r"\omega\ [\mathrm{rad/s}]",
                "Re λ [1/s]": r"\mathrm{Re}\,\lambda\ [1/\mathrm{s}]",
                "Im λ = ω [rad/s]": r"\mathrm{Im}\,\lambda = \omega\ [\mathrm{rad/s}]",
+               "|λ| [rad/s]": r"|\lambda|\ [\mathrm{rad/s}]", "ζ": r"\zeta",
                "mult.": r"\mathrm{mult.}"}
         ref = self.omega_scale[0] if self.omega_scale else ""
         return latex_array([tex.get(h, r"\Omega\ (" + latex_text("beam " + ref) + ")")

@@ -473,3 +473,36 @@ def test_example4_thirty_digits():
             assert d["real"] == "0"
         else:
             assert_digits_correct(d["real"], ref.real, 30)
+
+
+# -- the engineer's quantities ----------------------------------------------------------------
+
+
+def _right_digits(text: str, value) -> bool:
+    """Every digit of ``text`` is right: ``value`` rounds to it at its own length."""
+    digits = len(text.lstrip("-0.").replace(".", ""))
+    return text != "?" and decimal_string(value, digits) == text
+
+
+def test_damping_ratio_frequency_and_modulus_of_example_4(ex4_spectrum, ex4_reference):
+    """zeta = -Re lam / |lam|, |lam| and Im lam / 2 pi of every eigenvalue, each digit right
+    against the decoupled-family reference, and at least 14 of the 15 digits shown."""
+    found = ex4_spectrum.to_dict()["eigenvalues"]
+    assert len(found) == len(ex4_reference)
+    with mpmath.workdps(40):
+        for got, (ref, _) in zip(found, ex4_reference):
+            quantities = {"abs": abs(ref), "hz": ref.imag / (2 * mpmath.pi),
+                          "zeta": -ref.real / abs(ref)}
+            for name, value in quantities.items():
+                text = got[name]
+                if value == 0:
+                    assert text == "0"
+                    continue
+                assert _right_digits(text, value), (name, text, value)
+                assert len(text.lstrip("-0.").replace(".", "")) >= 14, (name, text)
+
+
+def test_damped_table_shows_modulus_and_damping_ratio(ex4_spectrum):
+    head = ex4_spectrum.table().splitlines()[0]
+    assert "|lam| [rad/s]" in head and "zeta" in head
+    assert r"\zeta" in ex4_spectrum._repr_latex_()
