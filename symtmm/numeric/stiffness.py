@@ -43,6 +43,15 @@ from .segments import stack_matrix, transfer_matrices
 
 __all__ = ["segment_stiffness", "assemble", "factor", "Factors", "dense"]
 
+try:        # the elimination loop in C (setup.py); without a compiler, numpy runs it
+    from . import _band
+except ImportError:  # pragma: no cover - tested by switching it off
+    _band = None
+
+#: Whether double-precision bands are eliminated by the C loop (where it was built);
+#: tests switch it off to run the numpy loop, which gives the same factors.
+COMPILED = _band is not None
+
 
 def _mul(X, Y):
     """Product of 2x2 matrices given as nested lists of arrays."""
@@ -272,18 +281,22 @@ def _ldl(plan, ar: Arithmetic, K, det12) -> Factors:
     Kb = np.concatenate([K, ar.zeros((B, w, w), like=K)], axis=1)
     rows, cols, fi, fj = _update_maps(w)
     exact_zero_possible = Kb.dtype == object and not ar.rigorous
+    compiled = COMPILED and Kb.dtype in (np.float64, np.complex128)
     with np.errstate(all="ignore"):
-        for k in range(n):
-            piv = Kb[:, k, 0]
-            if exact_zero_possible:
-                zero = np.array([v == 0 for v in piv], dtype=bool)
-                if zero.any():              # (mpmath refuses to divide by an exact 0)
-                    piv = piv.copy()
-                    piv[zero] = ar.exact(1)
-            if w > 1:
-                row = Kb[:, k, 1:]
-                f = row / piv[:, None]
-                Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
+        if compiled:
+            _band.eliminate(Kb, B, n + w, w, n, Kb.dtype == np.complex128)
+        else:
+            for k in range(n):
+                piv = Kb[:, k, 0]
+                if exact_zero_possible:
+                    zero = np.array([v == 0 for v in piv], dtype=bool)
+                    if zero.any():              # (mpmath refuses to divide by an exact 0)
+                        piv = piv.copy()
+                        piv[zero] = ar.exact(1)
+                if w > 1:
+                    row = Kb[:, k, 1:]
+                    f = row / piv[:, None]
+                    Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
         pivots = Kb[:, :n, 0]
         # the diagonal of |L||D||L^T| bounds what rounding can do to each pivot
         scale = ar.upper(K[:, :, 0]).astype(float)

@@ -1,0 +1,88 @@
+"""The banded LDL^T elimination in C (symtmm/numeric/_band.c) against the numpy loop.
+
+The C loop is an optional build; where it is missing these tests are skipped and the
+numpy loop runs everywhere (every other test exercises it then). Where it is present,
+the numpy loop is still run here, on the same bands and in whole solves.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from symtmm import api
+from symtmm.numeric import stiffness
+from symtmm.numeric.arith import DOUBLE
+from symtmm.solve import solve
+
+compiled_only = pytest.mark.skipif(stiffness._band is None, reason="C extension not built")
+
+
+@pytest.fixture
+def numpy_loop(monkeypatch):
+    monkeypatch.setattr(stiffness, "COMPILED", False)
+
+
+def _factors(monkeypatch, K, compiled: bool):
+    monkeypatch.setattr(stiffness, "COMPILED", compiled)
+    return stiffness._ldl(None, DOUBLE, K.copy(), np.zeros((K.shape[0], 0)))
+
+
+def _random_band(rng, B, n, w, dtype):
+    """Banded symmetric matrices with a dominant diagonal (no breakdown without pivoting)
+    and some indefinite ones."""
+    K = rng.normal(size=(B, n, w))
+    if dtype == complex:
+        K = K + 1j * rng.normal(size=(B, n, w))
+    K[:, :, 0] += np.where(rng.random((B, n)) < 0.3, -1, 1) * 3 * w
+    for j in range(1, w):
+        K[:, n - j:, j] = 0          # outside the matrix
+    return K
+
+
+@compiled_only
+@pytest.mark.parametrize("dtype", [float, complex])
+@pytest.mark.parametrize("n, w", [(1, 1), (5, 1), (12, 4), (40, 9)])
+def test_c_and_numpy_give_the_same_factors(monkeypatch, dtype, n, w):
+    K = _random_band(np.random.default_rng(n * 100 + w), 7, n, w, dtype)
+    c = _factors(monkeypatch, K, True)
+    p = _factors(monkeypatch, K, False)
+    # real bands: the same operations in the same order, the same bits; complex ones may
+    # differ in the last bits (numpy may fuse the products of a complex multiplication)
+    rtol = 0 if dtype is float else 1e-13
+    np.testing.assert_allclose(c.pivots, p.pivots, rtol=rtol, atol=0)
+    assert np.array_equal(c.counts(), p.counts())
+    # against numpy's dense eigenvalues: the inertia
+    if dtype is float:
+        dense = stiffness.dense(None, K)
+        negative = (np.linalg.eigvalsh(dense) < 0).sum(axis=1)
+        assert np.array_equal(c.counts()[c.trusted], negative[c.trusted])
+
+
+@compiled_only
+def test_a_zero_pivot_gives_the_same_non_finite_values(monkeypatch):
+    K = np.zeros((1, 3, 2))
+    K[0, :, 0] = [0.0, 1.0, 1.0]
+    K[0, 0, 1] = 1.0
+    c, p = _factors(monkeypatch, K, True), _factors(monkeypatch, K, False)
+    np.testing.assert_array_equal(c.pivots, p.pivots)
+    assert c.counts()[0] == p.counts()[0] == -1
+
+
+@compiled_only
+def test_the_c_loop_refuses_a_buffer_of_the_wrong_size():
+    with pytest.raises(ValueError, match="wrong size"):
+        stiffness._band.eliminate(np.zeros((2, 5, 3)), 2, 5, 3, 4, False)
+
+
+@pytest.mark.parametrize("name", ["paper_ex1_ff_cc.toml", "tuned_mass_damper.toml"])
+def test_solves_with_the_numpy_loop(numpy_loop, examples_dir, name):
+    """The loop that runs where no compiler built the C one: the same digits."""
+    model = api.load(examples_dir / name)
+    spec = solve(model, count=4, digits=15)
+    assert stiffness.COMPILED is False
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(stiffness, "COMPILED", stiffness._band is not None)
+        again = solve(model, count=4, digits=15)
+    assert [str(e) for e in spec] == [str(e) for e in again]
+
