@@ -336,7 +336,7 @@ def plot_scan(scan, frequency: str | None = None, title: str | None = None,
     ax.set_xlabel(OMEGA_LABEL + f" of beam {scale[0]}" if frequency == "Omega"
                   else r"$\omega$ [rad/s]")
     ax.set_ylabel(r"$\log_{10}|\Delta(i\omega)|$")
-    ax.set_title(_wrap(title or scan.model_name or "characteristic function along the frequency axis"))
+    ax.set_title(_wrap(title or scan.title or scan.model_name or "characteristic function along the frequency axis"))
     ax.grid(alpha=0.3)
     ax.legend(fontsize="small", loc="upper left")
     return fig
@@ -394,7 +394,7 @@ def plot_scan_map(scan, title: str | None = None, figsize=(7.0, 5.5), mark: bool
         ax.legend(fontsize="small", loc="lower left")
     ax.set_xlabel(r"$\mathrm{Re}\,\lambda = -\sigma$ [1/s]")
     ax.set_ylabel(r"$\mathrm{Im}\,\lambda = \omega$ [rad/s]")
-    ax.set_title(_wrap(title or scan.model_name or "characteristic function in the complex plane"))
+    ax.set_title(_wrap(title or scan.title or scan.model_name or "characteristic function in the complex plane"))
     return fig
 
 

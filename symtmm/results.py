@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import functools
-import json
 from dataclasses import dataclass, field, replace
 
 import mpmath
 
 from .display import html_table, latex_array, latex_text
+from .jsonout import dumps, header
 
 __all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string", "enclosed_string"]
 
@@ -218,6 +218,7 @@ class Spectrum:
     model_name: str = ""
     omega_scale: tuple | None = None  # (beam name, sqrt(EI/(m L^4))) for Omega = beta L
     notes: tuple = field(default_factory=tuple)
+    title: str = ""
 
     def __iter__(self):
         return iter(self.eigenvalues)
@@ -259,9 +260,10 @@ class Spectrum:
                 out.setdefault(e.proof, []).append(i)
         return out
 
-    def with_model_name(self, name: str) -> Spectrum:
-        """The same spectrum labelled with ``name`` (the model file, in JSON)."""
-        return replace(self, model_name=name)
+    def with_model_name(self, name: str, title: str | None = None) -> Spectrum:
+        """The same spectrum labelled with ``name`` (the model file, in JSON) and, if given,
+        the model's title."""
+        return replace(self, model_name=name, title=self.title if title is None else title)
 
     @property
     def damped(self) -> bool:
@@ -278,9 +280,7 @@ class Spectrum:
     def to_dict(self) -> dict:
         """The JSON object of ``symtmm solve --json``: per eigenvalue also ``"hz"`` and, in a
         damped spectrum, ``"abs"`` and ``"zeta"`` (:meth:`Eigenvalue.quantities`)."""
-        return {
-            "model": self.model_name,
-            "digits": self.digits,
+        return header(self.model_name, self.title, self.digits, self.notes) | {
             "eigenvalues": [self._eigenvalue_dict(e) for e in self.eigenvalues],
             "stats": {"evaluations": self.evaluations, "seconds": round(self.seconds, 6),
                       "method": self.method},
@@ -288,7 +288,7 @@ class Spectrum:
 
     def to_json(self) -> str:
         """:meth:`to_dict` as a JSON string."""
-        return json.dumps(self.to_dict(), indent=2)
+        return dumps(self.to_dict())
 
     def _rows(self, unicode: bool):
         """Header and rows of the tables (text, HTML, LaTeX): damped spectra show

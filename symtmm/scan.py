@@ -17,13 +17,13 @@ eigenvalues themselves come from the exact solver.
 
 from __future__ import annotations
 
-import json
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from .errors import ComputationError, ModelError
+from .jsonout import dumps, header
 from .model import Model
 from .numeric import transfer
 from .results import Spectrum
@@ -66,6 +66,7 @@ class Scan:
     map_omega: np.ndarray | None = None
     map_log10: np.ndarray | None = None
     notes: tuple = field(default_factory=tuple)
+    title: str = ""
 
     @property
     def damped(self) -> bool:
@@ -80,8 +81,8 @@ class Scan:
 
     def to_dict(self) -> dict:
         """The JSON object of ``symtmm scan --json``."""
-        out = {
-            "model": self.model_name,
+        digits = None if self.spectrum is None else self.spectrum.digits
+        out = header(self.model_name, self.title, digits, self.notes) | {
             "omega": [float(w) for w in self.omega],
             "log10_abs_delta": _finite_list(self.log10_delta),
             "eigenvalues": None if self.spectrum is None else
@@ -93,13 +94,11 @@ class Scan:
             out["map"] = {"sigma": [float(s) for s in self.map_sigma],
                           "omega": [float(w) for w in self.map_omega],
                           "log10_abs_delta": [_finite_list(row) for row in self.map_log10]}
-        if self.notes:
-            out["notes"] = list(self.notes)
         return out
 
     def to_json(self) -> str:
-        """:meth:`to_dict` as a JSON string (compact: the grids are large)."""
-        return json.dumps(self.to_dict(), separators=(",", ":"))
+        """:meth:`to_dict` as a JSON string."""
+        return dumps(self.to_dict())
 
     def table(self) -> str:
         """A summary: the grid, the minima of the curve, the eigenvalues."""
@@ -228,9 +227,7 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
                              method=method)
             if omega_min > 0:
                 kept = tuple(e for e in spectrum if float(e.omega) >= omega_min)
-                spectrum = Spectrum(kept, spectrum.digits, spectrum.method,
-                                    spectrum.evaluations, spectrum.seconds,
-                                    spectrum.model_name, spectrum.omega_scale, spectrum.notes)
+                spectrum = replace(spectrum, eigenvalues=kept)
         except ComputationError as exc:
             notes.append(f"eigenvalues not marked: {exc}")
     map_sigma = map_omega = map_log10 = None
@@ -248,6 +245,5 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
         map_omega = np.linspace(omega_min, omega_max, n_im)
         lam = -map_sigma[None, :] + 1j * map_omega[:, None]
         map_log10 = _log10_abs(plan, lam)
-    return Scan(omega, curve, spectrum, (name, float(scale)),
-                model.title or (model.source or ""), map_sigma, map_omega, map_log10,
-                tuple(notes))
+    return Scan(omega, curve, spectrum, (name, float(scale)), model.source or "", map_sigma,
+                map_omega, map_log10, tuple(notes), model.title)

@@ -75,4 +75,5 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
         count = 10
     model = model.require_numeric()
     check_search(model, count, omega_max, sigma_max)
-    return METHODS[method](model, count, omega_max, sigma_max, digits)
+    spectrum = METHODS[method](model, count, omega_max, sigma_max, digits)
+    return spectrum.with_model_name(spectrum.model_name or model.source or "", model.title)

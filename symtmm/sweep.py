@@ -26,7 +26,6 @@ change little between neighbours.
 
 from __future__ import annotations
 
-import json
 import os
 import time
 from dataclasses import dataclass, field
@@ -38,6 +37,7 @@ import sympy as sp
 from .display import html_table, latex_array, latex_text
 from .errors import ComputationError, ModelError
 from .expr import ExpressionError, exact_number, parse_expression
+from .jsonout import dumps, header
 from .model import Model
 from .numeric.arith import DOUBLE, MP
 from .numeric.linalg import orthonormal
@@ -364,6 +364,10 @@ class Sweep:
     seconds : float
         Wall time of the whole sweep.
     model_name : str
+        The model file (empty for a model built in Python).
+    notes : tuple of str
+    title : str
+        The model's title.
     """
 
     parameter: str
@@ -374,6 +378,7 @@ class Sweep:
     seconds: float = 0.0
     model_name: str = ""
     notes: tuple = field(default_factory=tuple)
+    title: str = ""
 
     def __len__(self):
         return len(self.values)
@@ -419,7 +424,7 @@ class Sweep:
 
     def to_dict(self) -> dict:
         """The JSON object of ``symtmm sweep --json`` (``branches`` is an extra key)."""
-        return {
+        return header(self.model_name, self.title, self.digits, self.notes) | {
             "parameter": self.parameter,
             "values": [value_string(v) for v in self.values],
             "eigenvalues": [[e.to_dict() for e in s] for s in self.spectra],
@@ -428,7 +433,7 @@ class Sweep:
 
     def to_json(self) -> str:
         """:meth:`to_dict` as a JSON string."""
-        return json.dumps(self.to_dict(), indent=1)
+        return dumps(self.to_dict())
 
     def _rows(self, shown: int):
         scale = self.omega_scale if not self.damped else None
@@ -579,7 +584,7 @@ def sweep(model: Model, parameter: str, start, stop, steps: int, count: int = 10
     results = _run(payloads, jobs, scheduler, progress)
     spectra = tuple(r[0] for r in results)
     branches = track_branches([r[1] for r in results])
-    name = model.title or (model.source or "")
-    return Sweep(parameter, values, tuple(s.with_model_name(name) for s in spectra),
+    name = model.source or ""
+    return Sweep(parameter, values, tuple(s.with_model_name(name, model.title) for s in spectra),
                  tuple(tuple(step) for step in branches), digits,
-                 time.perf_counter() - started, name)
+                 time.perf_counter() - started, name, title=model.title)

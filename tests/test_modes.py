@@ -245,7 +245,8 @@ def test_cli_json_and_plot(examples_dir, tmp_path, capsys):
                  "--points", "5", "--json", "--digits", "10", "--plot", str(png)])
     assert code == 0
     data = json.loads(capsys.readouterr().out)
-    assert list(data) == ["modes"] and len(data["modes"]) == 2
+    assert list(data)[-1] == "modes" and len(data["modes"]) == 2
+    assert data["digits"] == 10
     mode = data["modes"][0]
     assert set(mode["eigenvalue"]) == {"real", "imag"}
     assert mode["eigenvalue"]["real"] == "0"

@@ -233,7 +233,7 @@ def test_cli_modes_json_on_a_timoshenko_beam(tmp_path, capsys):
                     'right = "pinned"\ntheory = "timoshenko"\nrhoI = 0.01\nkGA = 80\n')
     assert main(["modes", str(path), "--count", "2", "--points", "9", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert list(data) == ["modes"] and len(data["modes"]) == 2
+    assert list(data)[-1] == "modes" and len(data["modes"]) == 2
     for n, mode in zip((1, 2), data["modes"]):
         ((w2, A, B), _) = pinned_pinned_reference(EI, MASS, LENGTH, n, rhoI="0.01", kGA=80)
         assert set(mode) == {"eigenvalue", "beams"}          # no bodies in this model

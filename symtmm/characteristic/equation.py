@@ -8,7 +8,6 @@ numbers' definitions.
 
 from __future__ import annotations
 
-import json
 import time
 from dataclasses import dataclass, field
 
@@ -16,6 +15,7 @@ import sympy as sp
 
 from ..elements.base import LAM
 from ..errors import ComputationError
+from ..jsonout import dumps, header
 from ..limits import DERIVE_SECONDS, DERIVE_TERMS
 from ..model import Model
 from .algebra import _Algebra
@@ -76,6 +76,7 @@ class CharacteristicEquation:
     notes: tuple = field(default_factory=tuple)
     model_name: str | None = None
     definitions: dict = field(default_factory=dict)
+    title: str = ""
 
     @property
     def equation(self) -> sp.Expr:
@@ -100,7 +101,8 @@ class CharacteristicEquation:
         ``variable``; ``delta_Omega`` with ``Omega`` (and the wave numbers of
         ``definitions``, each a function of ``variable``) likewise.
         """
-        return {
+        # digits: null, a closed form is exact
+        return header(self.model_name, self.title, None, self.notes) | {
             "variable": str(self.variable),
             "delta": str(self.delta),
             "latex": self.latex(),
@@ -113,13 +115,11 @@ class CharacteristicEquation:
             "symbols": list(self.symbols),
             "count_ops": self.count_ops(),
             "seconds": round(self.seconds, 3),
-            "notes": list(self.notes),
-            "model": self.model_name,
             "definitions": {str(k): str(v) for k, v in self.definitions.items()},
         }
 
     def to_json(self) -> str:
-        return json.dumps(self.to_dict(), indent=2)
+        return dumps(self.to_dict())
 
     def __str__(self) -> str:
         return f"Delta({self.variable}) = {self.delta}"
@@ -252,7 +252,7 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float) -> Cha
         constant_Omega=constant_Omega, Omega=Omega_of_var, power=int(power),
         factors=tuple(out_factors), symbols=symbols,
         seconds=time.perf_counter() - start, notes=tuple(notes),
-        model_name=model_in.source or model_in.title or None, definitions=definitions)
+        model_name=model_in.source or None, definitions=definitions, title=model_in.title)
 
 
 def _merge_factors(factors, Om):

@@ -56,8 +56,7 @@ def run(args) -> int:
 
 def _print_certified(model, spectrum, as_json: bool) -> int:
     """The spectrum with an "enclosure" per eigenvalue (see symtmm.roots.certified)."""
-    import json
-
+    from ..jsonout import dumps
     from ..roots.certified import certify
 
     enclosures = certify(model, spectrum)
@@ -68,7 +67,7 @@ def _print_certified(model, spectrum, as_json: bool) -> int:
         # the proofs evaluate Delta too: they count as evaluations
         data["stats"]["evaluations"] += enclosures.evaluations
         data["stats"]["certification_evaluations"] = enclosures.evaluations
-        print(json.dumps(data, indent=2))
+        print(dumps(data))
         return 0
     if model.title:
         print(title_line(model.title))

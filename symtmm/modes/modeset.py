@@ -8,7 +8,6 @@ JSON, HTML, LaTeX and plot).
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 
 import mpmath
@@ -16,6 +15,7 @@ import numpy as np
 
 from ..display import html_table, latex_array, latex_text
 from ..elements import STATE
+from ..jsonout import dumps, header
 from ..model import Model
 from ..numeric.arith import MP
 from ..results import Eigenvalue, Spectrum, decimal_string
@@ -172,13 +172,13 @@ class ModeSet:
         return [b.name for b in self.model.beams]
 
     def to_dict(self) -> dict:
-        """The JSON object of ``symtmm modes --json``: ``{"modes": [...]}``."""
-        return {"modes": [m.to_dict() for m in self.modes]}
+        """The JSON object of ``symtmm modes --json``: the header, then ``"modes": [...]``."""
+        return header(self.model.source, self.model.title, self.spectrum.digits, self.notes) | {
+            "modes": [m.to_dict() for m in self.modes]}
 
     def to_json(self) -> str:
         """:meth:`to_dict` as a JSON string."""
-        # compact: a shape has thousands of numbers
-        return json.dumps(self.to_dict(), separators=(",", ":"))
+        return dumps(self.to_dict())
 
     def _rows(self):
         """Number, eigenvalue text, Omega text, and per beam the largest |Y|."""

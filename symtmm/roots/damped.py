@@ -1148,4 +1148,4 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
     evaluations += search.p.evaluations
     name, scale_mp = omega_scale(model, digits + 10)
     return Spectrum(tuple(eigen), digits, "default", evaluations, time.perf_counter() - start,
-                    model.title or (model.source or ""), (name, scale_mp), tuple(notes))
+                    model.source or "", (name, scale_mp), tuple(notes), title=model.title)

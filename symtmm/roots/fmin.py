@@ -135,7 +135,7 @@ def _spectrum(model, eigen, digits, method, evaluations, start, notes) -> Spectr
     eigen.sort(key=lambda e: (e.lam.imag, e.lam.real))
     shown = min([e.digits for e in eigen], default=digits)
     return Spectrum(tuple(eigen), shown, method, evaluations, time.perf_counter() - start,
-                    model.title or (model.source or ""), omega_scale(model, 20), tuple(notes))
+                    model.source or "", omega_scale(model, 20), tuple(notes), title=model.title)
 
 
 #: Safety factor on the Newton step: some zero of a cluster of ``m`` lies within

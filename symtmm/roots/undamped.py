@@ -670,8 +670,8 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         eigen = [e for e in eigen if e.omega <= top]
     name, scale_mp = omega_scale(model, digits + 10)
     return Spectrum(tuple(eigen), digits, "default", search.evaluations,
-                    time.perf_counter() - start, model.title or (model.source or ""),
-                    (name, scale_mp), _notes(eigen, digits))
+                    time.perf_counter() - start, model.source or "", (name, scale_mp),
+                    _notes(eigen, digits), title=model.title)
 
 
 def _notes(eigen, digits) -> tuple:
