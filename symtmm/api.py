@@ -7,8 +7,10 @@
     api.sweep(model, "x1", 0, 0.5, 26, count=10).plot()
     api.scan(model, omega_max=200).plot()
 
-Models come from files (:func:`load`), from TOML text (:func:`loads`) or are
-built in code from :class:`Beam`, :class:`Spring` and :class:`Mass`. Results print as tables,
+Models come from files (:func:`load`), from TOML text (:func:`loads`), from plain
+dicts laid out like a file (:func:`from_dict`) or are built in code from
+:class:`Beam`, :class:`Spring`, :class:`Mass`, :class:`RigidBody` (with its
+:class:`Attachment` points; joints are massless bodies) and :func:`oscillator`. Results print as tables,
 render as HTML/LaTeX in Jupyter, and have ``to_dict()``/``to_json()`` (the
 command line's JSON) and ``plot()`` (a :class:`matplotlib.figure.Figure`).
 
@@ -46,7 +48,8 @@ from pathlib import Path
 from .characteristic import characteristic_equation
 from .codegen import generate
 from .limits import DERIVE_SECONDS
-from .model import Beam, Mass, Model, Spring
+from .model import Attachment, Beam, Mass, Model, RigidBody, Spring, oscillator
+from .modelfile import from_dict as _from_dict
 from .modelfile import load as _load_file
 from .modelfile import loads as _loads_text
 from .modes import evaluate_mode
@@ -56,9 +59,9 @@ from .scan import scan
 from .solve import METHODS, solve
 from .sweep import sweep
 
-__all__ = ["METHODS", "Beam", "Mass", "Model", "Spring", "codegen", "derive", "evaluate_mode",
-           "load", "loads", "modes", "plot_modes", "plot_scan", "plot_scan_map", "plot_sweep",
-           "scan", "solve", "sweep"]
+__all__ = ["METHODS", "Attachment", "Beam", "Mass", "Model", "RigidBody", "Spring", "codegen",
+           "derive", "evaluate_mode", "from_dict", "load", "loads", "modes", "oscillator",
+           "plot_modes", "plot_scan", "plot_scan_map", "plot_sweep", "scan", "solve", "sweep"]
 
 
 def load(path, **parameters) -> Model:
@@ -99,6 +102,20 @@ def loads(text: str, **parameters) -> Model:
     2
     """
     return _loads_text(text, parameters or None)
+
+
+def from_dict(data: dict, **parameters) -> Model:
+    """A model from a plain dict laid out as a model file, parameters overridden by keyword.
+
+    Examples
+    --------
+    >>> m = from_dict({"beam": [{"name": "b", "EI": 1, "m": 1, "L": "Lb",
+    ...                          "left": "pinned", "right": "pinned"}],
+    ...                "oscillator": [{"beam": "b", "x": 0.5, "M": 0.1, "k": 10}]}, Lb=2)
+    >>> m.resolved().beams[0].L, m.bodies[0].attachments[0].k
+    (2, 10)
+    """
+    return _from_dict(data, parameters or None)
 
 
 def derive(model: Model, symbolic=(), max_seconds=DERIVE_SECONDS):

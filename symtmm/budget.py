@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import numbers
 
 from .errors import ModelError
 from .limits import MAX_EIGENVALUES
@@ -125,27 +126,35 @@ def check_search(model: Model, count=None, omega_max=None, sigma_max=None) -> No
     Raises
     ------
     ModelError
-        Naming the flag to change.
+        Naming the argument to change.
     """
+    if count is not None and omega_max is not None:
+        raise ModelError("give count or omega_max, not both", field="count",
+                         source=model.source)
+    if count is not None and (isinstance(count, bool) or not isinstance(count, numbers.Integral)
+                              or count < 1):
+        raise ModelError(f"must be a whole number of at least 1, got {count!r}", field="count",
+                         source=model.source)
     if count is not None and count > MAX_EIGENVALUES:
         raise ModelError(f"asks for {count} eigenvalues; a search delivers at most "
-                         f"{MAX_EIGENVALUES}", field="--count", source=model.source)
+                         f"{MAX_EIGENVALUES}", field="count", source=model.source)
     if omega_max is not None and sigma_max is None and model.damped:
         from .roots.damped import default_sigma_max
         sigma_max = default_sigma_max(omega_max)
-    for flag, value in (("--omega-max", omega_max), ("--sigma-max", sigma_max)):
+    for name, value in (("omega_max", omega_max), ("sigma_max", sigma_max)):
         if value is None:
             continue
         value = float(value)
         if not math.isfinite(value) or value < 0:
-            raise ModelError(f"must be a finite number >= 0, got {value}", field=flag,
+            raise ModelError(f"must be a finite number >= 0, got {value}", field=name,
                              source=model.source)
         if eigenvalues_below(model, value) > MAX_EIGENVALUES:
             what = ("more than {n} eigenvalues lie below {v:g} rad/s, more than one search "
-                    "delivers: lower it, or ask for the first ones with --count"
-                    if flag == "--omega-max" else
+                    "delivers: lower it, or ask for the first ones by count"
+                    if name == "omega_max" else
                     "a search region reaching {v:g} from the imaginary axis is as large as "
                     "one holding more than {n} eigenvalues, more than one search delivers: "
                     "lower it")
-            raise ModelError(what.format(n=MAX_EIGENVALUES, v=value), field=flag,
-                             source=model.source)
+            message = what.format(n=MAX_EIGENVALUES, v=value)
+            raise ModelError(message, field=name, source=model.source,
+                             cli_message=message.replace("by count", "with --count"))

@@ -160,7 +160,7 @@ def main(argv=None) -> int:
     try:
         return args._run(args)
     except ModelError as exc:
-        _error(f"symtmm: {exc}")
+        _error(f"symtmm: {exc.for_command_line()}")
         return 2
     except ComputationError as exc:
         model = getattr(args, "model", None)

@@ -864,9 +864,12 @@ class Model:
         """The resolved model, or a :class:`ModelError` naming a parameter without value."""
         free = self.free_symbols
         if free:
-            raise ModelError(f"'{free[0]}' has no value; give it one in [parameters] "
-                             f"or with --set {free[0]}=VALUE", field="parameters",
-                             source=self.source)
+            name = free[0]
+            raise ModelError(f"'{name}' has no value; give it one in [parameters] or with "
+                             f"with_parameters({name}=...)", field="parameters",
+                             source=self.source,
+                             cli_message=f"'{name}' has no value; give it one in [parameters] "
+                                         f"or with --set {name}=VALUE")
         return self.resolved()
 
 

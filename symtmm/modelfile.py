@@ -61,7 +61,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["load", "loads", "parse_assignment"]
+__all__ = ["load", "loads", "from_dict", "parse_assignment"]
 
 _TOP = {"title", "parameters", "beam", "spring", "mass", "rigid", "joint", "oscillator"}
 _BEAM_REQUIRED = ("name", "EI", "m", "L", "left", "right")
@@ -127,6 +127,23 @@ def loads(text: str, overrides: dict | None = None, source: str = "<string>") ->
         return _build(data, overrides or {}, source)
     except ModelError as exc:
         raise exc.with_source(source) from None
+
+
+def from_dict(data: dict, overrides: dict | None = None, source: str = "<dict>") -> Model:
+    """A model from a plain dict laid out as a model file (``{"beam": [{...}], ...}``).
+
+    Values may be numbers (a float means its shortest decimal: ``0.3`` is 3/10) or
+    expression strings; the checks and messages are those of :func:`load`.
+    """
+    if not isinstance(data, dict):
+        raise ModelError(f"expected a dict laid out as a model file, got {_kind(data)}",
+                         source=source)
+    try:
+        return _build(data, overrides or {}, source)
+    except ModelError as exc:
+        raise exc.with_source(source) from None
+    except RecursionError:
+        raise ModelError("nested too deeply", source=source) from None
 
 
 def parse_assignment(text: str) -> tuple[str, str]:
@@ -196,7 +213,7 @@ def _parameters(raw: dict, overrides: dict) -> dict:
             raise ModelError(f"defined through a chain of more than {MAX_PARAMETER_DEPTH} other "
                              "parameters", field=f"parameters.{active[0]}")
         active.append(name)
-        field = "--set " + name if name in overrides else f"parameters.{name}"
+        field = f"override {name}" if name in overrides else f"parameters.{name}"
 
         def reference(other):
             if other not in texts:
@@ -331,7 +348,7 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
                 raise ModelError(f"unknown beam '{end}'", field=f"spring[{i}].between")
     for name in overrides:
         if name not in known_names:
-            raise ModelError(f"'{name}' is not a parameter of this model", field="--set " + name)
+            raise ModelError(f"'{name}' is not a parameter of this model", field=f"override {name}")
     try:
         return Model(tuple(beams), tuple(springs), params, title, source, tuple(masses),
                      tuple(bodies))

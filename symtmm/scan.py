@@ -124,6 +124,10 @@ class Scan:
     def __str__(self) -> str:
         return self.table()
 
+    def __repr__(self) -> str:
+        # the table, not the fields: what a user at a prompt wants to see
+        return self.table()
+
     def _repr_html_(self) -> str:
         from html import escape
         return "<pre>" + escape(self.table()) + "</pre>"
@@ -200,13 +204,13 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
         omega_max = float(omega_max)
         omega_min = float(omega_min)
     except (TypeError, ValueError):
-        raise ModelError("must be a number", field="--omega-max") from None
+        raise ModelError("must be a number", field="omega_max") from None
     if not (math.isfinite(omega_max) and omega_max > 0):
-        raise ModelError("must be a positive number", field="--omega-max")
+        raise ModelError("must be a positive number", field="omega_max")
     if not 0 <= omega_min < omega_max:
-        raise ModelError("must lie in [0, omega_max)", field="--omega-min")
+        raise ModelError("must lie in [0, omega_max)", field="omega_min")
     if int(points) < 3:
-        raise ModelError("need at least 3 points", field="--points")
+        raise ModelError("need at least 3 points", field="points")
     if spacing not in ("Omega", "omega"):
         raise ValueError("spacing must be 'Omega' or 'omega'")
     # the curve costs about as much as a search up to omega_max (segments cut by wave number)
@@ -238,7 +242,7 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
             sigma_max = 1.25 * top if top > 0 else omega_max / 5
         sigma_max = float(sigma_max)
         if not (math.isfinite(sigma_max) and sigma_max > 0):
-            raise ModelError("must be a positive number", field="--sigma-max")
+            raise ModelError("must be a positive number", field="sigma_max")
         n_re, n_im = (int(p) for p in map_points)
         # a little of the right half-plane too, so that undamped roots show whole dips
         map_sigma = np.linspace(-0.04 * sigma_max, sigma_max, n_re)

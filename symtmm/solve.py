@@ -70,7 +70,7 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
     """
     if method not in METHODS:
         raise ModelError(f"unknown method {method!r} (use one of {', '.join(METHODS)})",
-                         field="--method")
+                         field="method")
     if count is None and omega_max is None:
         count = 10
     model = model.require_numeric()

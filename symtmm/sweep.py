@@ -78,9 +78,9 @@ def sweep_values(start, stop, steps: int) -> tuple:
     >>> sweep_values(1, "1/3", 3)
     (1, 2/3, 1/3)
     """
-    a, b = _exact(start, "--from"), _exact(stop, "--to")
+    a, b = _exact(start, "start"), _exact(stop, "stop")
     if int(steps) != steps or steps < 2:
-        raise ModelError(f"need at least 2 steps (both ends), got {steps}", field="--steps")
+        raise ModelError(f"need at least 2 steps (both ends), got {steps}", field="steps")
     n = int(steps)
     return tuple(a + (b - a) * sp.Rational(i, n - 1) for i in range(n))
 
@@ -156,14 +156,14 @@ def _dask_client(scheduler):
         from distributed import Client
     except ImportError:
         raise ModelError("a scheduler needs Dask: pip install 'symtmm[dask]'",
-                         field="--scheduler") from None
+                         field="scheduler") from None
     if isinstance(scheduler, Client):
         return scheduler, False
     try:
         return Client(scheduler, timeout="20s"), True
     except (OSError, TimeoutError, ValueError, TypeError) as exc:
         # an unreachable host (OSError, TimeoutError) or a malformed address (ValueError)
-        raise ModelError(f"cannot reach the Dask scheduler: {exc}", field="--scheduler",
+        raise ModelError(f"cannot reach the Dask scheduler: {exc}", field="scheduler",
                          source=str(scheduler)) from None
 
 
@@ -479,6 +479,10 @@ class Sweep:
     def __str__(self) -> str:
         return self.table()
 
+    def __repr__(self) -> str:
+        # the table, not the fields: what a user at a prompt wants to see
+        return self.table()
+
     def _repr_html_(self) -> str:
         return html_table(*self._rows(min(8, self.digits)))
 
@@ -570,7 +574,7 @@ def sweep(model: Model, parameter: str, start, stop, steps: int, count: int = 10
     if parameter not in known:
         have = ", ".join(sorted(known)) or "none"
         raise ModelError(f"unknown parameter {parameter!r} (the model's parameters: {have})",
-                         field="--param", source=model.source)
+                         field="parameter", source=model.source)
     values = sweep_values(start, stop, steps)
     payloads = []
     for value in values:

@@ -56,3 +56,63 @@ def test_a_model_built_in_python_has_no_file(examples_dir):
                  count=1)
     data = spec.to_dict()
     assert data["model"] is None and data["title"] == "pp"
+
+
+# -- the library speaks its own words; the command line translates ---------------------------
+
+
+def test_python_errors_name_arguments_and_the_command_line_flags(examples_dir, tmp_path):
+    from symtmm import api
+    from symtmm.errors import ModelError
+    model = api.load(examples_dir / "paper_ex1_ff_cc.toml")
+    with pytest.raises(ModelError, match=r": omega_max: must be a finite number >= 0") as info:
+        api.solve(model, omega_max=-1)
+    assert "--" not in str(info.value)
+    run = run_cli(["solve", examples_dir / "paper_ex1_ff_cc.toml", "--omega-max", "1e99"])
+    assert run.code == 2 and ": --omega-max: more than" in run.stderr
+    assert "with --count" in run.stderr
+    symbolic = api.load(examples_dir / "two_beams_symbolic.toml")
+    with pytest.raises(ModelError, match=r"with_parameters\(") as info:
+        api.solve(symbolic)
+    assert "--set" not in str(info.value)
+    run = run_cli(["solve", examples_dir / "two_beams_symbolic.toml"])
+    assert run.code == 2 and "--set" in run.stderr
+    with pytest.raises(ModelError, match="override Q: 'Q' is not a parameter"):
+        api.load(examples_dir / "paper_ex1_ff_cc.toml", Q=3)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(count=-1), "count: must be a whole number of at least 1, got -1"),
+    (dict(count=0), "count: must be a whole number"),
+    (dict(count=2.5), "count: must be a whole number"),
+    (dict(count=2, omega_max=50), "count: give count or omega_max, not both"),
+])
+def test_the_api_refuses_what_the_command_line_refuses(examples_dir, kwargs, message):
+    from symtmm import api
+    from symtmm.errors import ModelError
+    with pytest.raises(ModelError, match=message):
+        api.solve(api.load(examples_dir / "paper_ex1_ff_cc.toml"), **kwargs)
+
+
+def test_results_print_as_tables_at_a_prompt(examples_dir):
+    from symtmm import api
+    model = api.load(examples_dir / "paper_ex1_ff_cc.toml")
+    spectrum = api.solve(model, count=2)
+    assert repr(spectrum) == spectrum.table()
+    modes = api.modes(model, count=1, points=3)
+    assert repr(modes).startswith("#     omega [rad/s]")
+
+
+def test_models_from_plain_dicts_match_the_file(examples_dir):
+    import tomllib
+
+    from symtmm import api
+    path = examples_dir / "tuned_mass_damper.toml"
+    data = tomllib.loads(path.read_text())            # floats, as a script would have them
+    from_dict = api.from_dict(data, zeta=0)
+    from_file = api.load(path, zeta=0)
+    assert [str(e) for e in api.solve(from_dict, count=4)] == \
+        [str(e) for e in api.solve(from_file, count=4)]
+    from symtmm.errors import ModelError
+    with pytest.raises(ModelError, match="oscillator.1..k: expected one value per beam"):
+        api.from_dict({**data, "oscillator": [{**data["oscillator"][1], "k": [1, 2, 3]}]})

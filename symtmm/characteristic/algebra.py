@@ -109,8 +109,7 @@ class _Algebra:
             # here): say so rather than fail inside SymPy
             raise ComputationError("the closed form cannot hold a number of this model exactly "
                                    "(a radical or constant it meets only here); give such "
-                                   "fields rational values or keep them symbolic with "
-                                   "--symbolic") from None
+                                   "fields rational values or keep them symbolic") from None
         return self.ring.from_dict({mon: self.ring.coefficient(_rational(cf))
                                     for mon, cf in poly.as_dict().items()})
 

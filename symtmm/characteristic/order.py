@@ -30,7 +30,7 @@ def _prepare(model: Model, symbolic) -> tuple[Model, dict]:
     for name in symbolic:
         if name not in model.parameters:
             raise ModelError(f"'{name}' is not a parameter of this model",
-                             field="--symbolic " + name, source=model.source)
+                             field="symbolic " + name, source=model.source)
         value = model.parameters[name]
         if value is not None:
             sample[parameter_symbol(name)] = value

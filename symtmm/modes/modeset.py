@@ -191,12 +191,19 @@ class ModeSet:
             else:
                 Om = ""
             amps = [f"{float(np.max(np.abs(b.Y))):.4g}" for b in mode.beams.values()]
-            rows.append([str(mode.number), str(e), Om] + amps)
+            # undamped: omega in rad/s as solve prints it; damped: lam itself
+            value = str(e) if self._damped else e.to_dict()["imag"]
+            rows.append([str(mode.number), value, Om] + amps)
         return rows
+
+    @property
+    def _damped(self) -> bool:
+        return any(m.damped for m in self.modes)
 
     def _head(self):
         ref = self.spectrum.omega_scale[0] if self.spectrum.omega_scale else ""
-        return (["#", "lam [1/s]", f"Omega (beam {ref})" if ref else "Omega"]
+        return (["#", "lam [1/s]" if self._damped else "omega [rad/s]",
+                 f"Omega (beam {ref})" if ref else "Omega"]
                 + [f"max|Y| {n}" for n in self.beam_names])
 
     def table(self) -> str:
@@ -207,7 +214,7 @@ class ModeSet:
         lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths)),
                  "  ".join("-" * w for w in widths)]
         lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
-        damped = any(m.damped for m in self.modes)
+        damped = self._damped
         points = len(next(iter(self.modes[0].beams.values())).x) if self.modes else 0
         lines.append(f"{len(self.modes)} mode shape(s), {points} points per beam (max|Y| over "
                      "those points); "
@@ -220,11 +227,16 @@ class ModeSet:
     def __str__(self) -> str:
         return self.table()
 
+    def __repr__(self) -> str:
+        # the table, not the fields: what a user at a prompt wants to see
+        return self.table()
+
     def _repr_html_(self) -> str:
         return html_table(self._head(), self._rows())
 
     def _repr_latex_(self) -> str:
-        cols = [r"\#", r"\lambda\ [1/\mathrm{s}]", r"\Omega"] + [
+        cols = [r"\#", r"\lambda\ [1/\mathrm{s}]" if self._damped else r"\omega\ [\mathrm{rad/s}]",
+                r"\Omega"] + [
             r"\max|Y|\ " + latex_text(n) for n in self.beam_names]
         return latex_array(cols, self._rows())
 

@@ -323,10 +323,10 @@ def mode_shapes(model: Model, count: int | None = None, omega_max=None, sigma_ma
     >>> cf = Model((Beam("b", EI=1, m=1, L=1, left="clamped", right="free"),))
     >>> modes = mode_shapes(cf, count=2, points=11)
     >>> print(modes.table())                                      # doctest: +ELLIPSIS
-    #          lam [1/s]    Omega (beam b)  max|Y| b
-    -  -----------------  ----------------  --------
-    1  3.51601526850015i  1.87510406871196         2
-    2  22.0344915646668i  4.69409113297417         2
+    #     omega [rad/s]    Omega (beam b)  max|Y| b
+    -  ----------------  ----------------  --------
+    1  3.51601526850015  1.87510406871196         2
+    2  22.0344915646668  4.69409113297417         2
     2 mode shape(s), 11 points per beam (max|Y| over those points); mass-normalised: ...
     """
     from ..solve import solve

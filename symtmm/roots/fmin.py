@@ -211,7 +211,7 @@ def fmin1d(model: Model, count: int | None = None, omega_max=None, sigma_max=Non
     if model.damped:
         raise ModelError("fmin1d searches the frequency axis and needs an undamped model; "
                          "use fmin2d (or the default method) for damped models",
-                         field="--method")
+                         field="method")
     start = time.perf_counter()
     ev = _Transfer(model)
 

@@ -680,7 +680,7 @@ def _notes(eigen, digits) -> tuple:
     for i, (e, f) in enumerate(itertools.pairwise(eigen), 1):
         if e.omega != 0 and str(e) == str(f):
             notes.append(f"eigenvalues {i} and {i + 1} are distinct but agree to {digits} "
-                         "digits; more digits (--digits) tell them apart")
+                         "digits; more digits tell them apart")
     if any(e.multiplicity > 1 and e.omega != 0 for e in eigen):
         notes.append(f"a multiplicity m > 1: m eigenvalues agree to {digits + SEPARATION_DIGITS} "
                      "digits (exact multiple roots, or closer than that)")
