@@ -25,8 +25,9 @@ from .errors import ComputationError, ModelError
 from .limits import FLAG_MAX
 from .text import printable
 
-__all__ = ["main", "load_model_arg", "add_model_arguments", "positive_int", "nonnegative",
-           "whole_number", "real_number", "title_line"]
+__all__ = ["main", "load_model_arg", "add_model_arguments", "add_csv_argument",
+           "check_csv_path", "write_csv_arg", "positive_int", "nonnegative", "whole_number",
+           "real_number", "title_line"]
 
 
 class _Parser(argparse.ArgumentParser):
@@ -125,6 +126,37 @@ def real_number(low: float = 0.0, high: float = FLAG_MAX, low_open: bool = False
 positive_int = whole_number(1, 10**9)
 #: Argument type: a finite number >= 0 (at most :data:`symtmm.limits.FLAG_MAX`).
 nonnegative = real_number(0.0)
+
+
+def add_csv_argument(parser):
+    """``--csv FILE``: the result's rows as CSV (:mod:`symtmm.tables`)."""
+    parser.add_argument("--csv", metavar="FILE",
+                        help="also write the table to FILE as CSV (every digit kept)")
+
+
+def check_csv_path(path) -> None:
+    """Refuse, before any computation, a CSV file whose folder cannot take it."""
+    import os
+    from pathlib import Path
+
+    folder = Path(path).parent if str(Path(path).parent) else Path(".")
+    if not folder.is_dir():
+        raise ModelError(f"cannot write the table: no folder {folder}", field="--csv",
+                         source=str(path))
+    if not os.access(folder, os.W_OK):
+        raise ModelError(f"cannot write the table: folder {folder} is not writable",
+                         field="--csv", source=str(path))
+
+
+def write_csv_arg(result, args) -> str | None:
+    """Write ``result`` to ``args.csv`` if given; the line to print after the table."""
+    if not getattr(args, "csv", None):
+        return None
+    try:
+        result.to_csv(args.csv)
+    except ModelError as exc:
+        raise ModelError(exc.message, field="--csv", source=exc.source) from None
+    return f"table written to {title_line(args.csv)}"
 
 
 def add_model_arguments(parser):

@@ -9,6 +9,7 @@ import mpmath
 
 from .display import html_table, latex_array, latex_text
 from .jsonout import dumps, header
+from .tables import Tabular
 
 __all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string", "enclosed_string"]
 
@@ -202,8 +203,8 @@ class Eigenvalue:
             f" (x{self.multiplicity})" if self.multiplicity > 1 else "")
 
 
-@dataclass(frozen=True)
-class Spectrum:
+@dataclass(frozen=True, repr=False)
+class Spectrum(Tabular):
     """Eigenvalues of a model, ascending by ``Im lam``, with how they were found.
 
     Iterating gives the :class:`Eigenvalue` objects; ``len`` counts them
@@ -289,6 +290,25 @@ class Spectrum:
     def to_json(self) -> str:
         """:meth:`to_dict` as a JSON string."""
         return dumps(self.to_dict())
+
+    def records(self):
+        """``(columns, rows)``: one row per eigenvalue, the parts as the table prints them,
+        ``hz``, in a damped spectrum ``abs`` and ``zeta``, undamped ``Omega`` of the reference
+        beam (:mod:`symtmm.tables`: ``to_csv``, ``to_frame``)."""
+        damped = self.damped
+        omega_column = bool(self.omega_scale) and not damped
+        columns = ["index", "real", "imag", "multiplicity", "hz"]
+        columns += ["abs", "zeta"] if damped else []
+        columns += ["Omega"] if omega_column else []
+        columns.append("proof")
+        rows = []
+        for i, e in enumerate(self.eigenvalues, 1):
+            d, q = e.to_dict(), e.quantities()
+            row = [i, d["real"], d["imag"], e.multiplicity, q["hz"]]
+            row += [q["abs"], q["zeta"]] if damped else []
+            row += [decimal_string(self._Omega(e.omega), self.digits)] if omega_column else []
+            rows.append(row + [e.proof])
+        return columns, rows
 
     def _rows(self, unicode: bool):
         """Header and rows of the tables (text, HTML, LaTeX): damped spectra show

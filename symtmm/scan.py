@@ -27,6 +27,7 @@ from .jsonout import dumps, header
 from .model import Model
 from .numeric import transfer
 from .results import Spectrum
+from .tables import Tabular
 
 __all__ = ["Scan", "scan"]
 
@@ -36,8 +37,8 @@ def _finite_list(values):
     return [float(v) if np.isfinite(v) else None for v in values]
 
 
-@dataclass(frozen=True)
-class Scan:
+@dataclass(frozen=True, repr=False)
+class Scan(Tabular):
     """``log10|Delta|`` of a model on a frequency grid (and a complex-plane grid).
 
     Attributes
@@ -99,6 +100,13 @@ class Scan:
     def to_json(self) -> str:
         """:meth:`to_dict` as a JSON string."""
         return dumps(self.to_dict())
+
+    def records(self):
+        """``(columns, rows)``: the curve, one row per frequency (``log10_abs_delta`` empty
+        where Delta is exactly zero)."""
+        return (["omega", "log10_abs_delta"],
+                [[float(w), float(v) if math.isfinite(v) else ""]
+                 for w, v in zip(self.omega, self.log10_delta)])
 
     def table(self) -> str:
         """A summary: the grid, the minima of the curve, the eigenvalues."""

@@ -42,6 +42,7 @@ from .model import Model
 from .numeric.arith import DOUBLE, MP
 from .numeric.linalg import orthonormal
 from .results import decimal_string
+from .tables import Tabular
 
 __all__ = ["Sweep", "sweep", "sweep_values", "track_branches", "value_string"]
 
@@ -347,8 +348,8 @@ def _match(refs, bases, threshold, new_id):
 # the result
 # -----------------------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class Sweep:
+@dataclass(frozen=True, repr=False)
+class Sweep(Tabular):
     """Eigenvalues of a model for a range of values of one parameter.
 
     Attributes
@@ -434,6 +435,21 @@ class Sweep:
     def to_json(self) -> str:
         """:meth:`to_dict` as a JSON string."""
         return dumps(self.to_dict())
+
+    def records(self):
+        """``(columns, rows)``: one row per eigenvalue of every step, with the parameter's
+        value and the branch ids the tracking gave it (``2+3`` for a double one)."""
+        damped = self.damped
+        columns = [self.parameter, "index", "branch", "real", "imag", "multiplicity", "hz"]
+        columns += ["abs", "zeta"] if damped else []
+        rows = []
+        for value, spectrum, step in zip(self.values, self.spectra, self.branches):
+            for i, (e, group) in enumerate(zip(spectrum, step), 1):
+                d, q = e.to_dict(), e.quantities()
+                row = [value_string(value), i, "+".join(str(b) for b in group), d["real"],
+                       d["imag"], e.multiplicity, q["hz"]]
+                rows.append(row + ([q["abs"], q["zeta"]] if damped else []))
+        return columns, rows
 
     def _rows(self, shown: int):
         scale = self.omega_scale if not self.damped else None

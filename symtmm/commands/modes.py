@@ -13,7 +13,16 @@ body that rotates).
 
 from __future__ import annotations
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, title_line, whole_number
+from ..cli import (
+    add_csv_argument,
+    add_model_arguments,
+    check_csv_path,
+    load_model_arg,
+    nonnegative,
+    title_line,
+    whole_number,
+    write_csv_arg,
+)
 from ..errors import ModelError
 from ..limits import MAX_DIGITS, MAX_EIGENVALUES, MAX_GRID_POINTS
 
@@ -34,6 +43,7 @@ def add_arguments(parser):
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search (see symtmm solve)")
     parser.add_argument("--json", action="store_true", help="JSON output")
+    add_csv_argument(parser)
     parser.add_argument("--title", metavar="TEXT",
                         help="title of the figure (default: the model's title)")
     parser.add_argument("--plot", metavar="FILE",
@@ -46,6 +56,8 @@ def run(args) -> int:
     from ..modes import mode_shapes
 
     model = load_model_arg(args)
+    if args.csv:
+        check_csv_path(args.csv)
     if args.plot:
         from ..plot import check_figure_path
         check_figure_path(args.plot)
@@ -59,6 +71,7 @@ def run(args) -> int:
         from ..plot import save_figure
         save_figure(modes.plot(variable=args.variable, title=args.title or model.title or None),
                     args.plot)
+    written = write_csv_arg(modes, args)
     if args.json:
         print(modes.to_json())
     else:
@@ -67,4 +80,6 @@ def run(args) -> int:
         print(modes.table())
         if args.plot:
             print(f"figure written to {title_line(args.plot)}")
+        if written:
+            print(written)
     return 0

@@ -12,12 +12,15 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..cli import (
+    add_csv_argument,
     add_model_arguments,
+    check_csv_path,
     load_model_arg,
     nonnegative,
     real_number,
     title_line,
     whole_number,
+    write_csv_arg,
 )
 from ..errors import ModelError
 from ..limits import MAX_DIGITS, MAX_GRID_POINTS
@@ -48,6 +51,7 @@ def add_arguments(parser):
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search for the marks (see symtmm solve)")
     parser.add_argument("--json", action="store_true", help="JSON output")
+    add_csv_argument(parser)
     parser.add_argument("--title", metavar="TEXT",
                         help="title of the figure (default: the model's title)")
     parser.add_argument("--plot", metavar="FILE",
@@ -68,6 +72,8 @@ def run(args) -> int:
     from ..scan import scan
 
     model = load_model_arg(args)
+    if args.csv:
+        check_csv_path(args.csv)
     if args.plot:
         from ..plot import check_figure_path
         check_figure_path(args.plot)
@@ -85,6 +91,7 @@ def run(args) -> int:
         if result.damped:
             save_figure(result.plot_map(title=args.title), map_path(args.plot))
             written.append(map_path(args.plot))
+    csv_line = write_csv_arg(result, args)
     if args.json:
         print(result.to_json())
     else:
@@ -93,4 +100,6 @@ def run(args) -> int:
         print(result.table())
         for path in written:
             print(f"figure written to {title_line(path)}")
+        if csv_line:
+            print(csv_line)
     return 0

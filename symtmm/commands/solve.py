@@ -2,7 +2,16 @@
 
 from __future__ import annotations
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, title_line, whole_number
+from ..cli import (
+    add_csv_argument,
+    add_model_arguments,
+    check_csv_path,
+    load_model_arg,
+    nonnegative,
+    title_line,
+    whole_number,
+    write_csv_arg,
+)
 from ..errors import ModelError
 from ..limits import MAX_DIGITS, MAX_EIGENVALUES
 
@@ -25,6 +34,7 @@ def add_arguments(parser):
                              "(argument principle, any model), fmin1d or fmin2d (the paper's "
                              "grid searches, for comparison)")
     parser.add_argument("--json", action="store_true", help="JSON output")
+    add_csv_argument(parser)
     parser.add_argument("--certified", action="store_true",
                         help="add rigorous enclosures from ball arithmetic (needs python-flint)")
 
@@ -36,6 +46,8 @@ def run(args) -> int:
         from ..roots.certified import require_flint
         require_flint()     # fail before the search, with a one-line message
     model = load_model_arg(args)
+    if args.csv:
+        check_csv_path(args.csv)
     count = args.count if args.count is not None or args.omega_max is not None else 10
     try:
         spectrum = solve(model, count=count, omega_max=args.omega_max,
@@ -43,18 +55,21 @@ def run(args) -> int:
     except ModelError as exc:
         raise exc.with_source(args.model) from None
     spectrum = spectrum.with_model_name(args.model)
+    written = write_csv_arg(spectrum, args)
     if args.certified:
-        return _print_certified(model, spectrum, args.json)
-    if args.json:
+        _print_certified(model, spectrum, args.json)
+    elif args.json:
         print(spectrum.to_json())
     else:
         if model.title:
             print(title_line(model.title))
         print(spectrum.table())
+    if written and not args.json:
+        print(written)
     return 0
 
 
-def _print_certified(model, spectrum, as_json: bool) -> int:
+def _print_certified(model, spectrum, as_json: bool) -> None:
     """The spectrum with an "enclosure" per eigenvalue (see symtmm.roots.certified)."""
     from ..jsonout import dumps
     from ..roots.certified import certify
@@ -68,7 +83,7 @@ def _print_certified(model, spectrum, as_json: bool) -> int:
         data["stats"]["evaluations"] += enclosures.evaluations
         data["stats"]["certification_evaluations"] = enclosures.evaluations
         print(dumps(data))
-        return 0
+        return
     if model.title:
         print(title_line(model.title))
     print(spectrum.table())
@@ -80,4 +95,3 @@ def _print_certified(model, spectrum, as_json: bool) -> int:
             continue
         print(f"{i:3d}  {d['proof']:<11}  Re in [{d['real'][0]}, {d['real'][1]}]  "
               f"Im in [{d['imag'][0]}, {d['imag'][1]}]")
-    return 0

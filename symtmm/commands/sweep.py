@@ -11,7 +11,16 @@ from __future__ import annotations
 
 import sys
 
-from ..cli import add_model_arguments, load_model_arg, nonnegative, title_line, whole_number
+from ..cli import (
+    add_csv_argument,
+    add_model_arguments,
+    check_csv_path,
+    load_model_arg,
+    nonnegative,
+    title_line,
+    whole_number,
+    write_csv_arg,
+)
 from ..errors import ModelError
 from ..limits import MAX_DIGITS, MAX_EIGENVALUES, MAX_JOBS, MAX_STEPS
 
@@ -44,6 +53,7 @@ def add_arguments(parser):
     parser.add_argument("--no-progress", dest="progress", action="store_false",
                         help="no progress bar")
     parser.add_argument("--json", action="store_true", help="JSON output")
+    add_csv_argument(parser)
     parser.add_argument("--title", metavar="TEXT",
                         help="title of the figure (default: the model's title)")
     parser.add_argument("--plot", metavar="FILE", help="save the branches plot to FILE")
@@ -57,6 +67,8 @@ def run(args) -> int:
     from ..sweep import sweep
 
     model = load_model_arg(args)
+    if args.csv:
+        check_csv_path(args.csv)
     if args.plot:
         from ..plot import check_figure_path
         check_figure_path(args.plot)
@@ -71,6 +83,7 @@ def run(args) -> int:
         from ..plot import save_figure
         save_figure(result.plot(title=args.title or model.title or None,
                                 x_label=args.x_label, panels=args.panels), args.plot)
+    written = write_csv_arg(result, args)
     if args.json:
         print(result.to_json())
     else:
@@ -79,4 +92,6 @@ def run(args) -> int:
         print(result.table())
         if args.plot:
             print(f"figure written to {title_line(args.plot)}")
+        if written:
+            print(written)
     return 0

@@ -19,6 +19,7 @@ from ..jsonout import dumps, header
 from ..model import Model
 from ..numeric.arith import MP
 from ..results import Eigenvalue, Spectrum, decimal_string
+from ..tables import Tabular
 
 __all__ = ["BeamShape", "ModeShape", "ModeSet"]
 
@@ -137,8 +138,8 @@ def _Omega(omega, scale, digits: int):
     return mpmath.mp.make_mpf(value._mpf_)
 
 
-@dataclass(frozen=True)
-class ModeSet:
+@dataclass(frozen=True, repr=False)
+class ModeSet(Tabular):
     """Mode shapes of a model, ascending by ``Im lam``; iterating gives :class:`ModeShape`.
 
     Attributes
@@ -179,6 +180,25 @@ class ModeSet:
     def to_json(self) -> str:
         """:meth:`to_dict` as a JSON string."""
         return dumps(self.to_dict())
+
+    def records(self):
+        """``(columns, rows)``: one row per sample point of every mode and beam; damped
+        shapes (complex) give each variable as ``_real`` and ``_imag`` columns."""
+        damped = self._damped
+        values = [f"{v}_{part}" for v in STATE for part in ("real", "imag")] if damped \
+            else list(STATE)
+        columns = ["mode", "real", "imag", "beam", "x"] + values
+        rows = []
+        for mode in self.modes:
+            d = mode.eigenvalue.to_dict()
+            for name, shape in mode.beams.items():
+                for k, x in enumerate(shape.x):
+                    row = [mode.number, d["real"], d["imag"], name, float(x)]
+                    for var in STATE:
+                        v = shape[var][k]
+                        row += [float(v.real), float(v.imag)] if damped else [float(v)]
+                    rows.append(row)
+        return columns, rows
 
     def _rows(self):
         """Number, eigenvalue text, Omega text, and per beam the largest |Y|."""
