@@ -20,7 +20,7 @@ import math
 import pkgutil
 import sys
 
-from . import __version__, commands
+from . import __version__, commands, progress
 from .errors import ComputationError, ModelError
 from .limits import FLAG_MAX
 from .text import printable
@@ -164,6 +164,8 @@ def add_model_arguments(parser):
     parser.add_argument("model", metavar="MODEL", help="model file (TOML)")
     parser.add_argument("--set", action="append", metavar="NAME=VALUE",
                         help="override a parameter (repeatable)")
+    parser.add_argument("--quiet", action="store_true",
+                        help="no progress bars (shown on a terminal for work over a second)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -182,6 +184,16 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _progress_wanted(args) -> bool:
+    """Bars on a terminal only, never with --json or --quiet (``--progress`` forces them)."""
+    forced = getattr(args, "progress", None)
+    if forced is not None:
+        return forced
+    if getattr(args, "quiet", False) or getattr(args, "json", False):
+        return False
+    return bool(getattr(sys.stderr, "isatty", lambda: False)())
+
+
 def main(argv=None) -> int:
     """Entry point; returns the exit code."""
     parser = build_parser()
@@ -190,7 +202,8 @@ def main(argv=None) -> int:
     # every printing path of every command goes through this one filter
     sys.stdout = _PrintableStream(stdout)
     try:
-        return args._run(args)
+        with progress.shown(_progress_wanted(args)):
+            return args._run(args)
     except ModelError as exc:
         _error(f"symtmm: {exc.for_command_line()}")
         return 2

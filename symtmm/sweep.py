@@ -34,6 +34,7 @@ import mpmath
 import numpy as np
 import sympy as sp
 
+from . import progress
 from .display import html_table, latex_array, latex_text
 from .errors import ComputationError, ModelError
 from .expr import ExpressionError, exact_number, parse_expression
@@ -125,7 +126,9 @@ def _solve_step(payload):
     from .modes import displacements
     from .solve import solve
 
-    spectrum = solve(model, count=count, sigma_max=sigma_max, digits=digits, method=method)
+    with progress.shown(False):         # the sweep's own bar counts the steps
+        spectrum = solve(model, count=count, sigma_max=sigma_max, digits=digits,
+                         method=method)
     weights = []
     for beam in model.beams:
         w = np.full(points, float(beam.L) / (points - 1) * float(beam.m))
@@ -136,20 +139,12 @@ def _solve_step(payload):
     return spectrum, shapes
 
 
-def _progress(total: int, enabled: bool):
-    class _Null:
-        def update(self, n=1):
-            pass
-
-        def close(self):
-            pass
-    if not enabled:
-        return _Null()
-    try:
-        from tqdm import tqdm
-    except ImportError:
-        return _Null()
-    return tqdm(total=total, unit="step", desc="sweep", leave=False)
+def _progress(total: int, enabled: bool | None):
+    """The sweep's bar: shown as :mod:`symtmm.progress` decides, unless ``enabled`` says."""
+    if enabled is None:
+        return progress.bar(total=total, desc="sweep", unit="step")
+    with progress.shown(enabled):
+        return progress.bar(total=total, desc="sweep", unit="step")
 
 
 def _dask_client(scheduler):
@@ -521,7 +516,8 @@ class Sweep(Tabular):
 
 def sweep(model: Model, parameter: str, start, stop, steps: int, count: int = 10,
           digits: int = 12, method: str = "default", sigma_max=None, jobs: int | None = None,
-          scheduler=None, progress: bool = False, track_points: int = TRACK_POINTS) -> Sweep:
+          scheduler=None, progress: bool | None = None,
+          track_points: int = TRACK_POINTS) -> Sweep:
     """Eigenvalues of ``model`` at ``steps`` equally spaced values of ``parameter``.
 
     Parameters
@@ -549,8 +545,9 @@ def sweep(model: Model, parameter: str, start, stop, steps: int, count: int = 10
     scheduler : str or distributed.Client, optional
         Address of a Dask scheduler (``"tcp://host:8786"``) or a client: the
         steps run on its workers instead. Workers must have symtmm installed.
-    progress : bool
-        Show a progress bar (needs tqdm; without it, none).
+    progress : bool or None
+        Show a progress bar (needs tqdm; without it, none); None: as
+        :mod:`symtmm.progress` decides (a terminal or Jupyter).
     track_points : int
         Sample points per beam of the shapes that track the branches.
 

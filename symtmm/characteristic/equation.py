@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from .. import progress
 from ..elements.base import LAM
 from ..errors import ComputationError
 from ..jsonout import dumps, header
@@ -173,18 +174,27 @@ def characteristic_equation(model: Model, symbolic=(), max_seconds: float | None
     start = time.perf_counter()
     token = _BUDGET.set(budget(max_seconds, max_terms))
     try:
-        return _characteristic_equation(model, tuple(symbolic), start)
+        with progress.stages("derive", _STAGES) as next_stage:
+            return _characteristic_equation(model, tuple(symbolic), start, next_stage)
     finally:
         _BUDGET.reset(token)
 
 
-def _characteristic_equation(model: Model, symbolic: tuple, start: float) -> CharacteristicEquation:
+#: The stages of a derivation, as its progress bar names them.
+_STAGES = ("transfer matrices", "determinant", "factoring", "writing the factors")
+
+
+def _characteristic_equation(model: Model, symbolic: tuple, start: float,
+                             next_stage=lambda stage: None) -> CharacteristicEquation:
     model_in = model
     model, sample = _prepare(model, symbolic)
     problem = _build_problem(model, sample)
     alg = _Algebra(problem)
+    next_stage(_STAGES[1])
     R = alg.boundary_matrix()
+    next_stage(_STAGES[2])
     constant, factors = _factorise(alg, R)
+    next_stage(_STAGES[3])
     Om = OMEGA_DIMLESS
     writer = _Writer(alg, Om)
     founded = [w.b for w in problem.waves if w.scaled]

@@ -9,8 +9,6 @@ through crossings and veerings; JSON carries their ids under "branches".
 
 from __future__ import annotations
 
-import sys
-
 from ..cli import (
     add_csv_argument,
     add_model_arguments,
@@ -72,11 +70,11 @@ def run(args) -> int:
     if args.plot:
         from ..plot import check_figure_path
         check_figure_path(args.plot)
-    progress = sys.stderr.isatty() if args.progress is None else args.progress
     try:
+        # (whether the bar shows was decided by the command line: symtmm.cli)
         result = sweep(model, args.param, args.start, args.stop, args.steps, count=args.count,
                        digits=args.digits, method=args.method, sigma_max=args.sigma_max,
-                       jobs=args.jobs, scheduler=args.scheduler, progress=progress)
+                       jobs=args.jobs, scheduler=args.scheduler)
     except ModelError as exc:
         raise exc.with_source(args.model) from None
     if args.plot:

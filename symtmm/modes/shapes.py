@@ -24,6 +24,7 @@ import mpmath
 import numpy as np
 import sympy as sp
 
+from .. import progress
 from ..errors import ModelError
 from ..expr import ExpressionError, parse_expression
 from ..model import Model
@@ -338,10 +339,12 @@ def mode_shapes(model: Model, count: int | None = None, omega_max=None, sigma_ma
     start = time.perf_counter()
     plan = ShapePlan(model)
     modes, number = [], 1
-    for e in spectrum:
-        shapes = shapes_at(model, e, points=points, number=number, plan=plan)
-        modes += shapes
-        number += len(shapes)
+    with progress.bar(total=len(spectrum), desc="mode shapes", unit="mode") as bar:
+        for e in spectrum:
+            shapes = shapes_at(model, e, points=points, number=number, plan=plan)
+            modes += shapes
+            number += len(shapes)
+            bar.update()
     notes = []
     if count is not None and len(modes) > count:
         multiple = [e for e in spectrum if e.multiplicity > 1]

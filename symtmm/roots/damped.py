@@ -63,6 +63,7 @@ import time
 import mpmath
 import numpy as np
 
+from .. import progress
 from ..errors import ComputationError
 from ..mesh import zero_order
 from ..model import Model
@@ -1118,10 +1119,14 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
             if W > 1e12:
                 raise ComputationError(f"fewer than {count} eigenvalues below |lam| = 1e12")
     search.zero_order = order
-    singles, clusters = search.isolate(cells, _TINY)
-    eigen = search.refine_all(singles)
-    for rect, m, center in clusters:
-        eigen += search.resolve_cluster(rect, m, center)
+    with progress.stages("solve", ["isolating", "refining and proving",
+                                   "close and multiple roots"]) as next_stage:
+        singles, clusters = search.isolate(cells, _TINY)
+        next_stage("refining and proving")
+        eigen = search.refine_all(singles)
+        next_stage("close and multiple roots")
+        for rect, m, center in clusters:
+            eigen += search.resolve_cluster(rect, m, center)
     eigen = [e for e in eigen if e.lam.imag >= 0]
     total = sum(e.multiplicity for e in eigen) + rigid
     notes = []

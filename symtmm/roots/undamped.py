@@ -46,6 +46,7 @@ import mpmath
 import numpy as np
 import sympy as sp
 
+from .. import progress
 from ..errors import ComputationError
 from ..mesh import static_nullity
 from ..model import Model
@@ -643,20 +644,25 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     if omega_max is None and wanted > 0:
         hi, _ = search.top_for(count)
     if hi > 0 and (wanted is None or wanted > 0):
-        # include a root sitting exactly on omega_max
-        top, c_top = search.count_off(hi * (1 + 4e-16), 2 * hi)
-        brackets = search.isolate(top, c_top, wanted)
-        simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
-        clusters = [(a, ca, b, cb - ca) for a, ca, b, cb in brackets if cb - ca > 1]
-        items = [(guess, ca, (a, b)) for (a, ca, b), guess in
-                 zip(simple, search.refine_double(simple))]
-        for a, ca, b, k in clusters:
-            for lo, hi_, cl, m in search.split_cluster(a, ca, b, k):
-                if m == 1:
-                    items.append((None, cl, (lo, hi_)))     # (its midpoint, exactly)
-                else:
-                    eigen.append(search.prove_cluster(lo, hi_, cl, m))
-        eigen += search.refine_high(items)
+        with progress.stages("solve", ["isolating", "refining", "multiple roots",
+                                       "proving the digits"]) as next_stage:
+            # include a root sitting exactly on omega_max
+            top, c_top = search.count_off(hi * (1 + 4e-16), 2 * hi)
+            brackets = search.isolate(top, c_top, wanted)
+            simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
+            clusters = [(a, ca, b, cb - ca) for a, ca, b, cb in brackets if cb - ca > 1]
+            next_stage("refining")
+            items = [(guess, ca, (a, b)) for (a, ca, b), guess in
+                     zip(simple, search.refine_double(simple))]
+            next_stage("multiple roots")
+            for a, ca, b, k in clusters:
+                for lo, hi_, cl, m in search.split_cluster(a, ca, b, k):
+                    if m == 1:
+                        items.append((None, cl, (lo, hi_)))     # (its midpoint, exactly)
+                    else:
+                        eigen.append(search.prove_cluster(lo, hi_, cl, m))
+            next_stage("proving the digits")
+            eigen += search.refine_high(items)
         if omega_max is not None:
             # nothing above the last bracket and below omega_max: the count there, proved
             got = search.counter.counts([top], search.hp)
