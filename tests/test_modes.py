@@ -266,3 +266,37 @@ def test_cli_bad_input(examples_dir, tmp_path, capsys):
     assert exc.value.code == 2
     err = capsys.readouterr().err
     assert "Traceback" not in err
+
+
+# -- the basis of a multiple eigenvalue ------------------------------------------------------
+
+
+def test_shapes_of_a_triple_root_each_move_one_beam(examples_dir):
+    """Three uncoupled identical beams: at each triple root (n pi)^2 the shapes are the
+    closed-form sqrt(2) sin(n pi x), one beam each (the null space mixed all three)."""
+    model = load(examples_dir / "paper_ex2_three_pp.toml")
+    modes = mode_shapes(model, count=6, points=41, digits=20)
+    x = np.linspace(0, 1, 41)
+    for k, mode in enumerate(modes):
+        n = 1 + k // 3
+        own = ["b1", "b2", "b3"][k % 3]
+        for name, shape in mode.beams.items():
+            expected = np.sqrt(2) * np.sin(n * np.pi * x) if name == own else 0 * x
+            np.testing.assert_allclose(shape.Y, expected, atol=1e-13)
+    assert any("concentrates each one's kinetic energy" in n for n in modes.notes)
+
+
+def test_localised_shapes_stay_mass_orthonormal_to_their_digits(examples_dir):
+    """The rotation is orthogonal to the shapes' own precision. On a pinned-pinned beam
+    a shape is A sin(pi x) with A = Theta(0) / pi, so the mass inner product of two
+    shapes of the triple root pi^2 is sum over beams A_i A_j / 2: from the 30-digit
+    left states, the identity to 25 digits."""
+    import mpmath
+    model = load(examples_dir / "paper_ex2_three_pp.toml")
+    modes = mode_shapes(model, count=3, points=5, digits=30)
+    with mpmath.workdps(40):
+        A = [[mode.left_state[4 * lvl + 1] / mpmath.pi for lvl in range(3)] for mode in modes]
+        for i in range(3):
+            for j in range(3):
+                inner = sum(A[i][b] * A[j][b] for b in range(3)) / 2
+                assert abs(inner - (i == j)) < mpmath.mpf(10) ** -25, (i, j, inner)

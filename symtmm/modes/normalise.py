@@ -102,9 +102,11 @@ class Energy:
         self.lam2_c = complex(ar.to_complex(lam2)[0])
         self.digits = digits
         self.G = None
+        self._levels: dict = {}
 
-    def _add(self, part):
+    def _add(self, part, level: int):
         self.G = part if self.G is None else self.G + part
+        self._levels[level] = part if level not in self._levels else self._levels[level] + part
 
     def __call__(self, i, before, after):
         kind, items = self.plan.steps[i]
@@ -112,22 +114,31 @@ class Energy:
             for lvl, k in items:
                 blk = slice(4 * lvl, 4 * lvl + 4)
                 self._add(segment_gram(self.plan, self.ar, k, self.lam2, self.lam2_c,
-                                       before[0, blk, :], after[0, blk, :], self.digits))
+                                       before[0, blk, :], after[0, blk, :], self.digits), lvl)
             return
         ar = self.ar
         # lumped masses: d^T M d (displacements do not jump at the station)
         for disp, inertia in self.inertia.stations.get(i, ()):
             Mi = ar.array([ar.exact(v) for v in inertia], inertia.shape)
             D = before[0, disp, :]
-            self._add(D.T @ Mi @ D)
+            self._add(D.T @ Mi @ D, disp[0] // 4)
 
     def gram(self, start):
         """The Gram matrix, the bodies' energy added from the left state ``start``
         (``size x k``: the bodies' unknowns are constant along ``x``)."""
         G = self.G
-        for index, value in self.inertia.bodies:
-            G = G + np.outer(start[index, :], start[index, :]) * self.ar.exact(value)
+        for part in self._bodies(start):
+            G = G + part
         return G
+
+    def parts(self, start) -> list:
+        """The Gram matrix in parts that sum to :meth:`gram`: one per beam (its segments
+        and the masses on it), then one per inertia of a body."""
+        return [self._levels[lvl] for lvl in sorted(self._levels)] + self._bodies(start)
+
+    def _bodies(self, start) -> list:
+        return [np.outer(start[index, :], start[index, :]) * self.ar.exact(value)
+                for index, value in self.inertia.bodies]
 
 
 def _bilinear_F(ar, x, kappa, EI, Z):

@@ -32,6 +32,7 @@ from ..numeric import transfer
 from ..numeric.arith import DOUBLE, MP
 from ..numeric.linalg import null_space
 from ..results import Eigenvalue, Spectrum
+from .localise import localising_rotation
 from .modeset import BeamShape, ModeSet, ModeShape
 from .normalise import Energy, Inertia, complex_scaler, mass_orthonormaliser
 
@@ -154,6 +155,8 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
     with ar:
         T = (mass_orthonormaliser(ar, energy.gram(E0)) if real
              else complex_scaler(ar, states[:, 0, :]))
+        if real and mult > 1:
+            T = T @ _localised(ar, T, energy.parts(E0))
         E0 = E0 @ T
     states = states @ (ar.to_complex(T).real if real else ar.to_complex(T))
     per_level = states.reshape(len(model.beams), points, 4, mult)
@@ -172,6 +175,18 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
         shapes.append(ModeShape(eigenvalue, beams, left, dps, number + c,
                                 _body_motion(tp.layout, left, real)))
     return shapes
+
+
+def _localised(ar, T, parts):
+    """The rotation (in the arithmetic, orthogonal to its precision) that turns the
+    mass-orthonormal shapes ``T`` of a multiple eigenvalue into the basis that
+    concentrates each one's kinetic energy on as few beams and bodies as possible
+    (:mod:`symtmm.modes.localise`)."""
+    energies = [ar.to_complex(T.T @ G @ T).real for G in parts]
+    Q = ar.array([ar.number(float(v)) for v in localising_rotation(energies).reshape(-1)],
+                 (T.shape[1], T.shape[1]))
+    # Q is orthogonal to double precision; a Cholesky step makes it so to the shape's
+    return Q @ mass_orthonormaliser(ar, Q.T @ Q)
 
 
 def displacements(model: Model, eigenvalues, points: int, digits: int,
@@ -351,4 +366,8 @@ def mode_shapes(model: Model, count: int | None = None, omega_max=None, sigma_ma
         notes.append(f"{len(modes)} shapes for {count} requested: a multiple eigenvalue "
                      f"(here {', '.join(str(e) for e in multiple)}) "
                      "is given a basis of its whole eigenspace, mass-orthonormal")
+    if any(e.multiplicity > 1 and e.lam.real == 0 for e in spectrum) and not model.damped:
+        notes.append("shapes of a multiple eigenvalue: the mass-orthonormal basis that "
+                     "concentrates each one's kinetic energy on as few beams and bodies as "
+                     "possible (a joint diagonalisation of their energies)")
     return ModeSet(tuple(modes), model, spectrum, time.perf_counter() - start, tuple(notes))
