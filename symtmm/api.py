@@ -27,6 +27,8 @@ command line                    Python
                                 ``model.with_parameters(NAME=VALUE)``
 ``--plot FILE``                 ``result.plot().savefig(FILE)``
 ``--json``                      ``result.to_json()``
+``symtmm draw M --plot FILE``   ``draw_model(model).savefig(FILE)``
+``draw --mode N --animate``     ``animate_mode(model, mode, FILE)``
 ==============================  =========================================
 
 Examples
@@ -47,6 +49,7 @@ from pathlib import Path
 
 from .characteristic import characteristic_equation
 from .codegen import generate
+from .drawing import animate_mode, draw_model
 from .limits import DERIVE_SECONDS
 from .model import Attachment, Beam, Mass, Model, RigidBody, Spring, oscillator
 from .modelfile import from_dict as _from_dict
@@ -59,8 +62,9 @@ from .scan import scan
 from .solve import METHODS, solve
 from .sweep import sweep
 
-__all__ = ["METHODS", "Attachment", "Beam", "Mass", "Model", "RigidBody", "Spring", "codegen",
-           "derive", "evaluate_mode", "from_dict", "load", "loads", "modes", "oscillator",
+__all__ = ["METHODS", "Attachment", "Beam", "Mass", "Model", "RigidBody", "Spring",
+           "animate_mode", "codegen", "derive", "draw_model", "evaluate_mode", "from_dict",
+           "load", "loads", "modes", "oscillator",
            "plot_modes", "plot_scan", "plot_scan_map", "plot_sweep", "scan", "solve", "sweep"]
 
 
