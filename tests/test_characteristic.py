@@ -253,7 +253,7 @@ def test_cli_json_and_latex(capsys):
     assert sp.sympify(out["delta"], locals={"omega": OMEGA}) == \
         sp.sin(sp.sqrt(OMEGA))**3 * sp.sinh(sp.sqrt(OMEGA))**3 / OMEGA**3
     assert main(["derive", str(EXAMPLES / "paper_ex2_three_pp.toml"), "--latex"]) == 0
-    assert capsys.readouterr().out.strip().startswith("\\frac{\\sin^{3}")
+    assert capsys.readouterr().out.strip().startswith("\\Delta(\\omega) = \\frac{\\sin^{3}")
 
 
 def test_cli_bad_symbolic_is_one_line():

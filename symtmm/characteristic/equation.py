@@ -112,7 +112,9 @@ class CharacteristicEquation:
             "latex_Omega": sp.latex(self.delta_Omega),
             "power_Omega": self.power,
             "factors_Omega": [{"factor": str(f), "multiplicity": e} for f, e in self.factors],
+            # det R = constant * delta = constant_Omega * delta_Omega: each form its own
             "constant": str(self.constant),
+            "constant_Omega": str(self.constant_Omega),
             "symbols": list(self.symbols),
             "count_ops": self.count_ops(),
             "seconds": round(self.seconds, 3),
@@ -124,6 +126,40 @@ class CharacteristicEquation:
 
     def __str__(self) -> str:
         return f"Delta({self.variable}) = {self.delta}"
+
+    def _names(self) -> str:
+        return ", ".join(str(s) for s in self.definitions) or "Omega"
+
+    def latex_both(self) -> str:
+        """LaTeX of both forms, each with the constant that makes it ``det R``: the form in
+        :attr:`variable`, and the paper's form in ``Omega`` (and wave numbers) with their
+        definitions."""
+        var = sp.latex(self.variable)
+        names = ", ".join(sp.latex(s) for s in self.definitions) or r"\Omega"
+        defs = r",\quad ".join(f"{sp.latex(s)} = {sp.latex(v)}"
+                               for s, v in self.definitions.items()) \
+            or rf"\Omega = {sp.latex(self.Omega)}"
+        return "\n".join([
+            rf"\Delta({var}) = {self.latex()}",
+            rf"\det R = {sp.latex(self.constant)}\,\Delta({var})",
+            rf"{defs}",
+            rf"\Delta({names}) = {sp.latex(self.delta_Omega)}",
+            rf"\det R = {sp.latex(self.constant_Omega)}\,\Delta({names})",
+        ])
+
+    def pretty(self) -> str:
+        """Both forms as unicode text (SymPy's pretty printer), with their constants."""
+        def block(expr):
+            return sp.pretty(expr, use_unicode=True, wrap_line=False)
+        names = self._names()
+        defs = "; ".join(f"{s} = {sp.pretty(v, use_unicode=True)}"
+                         for s, v in self.definitions.items()) \
+            or f"Omega = {sp.pretty(self.Omega, use_unicode=True)}"
+        return "\n".join([
+            f"Δ({self.variable}) =", block(self.delta),
+            f"det R = ({sp.pretty(self.constant, use_unicode=True)}) · Δ({self.variable})", "",
+            f"with {defs}:", f"Δ({names}) =", block(self.delta_Omega),
+            f"det R = ({sp.pretty(self.constant_Omega, use_unicode=True)}) · Δ({names})"])
 
     def _repr_latex_(self) -> str:
         """``Delta(variable) = ...`` typeset (Jupyter)."""
@@ -257,6 +293,9 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float,
     if problem.waves:
         notes.append("wave numbers: " + ", ".join(
             f"{s} = {v}" for s, v in definitions.items() if s != Om))
+    if not alg.ring.can_factor and any(sp.count_ops(f) > 100 for f, _ in out_factors):
+        notes.append("factored by the structure of R only: python-flint (pip install "
+                     "python-flint) factors the polynomials and gives fewer, smaller factors")
     return CharacteristicEquation(
         variable=variable, delta=delta, constant=constant, delta_Omega=delta_Omega,
         constant_Omega=constant_Omega, Omega=Omega_of_var, power=int(power),

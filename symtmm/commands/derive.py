@@ -29,7 +29,10 @@ def add_arguments(parser):
                         help="keep these parameters symbolic (repeatable)")
     parser.add_argument("--json", action="store_true",
                         help='JSON: {"variable", "delta", "latex", ...}')
-    parser.add_argument("--latex", action="store_true", help="print LaTeX only")
+    parser.add_argument("--latex", action="store_true",
+                        help="print LaTeX only: both forms, each with its constant")
+    parser.add_argument("--pretty", action="store_true",
+                        help="print both forms as unicode text (SymPy's pretty printer)")
     parser.add_argument("--max-seconds", type=real_number(0.0, 1e6, low_open=True),
                         default=DERIVE_SECONDS, metavar="S",
                         help=f"give up after S seconds (default {DERIVE_SECONDS:g}); the size "
@@ -48,7 +51,11 @@ def run(args) -> int:
     if args.json:
         print(eq.to_json())
     elif args.latex:
-        print(eq.latex())
+        print(eq.latex_both())
+    elif args.pretty:
+        if model.title:
+            print(title_line(model.title))
+        print(eq.pretty())
     else:
         if model.title:
             print(title_line(model.title))
@@ -57,6 +64,9 @@ def run(args) -> int:
         print("  with " + ("; ".join(f"{s} = {v}" for s, v in eq.definitions.items())
                            or f"Omega = {eq.Omega}") + ":")
         print(f"Delta({names}) = {eq.delta_Omega}")
-        print(f"  det R = ({eq.constant_Omega}) * Delta({names}); {eq.count_ops()} operations, "
+        print(f"  det R = ({eq.constant_Omega}) * Delta({names}) = ({eq.constant}) * "
+              f"Delta({eq.variable}); {eq.count_ops()} operations, "
               f"{len(eq.factors)} factor(s), {eq.seconds:.2f} s")
+        for note in eq.notes:
+            print(f"  {note}")
     return 0

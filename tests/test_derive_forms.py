@@ -1,0 +1,63 @@
+"""derive's forms: both closed forms with the constant each needs, as text, unicode and
+LaTeX; and what python-flint would add."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+import mpmath
+import pytest
+import sympy as sp
+from cli_contract import assert_contract, run_cli
+
+from symtmm import api
+
+
+@pytest.mark.parametrize("name", ["paper_ex1_ff_cc", "timoshenko_beam", "tuned_mass_damper"])
+def test_each_constant_belongs_to_its_form(examples_dir, name):
+    """det R = constant * Delta(variable) = constant_Omega * Delta(Omega, ...): both products
+    agree at a point, the definitions substituted (Omega and wave numbers of omega)."""
+    model = api.load(examples_dir / f"{name}.toml")
+    if model.damped:
+        model = model.with_parameters(zeta=0)
+    ce = api.derive(model)
+    w = sp.Rational(23, 10)
+    subs = {ce.variable: w}
+    lhs = ce.constant * ce.delta.subs(subs)
+    omega_form = ce.delta_Omega.xreplace(
+        {s: v.subs(subs) for s, v in ce.definitions.items()}).subs(subs)
+    rhs = ce.constant_Omega * omega_form
+    a, b = complex(sp.N(lhs, 30)), complex(sp.N(rhs, 30))
+    assert abs(a - b) <= 1e-20 * max(abs(a), 1e-300), (a, b)
+    data = ce.to_dict()
+    assert sp.sympify(data["constant_Omega"]) == ce.constant_Omega
+
+
+def test_latex_and_pretty_print_both_forms(examples_dir):
+    path = examples_dir / "paper_ex1_ff_cc.toml"
+    run = run_cli(["derive", path, "--latex", "--set", "K=0"])
+    assert_contract(run)
+    lines = run.stdout.strip().splitlines()
+    assert lines[0].startswith(r"\Delta(\omega) = ") and lines[3].startswith(r"\Delta(\Omega) = ")
+    assert lines[1] == r"\det R = \frac{1}{4}\,\Delta(\omega)"
+    assert lines[4] == r"\det R = \frac{1}{4}\,\Delta(\Omega)"
+    run = run_cli(["derive", path, "--pretty", "--set", "K=0"])
+    assert run.code == 0 and "cos(Ω)⋅cosh(Ω) - 1" in run.stdout and "det R = (1/4)" in run.stdout
+
+
+def test_without_flint_the_output_says_what_would_factor(monkeypatch, examples_dir):
+    monkeypatch.setitem(sys.modules, "flint", None)
+    ce = api.derive(api.load(examples_dir / "paper_ex1_ff_cc.toml"))
+    assert any("python-flint" in n for n in ce.notes)
+    # the closed form is the same function: it vanishes at the first frequency
+    f = sp.lambdify(ce.variable, ce.delta, "mpmath")
+    with mpmath.workdps(30):
+        w1 = mpmath.mpf("8.86195501305256")                  # README, 15 digits
+        assert abs(f(w1)) < 1e-8 * abs(f(w1 * (1 + mpmath.mpf(10) ** -6)))
+
+
+def test_json_names_both_constants(examples_dir):
+    run = run_cli(["derive", examples_dir / "paper_ex1_ff_cc.toml", "--json"])
+    data = json.loads(run.stdout)
+    assert {"constant", "constant_Omega", "latex", "latex_Omega"} <= set(data)
