@@ -161,10 +161,13 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
     ----------
     sweep : Sweep
         From :func:`symtmm.sweep.sweep`.
-    frequency : {"Omega", "omega", "sigma"}, optional
+    frequency : {"Omega", "omega", "hz", "sigma", "abs", "zeta", "locus"}, optional
         What to plot: the frequency parameter of the first beam (default when
-        known and the model is undamped), ``omega = Im lam`` in rad/s, or the
-        decay rate ``sigma = -Re lam``.
+        known and the model is undamped), ``omega = Im lam`` in rad/s (default for
+        damped models), the same in Hz, the decay rate ``sigma = -Re lam``, ``|lam|``,
+        the damping ratio ``zeta = -Re lam / |lam|``, or the root locus: every branch
+        as a curve in the complex plane (``Re lam`` against ``Im lam``), the
+        parameter's first and last values marked.
     x_label, title : str, optional
     legend : bool, optional
         Label the branches (default: when there are at most 20).
@@ -181,32 +184,28 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
     damped = sweep.damped
     if frequency is None:
         frequency = "Omega" if scale and not damped else "omega"
+    if frequency not in _SWEEP_AXES and frequency != "locus":
+        raise ValueError(f"unknown quantity {frequency!r} (use one of "
+                         f"{', '.join(list(_SWEEP_AXES) + ['locus'])})")
     if frequency == "Omega" and not scale:
         raise ValueError("no reference beam to define Omega")
+    if frequency == "locus":
+        return _root_locus(sweep, title, figsize, legend)
     ids = sweep.branch_ids()
     curves = []
     for n, bid in enumerate(ids):
-        x, lam = sweep.branch(bid)
         if frequency == "Omega":
+            x, lam = sweep.branch(bid)
             y = _to_Omega(lam.imag, scale[1])
-        elif frequency == "sigma":
-            y = -lam.real
         else:
-            y = lam.imag
+            x, y = sweep.branch(bid, frequency)
         curves.append((n, bid, x, y))
     # number the branches by where they start (then by how high they go), and label each
     # with the range it covers: branches that start together still read apart
     curves.sort(key=lambda c: (float(c[3][0]), float(np.max(c[3]))) if len(c[3])
                 else (np.inf, np.inf))
-    sym = {"Omega": "Ω", "omega": "ω", "sigma": "σ"}[frequency]
-    labels = {}
-    for k, (n, bid, x, y) in enumerate(curves, 1):
-        if not len(y):
-            labels[bid] = f"{k}"
-            continue
-        lo, hi = float(np.min(y)), float(np.max(y))
-        labels[bid] = (f"{k}: {sym} = {lo:.5g} throughout" if hi - lo <= 1e-9 * abs(hi)
-                       else f"{k}: {sym} from {lo:.5g} to {hi:.5g}")
+    sym = _SWEEP_AXES[frequency][0]
+    labels = _branch_labels(sweep, curves, sym)
     curves = [(k, bid, x, y) for k, (_, bid, x, y) in enumerate(curves)]
     groups = _groups(curves) if panels else [curves]
     if figsize is None:
@@ -229,9 +228,8 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
             if show_legend:
                 ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
     axes[-1].set_xlabel(x_label or f"{sweep.parameter}")
-    ylabel = {"Omega": OMEGA_LABEL + f" of beam {scale[0] if scale else ''}",
-              "omega": r"$\omega = \mathrm{Im}\,\lambda$ [rad/s]",
-              "sigma": r"$\sigma = -\mathrm{Re}\,\lambda$ [1/s]"}[frequency]
+    ylabel = (OMEGA_LABEL + f" of beam {scale[0] if scale else ''}" if frequency == "Omega"
+              else _SWEEP_AXES[frequency][1])
     if len(axes) == 1:
         axes[0].set_ylabel(ylabel)
     else:
@@ -242,6 +240,71 @@ def plot_sweep(sweep, frequency: str | None = None, x_label: str | None = None,
         fig.legend(handles=list(axes[0].get_lines()), fontsize="small",
                    loc="outside right center", title="branches, numbered\nby where they start",
                    title_fontsize="small")
+    return fig
+
+
+#: What a sweep can plot against its parameter: the symbol in labels and the axis label.
+_SWEEP_AXES = {
+    "Omega": ("Ω", ""),
+    "omega": ("ω", r"$\omega = \mathrm{Im}\,\lambda$ [rad/s]"),
+    "hz": ("f", r"$f = \mathrm{Im}\,\lambda / 2\pi$ [Hz]"),
+    "sigma": ("σ", r"$\sigma = -\mathrm{Re}\,\lambda$ [1/s]"),
+    "abs": ("|λ|", r"$|\lambda|$ [rad/s]"),
+    "zeta": ("ζ", r"damping ratio $\zeta = -\mathrm{Re}\,\lambda / |\lambda|$"),
+}
+
+
+def _branch_labels(sweep, curves, sym: str) -> dict:
+    """Per branch: its number, the range of the quantity and, where it is not present at
+    every step, the values of the parameter where it is."""
+    labels = {}
+    steps = len(sweep.values)
+    for k, (_, bid, x, y) in enumerate(curves, 1):
+        if not len(y):
+            labels[bid] = f"{k}"
+            continue
+        lo, hi = float(np.min(y)), float(np.max(y))
+        where = ""
+        if len(x) == 1:
+            where = f" at {sweep.parameter} = {float(x[0]):g} only"
+        elif len(x) < steps:
+            where = f" for {sweep.parameter} in [{float(np.min(x)):g}, {float(np.max(x)):g}]"
+        if hi - lo <= 1e-9 * abs(hi):
+            labels[bid] = f"{k}: {sym} = {lo:.5g}" + (where or " throughout")
+        else:
+            labels[bid] = f"{k}: {sym} from {lo:.5g} to {hi:.5g}" + where
+    return labels
+
+
+def _root_locus(sweep, title, figsize, legend) -> Figure:
+    """Every branch in the complex plane, ``Re lam`` against ``Im lam``."""
+    ids = sweep.branch_ids()
+    fig = new_figure(figsize or (7.5, 5.5))
+    ax = fig.add_subplot()
+    show_legend = legend if legend is not None else len(ids) <= 20
+    first, last = float(sweep.values[0]), float(sweep.values[-1])
+    for n, bid in enumerate(ids):
+        x, lam = sweep.branch(bid)
+        if not len(lam):
+            continue
+        color = _branch_color(n, len(ids))
+        ax.plot(lam.real, lam.imag, "-", marker="o", ms=2.5, lw=1.2, color=color,
+                label=f"{n + 1}" + ("" if len(x) == len(sweep.values) else
+                                    f" ({sweep.parameter} {float(np.min(x)):g}.."
+                                    f"{float(np.max(x)):g})"))
+        ax.plot(lam.real[:1], lam.imag[:1], "s", color=color, ms=5)
+        ax.plot(lam.real[-1:], lam.imag[-1:], "^", color=color, ms=6)
+    ax.axvline(0.0, color="0.6", lw=0.8)
+    ax.set_xlabel(r"$\mathrm{Re}\,\lambda = -\sigma$ [1/s]")
+    ax.set_ylabel(r"$\mathrm{Im}\,\lambda = \omega$ [rad/s]")
+    ax.grid(alpha=0.3)
+    ax.set_title(f"root locus: {sweep.parameter} from {first:g} (square) to {last:g} "
+                 "(triangle)", fontsize="small")
+    if title:
+        fig.suptitle(_wrap(title))
+    if show_legend and ids:
+        ax.legend(fontsize="x-small", title="branch", title_fontsize="x-small",
+                  loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return fig
 
 
@@ -285,9 +348,9 @@ def plot_scan(scan, frequency: str | None = None, title: str | None = None,
     ----------
     scan : Scan
         From :func:`symtmm.scan.scan`.
-    frequency : {"Omega", "omega"}, optional
+    frequency : {"Omega", "omega", "hz"}, optional
         Horizontal axis: the first beam's frequency parameter (default when
-        known) or ``omega`` in rad/s.
+        known), ``omega`` in rad/s or the frequency in Hz.
     mark : bool
         Mark the eigenvalues (``Im lam`` of each, with its multiplicity).
 
@@ -298,7 +361,15 @@ def plot_scan(scan, frequency: str | None = None, title: str | None = None,
     scale = _scale(scan.omega_scale)
     if frequency is None:
         frequency = "Omega" if scale else "omega"
-    x = _to_Omega(scan.omega, scale[1]) if frequency == "Omega" else scan.omega
+    if frequency not in ("Omega", "omega", "hz"):
+        raise ValueError(f"unknown frequency axis {frequency!r} (use Omega, omega or hz)")
+
+    def axis(omega):
+        omega = np.asarray(omega, dtype=float)
+        if frequency == "Omega":
+            return _to_Omega(omega, scale[1])
+        return omega / (2 * np.pi) if frequency == "hz" else omega
+    x = axis(scan.omega)
     fig = new_figure(figsize)
     ax = fig.add_subplot()
     y = np.where(np.isfinite(scan.log10_delta), scan.log10_delta, np.nan)
@@ -312,8 +383,7 @@ def plot_scan(scan, frequency: str | None = None, title: str | None = None,
         damped = [e for e in marks if e.lam.real != 0]
 
         def where(es):
-            xs = np.array([float(e.omega) for e in es])
-            return _to_Omega(xs, scale[1]) if frequency == "Omega" else xs
+            return axis([float(e.omega) for e in es])
         if undamped:
             xs = where(undamped)
             ax.plot(xs, np.full(xs.shape, bottom), "v", color="C3", ms=6,
@@ -334,7 +404,7 @@ def plot_scan(scan, frequency: str | None = None, title: str | None = None,
             ax.plot(xs, np.full(xs.shape, bottom), "o", mfc="none", color="C1", ms=7, mew=1.5,
                     label=r"Im $\lambda$ of damped eigenvalues (off this axis: see the map)")
     ax.set_xlabel(OMEGA_LABEL + f" of beam {scale[0]}" if frequency == "Omega"
-                  else r"$\omega$ [rad/s]")
+                  else r"$f = \omega / 2\pi$ [Hz]" if frequency == "hz" else r"$\omega$ [rad/s]")
     ax.set_ylabel(r"$\log_{10}|\Delta(i\omega)|$")
     ax.set_title(_wrap(title or scan.title or scan.model_name or "characteristic function along the frequency axis"))
     ax.grid(alpha=0.3)

@@ -396,9 +396,10 @@ class Sweep(Tabular):
     def branch(self, bid: int, quantity: str = "lam"):
         """One branch: ``(parameter values, quantity)`` as float/complex arrays.
 
-        ``quantity`` is ``"lam"`` (complex), ``"omega"`` (``Im lam``), ``"sigma"``
-        (``-Re lam``) or ``"Omega"`` (``sqrt(omega / scale)`` with each step's
-        reference-beam scale).
+        ``quantity`` is ``"lam"`` (complex), ``"omega"`` (``Im lam``), ``"hz"``
+        (``Im lam / 2 pi``), ``"sigma"`` (``-Re lam``), ``"abs"`` (``|lam|``), ``"zeta"``
+        (the damping ratio ``-Re lam / |lam|``) or ``"Omega"`` (``sqrt(omega / scale)``
+        with each step's reference-beam scale).
         """
         xs, ys = [], []
         for value, spectrum, step in zip(self.values, self.spectra, self.branches):
@@ -410,8 +411,14 @@ class Sweep(Tabular):
                         ys.append(lam)
                     elif quantity == "omega":
                         ys.append(lam.imag)
+                    elif quantity == "hz":
+                        ys.append(lam.imag / (2 * np.pi))
                     elif quantity == "sigma":
                         ys.append(-lam.real)
+                    elif quantity == "abs":
+                        ys.append(abs(lam))
+                    elif quantity == "zeta":
+                        ys.append(-lam.real / abs(lam) if lam != 0 else 0.0)
                     elif quantity == "Omega":
                         ys.append((lam.imag / float(spectrum.omega_scale[1])) ** 0.5)
                     else:

@@ -8,6 +8,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
+from cli_contract import run_cli
 
 from symtmm.cli import main
 from symtmm.errors import ModelError
@@ -345,3 +346,60 @@ def test_a_script_without_main_guard_runs_a_parallel_sweep(tmp_path):
                                                           "PATH": "/usr/bin:/bin"})
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.split() == ["solve", "2", "steps", "3"]
+
+
+# -- what a damped sweep can show ------------------------------------------------------------
+
+
+def test_damped_sweep_quantities_and_root_locus(examples_dir):
+    """zeta, |lam| and hz of every branch are those of its eigenvalues; the root locus
+    draws each branch at (Re lam, Im lam)."""
+    pytest.importorskip("matplotlib")
+    from symtmm import api
+    model = api.load(examples_dir / "tuned_mass_damper.toml")
+    result = api.sweep(model, "f", "0.9", "1.1", 3, count=2, digits=10, jobs=1)
+    for bid in result.branch_ids():
+        _, lam = result.branch(bid)
+        _, zeta = result.branch(bid, "zeta")
+        _, size = result.branch(bid, "abs")
+        _, hz = result.branch(bid, "hz")
+        np.testing.assert_allclose(zeta, -lam.real / np.abs(lam), rtol=1e-14)
+        np.testing.assert_allclose(size, np.abs(lam), rtol=1e-14)
+        np.testing.assert_allclose(hz, lam.imag / (2 * np.pi), rtol=1e-14)
+    ax = result.plot(frequency="zeta").axes[0]
+    assert "damping ratio" in ax.get_ylabel()
+    locus = result.plot(frequency="locus").axes[0]
+    lines = [ln for ln in locus.lines if len(ln.get_xdata()) == 3]
+    for bid, line in zip(result.branch_ids(), lines):
+        _, lam = result.branch(bid)
+        np.testing.assert_allclose(line.get_xdata(), lam.real)
+        np.testing.assert_allclose(line.get_ydata(), lam.imag)
+    with pytest.raises(ValueError, match="unknown quantity"):
+        result.plot(frequency="bogus")
+
+
+def test_a_branch_seen_at_one_step_is_not_labelled_as_present_throughout():
+    pytest.importorskip("matplotlib")
+    from symtmm.plot import plot_sweep
+    from symtmm.results import Eigenvalue, Spectrum
+    from symtmm.sweep import Sweep
+
+    def spectrum(*omegas):
+        return Spectrum(tuple(Eigenvalue(mpmath.mpc(0, w)) for w in omegas), 15, "default", 0, 0)
+    result = Sweep("p", (sp.Integer(0), sp.Integer(1), sp.Integer(2)),
+                   (spectrum(1), spectrum(1, 5), spectrum(1)),
+                   (((0,),), ((0,), (1,)), ((0,),)), 15)
+    labels = [t.get_text() for t in plot_sweep(result, frequency="omega").legends[0].texts]
+    assert labels == ["1: ω = 1 throughout", "2: ω = 5 at p = 1 only"]
+
+
+def test_the_scan_plots_in_the_frequency_asked_for(examples_dir, tmp_path):
+    pytest.importorskip("matplotlib")
+    from symtmm import api
+    result = api.scan(api.load(examples_dir / "paper_ex1_ff_cc.toml"), omega_max=50, points=40,
+                      eigenvalues=False, spacing="omega")
+    line = result.plot(frequency="hz").axes[0].lines[0]
+    np.testing.assert_allclose(line.get_xdata(), result.omega / (2 * np.pi))
+    run = run_cli(["scan", examples_dir / "paper_ex1_ff_cc.toml", "--omega-max", "50",
+                   "--spacing", "omega", "--no-eigenvalues", "--plot", tmp_path / "s.png"])
+    assert run.code == 0 and (tmp_path / "s.png").exists()

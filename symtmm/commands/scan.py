@@ -42,6 +42,9 @@ def add_arguments(parser):
     parser.add_argument("--spacing", choices=("Omega", "omega"), default="Omega",
                         help="grid equally spaced in Omega = beta L of the first beam "
                              "(default) or in omega")
+    parser.add_argument("--frequency", choices=("Omega", "omega", "hz"), metavar="F",
+                        help="horizontal axis of the plot: Omega, omega (rad/s) or hz "
+                             "(default: as --spacing)")
     parser.add_argument("--sigma-max", type=_positive, metavar="S",
                         help="damped models: the map covers -S <= Re lam <= 0")
     parser.add_argument("--no-eigenvalues", action="store_true",
@@ -86,7 +89,8 @@ def run(args) -> int:
     written = []
     if args.plot:
         from ..plot import save_figure
-        save_figure(result.plot(title=args.title), args.plot)
+        save_figure(result.plot(title=args.title, frequency=args.frequency or args.spacing),
+                    args.plot)
         written.append(args.plot)
         if result.damped:
             save_figure(result.plot_map(title=args.title), map_path(args.plot))

@@ -55,6 +55,12 @@ def add_arguments(parser):
     parser.add_argument("--title", metavar="TEXT",
                         help="title of the figure (default: the model's title)")
     parser.add_argument("--plot", metavar="FILE", help="save the branches plot to FILE")
+    parser.add_argument("--quantity", choices=("Omega", "omega", "hz", "sigma", "abs", "zeta",
+                                               "locus"), metavar="Q",
+                        help="what the plot shows against the parameter: Omega (default, "
+                             "undamped), omega (default, damped; rad/s), hz, sigma (-Re lam), "
+                             "abs (|lam|), zeta (damping ratio), or locus (the root locus: "
+                             "Im lam against Re lam)")
     parser.add_argument("--panels", action="store_true",
                         help="one panel per group of overlapping branches (close families)")
     parser.add_argument("--x-label", metavar="TEXT",
@@ -79,8 +85,13 @@ def run(args) -> int:
         raise exc.with_source(args.model) from None
     if args.plot:
         from ..plot import save_figure
-        save_figure(result.plot(title=args.title or model.title or None,
-                                x_label=args.x_label, panels=args.panels), args.plot)
+        try:
+            figure = result.plot(title=args.title or model.title or None,
+                                 x_label=args.x_label, panels=args.panels,
+                                 frequency=args.quantity)
+        except ValueError as exc:       # Omega without a reference beam
+            raise ModelError(str(exc), field="--quantity") from None
+        save_figure(figure, args.plot)
     written = write_csv_arg(result, args)
     if args.json:
         print(result.to_json())
