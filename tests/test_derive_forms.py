@@ -61,3 +61,17 @@ def test_json_names_both_constants(examples_dir):
     run = run_cli(["derive", examples_dir / "paper_ex1_ff_cc.toml", "--json"])
     data = json.loads(run.stdout)
     assert {"constant", "constant_Omega", "latex", "latex_Omega"} <= set(data)
+
+
+def test_a_large_form_is_printed_with_named_subexpressions(examples_dir):
+    """Substituting the names back gives the Omega form itself."""
+    ce = api.derive(api.load(examples_dir / "rayleigh_axial_force.toml"))
+    definitions, reduced = ce.subexpressions()
+    assert len(str(reduced)) < len(str(ce.delta_Omega)) / 5
+    for name, value in reversed(definitions):
+        reduced = reduced.xreplace({name: value})
+    assert reduced == ce.delta_Omega or sp.expand(reduced - ce.delta_Omega) == 0
+    data = ce.to_dict()
+    assert data["subexpressions"][0][0] == str(definitions[0][0])
+    run = run_cli(["derive", examples_dir / "rayleigh_axial_force.toml"], limit=60)
+    assert run.code == 0 and "  where x0 = " in run.stdout

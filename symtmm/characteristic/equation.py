@@ -28,6 +28,9 @@ from .writer import _Writer
 
 __all__ = ["CharacteristicEquation", "characteristic_equation"]
 
+#: Operations from which the Omega form is also printed with named subexpressions.
+LARGE_FORM = 500
+
 
 @dataclass(frozen=True)
 class CharacteristicEquation:
@@ -119,13 +122,45 @@ class CharacteristicEquation:
             "count_ops": self.count_ops(),
             "seconds": round(self.seconds, 3),
             "definitions": {str(k): str(v) for k, v in self.definitions.items()},
-        }
+        } | self._subexpressions_dict()
+
+    def _subexpressions_dict(self) -> dict:
+        """For a large Omega form: ``delta_Omega_named`` and its ``subexpressions``."""
+        named = self.subexpressions()
+        if named is None:
+            return {}
+        definitions, reduced = named
+        return {"delta_Omega_named": str(reduced),
+                "subexpressions": [[str(k), str(v)] for k, v in definitions]}
 
     def to_json(self) -> str:
         return dumps(self.to_dict())
 
     def __str__(self) -> str:
         return f"Delta({self.variable}) = {self.delta}"
+
+    def subexpressions(self, min_ops: int = LARGE_FORM):
+        """The Omega form with named common subexpressions, for a form of at least
+        ``min_ops`` operations: ``(definitions, reduced)``, ``definitions`` a list of
+        ``(x_k, expression)`` each using the names before it; None for smaller forms.
+
+        Examples
+        --------
+        >>> from symtmm.model import Beam, Model
+        >>> cc = Model((Beam("b", EI=1, m=1, L=1, left="clamped", right="clamped"),))
+        >>> eq = characteristic_equation(cc)
+        >>> eq.subexpressions() is None             # small: printed as it is
+        True
+        >>> eq.subexpressions(min_ops=1)            # nothing repeats in it
+        ([], (cos(Omega)*cosh(Omega) - 1)/Omega**4)
+        """
+        if self.count_ops() < min_ops:
+            return None
+        names = sp.numbered_symbols("x")
+        taken = {str(s) for s in self.delta_Omega.free_symbols}
+        names = (x for x in names if str(x) not in taken)
+        definitions, (reduced,) = sp.cse(self.delta_Omega, symbols=names)
+        return definitions, reduced
 
     def _names(self) -> str:
         return ", ".join(str(s) for s in self.definitions) or "Omega"

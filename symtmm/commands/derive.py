@@ -63,7 +63,14 @@ def run(args) -> int:
         names = ", ".join(str(s) for s in eq.definitions) or "Omega"
         print("  with " + ("; ".join(f"{s} = {v}" for s, v in eq.definitions.items())
                            or f"Omega = {eq.Omega}") + ":")
-        print(f"Delta({names}) = {eq.delta_Omega}")
+        named = eq.subexpressions()
+        if named is None:
+            print(f"Delta({names}) = {eq.delta_Omega}")
+        else:
+            # a large form reads better with its repeated parts named
+            definitions, reduced = named
+            print(f"Delta({names}) = {reduced}")
+            print("  where " + "\n        ".join(f"{k} = {v}" for k, v in definitions))
         print(f"  det R = ({eq.constant_Omega}) * Delta({names}) = ({eq.constant}) * "
               f"Delta({eq.variable}); {eq.count_ops()} operations, "
               f"{len(eq.factors)} factor(s), {eq.seconds:.2f} s")
