@@ -75,3 +75,19 @@ def test_a_large_form_is_printed_with_named_subexpressions(examples_dir):
     assert data["subexpressions"][0][0] == str(definitions[0][0])
     run = run_cli(["derive", examples_dir / "rayleigh_axial_force.toml"], limit=60)
     assert run.code == 0 and "  where x0 = " in run.stdout
+
+
+def test_double_angles_come_back_as_products(monkeypatch, examples_dir):
+    """Example 1's part without the springs reads (cos Omega cosh Omega - 1)**2, and the
+    rewritten form is the same function as the one with double angles."""
+    from symtmm.characteristic import equation
+    model = api.load(examples_dir / "paper_ex1_ff_cc.toml")
+    ce = api.derive(model)
+    Om = equation.OMEGA_DIMLESS
+    assert (sp.cos(Om) * sp.cosh(Om) - 1) ** 2 in ce.delta_Omega.atoms(sp.Pow)
+    monkeypatch.setattr(equation, "_single_angles", lambda f, Om: f)
+    plain = api.derive(model)
+    for value in (sp.Rational(7, 10), sp.Rational(33, 10), sp.Rational(71, 10)):
+        a = sp.N(ce.constant_Omega * ce.delta_Omega.subs(Om, value), 30)
+        b = sp.N(plain.constant_Omega * plain.delta_Omega.subs(Om, value), 30)
+        assert abs(a - b) <= 1e-25 * abs(b)

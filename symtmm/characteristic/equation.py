@@ -306,6 +306,7 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float,
     else:
         definitions = {Om: Omega_of_var, **definitions}
         scale = sp.Integer(1)
+    out_factors = [(_single_angles(f, Om), e) for f, e in out_factors]
     out_factors.sort(key=lambda fe: (sp.count_ops(fe[0]), str(fe[0])))
     constant_Omega = sp.simplify(pre_c * constant)
     delta_Omega = Om ** power * scale * sp.Mul(*[f**e for f, e in out_factors])
@@ -337,6 +338,61 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float,
         factors=tuple(out_factors), symbols=symbols,
         seconds=time.perf_counter() - start, notes=tuple(notes),
         model_name=model_in.source or None, definitions=definitions, title=model_in.title)
+
+
+_TRIG = (sp.sin, sp.cos, sp.sinh, sp.cosh)
+
+
+#: sin**2 and sinh**2 through cos and cosh.
+_SQUARES = {sp.sin: lambda x: 1 - sp.cos(x) ** 2, sp.sinh: lambda x: sp.cosh(x) ** 2 - 1}
+
+
+def _even_sine_power(e) -> bool:
+    return bool(e.is_Pow and e.exp.is_Integer and e.exp > 1 and e.base.func in _SQUARES)
+
+
+def _square_free(e):
+    """``sin(x)**k`` as ``(1 - cos(x)**2)**(k // 2)`` times ``sin(x)`` if ``k`` is odd."""
+    base, k = e.base, int(e.exp)
+    rest = _SQUARES[base.func](base.args[0]) ** (k // 2)
+    return rest * base if k % 2 else rest
+
+
+def _single_angles(f, Om):
+    """``f`` with each part multiplying one power of ``Om`` written, where shorter, as a
+    product of functions of ``Om`` itself instead of sums of double angles.
+
+    The writer turns products into sums (``cos x cosh x`` squared becomes ``cos 2x cosh 2x
+    / 4 + ...``); where a part holds nothing but ``x`` and ``2x`` as arguments, the double
+    angles are expanded, ``sin**2`` and ``sinh**2`` written through ``cos`` and ``cosh``,
+    and the result factored, and kept if it is shorter.
+
+    Examples
+    --------
+    >>> O = OMEGA_DIMLESS
+    >>> _single_angles(O**3 * (sp.cos(2*O)*sp.cosh(2*O)/4 + sp.cos(2*O)/4 + sp.cosh(2*O)/4
+    ...                + sp.Rational(5, 4) - 2*sp.cos(O)*sp.cosh(O)) + sp.sin(O), O)
+    Omega**3*(cos(Omega)*cosh(Omega) - 1)**2 + sin(Omega)
+    """
+    if not f.has(*_TRIG):
+        return f
+    try:
+        parts = sp.collect(sp.expand(f), Om, evaluate=False)
+    except (TypeError, ValueError):  # pragma: no cover - a form collect cannot split
+        return f
+    changed = False
+    for key, part in list(parts.items()):
+        arguments = {a.args[0] for a in part.atoms(*_TRIG)}
+        if not arguments or not arguments <= {Om, 2 * Om}:
+            continue
+        spend()
+        candidate = sp.factor(sp.expand_trig(part).replace(_even_sine_power, _square_free))
+        if sp.count_ops(candidate) < sp.count_ops(part):
+            parts[key] = candidate
+            changed = True
+    if not changed:
+        return f
+    return sp.Add(*[k * v for k, v in parts.items()])
 
 
 def _merge_factors(factors, Om):
