@@ -274,6 +274,9 @@ class Spectrum(Tabular):
     def _eigenvalue_dict(self, e: Eigenvalue) -> dict:
         q = e.quantities()
         out = e.to_dict() | {"hz": q["hz"]}
+        if e.digits != self.digits:
+            # (a grid search backs some eigenvalues with more digits than the fewest)
+            out["digits"] = e.digits
         if self.damped:
             out |= {"abs": q["abs"], "zeta": q["zeta"]}
         return out
@@ -310,9 +313,10 @@ class Spectrum(Tabular):
             rows.append(row + [e.proof])
         return columns, rows
 
-    def _rows(self, unicode: bool):
+    def _rows(self, unicode: bool, hz: bool = False):
         """Header and rows of the tables (text, HTML, LaTeX): damped spectra show
-        ``|lam|`` and the damping ratio, undamped ones ``Omega`` of the reference beam."""
+        ``|lam|`` and the damping ratio, undamped ones ``Omega`` of the reference beam;
+        ``hz`` adds the frequency ``Im lam / 2 pi`` in Hz."""
         damped = self.damped
         ref = self.omega_scale[0] if self.omega_scale and not damped else None
         if damped:
@@ -320,6 +324,8 @@ class Spectrum(Tabular):
                     ["#", "Re lam [1/s]", "Im lam = omega [rad/s]", "|lam| [rad/s]", "zeta"])
         else:
             head = ["#", "ω [rad/s]" if unicode else "omega [rad/s]"]
+        if hz:
+            head.append("f [Hz]")
         if ref:
             head.append(f"Ω (beam {ref})" if unicode else f"Omega (beam {ref})")
         head.append("mult.")
@@ -327,19 +333,22 @@ class Spectrum(Tabular):
         for i, e in enumerate(self.eigenvalues, 1):
             d = e.to_dict()
             row = [str(i)]
+            q = e.quantities() if damped or hz else {}
             if damped:
-                q = e.quantities()
                 row += [d["real"], d["imag"], q["abs"], q["zeta"]]
             else:
                 row.append(d["imag"])
+            if hz:
+                row.append(q["hz"])
             if ref:
                 row.append(decimal_string(self._Omega(e.omega), self.digits))
             rows.append(row + [str(e.multiplicity)])
         return head, rows
 
-    def table(self) -> str:
-        """A readable table (the ``symtmm solve`` output)."""
-        head, rows = self._rows(unicode=False)
+    def table(self, hz: bool = False) -> str:
+        """A readable table (the ``symtmm solve`` output); ``hz`` adds the frequency in Hz
+        (``solve --hz``), every digit backed as the eigenvalue's are."""
+        head, rows = self._rows(unicode=False, hz=hz)
         widths = [max(len(h), *(len(r[k]) for r in rows)) if rows else len(h)
                   for k, h in enumerate(head)]
         lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths))]

@@ -57,3 +57,24 @@ def test_every_example_loads_and_solves(examples_dir, capsys, name):
     data = json.loads(_run(capsys, "solve", str(examples_dir / name), "--count", "4",
                            "--json", "--digits", "10"))
     assert sum(e["multiplicity"] for e in data["eigenvalues"]) >= 4
+
+
+def test_hz_column_every_digit_right(tmp_path):
+    """solve --hz of a clamped-clamped beam: f = beta**2 / 2 pi with cos(beta) cosh(beta) = 1
+    (EI = m = L = 1), the closed form's roots polished at 40 digits."""
+    import mpmath
+    from cli_contract import run_cli
+    path = tmp_path / "cc.toml"
+    path.write_text('[[beam]]\nname = "b"\nEI = 1\nm = 1\nL = 1\nleft = "clamped"\n'
+                    'right = "clamped"\n')
+    run = run_cli(["solve", path, "--count", "4", "--hz"])
+    assert run.code == 0
+    lines = run.stdout.splitlines()
+    assert lines[0].split()[3:5] == ["f", "[Hz]"]
+    printed = [line.split()[2] for line in lines[2:6]]
+    with mpmath.workdps(40):
+        for n, text in enumerate(printed, 1):
+            beta = mpmath.findroot(lambda b: mpmath.cos(b) * mpmath.cosh(b) - 1,
+                                   (n + mpmath.mpf(1) / 2) * mpmath.pi)
+            digits = len(text.replace(".", "").lstrip("0"))
+            assert text == mpmath.nstr(beta**2 / (2 * mpmath.pi), digits, strip_zeros=False)

@@ -116,3 +116,14 @@ def test_models_from_plain_dicts_match_the_file(examples_dir):
     from symtmm.errors import ModelError
     with pytest.raises(ModelError, match="oscillator.1..k: expected one value per beam"):
         api.from_dict({**data, "oscillator": [{**data["oscillator"][1], "k": [1, 2, 3]}]})
+
+
+def test_grid_search_rows_say_their_own_digits(examples_dir):
+    """fmin1d backs some eigenvalues with more digits than the fewest (the header's):
+    those say how many."""
+    run = run_cli(["solve", examples_dir / "paper_ex1_ff_cc.toml", "--count", "4", "--method",
+                   "fmin1d", "--json"], limit=60)
+    data = json.loads(run.stdout)
+    for e in data["eigenvalues"]:
+        shown = len(e["imag"].replace(".", "").lstrip("0"))
+        assert shown == e.get("digits", data["digits"]), e

@@ -33,6 +33,8 @@ def add_arguments(parser):
                         help="root search: default (count, isolate, refine), contour "
                              "(argument principle, any model), fmin1d or fmin2d (the paper's "
                              "grid searches, for comparison)")
+    parser.add_argument("--hz", action="store_true",
+                        help="also print the frequencies in Hz (Im lam / 2 pi)")
     parser.add_argument("--json", action="store_true", help="JSON output")
     add_csv_argument(parser)
     parser.add_argument("--certified", action="store_true",
@@ -63,7 +65,7 @@ def run(args) -> int:
     else:
         if model.title:
             print(title_line(model.title))
-        print(spectrum.table())
+        print(spectrum.table(hz=args.hz))
     if written and not args.json:
         print(written)
     return 0
