@@ -10,7 +10,8 @@
 Models come from files (:func:`load`), from TOML text (:func:`loads`), from plain
 dicts laid out like a file (:func:`from_dict`) or are built in code from
 :class:`Beam`, :class:`Spring`, :class:`Mass`, :class:`RigidBody` (with its
-:class:`Attachment` points; joints are massless bodies) and :func:`oscillator`. Results print as tables,
+:class:`Attachment` points), :func:`joint` (beam ends joined at one point) and
+:func:`oscillator` (a sprung mass). Results print as tables,
 render as HTML/LaTeX in Jupyter, and have ``to_dict()``/``to_json()`` (the
 command line's JSON) and ``plot()`` (a :class:`matplotlib.figure.Figure`).
 
@@ -51,7 +52,7 @@ from .characteristic import characteristic_equation
 from .codegen import generate
 from .drawing import animate_mode, draw_model
 from .limits import DERIVE_SECONDS
-from .model import Attachment, Beam, Mass, Model, RigidBody, Spring, oscillator
+from .model import Attachment, Beam, Mass, Model, RigidBody, Spring, joint, oscillator
 from .modelfile import from_dict as _from_dict
 from .modelfile import load as _load_file
 from .modelfile import loads as _loads_text
@@ -64,7 +65,7 @@ from .sweep import sweep
 
 __all__ = ["METHODS", "Attachment", "Beam", "Mass", "Model", "RigidBody", "Spring",
            "animate_mode", "codegen", "derive", "draw_model", "evaluate_mode", "from_dict",
-           "load", "loads", "modes", "oscillator",
+           "joint", "load", "loads", "modes", "oscillator",
            "plot_modes", "plot_scan", "plot_scan_map", "plot_sweep", "scan", "solve", "sweep"]
 
 

@@ -48,7 +48,7 @@ from .limits import (
     MAX_POINTS_ON_BEAMS,
 )
 
-__all__ = ["Beam", "Spring", "Mass", "Attachment", "RigidBody", "oscillator", "Model",
+__all__ = ["Beam", "Spring", "Mass", "Attachment", "RigidBody", "joint", "oscillator", "Model",
            "BOUNDARY_CONDITIONS", "GROUND", "SPRING_KINDS"]
 
 #: Boundary conditions and the state variables (of Y, Theta, M, Q) they set to zero.
@@ -449,6 +449,34 @@ class RigidBody:
         if self.J != 0 or any(not (a.hinged or a.elastic) for a in self.attachments):
             return True
         return any(sp.simplify(a.x - self.xc) != 0 for a in self.attachments)
+
+
+def joint(name: str, points, kind: str = "rigid", M=0, J=0) -> RigidBody:
+    """Beam ends (or points) that meet at one ``x``, joined (``[[joint]]`` of a model file).
+
+    Parameters
+    ----------
+    name : str
+    points : sequence of (str, number or str)
+        ``(beam, x)`` of every end joined; all at the same ``x``.
+    kind : {"rigid", "hinge"}
+        Deflections and rotations equal (rigid), or deflections only (every end turns
+        freely).
+    M, J : number or str, optional
+        A mass and rotary inertia at the joint.
+
+    Examples
+    --------
+    >>> j = joint("fork", [("trunk", 1), ("left", 1), ("right", 1)])
+    >>> [(a.beam, a.hinged) for a in j.attachments]
+    [('trunk', False), ('left', False), ('right', False)]
+    >>> joint("pin", [("a", 1), ("b", 1)], kind="hinge").rotates
+    False
+    """
+    if kind not in ("rigid", "hinge"):
+        raise ModelError(f"unknown kind {kind!r} (use rigid or hinge)", field=f"joint '{name}'.kind")
+    return RigidBody(name, tuple(Attachment(b, x, hinged=kind == "hinge") for b, x in points),
+                     M=M, J=J)
 
 
 def oscillator(name: str, beams, x, M, k, c=0) -> RigidBody:

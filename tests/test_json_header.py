@@ -127,3 +127,16 @@ def test_grid_search_rows_say_their_own_digits(examples_dir):
     for e in data["eigenvalues"]:
         shown = len(e["imag"].replace(".", "").lstrip("0"))
         assert shown == e.get("digits", data["digits"]), e
+
+
+def test_a_joint_built_in_python_is_the_files_joint(examples_dir):
+    from symtmm import api
+    from symtmm.model import Beam, Model
+    half = dict(EI="1/2", m="1/2", L="3/5", x0=1, left="free", right="free")
+    fork = Model((Beam("trunk", 1, 1, 1, left="clamped", right="free"),
+                  Beam("left_branch", **half), Beam("right_branch", **half)),
+                 bodies=(api.joint("j", [("trunk", 1), ("left_branch", 1),
+                                         ("right_branch", 1)]),))
+    from_file = api.load(examples_dir / "fork_tree.toml")
+    assert [str(e) for e in api.solve(fork, count=5)] == \
+        [str(e) for e in api.solve(from_file, count=5)]
