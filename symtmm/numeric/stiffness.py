@@ -298,13 +298,17 @@ def _ldl(plan, ar: Arithmetic, K, det12) -> Factors:
                     f = row / piv[:, None]
                     Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
         pivots = Kb[:, :n, 0]
-        # the diagonal of |L||D||L^T| bounds what rounding can do to each pivot
-        scale = ar.upper(K[:, :, 0]).astype(float)
-        mag = ar.upper(pivots).astype(float)
-        for j in range(1, w):
-            if n > j:
-                r = ar.upper(Kb[:, :n - j, j]).astype(float)
-                scale[:, j:] += r * r / np.maximum(mag[:, :n - j], 1e-300)
+        scale = None
+        if ar.needs_scale:
+            # the diagonal of |L||D||L^T| bounds what rounding can do to each pivot (balls
+            # carry their own bound: a float per entry of the band would cost more than
+            # their whole elimination's bookkeeping)
+            scale = ar.upper(K[:, :, 0]).astype(float)
+            mag = ar.upper(pivots).astype(float)
+            for j in range(1, w):
+                if n > j:
+                    r = ar.upper(Kb[:, :n - j, j]).astype(float)
+                    scale[:, j:] += r * r / np.maximum(mag[:, :n - j], 1e-300)
     signs, decided = ar.decide(pivots, scale, n)
     # Each decided pivot exceeds what the backward error E (|E| <= c u |L||D||L^T|) can do to
     # it; the inertia of K + E is K's only while E stays below K's smallest eigenvalue,
