@@ -251,10 +251,14 @@ class StiffnessPlan:
                          for d in diag]
         e = self.exponent
         self._triples = []
+        powers: dict = {}       # 2**k, once per k (SymPy's power costs more than the product)
         for target, source, coef in triples:
             r = target // w
             c = r + target % w
-            self._triples.append((target, source, sp.sympify(coef) * sp.Integer(2) ** (e[r] + e[c])))
+            k = e[r] + e[c]
+            if k not in powers:
+                powers[k] = sp.Integer(2) ** k
+            self._triples.append((target, source, sp.sympify(coef) * powers[k]))
         self._triples.sort(key=lambda t: t[0])
         self.log_constant = (math.log(float(mesh.pivot_product))
                              - 2.0 * math.log(2.0) * sum(e))
