@@ -44,7 +44,7 @@ from .errors import ModelError
 from .limits import MAX_EIGENVALUES
 from .model import Model
 
-__all__ = ["eigenvalues_below", "check_search"]
+__all__ = ["eigenvalues_below", "check_search", "checked_request"]
 
 #: beta_n l of a clamped-clamped Euler-Bernoulli beam is below (n + 1/2) pi + this
 _ROOT_MARGIN = 0.02
@@ -158,3 +158,14 @@ def check_search(model: Model, count=None, omega_max=None, sigma_max=None) -> No
             message = what.format(n=MAX_EIGENVALUES, v=value)
             raise ModelError(message, field=name, source=model.source,
                              cli_message=message.replace("by count", "with --count"))
+
+
+def checked_request(model: Model, count, omega_max, digits: int) -> Model:
+    """What every solver checks first: a count or a frequency bound, and digits; returns
+    the numeric model (a :class:`ValueError` for a caller's mistake, a
+    :class:`~symtmm.errors.ModelError` naming a parameter without value)."""
+    if count is None and omega_max is None:
+        raise ValueError("give count or omega_max")
+    if digits < 1:
+        raise ValueError("digits must be positive")
+    return model.require_numeric()

@@ -226,3 +226,23 @@ def test_mp_precision_is_the_arithmetics_own():
             values.append(factor(plan, ar, ar.array([ar.exact(-400)])).delta()[0])
     assert values[0] == values[1]
     assert LAM.name == "lam"
+
+
+@pytest.mark.parametrize("arith", ARITHMETICS)
+def test_every_arithmetic_provides_the_kernels_functions(arith):
+    """The elementwise functions Arithmetic.FUNCTIONS names, on an array of the
+    arithmetic: cos**2 + sin**2 = 1, cosh**2 - sinh**2 = 1, root4(x)**4 = x, and so on."""
+    ar = _arith(arith)
+    with ar:
+        x = ar.array([ar.exact(sp.Rational(3, 7)), ar.exact(2)])
+        for name in ar.FUNCTIONS:
+            assert callable(getattr(ar, name)), name
+        one = ar.cos(x) ** 2 + ar.sin(x) ** 2
+        hyp = ar.cosh(x) ** 2 - ar.sinh(x) ** 2
+        roots = ar.root4(x) ** 4
+        squares = ar.sqrt(x) ** 2
+        values = [one, hyp, ar.real(roots), squares]
+    for v in values:
+        got = ar.to_complex(v) if arith != "double" else np.asarray(v, dtype=complex)
+        assert np.allclose(got, [1, 1] if v is one or v is hyp else [3 / 7, 2], rtol=1e-14)
+    assert np.all(ar.upper(x) >= [3 / 7, 2])

@@ -131,32 +131,11 @@ class Arithmetic:
         raise NotImplementedError
 
     # -- functions -----------------------------------------------------------------
-    def sqrt(self, x):
-        raise NotImplementedError
-
-    def cos(self, x):
-        raise NotImplementedError
-
-    def cosh(self, x):
-        raise NotImplementedError
-
-    def sin(self, x):
-        raise NotImplementedError
-
-    def sinh(self, x):
-        raise NotImplementedError
-
-    def root4(self, x):
-        """A fourth root of every element (any branch: callers use even functions of it)."""
-        raise NotImplementedError
-
-    def real(self, x):
-        """Real parts."""
-        raise NotImplementedError
-
-    def upper(self, x) -> np.ndarray:
-        """Float upper bounds of ``|x|`` elementwise (to choose series lengths and steps)."""
-        raise NotImplementedError
+    # Every arithmetic provides, elementwise on its arrays: sqrt, cos, cosh, sin, sinh;
+    # root4 (a fourth root, any branch: callers use even functions of it); real (real
+    # parts); upper (float upper bounds of |x|, to choose series lengths and steps).
+    # Batch and MP define them as methods, Ball as ufuncs built in __init__.
+    FUNCTIONS = ("sqrt", "cos", "cosh", "sin", "sinh", "root4", "real", "upper")
 
     def is_complex(self, x) -> bool:
         raise NotImplementedError
@@ -340,10 +319,7 @@ class MP(Arithmetic):
 
     def zeros(self, shape, like=None):
         complex_ = like is not None and self.is_complex(like)
-        zero = self.ctx.mpc(0) if complex_ else self.ctx.mpf(0)
-        out = np.empty(shape, dtype=object)
-        out.fill(zero)
-        return out
+        return _filled(shape, self.ctx.mpc(0) if complex_ else self.ctx.mpf(0))
 
     def root4(self, x):
         ctx = self.ctx
@@ -454,10 +430,7 @@ class Ball(Arithmetic):
 
     def zeros(self, shape, like=None):
         complex_ = like is not None and self.is_complex(like)
-        zero = self.flint.acb(0) if complex_ else self.flint.arb(0)
-        out = np.empty(shape, dtype=object)
-        out.fill(zero)
-        return out
+        return _filled(shape, self.flint.acb(0) if complex_ else self.flint.arb(0))
 
     def root4(self, x):
         flint = self.flint
@@ -514,6 +487,13 @@ class Ball(Arithmetic):
                        for v in flat])
         ph = np.array([float(self.flint.acb(v).arg().mid()) for v in flat])
         return la.reshape(np.shape(x)), ph.reshape(np.shape(x))
+
+
+def _filled(shape, value) -> np.ndarray:
+    """An object array of ``shape`` holding ``value`` everywhere (numbers are immutable)."""
+    out = np.empty(shape, dtype=object)
+    out.fill(value)
+    return out
 
 
 def _mpf_of(exact_arb):

@@ -64,6 +64,7 @@ import mpmath
 import numpy as np
 
 from .. import progress
+from ..budget import checked_request
 from ..errors import ComputationError
 from ..mesh import zero_order
 from ..model import Model
@@ -1087,11 +1088,7 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
     >>> [str(e) for e in spec]
     ['-0.250087667713+9.86833681264i', '-0.500026143683+39.4704802552i', '-0.249930111966+88.8216723216i']
     """
-    if count is None and omega_max is None:
-        raise ValueError("give count or omega_max")
-    if digits < 1:
-        raise ValueError("digits must be positive")
-    model = model.require_numeric()
+    model = checked_request(model, count, omega_max, digits)
     start = time.perf_counter()
     rigid, order = zero_order(model)
     evaluations = check_stable(model, rigid)

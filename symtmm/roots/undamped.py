@@ -47,6 +47,7 @@ import numpy as np
 import sympy as sp
 
 from .. import progress
+from ..budget import checked_request
 from ..errors import ComputationError
 from ..mesh import static_nullity
 from ..model import Model
@@ -619,11 +620,7 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     >>> [str(e) for e in spec]            # (n pi)^2
     ['9.8696044010893586188i', '39.478417604357434475i', '88.826439609804227570i']
     """
-    if count is None and omega_max is None:
-        raise ValueError("give count or omega_max")
-    if digits < 1:
-        raise ValueError("digits must be positive")
-    model = model.require_numeric()
+    model = checked_request(model, count, omega_max, digits)
     if model.damped:
         raise ValueError("model is damped: use the damped solver")
     start = time.perf_counter()
