@@ -189,6 +189,10 @@ def _localised(ar, T, parts):
     return Q @ mass_orthonormaliser(ar, Q.T @ Q)
 
 
+#: Digits a double-precision walk keeps before its cancellation (of 15.9, a guard).
+_DOUBLE_DIGITS = 13
+
+
 def displacements(model: Model, eigenvalues, points: int, digits: int,
                   plan: ShapePlan | None = None) -> list:
     """``Y`` along every beam for many eigenvalues at once, unnormalised (sweeps' tracking).
@@ -206,15 +210,23 @@ def displacements(model: Model, eigenvalues, points: int, digits: int,
     groups: dict = {}
     for i, e in enumerate(eigenvalues):
         real = not model.damped and e.lam.real == 0
-        groups.setdefault((real, e.multiplicity), []).append(i)
+        # double precision where the walk's cancellation leaves the digits asked for
+        # (low modes), mpmath beyond
+        in_double = digits + transfer.digits_lost(tp, complex(e.lam)) <= _DOUBLE_DIGITS
+        groups.setdefault((real, e.multiplicity, in_double), []).append(i)
     out: list = [None] * len(eigenvalues)
-    for (real, mult), idx in groups.items():
-        dps = max(working_digits(tp, eigenvalues[i].lam, digits) for i in idx)
-        ar = MP.from_digits(dps)
+    for (real, mult, in_double), idx in groups.items():
+        if in_double:
+            ar = DOUBLE
+        else:
+            ar = MP.from_digits(max(working_digits(tp, eigenvalues[i].lam, digits)
+                                    for i in idx))
         with ar:
             pairs = [transfer.point(ar, eigenvalues[i].lam, real) for i in idx]
             lam = None if real else ar.array([p[0][0] for p in pairs])
             lam2 = ar.array([p[1][0] for p in pairs]) if real else None
+            if real and ar is DOUBLE:
+                lam2 = lam2.real            # (doubles are complex numbers: a real walk)
             R = transfer.boundary(tp, ar, lam, lam2)
             E0 = ar.zeros((len(idx), tp.size, mult), like=R)
             for b in range(len(idx)):

@@ -131,7 +131,8 @@ def lu_solve(ar: Arithmetic, factors, B):
     """``A^-1 B`` from :func:`lu`'s ``factors`` for the columns of ``B`` (``n x m``)."""
     LU, perm = factors
     n = LU.shape[0]
-    y = np.array(B, copy=True)[perm]
+    # (a real B against a complex LU, as in a damped double-precision walk, solves complex)
+    y = np.array(B, copy=True, dtype=np.result_type(LU, np.asarray(B)))[perm]
     for i in range(1, n):
         y[i] = y[i] - LU[i, :i] @ y[:i]
     for i in range(n - 1, -1, -1):
