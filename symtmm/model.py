@@ -638,10 +638,11 @@ class Model:
             body_names.add(body.name)
             seen = set()
             for att in body.attachments:
+                field_name = f"{where}.{'springs' if att.elastic else 'attach'}"
                 if att.beam not in names:
-                    raise ModelError(f"unknown beam '{att.beam}'", field=f"{where}.attach")
+                    raise ModelError(f"unknown beam '{att.beam}'", field=field_name)
                 x = self.value(att.x)
-                _check_inside(x, resolved[att.beam], f"{where}.attach")
+                _check_inside(x, resolved[att.beam], field_name)
                 if (att.beam, x) in seen:
                     raise ModelError(f"attached twice to beam '{att.beam}' at x = {x}",
                                      field=f"{where}.attach")

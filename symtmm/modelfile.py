@@ -66,8 +66,8 @@ __all__ = ["load", "loads", "from_dict", "parse_assignment"]
 _TOP = {"title", "parameters", "beam", "spring", "mass", "rigid", "joint", "oscillator"}
 _BEAM_REQUIRED = ("name", "EI", "m", "L", "left", "right")
 _BEAM_OPTIONAL = ("x0", "kw", "theory", "N", "rhoI", "kGA")
-_RIGID_REQUIRED = ("attach",)
-_RIGID_OPTIONAL = ("name", "M", "J", "xc", "hinged")
+_RIGID_REQUIRED = ()
+_RIGID_OPTIONAL = ("name", "attach", "M", "J", "xc", "hinged", "springs", "k", "c")
 _JOINT_REQUIRED = ("ends",)
 _JOINT_OPTIONAL = ("name", "kind", "M", "J")
 #: kinds of joint: all ends rigidly together, or pinned to a common point
@@ -245,10 +245,8 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         raise ModelError("expected an array of tables: write [[spring]]", field="spring")
     # the budgets first: nothing is parsed for a model that is too large anyway
     tables = [data.get(t, []) for t in ("mass", "rigid", "joint", "oscillator")]
-    attachments = sum(len(t.get("attach", t.get("ends", t.get("between", [None]))))
-                      if isinstance(t, dict)
-                      and isinstance(t.get("attach", t.get("ends", t.get("between", []))), list)
-                      else 0 for group in tables[1:] if isinstance(group, list) for t in group)
+    attachments = sum(_points_in(t) for group in tables[1:] if isinstance(group, list)
+                      for t in group)
     raw_params = data.get("parameters", {})
     check_size(len(beams_raw), len(springs_raw) + (len(tables[0]) if isinstance(tables[0], list)
                                                    else 0) + attachments,
@@ -380,6 +378,17 @@ def _attachment_point(text, beams: dict, where: str):
     return name, x
 
 
+def _points_in(table) -> int:
+    """How many points a body, joint or oscillator table holds (for the size budget)."""
+    if not isinstance(table, dict):
+        return 0
+    count = 0
+    for key in ("attach", "ends", "between", "springs"):
+        value = table.get(key)
+        count += len(value) if isinstance(value, list) else 0
+    return count + (1 if "beam" in table else 0)
+
+
 def _bodies(data: dict, beams: dict, known_names: set) -> tuple:
     """The ``[[rigid]]`` bodies and the ``[[joint]]`` tables, as rigid bodies.
 
@@ -398,11 +407,26 @@ def _bodies(data: dict, beams: dict, known_names: set) -> tuple:
             if not isinstance(name, str):
                 raise ModelError(f"expected a string, got {_kind(name)}", field=f"{where}.name")
             key = "attach" if table == "rigid" else "ends"
-            points = raw[key]
-            if not isinstance(points, list) or not points:
-                raise ModelError('expected a list of points, e.g. ["a.right", "b@0.5"]',
+            springs = raw.get("springs", []) if table == "rigid" else []
+            if not isinstance(springs, list):
+                raise ModelError('expected a list of points, e.g. ["a@0.2", "a@0.8"]',
+                                 field=f"{where}.springs")
+            points = raw.get(key, [])
+            if not isinstance(points, list) or not (points or springs):
+                raise ModelError('expected a list of points, e.g. ["a.right", "b@0.5"]'
+                                 + (" (or springs = [...])" if table == "rigid" else ""),
                                  field=f"{where}.{key}")
             located = [_attachment_point(p, beams, f"{where}.{key}") for p in points]
+            elastic = [_attachment_point(p, beams, f"{where}.springs") for p in springs]
+            if table == "rigid" and not springs and ("k" in raw or "c" in raw):
+                raise ModelError("k and c belong to springs = [...] points",
+                                 field=f"{where}.{'k' if 'k' in raw else 'c'}")
+            if springs and "k" not in raw:
+                raise ModelError("missing field 'k' (the stiffness of the springs)",
+                                 field=f"{where}.k")
+            ks = _per_beam(raw.get("k"), len(springs), f"{where}.k", "spring") if springs else []
+            cs = _per_beam(raw.get("c", 0), len(springs), f"{where}.c", "spring") \
+                if springs else []
             if table == "rigid":
                 hinged_raw = raw.get("hinged", [])
                 if not isinstance(hinged_raw, list):
@@ -429,12 +453,15 @@ def _bodies(data: dict, beams: dict, known_names: set) -> tuple:
                 fields["xc"] = _number(raw["xc"], f"{where}.xc")
             try:
                 body = RigidBody(name, tuple(Attachment(b, x, h) for (b, x), h
-                                            in zip(located, flags)), **fields)
+                                            in zip(located, flags))
+                                 + tuple(Attachment(b, x, k=k, c=c) for (b, x), k, c
+                                         in zip(elastic, ks, cs)), **fields)
             except ModelError as exc:
                 raise ModelError(exc.message, field=_rename(exc.field, where)) from None
             out.append(body)
             where_of[body.name] = where
-            for value in list(fields.values()) + [x for _, x in located]:
+            for value in (list(fields.values()) + [x for _, x in located + elastic]
+                          + ks + cs):
                 known_names |= {sym.name for sym in sp.sympify(value).free_symbols}
     return out, where_of
 
@@ -489,11 +516,11 @@ def _oscillators(data: dict, beams: set, known_names: set, taken: set) -> tuple:
     return out, where_of
 
 
-def _per_beam(value, count: int, where: str) -> list:
-    """A value for every beam: one for all, or a list of one per beam."""
+def _per_beam(value, count: int, where: str, per: str = "beam") -> list:
+    """A value for every beam (or spring): one for all, or a list of one each."""
     if isinstance(value, list):
         if len(value) != count:
-            raise ModelError(f"expected one value per beam ({count})", field=where)
+            raise ModelError(f"expected one value per {per} ({count})", field=where)
         return [_number(v, where) for v in value]
     return [_number(value, where)] * count
 
@@ -513,7 +540,7 @@ def _spring_field(field: str | None, springs, beams, masses=(), bodies=None) -> 
     for name, where in (bodies or {}).items():
         if field.startswith(f"body '{name}'."):
             attr = field.rsplit(".", 1)[-1]
-            if where.startswith("oscillator") and attr == "attach":
+            if where.startswith("oscillator") and attr in ("attach", "springs"):
                 attr = "x"                  # (an oscillator's one point is its x)
             return f"{where}.{attr}"
     for i, s in enumerate(springs, 1):

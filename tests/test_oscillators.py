@@ -225,3 +225,49 @@ def test_bad_oscillators_get_one_line_errors(tmp_path, table, message):
     run = run_cli(["solve", path, "--count", "1"], limit=30)
     assert_contract(run, 30)
     assert run.code == 2 and message in run.stderr, run.stderr
+
+
+ROCKING = """
+[[beam]]
+name = "a"
+EI = 1
+m = 1
+L = 1
+left = "pinned"
+right = "pinned"
+
+[[rigid]]
+name = "machine"
+springs = ["a@0.2", "a@0.75"]
+k = [40, 60]
+M = 0.3
+J = 0.025
+xc = 0.5
+"""
+
+
+def test_a_rigid_body_on_springs_in_a_model_file():
+    """[[rigid]] springs = [...]: the file's body is the Python one that the finite-element
+    model checks (tests/test_theories_fe.py, "body-on-springs")."""
+    from_file = api.loads(ROCKING)
+    in_python = Model((Beam("a", 1, 1, 1, **PP),),
+                      bodies=(RigidBody("r", (Attachment("a", "1/5", k=40),
+                                              Attachment("a", "3/4", k=60)),
+                                        M="3/10", J="1/40", xc="1/2"),))
+    assert [str(e) for e in solve(from_file, count=5)] == \
+        [str(e) for e in solve(in_python, count=5)]
+
+
+@pytest.mark.parametrize("change, message", [
+    (("k = [40, 60]\n", ""), "rigid[1].k: missing field 'k'"),
+    (('springs = ["a@0.2", "a@0.75"]\n', 'attach = ["a@0.2"]\n'), "rigid[1].k: k and c belong"),
+    (("k = [40, 60]", "k = [40, 60, 70]"), "rigid[1].k: expected one value per spring (2)"),
+    (('springs = ["a@0.2", "a@0.75"]', 'springs = ["a@1.2", "a@0.75"]'),
+     "rigid[1].springs: "),
+])
+def test_bad_springs_of_a_rigid_body(tmp_path, change, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(ROCKING.replace(*change))
+    run = run_cli(["solve", path, "--count", "1"], limit=30)
+    assert_contract(run, 30)
+    assert run.code == 2 and message in run.stderr, run.stderr
