@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import sympy as sp
 
@@ -92,6 +93,11 @@ class CharacteristicEquation:
 
     def count_ops(self) -> int:
         """Size of :attr:`delta_Omega` (the closed form) as SymPy counts operations."""
+        return self._ops
+
+    @cached_property
+    def _ops(self) -> int:
+        # (counted once: a large form takes a second, and the outputs ask several times)
         return int(sp.count_ops(self.delta_Omega))
 
     def latex(self) -> str:
@@ -156,6 +162,10 @@ class CharacteristicEquation:
         """
         if self.count_ops() < min_ops:
             return None
+        return self._named
+
+    @cached_property
+    def _named(self):
         names = sp.numbered_symbols("x")
         taken = {str(s) for s in self.delta_Omega.free_symbols}
         names = (x for x in names if str(x) not in taken)
