@@ -18,11 +18,30 @@ from __future__ import annotations
 
 from html import escape
 
-__all__ = ["html_table", "latex_array", "latex_text"]
+__all__ = ["text_lines", "html_table", "latex_array", "latex_text"]
 
 # Characters LaTeX (and MathJax) would act on, as the commands that print them.
 _LATEX = {"\\": r"\backslash ", "{": r"\{", "}": r"\}", "_": r"\_", "^": r"\hat{}",
           "$": r"\$", "&": r"\&", "%": r"\%", "#": r"\#", "~": r"\sim ", " ": r"\ "}
+
+
+def text_lines(head, rows) -> list:
+    """A plain-text table: the header, a rule, the rows, every column right-aligned.
+
+    Examples
+    --------
+    >>> for line in text_lines(["#", "omega"], [["1", "9.87"], ["2", "39.5"]]):
+    ...     print(line)
+    #  omega
+    -  -----
+    1   9.87
+    2   39.5
+    """
+    widths = [max(len(h), *(len(r[k]) for r in rows)) if rows else len(h)
+              for k, h in enumerate(head)]
+    lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths)),
+             "  ".join("-" * w for w in widths)]
+    return lines + ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
 
 
 def html_table(head, rows, note: str = "") -> str:

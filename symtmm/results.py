@@ -7,7 +7,7 @@ from dataclasses import dataclass, field, replace
 
 import mpmath
 
-from .display import html_table, latex_array, latex_text
+from .display import html_table, latex_array, latex_text, text_lines
 from .jsonout import dumps, header
 from .tables import Tabular
 
@@ -349,11 +349,7 @@ class Spectrum(Tabular):
         """A readable table (the ``symtmm solve`` output); ``hz`` adds the frequency in Hz
         (``solve --hz``), every digit backed as the eigenvalue's are."""
         head, rows = self._rows(unicode=False, hz=hz)
-        widths = [max(len(h), *(len(r[k]) for r in rows)) if rows else len(h)
-                  for k, h in enumerate(head)]
-        lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths))]
-        lines.append("  ".join("-" * w for w in widths))
-        lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
+        lines = text_lines(head, rows)
         lines.append(f"{self.total} eigenvalue(s) with multiplicity, {self.digits} significant "
                      f"digits; method {self.method}, {self.evaluations} evaluations, "
                      f"{self.seconds:.3f} s")

@@ -35,7 +35,7 @@ import numpy as np
 import sympy as sp
 
 from . import progress
-from .display import html_table, latex_array, latex_text
+from .display import html_table, latex_array, latex_text, text_lines
 from .errors import ComputationError, ModelError
 from .expr import ExpressionError, exact_number, parse_expression
 from .jsonout import dumps, header
@@ -480,11 +480,7 @@ class Sweep(Tabular):
     def table(self, shown: int = 8) -> str:
         """One row per value, eigenvalues (repeated by multiplicity) in columns."""
         head, rows = self._rows(min(shown, self.digits))
-        widths = [max(len(h), *(len(r[k]) for r in rows)) if rows else len(h)
-                  for k, h in enumerate(head)]
-        lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths)),
-                 "  ".join("-" * w for w in widths)]
-        lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
+        lines = text_lines(head, rows)
         scale = self.omega_scale
         what = (f"Omega = (omega^2 m L^4/EI)^(1/4) of beam {scale[0]}"
                 if scale and not self.damped else "rad/s")

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import mpmath
 import numpy as np
 
-from ..display import html_table, latex_array, latex_text
+from ..display import html_table, latex_array, latex_text, text_lines
 from ..elements import STATE
 from ..jsonout import dumps, header
 from ..model import Model
@@ -229,11 +229,7 @@ class ModeSet(Tabular):
     def table(self) -> str:
         """A readable summary: eigenvalue and the largest displacement on each beam."""
         head, rows = self._head(), self._rows()
-        widths = [max(len(h), *(len(r[k]) for r in rows)) if rows else len(h)
-                  for k, h in enumerate(head)]
-        lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths)),
-                 "  ".join("-" * w for w in widths)]
-        lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
+        lines = text_lines(head, rows)
         damped = self._damped
         points = len(next(iter(self.modes[0].beams.values())).x) if self.modes else 0
         lines.append(f"{len(self.modes)} mode shape(s), {points} points per beam (max|Y| over "
