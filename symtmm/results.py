@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import mpmath
 
@@ -50,6 +51,15 @@ def first(eigenvalues, count: int) -> list:
         kept.append(e)
         total += e.multiplicity
     return kept
+
+
+@functools.lru_cache(maxsize=32)
+def _interval_context(prec: int):
+    """A private mpmath interval context at ``prec`` bits (one per precision)."""
+    import mpmath.ctx_iv
+    iv = mpmath.ctx_iv.MPIntervalContext()
+    iv.prec = prec
+    return iv
 
 
 def _printed_interval(ctx, text: str):
@@ -173,9 +183,12 @@ class Eigenvalue:
         >>> Eigenvalue(mpmath.mpc(-3, 4), digits=6).quantities()["zeta"]
         '0.60000'
         """
-        import mpmath.ctx_iv
-        iv = mpmath.ctx_iv.MPIntervalContext()
-        iv.prec = int(3.33 * self.digits) + 40
+        return dict(self._quantities)
+
+    @cached_property
+    def _quantities(self) -> dict:
+        # (once per eigenvalue: a table, its JSON and its CSV each ask)
+        iv = _interval_context(int(3.33 * self.digits) + 40)
         d = self.to_dict()
         re, im = _printed_interval(iv, d["real"]), _printed_interval(iv, d["imag"])
         box = self.bracket
