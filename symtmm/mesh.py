@@ -58,9 +58,11 @@ class Mesh:
     Attributes
     ----------
     segments : list
-        ``(beam index, segment, left node, right node)``.
+        ``(beam index, segment, left node, right node)``; for a piece of beams joined by
+        layers ``(beam indices, CoupledSegment, left nodes, right nodes)`` (tuples).
     segment_places : list
-        Per segment, the combinations of ``(Y0, Theta0, Y1, Theta1)``.
+        Per segment, the combinations of ``(Y0, Theta0, Y1, Theta1)`` (of a coupled
+        piece: ``Y0`` of each beam, then ``Theta0``, ``Y1``, ``Theta1`` of each).
     point_places : list
         ``(combinations, element)`` per point element, on the element's ``dofs``.
     body_places : list
@@ -98,8 +100,12 @@ class Mesh:
                 return ((number[v], sp.Integer(1)),)
             return tuple(sorted((number[w], c) for w, c in subs[v].items()))
 
-        self.segment_places = [tuple(combo(("n", n, k)) for n in (ia, ib) for k in (0, 1))
-                               for _, _, ia, ib in self.segments]
+        def places(ia, ib):
+            if not isinstance(ia, tuple):
+                return tuple(combo(("n", n, k)) for n in (ia, ib) for k in (0, 1))
+            # a coupled piece: Y0 of every beam, Theta0 of every beam, then Y1, Theta1
+            return tuple(combo(("n", n, k)) for ends in (ia, ib) for k in (0, 1) for n in ends)
+        self.segment_places = [places(ia, ib) for _, _, ia, ib in self.segments]
         self.point_places = []
         for x, el in point_elements(model):
             at = [self._node(name, x) for name in el.beams]
@@ -135,32 +141,120 @@ class Mesh:
         return self._beam_nodes[self._index[beam_name]][_canonical(x)]
 
     def _cut(self, piece):
-        """Nodes along every beam and the segments between them."""
+        """Nodes along every beam and the segments between them.
+
+        Beams joined by layers are cut at the same points over each layer (the ends of
+        the layer and every point of either beam there), into the same number of pieces:
+        each piece of the group is one coupled segment
+        (:class:`~symtmm.elements.layer.CoupledSegment`).
+        """
         model = self.model
         points_el = point_elements(model)
         self._nodes = []                 # (x float, beam index) per node
         self._node_length = []           # the longest segment at each node
         self.segments = []
         self._beam_nodes = []            # per beam: exact x -> node
+        index = self._index
+        layers = [(index[la.a], index[la.b], _canonical(la.x0), _canonical(la.x1), la)
+                  for la in model.layers]
+        required = []
+        for beam in model.beams:
+            xs = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
+            xs += [a.x for body in model.bodies for a in body.attachments if a.beam == beam.name]
+            required.append({_canonical(x) for x in xs})
+        for a, b, x0, x1, _ in layers:
+            required[a] |= {x0, x1}
+            required[b] |= {x0, x1}
+        changed = True
+        while changed:      # a beam's points over a layer are its partner's too (chains)
+            changed = False
+            for a, b, x0, x1, _ in layers:
+                for i, j in ((a, b), (b, a)):
+                    extra = {x for x in required[i] if float(x0) <= float(x) <= float(x1)
+                             and x not in required[j]}
+                    if extra:
+                        required[j] |= extra
+                        changed = True
+        xs_of = [sorted(r, key=float) for r in required]
+
+        def covering(xa, xb):
+            return [la for la in layers if float(la[2]) <= float(xa) and float(xb) <= float(la[3])]
+
+        def group(i, xa, xb):
+            """The beams joined to ``i`` over ``[xa, xb]`` through layers, and those layers."""
+            found, todo, used = {i}, [i], []
+            cover = covering(xa, xb)
+            while todo:
+                v = todo.pop()
+                for la in cover:
+                    if v in la[:2]:
+                        if la not in used:
+                            used.append(la)
+                        w = la[1] if la[0] == v else la[0]
+                        if w not in found:
+                            found.add(w)
+                            todo.append(w)
+            return sorted(found), used
+
+        def longest(i, length, used):
+            beam = model.beams[i]
+            k = sum((la[4].k for la in used if i in la[:2]), sp.Integer(0))
+            c = sum((la[4].c for la in used if i in la[:2]), sp.Integer(0))
+            if k == 0 and c == 0:
+                return piece(beam, beam.segment(length))
+            # |X| of the coupled piece is at most that of a beam with mass m' and foundation
+            # kw' (2 c |lam| <= m |lam|**2 + c**2 / m): the rule of such a beam bounds it
+            from .elements import EulerBernoulliSegment
+            m = beam.m * (2 if c != 0 else 1)
+            return piece(beam, EulerBernoulliSegment(beam.EI, m, length,
+                                                     beam.kw + 2 * k + c**2 / beam.m))
+
+        subdivisions: dict = {}          # (beam, xa) -> number of pieces
+        groups: dict = {}                # (beam, xa) -> (beams, layers) of a coupled stretch
+        for i, xs in enumerate(xs_of):
+            for xa, xb in itertools.pairwise(xs):
+                members, used = group(i, xa, xb)
+                n_sub = max(max(1, math.ceil(float(xb - xa) / longest(j, xb - xa, used) - 1e-9))
+                            for j in members)
+                for j in members:
+                    subdivisions[(j, xa)] = max(subdivisions.get((j, xa), 1), n_sub)
+                if len(members) > 1:
+                    groups[(i, xa)] = (members, used)
         for b_idx, beam in enumerate(model.beams):
-            required = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
-            required += [a.x for body in model.bodies for a in body.attachments
-                         if a.beam == beam.name]
-            xs = sorted({_canonical(x) for x in required}, key=float)
+            xs = xs_of[b_idx]
             points = [xs[0]]
             for xa, xb in itertools.pairwise(xs):
-                length = xb - xa
-                longest = piece(beam, beam.segment(length))
-                n_sub = max(1, math.ceil(float(length) / longest - 1e-9))
-                points += [xa + length * sp.Rational(k, n_sub) for k in range(1, n_sub + 1)]
+                n_sub = subdivisions[(b_idx, xa)]
+                points += [xa + (xb - xa) * sp.Rational(k, n_sub) for k in range(1, n_sub + 1)]
             ids = list(range(len(self._nodes), len(self._nodes) + len(points)))
             self._nodes += [(float(x), b_idx) for x in points]
             self._node_length += [0.0] * len(points)
             self._beam_nodes.append(dict(zip(points, ids)))
-            for (xa, ia), (xb, ib) in zip(zip(points, ids), zip(points[1:], ids[1:])):
-                self.segments.append((b_idx, beam.segment(xb - xa), ia, ib))
-                for i in (ia, ib):
-                    self._node_length[i] = max(self._node_length[i], float(xb - xa))
+        for b_idx, beam in enumerate(model.beams):
+            xs = xs_of[b_idx]
+            nodes = self._beam_nodes[b_idx]
+            points = sorted(nodes, key=float)
+            for xa_node, xb_node in itertools.pairwise(points):
+                # the stretch between required points this piece lies in
+                k = max(t for t in range(len(xs) - 1) if float(xs[t]) <= float(xa_node))
+                members, used = groups.get((b_idx, xs[k]), ([b_idx], []))
+                if members[0] != b_idx:
+                    continue                # the group's first beam makes the coupled piece
+                length = xb_node - xa_node
+                ia = tuple(self._beam_nodes[j][xa_node] for j in members)
+                ib = tuple(self._beam_nodes[j][xb_node] for j in members)
+                if len(members) == 1:
+                    self.segments.append((b_idx, beam.segment(length), ia[0], ib[0]))
+                else:
+                    from .elements.layer import CoupledSegment
+                    pos = {j: p for p, j in enumerate(members)}
+                    seg = CoupledSegment(
+                        [(model.beams[j].EI, model.beams[j].m, model.beams[j].kw)
+                         for j in members], length,
+                        [(pos[la[0]], pos[la[1]], la[4].k, la[4].c) for la in used])
+                    self.segments.append((tuple(members), seg, ia, ib))
+                for i in ia + ib:
+                    self._node_length[i] = max(self._node_length[i], float(length))
 
     def _number(self, subs) -> dict:
         """Number the free freedoms along ``x``; a body's next to its first attachment's node.
@@ -276,6 +370,46 @@ def _segment_null_rows(beam, length) -> list:
     return [[zero, -one, zero, one], [-one, -length, one, zero]]
 
 
+def _coupled_null_rows(model: Model, beams, seg) -> list:
+    """Rows on the local freedoms of a coupled piece (``Y0``, ``Theta0``, ``Y1``, ``Theta1`` of
+    each beam in turn) vanishing on its static null space: each beam's own, and equal
+    deflections at both ends of two beams joined by a layer of stiffness ``k != 0`` (its
+    energy ``k (Y_i - Y_j)**2`` stops every relative motion of the rigid pieces)."""
+    n = len(beams)
+    rows = []
+    for p, b in enumerate(beams):
+        for local in _segment_null_rows(model.beams[b], seg.l):
+            row = [sp.Integer(0)] * (4 * n)
+            for q, v in enumerate(local):
+                row[q * n + p] = v
+            rows.append(row)
+    for i, j, k, _ in seg.couplings:
+        if k != 0:
+            for end in (0, 2):
+                row = [sp.Integer(0)] * (4 * n)
+                row[end * n + i], row[end * n + j] = sp.Integer(1), sp.Integer(-1)
+                rows.append(row)
+    return rows
+
+
+def _coupled_damping(seg) -> sp.Matrix:
+    """The layers' damping matrix of a coupled piece on rigid motions of its beams:
+    ``c int_0^l (u_i - u_j)**2`` with ``u(s) = Y0 + s Theta0`` (what :func:`zero_order`
+    needs: it only ever meets the static null space, where every piece is rigid)."""
+    n = seg.size
+    C = sp.zeros(4 * n, 4 * n)
+    l = seg.l
+    for i, j, _, c in seg.couplings:
+        if c == 0:
+            continue
+        a = sp.zeros(4 * n, 1)
+        b = sp.zeros(4 * n, 1)
+        a[i], a[j] = 1, -1
+        b[n + i], b[n + j] = 1, -1
+        C += c * (l * a * a.T + l**2 / 2 * (a * b.T + b * a.T) + l**3 / 3 * b * b.T)
+    return C
+
+
 def _static_null_space(model: Model):
     """``(mesh, basis)``: the exact null space of the static ``K(0)``, one basis vector
     (a list over the free freedoms) per rigid-body mode (see :func:`static_nullity`)."""
@@ -299,7 +433,10 @@ def _static_null_space(model: Model):
                 rows.append(row)
 
     for (b_idx, seg, _, _), places in zip(mesh.segments, mesh.segment_places):
-        add(places, _segment_null_rows(model.beams[b_idx], seg.l))
+        if isinstance(b_idx, tuple):
+            add(places, _coupled_null_rows(model, b_idx, seg))
+        else:
+            add(places, _segment_null_rows(model.beams[b_idx], seg.l))
     for places, element in mesh.point_places:
         S = element.stiffness(sp.Integer(0))
         add(places, [[S[i, j] for j in range(S.cols)] for i in range(S.rows)])
@@ -377,8 +514,11 @@ def zero_order(model: Model) -> tuple:
     if r == 0:
         return 0, 0
     CZ = sp.zeros(r, r)
-    for places, element in mesh.point_places:
-        C = element.stiffness(LAM).diff(LAM).subs(LAM, 0)
+    dampers = [(places, element.stiffness(LAM).diff(LAM).subs(LAM, 0))
+               for places, element in mesh.point_places]
+    dampers += [(places, _coupled_damping(seg)) for (b, seg, _, _), places
+                in zip(mesh.segments, mesh.segment_places) if isinstance(b, tuple)]
+    for places, C in dampers:
         if C.is_zero_matrix:
             continue
         local = [[sum((c * z[i] for i, c in combo), sp.Integer(0)) for combo in places]

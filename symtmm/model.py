@@ -48,7 +48,8 @@ from .limits import (
     MAX_POINTS_ON_BEAMS,
 )
 
-__all__ = ["Beam", "Spring", "Mass", "Attachment", "RigidBody", "joint", "oscillator", "Model",
+__all__ = ["Beam", "Spring", "Mass", "Layer", "Attachment", "RigidBody", "joint", "oscillator",
+           "Model",
            "BOUNDARY_CONDITIONS", "GROUND", "SPRING_KINDS"]
 
 #: Boundary conditions and the state variables (of Y, Theta, M, Q) they set to zero.
@@ -342,6 +343,59 @@ class Mass:
 
 
 @dataclass(frozen=True)
+class Layer:
+    """A continuous elastic layer (with viscous damping) between two beams over ``[x0, x1]``.
+
+    Per unit length the force ``(k + c λ)(Y_b − Y_a)`` acts on beam ``a`` and its
+    opposite on beam ``b`` (Vu et al.'s elastically connected double beam; with
+    ``c``, a viscoelastic layer of Kelvin–Voigt type). Over the layer the two
+    beams are one coupled member whose state holds both beams' ``(Y, Θ, M, Q)``
+    (:mod:`symtmm.numeric.segments`); both must be Euler–Bernoulli beams without
+    axial force (a Winkler foundation is allowed).
+
+    Parameters
+    ----------
+    a, b : str
+        Names of the two beams.
+    k : number or str
+        Stiffness per unit length (not negative).
+    c : number or str, optional
+        Damping per unit length (not negative), default 0.
+    x0, x1 : number or str, optional
+        Global coordinates of the layer's ends; default the overlap of the two
+        beams (set by :class:`Model`).
+
+    Examples
+    --------
+    >>> Layer("upper", "lower", k=100, x0="1/4").x1 is None
+    True
+    """
+
+    a: str
+    b: str
+    k: sp.Expr
+    c: sp.Expr = 0  # made exact in __post_init__
+    x0: sp.Expr | None = None
+    x1: sp.Expr | None = None
+
+    def __post_init__(self):
+        where = f"layer {self.a}-{self.b}"
+        if GROUND in (self.a, self.b):
+            raise ModelError("a layer joins two beams (for a foundation under one beam use "
+                             "the beam's kw)", field=f"{where}.between")
+        if self.a == self.b:
+            raise ModelError("a layer must join two different beams", field=f"{where}.between")
+        for attr in ("k", "c", "x0", "x1"):
+            value = getattr(self, attr)
+            if value is None:
+                continue
+            value = _exact(value, f"{where}.{ {'x0': 'from', 'x1': 'to'}.get(attr, attr)}")
+            object.__setattr__(self, attr, value)
+            if attr in ("k", "c"):
+                _check_sign(value, f"{where}.{attr}", allow_zero=True)
+
+
+@dataclass(frozen=True)
 class Attachment:
     """Where a rigid body holds a beam: the point ``x`` of beam ``beam``.
 
@@ -543,6 +597,8 @@ class Model:
         Lumped masses on the beams.
     bodies : tuple of RigidBody, optional
         Rigid bodies carried by the beams or joining them (joints).
+    layers : tuple of Layer, optional
+        Continuous elastic or viscoelastic layers between beams.
     """
 
     beams: tuple
@@ -552,6 +608,7 @@ class Model:
     source: str | None = None
     masses: tuple = ()
     bodies: tuple = ()
+    layers: tuple = ()
 
     def __post_init__(self):
         beams = tuple(self.beams)
@@ -560,7 +617,8 @@ class Model:
         object.__setattr__(self, "springs", springs)
         object.__setattr__(self, "masses", tuple(self.masses))
         object.__setattr__(self, "bodies", tuple(self.bodies))
-        check_size(len(beams), len(springs) + len(self.masses) + sum(
+        object.__setattr__(self, "layers", tuple(self._layers_with_ends(self.layers)))
+        check_size(len(beams), len(springs) + len(self.masses) + 2 * len(self.layers) + sum(
             len(getattr(b, "attachments", ())) for b in self.bodies), len(self.parameters),
             self.source)
         params = {}
@@ -581,6 +639,20 @@ class Model:
             self._validate()
         except ModelError as exc:
             raise exc.with_source(self.source) if self.source else exc from None
+
+    def _layers_with_ends(self, layers) -> Iterable:
+        """The layers with their default ends: the overlap of the two beams."""
+        beams = {b.name: b for b in self.beams if isinstance(b, Beam)}
+        for layer in layers:
+            if not isinstance(layer, Layer):
+                raise ModelError("expected a Layer", field="layer", source=self.source)
+            a, b = beams.get(layer.a), beams.get(layer.b)
+            if a is not None and b is not None:
+                if layer.x0 is None:
+                    layer = replace(layer, x0=sp.Max(a.x0, b.x0))
+                if layer.x1 is None:
+                    layer = replace(layer, x1=sp.Min(a.x1, b.x1))
+            yield layer
 
     def _validate(self):
         if not self.beams:
@@ -628,6 +700,40 @@ class Model:
             _check_inside(self.value(mass.x), resolved[mass.beam], f"{where}.x")
             for attr in ("M", "J"):
                 _check_sign(self.value(getattr(mass, attr)), f"{where}.{attr}", allow_zero=True)
+        for layer in self.layers:
+            where = f"layer {layer.a}-{layer.b}"
+            for end in (layer.a, layer.b):
+                if end not in names:
+                    raise ModelError(f"unknown beam '{end}'", field=f"{where}.between")
+                beam = resolved[end]
+                if not beam.plain:
+                    raise ModelError(f"a layer joins Euler-Bernoulli beams without axial force; "
+                                     f"beam '{end}' is {beam.theory}"
+                                     + (" with an axial force" if beam.N != 0 else ""),
+                                     field=f"{where}.between")
+            x0, x1 = self.value(layer.x0), self.value(layer.x1)
+            for attr, x in (("from", x0), ("to", x1)):
+                for end in (layer.a, layer.b):
+                    _check_inside(x, resolved[end], f"{where}.{attr}")
+            span = x1 - x0
+            if span.is_number and not span.is_positive:
+                raise ModelError(f"the layer needs from < to (from = {short(x0)}, to = "
+                                 f"{short(x1)}; by default the overlap of the two beams)",
+                                 field=f"{where}.to")
+            for attr in ("k", "c"):
+                _check_sign(self.value(getattr(layer, attr)), f"{where}.{attr}", allow_zero=True)
+        pairs: dict = {}
+        for layer in self.layers:
+            # two layers over one stretch of the same pair: one layer with the sum
+            key = frozenset((layer.a, layer.b))
+            x0, x1 = self.value(layer.x0), self.value(layer.x1)
+            for y0, y1 in pairs.get(key, []):
+                gap = [x1 - y0, y1 - x0]
+                if all(g.is_number for g in gap) and all(g.is_positive for g in gap):
+                    raise ModelError("overlaps another layer between the same beams (write "
+                                     "one layer with the sum of their k and c)",
+                                     field=f"layer {layer.a}-{layer.b}")
+            pairs.setdefault(key, []).append((x0, x1))
         body_names = set()
         for body in self.bodies:
             if not isinstance(body, RigidBody):
@@ -810,8 +916,10 @@ class Model:
         masses = tuple(replace(p, x=self.value(p.x), M=self.value(p.M), J=self.value(p.J))
                        for p in self.masses)
         bodies = tuple(self._resolved_body(b) for b in self.bodies)
+        layers = tuple(replace(la, k=self.value(la.k), c=self.value(la.c),
+                               x0=self.value(la.x0), x1=self.value(la.x1)) for la in self.layers)
         keep = {n: v for n, v in self.parameters.items() if v is None}
-        return Model(beams, springs, keep, self.title, self.source, masses, bodies)
+        return Model(beams, springs, keep, self.title, self.source, masses, bodies, layers)
 
     def with_parameters(self, **values) -> Model:
         """A copy with some parameter values set or replaced.
@@ -851,6 +959,9 @@ class Model:
         for mass in self.resolved().masses:
             for attr in ("x", "M", "J"):
                 syms |= getattr(mass, attr).free_symbols
+        for layer in resolved.layers:
+            for attr in ("k", "c", "x0", "x1"):
+                syms |= getattr(layer, attr).free_symbols
         return tuple(sorted(s.name for s in syms))
 
     @property
@@ -861,6 +972,7 @@ class Model:
     def _dashpots(self):
         yield from (s.c for s in self.springs)
         yield from (a.c for b in self.bodies for a in b.attachments if a.elastic)
+        yield from (la.c for la in self.layers)
 
     def with_dashpots_scaled(self, factor) -> Model:
         """A copy with every dashpot coefficient multiplied by ``factor`` (0: undamped).
@@ -876,7 +988,16 @@ class Model:
         bodies = tuple(replace(b, attachments=tuple(
             replace(a, c=a.c * factor) if a.elastic else a for a in b.attachments))
             for b in self.bodies)
-        return replace(self, springs=springs, bodies=bodies)
+        layers = tuple(replace(la, c=la.c * factor) for la in self.layers)
+        return replace(self, springs=springs, bodies=bodies, layers=layers)
+
+    def refuse_layers(self, what: str) -> None:
+        """A one-line :class:`ModelError` when the model has layers and ``what`` (a
+        command) does not take them yet."""
+        if self.layers:
+            raise ModelError(f"{what} does not take beams joined by a layer yet (solve, "
+                             "modes, sweep, scan and draw do)", field="layer[1]",
+                             source=self.source)
 
     def beam(self, name: str) -> Beam:
         """The beam called ``name``."""
@@ -953,3 +1074,7 @@ def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
             if att.elastic:
                 yield f"body '{body.name}'.k", att.k
                 yield f"body '{body.name}'.c", att.c
+    for layer in model.layers:
+        for attr, name in (("k", "k"), ("c", "c"), ("x0", "from"), ("x1", "to")):
+            if getattr(layer, attr) is not None:
+                yield f"layer {layer.a}-{layer.b}.{name}", getattr(layer, attr)

@@ -48,6 +48,7 @@ from .model import (
     GROUND,
     Attachment,
     Beam,
+    Layer,
     Mass,
     Model,
     RigidBody,
@@ -63,7 +64,8 @@ else:  # pragma: no cover
 
 __all__ = ["load", "loads", "from_dict", "parse_assignment"]
 
-_TOP = {"title", "parameters", "beam", "spring", "mass", "rigid", "joint", "oscillator"}
+_TOP = {"title", "parameters", "beam", "spring", "mass", "rigid", "joint", "oscillator",
+        "layer"}
 _BEAM_REQUIRED = ("name", "EI", "m", "L", "left", "right")
 _BEAM_OPTIONAL = ("x0", "kw", "theory", "N", "rhoI", "kGA")
 _RIGID_REQUIRED = ()
@@ -76,6 +78,8 @@ _SPRING_REQUIRED = ("between", "x", "k")
 _SPRING_OPTIONAL = ("c", "kind")
 _MASS_REQUIRED = ("beam", "x", "M")
 _MASS_OPTIONAL = ("J",)
+_LAYER_REQUIRED = ("between", "k")
+_LAYER_OPTIONAL = ("c", "from", "to")
 _OSCILLATOR_REQUIRED = ("x", "M", "k")
 _OSCILLATOR_OPTIONAL = ("name", "beam", "between", "c")
 
@@ -247,6 +251,10 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
     tables = [data.get(t, []) for t in ("mass", "rigid", "joint", "oscillator")]
     attachments = sum(_points_in(t) for group in tables[1:] if isinstance(group, list)
                       for t in group)
+    layers_raw = data.get("layer", [])
+    if not isinstance(layers_raw, list):
+        raise ModelError("expected an array of tables: write [[layer]]", field="layer")
+    attachments += 2 * len(layers_raw)
     raw_params = data.get("parameters", {})
     check_size(len(beams_raw), len(springs_raw) + (len(tables[0]) if isinstance(tables[0], list)
                                                    else 0) + attachments,
@@ -330,6 +338,26 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         for value in fields.values():
             known_names |= {s.name for s in value.free_symbols}
 
+    layers = []
+    for i, raw in enumerate(layers_raw, 1):
+        where = f"layer[{i}]"
+        _check_keys(raw, _LAYER_REQUIRED, _LAYER_OPTIONAL, where)
+        between = raw["between"]
+        if (not isinstance(between, list) or len(between) != 2
+                or not all(isinstance(b, str) for b in between)):
+            raise ModelError('expected two beam names, e.g. ["upper", "lower"]',
+                             field=f"{where}.between")
+        fields = {"k": _number(raw["k"], f"{where}.k"), "c": _number(raw.get("c", 0), f"{where}.c")}
+        for key, attr in (("from", "x0"), ("to", "x1")):
+            if key in raw:
+                fields[attr] = _number(raw[key], f"{where}.{key}")
+        try:
+            layers.append(Layer(between[0], between[1], **fields))
+        except ModelError as exc:
+            raise ModelError(exc.message, field=_rename(exc.field, where)) from None
+        for value in fields.values():
+            known_names |= {s.name for s in value.free_symbols}
+
     bodies, body_fields = _bodies(data, {b.name: b for b in beams}, known_names)
     oscillators, oscillator_fields = _oscillators(data, {b.name for b in beams}, known_names,
                                                   {b.name for b in bodies})
@@ -349,10 +377,10 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
             raise ModelError(f"'{name}' is not a parameter of this model", field=f"override {name}")
     try:
         return Model(tuple(beams), tuple(springs), params, title, source, tuple(masses),
-                     tuple(bodies))
+                     tuple(bodies), tuple(layers))
     except ModelError as exc:
-        raise ModelError(exc.message,
-                         field=_spring_field(exc.field, springs, beams, masses, body_fields)) from None
+        raise ModelError(exc.message, field=_spring_field(exc.field, springs, beams, masses,
+                                                          body_fields, layers)) from None
 
 
 def _attachment_point(text, beams: dict, where: str):
@@ -533,10 +561,15 @@ def _rename(field: str | None, where: str) -> str:
     return f"{where}.{attr}"
 
 
-def _spring_field(field: str | None, springs, beams, masses=(), bodies=None) -> str | None:
+def _spring_field(field: str | None, springs, beams, masses=(), bodies=None,
+                  layers=()) -> str | None:
     """Name fields by their position in the file, as the user wrote them."""
     if not field:
         return field
+    for i, la in enumerate(layers, 1):
+        # (the model names a layer by its beams in the file's order)
+        if field.startswith(f"layer {la.a}-{la.b}"):
+            return f"layer[{i}]" + field[len(f"layer {la.a}-{la.b}"):]
     for name, where in (bodies or {}).items():
         if field.startswith(f"body '{name}'."):
             attr = field.rsplit(".", 1)[-1]

@@ -180,6 +180,7 @@ def _wave_matrix(problem: _Problem, g: int, level: int) -> list:
 
 
 def _build_problem(model: Model, sample: dict) -> _Problem:
+    model.refuse_layers("derive")
     layout = Layout(model, sample)
     _check_order(layout, sample, model.source)
     model = layout.model

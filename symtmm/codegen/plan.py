@@ -130,6 +130,7 @@ def plan(model, symbolic=()) -> Plan:
     the order of the cuts is the one at the values of the model (checked).
     """
     model_in = model
+    model.refuse_layers("codegen")
     model, sample = _prepare(model, tuple(symbolic))
     layout = Layout(model, sample)
     _check_order(layout, sample, model.source)

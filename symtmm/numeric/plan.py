@@ -42,7 +42,7 @@ import sympy as sp
 from ..elements import EulerBernoulliSegment
 from ..elements.base import LAM
 from .arith import DOUBLE, Arithmetic
-from .segments import kind, kind_tables
+from .segments import kind, kind_order, kind_size, kind_tables
 
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "rcm_order", "wave_number_bound"]
 
@@ -203,15 +203,18 @@ class StiffnessPlan:
         b = self.band = _bandwidth(pairs, position)
         self.width = w = b + 1
 
-        # segment kinds: "eb" first, then "theory"
+        # segment kinds: "eb" first, then "theory", then "coupled" (kind_order)
         kinds: dict = {}
         member_kind = []
         for _, seg, _, _ in mesh.segments:
             k = kind(seg)
             kinds.setdefault(k, None)
             member_kind.append(k)
-        ordered = sorted(kinds, key=lambda k: k[0] != "eb")
+        ordered = sorted(kinds, key=kind_order)
         index = {k: i for i, k in enumerate(ordered)}
+        # where each kind's flattened stiffness starts in the concatenation of them all
+        offsets = np.cumsum([0] + [kind_size(k) ** 2 for k in ordered]).tolist()
+        self._stiffness_length = offsets[-1]
         self.kinds = ordered
         self.multiplicity = np.bincount([index[k] for k in member_kind], minlength=len(ordered))
 
@@ -230,8 +233,8 @@ class StiffnessPlan:
                                 triples.append((r * w + c - r, source, ai * aj * coef))
 
         for k, places in zip(member_kind, mesh.segment_places):
-            base = 16 * index[k]
-            scatter(places, lambda i, j, base=base: [(("D", base + 4 * i + j), 1)])
+            base, size = offsets[index[k]], kind_size(k)
+            scatter(places, lambda i, j, base=base, size=size: [(("D", base + size * i + j), 1)])
         S_points = []
         for places, element in mesh.point_places:
             S = element.stiffness(LAM)
@@ -266,14 +269,13 @@ class StiffnessPlan:
 
     def _static_diagonal(self, triples, kinds) -> list:
         """The diagonal of the unscaled ``K`` at ``lam = 0`` (floats)."""
-        from .segments import transfer_matrices
-        from .stiffness import segment_stiffness
+        from .stiffness import stiffness_values
         n, w = self.n, self.width
         if not kinds:
-            D = np.zeros((1, 0, 4, 4))
+            D = np.zeros((1, 0))
         else:
-            U = transfer_matrices(DOUBLE, kind_tables(DOUBLE, kinds), np.zeros(1))
-            D, _ = segment_stiffness(U)
+            D, _ = stiffness_values(DOUBLE, kind_tables(DOUBLE, kinds), np.zeros(1),
+                                    np.zeros(1))
         flat = np.real(D).reshape(-1)
         diag = [0.0] * n
         for target, source, coef in triples:
@@ -298,7 +300,7 @@ class StiffnessPlan:
         return memo(self, ar, "tables", lambda: self._tables(ar))
 
     def _tables(self, ar: Arithmetic) -> dict:
-        nd = 16 * len(self.kinds)
+        nd = self._stiffness_length
         col = {("lam", 0): nd, ("lam", 1): nd + 1, ("lam", 2): nd + 2}
         source = np.array([s[1] if s[0] == "D" else col[s] for _, s, _ in self._triples],
                           dtype=int)

@@ -11,11 +11,16 @@ Two families, each written once for every arithmetic (:mod:`symtmm.numeric.arith
 * **any other theory** (:func:`theory_matrices`: axial force, Rayleigh,
   Timoshenko): ``exp(A l)`` from the series of ``alpha, beta`` in ``(t, d)``
   (trace and determinant of ``G = B C``, :mod:`symtmm.elements.theories`) on a
-  piece ``h = l / 2**j`` with ``max|r| h**2 <= 1/2``, then ``j`` doublings.
+  piece ``h = l / 2**j`` with ``max|r| h**2 <= 1/2``, then ``j`` doublings;
+* **beams joined by layers** (:func:`coupled_matrices`, family ``"coupled"``): the
+  ``c_j`` series with the matrix ``X`` of :mod:`symtmm.elements.layer` in place
+  of ``x`` (pieces keep ``|X|`` below ``NU_MAX**4``, where the series is short and
+  free of cancellation), with a rigorous tail for balls.
 
 Arrays: ``lam2`` has shape ``(B,)`` (points), every constant shape ``(S,)``
 (segments); results have shape ``(B, S, 4, 4)`` in the state order
-``[Y, Theta, M, Q]``.
+``[Y, Theta, M, Q]`` (``(B, S, 4N, 4N)`` for ``N`` coupled beams, in the order
+``[Y_1..Y_N, Theta_1.., M_1.., Q_1..]``).
 
 Examples
 --------
@@ -37,7 +42,8 @@ import sympy as sp
 from .arith import Arithmetic
 
 __all__ = ["eb_constants", "eb_matrices", "theory_constants", "theory_matrices",
-           "transfer_matrices", "stack_matrix", "kind", "kind_tables", "segment_matrix"]
+           "coupled_constants", "coupled_matrices", "transfer_matrices", "family_matrices",
+           "stack_matrix", "kind", "kind_order", "kind_size", "kind_tables", "segment_matrix"]
 
 
 def stack_matrix(rows) -> np.ndarray:
@@ -248,6 +254,134 @@ def theory_matrices(ar: Arithmetic, consts: dict, lam2) -> np.ndarray:
     return U
 
 
+# -- beams joined by layers -----------------------------------------------------------------
+def coupled_constants(ar: Arithmetic, segments) -> dict:
+    """Constant arrays for :func:`coupled_matrices` from ``(N, l, beams, couplings)`` per
+    segment (all with the same ``N``; see :class:`symtmm.elements.layer.CoupledSegment`).
+
+    Per segment ``A_i = m_i l**4 / EI_i``, ``F_i = kw_i l**4 / EI_i``, ``Kl = l**4 EI**-1 L_k``,
+    ``Cl = l**4 EI**-1 L_c`` (so ``X = -(diag(A lam**2 + F) + Kl + lam Cl)``) and the
+    unscaling factors ``l``, ``l**2 / EI_i``, ``l**3 / EI_i``.
+    """
+    from ..elements.layer import CoupledSegment
+    n = segments[0][0]
+    cols: dict = {"l": [], "damped": False}
+    for key in ("A", "F", "sM", "sQ"):
+        cols[key] = [[] for _ in range(n)]
+    for key in ("Kl", "Cl"):
+        cols[key] = [[[] for _ in range(n)] for _ in range(n)]
+    for size, l, beams, couplings in segments:
+        seg = CoupledSegment(beams, l, couplings)
+        Lk, Lc = seg.laplacians()
+        l = sp.sympify(l)
+        cols["l"].append(ar.exact(l))
+        cols["damped"] = cols["damped"] or seg.damped
+        for i, (EI, m, kw) in enumerate(seg.beams):
+            cols["A"][i].append(ar.exact(m * l**4 / EI))
+            cols["F"][i].append(ar.exact(kw * l**4 / EI))
+            cols["sM"][i].append(ar.exact(l**2 / EI))
+            cols["sQ"][i].append(ar.exact(l**3 / EI))
+            for j in range(n):
+                cols["Kl"][i][j].append(ar.exact(Lk[i][j] * l**4 / EI))
+                cols["Cl"][i][j].append(ar.exact(Lc[i][j] * l**4 / EI))
+    out = {"N": n, "damped": cols["damped"], "l": ar.array(cols["l"])}
+    for key in ("A", "F", "sM", "sQ"):
+        out[key] = [ar.array(v) for v in cols[key]]
+    for key in ("Kl", "Cl"):
+        out[key] = [[ar.array(v) for v in row] for row in cols[key]]
+    return out
+
+
+def _matmul(X, Y):
+    """Product of square matrices given as nested lists of arrays."""
+    n = len(X)
+    return [[sum((X[i][k] * Y[k][j] for k in range(1, n)), X[i][0] * Y[0][j])
+             for j in range(n)] for i in range(n)]
+
+
+def _coupled_terms(ar: Arithmetic, rho: float) -> int:
+    """Terms ``K`` of ``c_j(X) = sum_k X**k / (4k+j)!`` for ``|X| <= rho``: the tail is
+    below the precision and beyond ``K`` every term is at most half the one before, so
+    the tail is at most ``2 rho**K / (4K + j)!``."""
+    log_rho = math.log2(max(rho, 1e-300))
+    K = ar.series_terms(lambda k: k * log_rho + _log2_inverse_factorial(4 * k))
+    while rho > (4 * K + 1) * (4 * K + 2) * (4 * K + 3) * (4 * K + 4) / 2:
+        K += 1
+    return K
+
+
+def coupled_matrices(ar: Arithmetic, consts: dict, lam2, lam=None) -> np.ndarray:
+    """Transfer matrices ``(B, S, 4N, 4N)`` of coupled pieces at ``lam2`` ``(B,)``.
+
+    ``lam`` (the eigenvalue itself) is needed when a layer has damping.
+    """
+    n = consts["N"]
+    lam2 = np.asarray(lam2)[:, None]
+    if consts["damped"]:
+        if lam is None:
+            raise ValueError("a damped layer needs lam, not only lam**2")
+        lam = np.asarray(lam)[:, None]
+    X = [[None] * n for _ in range(n)]
+    for i in range(n):
+        for j in range(n):
+            v = consts["Kl"][i][j] + 0 * lam2
+            if consts["damped"]:
+                v = v + lam * consts["Cl"][i][j]
+            if i == j:
+                v = v + lam2 * consts["A"][i] + consts["F"][i]
+            X[i][j] = -v
+    # |X| (the infinity norm) over the whole batch: one series length for all points
+    rho = float(np.max(sum(ar.upper(X[i][j]) for j in range(n) for i in range(n)),
+                       initial=0.0)) if n else 0.0
+    rho = math.nextafter(rho, math.inf)
+    K = _coupled_terms(ar, rho)
+    inv = _inverse_factorials(ar, 4 * K + 4)
+    one = 1 + 0 * X[0][0]
+    zero = 0 * X[0][0]
+    identity = [[one if i == j else zero for j in range(n)] for i in range(n)]
+    powers = [identity]
+    for _ in range(1, K):
+        powers.append(_matmul(powers[-1], X))
+    rho_exact = sp.Rational(rho)
+    c = []
+    for j in range(4):
+        cj = [[sum((P[r][q] * inv[4 * k + j] for k, P in enumerate(powers) if k), powers[0][r][q]
+                   * inv[j]) for q in range(n)] for r in range(n)]
+        tail = 2 * rho_exact**K / math.factorial(4 * K + j)
+        c.append([[ar.widen(v, tail) for v in row] for row in cj])
+    Xc = [None, _matmul(X, c[1]), _matmul(X, c[2]), _matmul(X, c[3])]
+    # scaled blocks V[a][b]: c_(b-a) above the diagonal, X c_(4+b-a) below
+    l = consts["l"]
+    scale = [[one] * n, [l + zero] * n, [consts["sM"][i] + zero for i in range(n)],
+             [consts["sQ"][i] + zero for i in range(n)]]
+    rows = []
+    for a in range(4):
+        for i in range(n):
+            row = []
+            for b in range(4):
+                block = c[b - a] if b >= a else Xc[4 + b - a]
+                for j in range(n):
+                    v = block[i][j]
+                    if a != b or (i != j and a >= 2):
+                        # (M and Q are scaled by each beam's own EI)
+                        v = v * scale[b][j] / scale[a][i]
+                    row.append(v)
+            rows.append(row)
+    return stack_matrix(rows)
+
+
+def family_matrices(ar: Arithmetic, kinds, lam2, lam=None) -> list:
+    """The transfer matrices of segment kinds, one array per family group, in order:
+    ``(B, S, 4, 4)`` for ``"eb"`` and ``"theory"``, ``(B, S, 4N, 4N)`` for ``"coupled"``."""
+    out = []
+    for family, consts in kinds:
+        if family == "coupled":
+            out.append(coupled_matrices(ar, consts, lam2, lam))
+        else:
+            out.append((eb_matrices if family == "eb" else theory_matrices)(ar, consts, lam2))
+    return out
+
+
 def transfer_matrices(ar: Arithmetic, kinds, lam2) -> np.ndarray:
     """``(B, S, 4, 4)`` for segment kinds ``[(family, constants), ...]`` in order.
 
@@ -268,15 +402,33 @@ def kind(seg) -> tuple:
     :func:`theory_constants`).
     """
     from ..elements import EulerBernoulliSegment
+    from ..elements.layer import CoupledSegment
     if isinstance(seg, EulerBernoulliSegment):
         return ("eb", (seg.EI, seg.m, seg.l, seg.kw))
+    if isinstance(seg, CoupledSegment):
+        return ("coupled", (seg.size, seg.l, seg.beams, seg.couplings))
     a, b, cN, _ = seg.coefficients(sp.Integer(0))
     return ("theory", (seg.EI, a, b, cN, seg.rhoI, seg.m, seg.kw, seg.l))
 
 
+def kind_order(kind_) -> tuple:
+    """Sort key of segment kinds: the order of :func:`kind_tables`' groups (``"eb"``, then
+    ``"theory"``, then ``"coupled"`` by the number of beams)."""
+    family, consts = kind_
+    return {"eb": (0, 0), "theory": (1, 0)}.get(family) or (2, consts[0])
+
+
+def kind_size(kind_) -> int:
+    """The number of state variables at one end of a segment of this kind (4 per beam)."""
+    family, consts = kind_
+    return 4 * consts[0] if family == "coupled" else 4
+
+
 def kind_tables(ar: Arithmetic, kinds) -> list:
-    """The constants of segment kinds in ``ar``, grouped by family (``"eb"`` kinds must
-    come first, as :func:`transfer_matrices` returns them in that order)."""
+    """The constants of segment kinds in ``ar``, grouped by family (``kinds`` sorted by
+    :func:`kind_order`: the groups come in that order)."""
+    if [kind_order(k) for k in kinds] != sorted(kind_order(k) for k in kinds):
+        raise ValueError("segment kinds must be sorted by kind_order")
     eb = [c for f, c in kinds if f == "eb"]
     th = [c for f, c in kinds if f == "theory"]
     out = []
@@ -284,6 +436,10 @@ def kind_tables(ar: Arithmetic, kinds) -> list:
         out.append(("eb", eb_constants(ar, eb)))
     if th:
         out.append(("theory", theory_constants(ar, th)))
+    sizes = sorted({c[0] for f, c in kinds if f == "coupled"})
+    for n in sizes:
+        out.append(("coupled", coupled_constants(ar, [c for f, c in kinds
+                                                      if f == "coupled" and c[0] == n])))
     return out
 
 

@@ -39,9 +39,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .arith import Arithmetic
-from .segments import stack_matrix, transfer_matrices
+from .segments import family_matrices, stack_matrix
 
-__all__ = ["segment_stiffness", "assemble", "factor", "Factors", "dense"]
+__all__ = ["segment_stiffness", "coupled_stiffness", "stiffness_values", "assemble", "factor",
+           "Factors", "dense"]
 
 try:        # the elimination loop in C (setup.py); without a compiler, numpy runs it
     from . import _band
@@ -89,6 +90,66 @@ def segment_stiffness(U):
     return stack_matrix([f0[1], [-v for v in f0[0]], [-v for v in f1[1]], f1[0]]), det
 
 
+def _inverse(M):
+    """``(inverse, det)`` of a square matrix given as nested lists of arrays, by Gauss–Jordan
+    elimination without pivoting (for the ``U12`` of short coupled pieces, whose leading
+    minors are those of the static flexibility, far from singular)."""
+    n = len(M)
+    A = [list(row) + [1 + 0 * row[0] if i == j else 0 * row[0] for j in range(n)]
+         for i, row in enumerate(M)]
+    det = 1 + 0 * M[0][0]
+    for k in range(n):
+        p = A[k][k]
+        det = det * p
+        A[k] = [v / p for v in A[k]]
+        for i in range(n):
+            if i != k:
+                f = A[i][k]
+                A[i] = [a - f * b for a, b in zip(A[i], A[k])]
+    return [row[n:] for row in A], det
+
+
+def coupled_stiffness(U, n: int):
+    """``(D, det U12)``: dynamic stiffness ``(..., 4n, 4n)`` of pieces of ``n`` coupled beams.
+
+    ``U`` ``(..., 4n, 4n)`` in the order ``[Y_1..Y_n, Theta_1.., M_1.., Q_1..]``; rows of
+    ``D`` are the end actions ``(Q0, -M0, -Q1, M1)`` (each ``n`` long) conjugate to
+    ``(Y0, Theta0, Y1, Theta1)``, as :func:`segment_stiffness` for one beam.
+    """
+    m = 2 * n
+
+    def block(r, c):
+        return [[U[..., r + i, c + k] for k in range(m)] for i in range(m)]
+    U11, U12, U21, U22 = block(0, 0), block(0, m), block(m, 0), block(m, m)
+    inv, det = _inverse(U12)
+    from .segments import _matmul
+    A = [[-v for v in row] for row in _matmul(inv, U11)]      # f0 = A d0 + inv d1
+    C = [[a + b for a, b in zip(r1, r2)] for r1, r2 in zip(U21, _matmul(U22, A))]
+    E = _matmul(U22, inv)                                      # f1 = C d0 + E d1
+    f0 = [A[i] + inv[i] for i in range(m)]                     # rows M0 (n), Q0 (n)
+    f1 = [C[i] + E[i] for i in range(m)]
+    rows = (f0[n:] + [[-v for v in r] for r in f0[:n]] + [[-v for v in r] for r in f1[n:]]
+            + f1[:n])
+    return stack_matrix(rows), det
+
+
+def stiffness_values(ar: Arithmetic, kinds, lam2, lam=None):
+    """``(D, det U12)``: every segment kind's stiffness flattened and concatenated ``(B, *)``
+    (kind after kind, row-major), and ``det U12`` per kind ``(B, kinds)``."""
+    B = np.asarray(lam2).shape[0]
+    Ds, dets = [], []
+    for (family, consts), U in zip(kinds, family_matrices(ar, kinds, lam2, lam)):
+        if family == "coupled":
+            D, det = coupled_stiffness(U, consts["N"])
+        else:
+            D, det = segment_stiffness(U)
+        Ds.append(D.reshape(B, -1))
+        dets.append(det)
+    if len(Ds) == 1:
+        return Ds[0], dets[0]
+    return np.concatenate(Ds, axis=1), np.concatenate(dets, axis=1)
+
+
 def assemble(plan, ar: Arithmetic, lam2, lam=None):
     """``(K, det U12)``: the scaled ``K`` in upper band storage ``(B, n, b + 1)`` at ``lam2``.
 
@@ -99,9 +160,7 @@ def assemble(plan, ar: Arithmetic, lam2, lam=None):
     lam2 = np.asarray(lam2)
     B = lam2.shape[0]
     if t["kinds"]:
-        U = transfer_matrices(ar, t["kinds"], lam2)
-        D, det12 = segment_stiffness(U)
-        D = D.reshape(B, -1)
+        D, det12 = stiffness_values(ar, t["kinds"], lam2, lam)
     else:
         D = ar.zeros((B, 0), like=lam2)
         det12 = ar.zeros((B, 0), like=lam2)

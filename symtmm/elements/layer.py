@@ -1,0 +1,111 @@
+"""A piece of several Euler–Bernoulli beams joined by continuous layers.
+
+Over a layer the beams are one member: with ``Y = (Y_1, ..., Y_N)`` the field
+equations ``EI_i Y_i'''' + (m_i lam**2 + kw_i) Y_i = sum_j kappa_ij (Y_j - Y_i)``
+(``kappa_ij = k + c lam`` of the layer between beams ``i`` and ``j``, per unit
+length) read
+
+    Y'''' = X Y / l**4,   X = -l**4 EI**-1 (diag(m lam**2 + kw) + L_k + lam L_c),
+
+with ``L_k``, ``L_c`` the Laplacians of the layers' stiffnesses and dampings.
+Each beam keeps its own state ``(Y, Theta, M, Q)`` with the conventions of
+:mod:`symtmm.elements.beam` (``Theta = Y'``, ``M = EI Y''``, ``Q = M'``); in the
+scaled variables ``(Y, l Theta, l**2 EI**-1 M, l**3 EI**-1 Q)`` the transfer
+matrix over the piece is the block matrix of the single beam's with the scalar
+``x`` replaced by the matrix ``X``::
+
+    [ c0(X)     c1(X)     c2(X)   c3(X) ]
+    [ X c3(X)   c0(X)     c1(X)   c2(X) ]
+    [ X c2(X)   X c3(X)   c0(X)   c1(X) ]
+    [ X c1(X)   X c2(X)   X c3(X) c0(X) ]
+
+``c_j(X) = sum_k X**k / (4k + j)!``: every block is a power series in ``X`` (they
+commute), entire in ``lam``, with no eigenvalue of ``X`` to find (``X`` need not be
+diagonalisable for complex ``lam``). Evaluated by :func:`symtmm.numeric.segments.coupled_matrices`.
+
+Examples
+--------
+>>> seg = CoupledSegment(((1, 1, 0), (2, 3, 0)), "1/4", ((0, 1, 100, 0),))
+>>> seg.size, seg.l
+(2, 1/4)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+__all__ = ["CoupledSegment"]
+
+
+class CoupledSegment:
+    """``N`` Euler–Bernoulli beam pieces of one length joined by layers.
+
+    Parameters
+    ----------
+    beams : sequence of (EI, m, kw)
+        The beams' constants (exact).
+    l : number
+        Length of the piece.
+    couplings : sequence of (i, j, k, c)
+        A layer between beams ``i`` and ``j`` (positions in ``beams``), stiffness and
+        damping per unit length.
+    """
+
+    def __init__(self, beams, l, couplings):
+        self.beams = tuple(tuple(sp.sympify(v) for v in b) for b in beams)
+        self.l = sp.sympify(l)
+        self.couplings = tuple((int(i), int(j), sp.sympify(k), sp.sympify(c))
+                               for i, j, k, c in couplings)
+
+    @property
+    def size(self) -> int:
+        """The number of beams ``N`` (the state has ``4 N`` variables)."""
+        return len(self.beams)
+
+    def with_length(self, l) -> CoupledSegment:
+        return CoupledSegment(self.beams, l, self.couplings)
+
+    def laplacians(self) -> tuple:
+        """``(L_k, L_c)`` as lists of lists of exact numbers."""
+        n = self.size
+        Lk = [[sp.Integer(0)] * n for _ in range(n)]
+        Lc = [[sp.Integer(0)] * n for _ in range(n)]
+        for i, j, k, c in self.couplings:
+            for L, v in ((Lk, k), (Lc, c)):
+                L[i][i] += v
+                L[j][j] += v
+                L[i][j] -= v
+                L[j][i] -= v
+        return Lk, Lc
+
+    @property
+    def damped(self) -> bool:
+        return any(c != 0 for _, _, _, c in self.couplings)
+
+    def wave_number(self, lam2, consts=None):
+        """An upper bound on the wave numbers at ``lam2`` (floats, elementwise): the fourth
+        root of ``|X| / l**4`` (infinity norm, ``|k + c lam| <= k + c |lam|``), which
+        bounds every eigenvalue's."""
+        lam2 = np.asarray(lam2, dtype=complex)
+        lam_abs = np.sqrt(np.abs(lam2))
+        best = np.zeros(lam2.shape)
+        for i, (EI, m, kw) in enumerate(self.beams):
+            row = np.abs(float(m) * lam2 + float(kw))
+            for a, b, k, c in self.couplings:
+                if i in (a, b):
+                    row = row + 2 * (float(k) + float(c) * lam_abs)
+            best = np.maximum(best, row / float(EI))
+        return best ** 0.25
+
+    def transfer_matrix(self, lam=None):
+        from ..errors import ModelError
+        raise ModelError("closed forms of beams joined by a layer are not available: "
+                         "derive and codegen do not take [[layer]] yet (solve, modes, sweep "
+                         "and scan do)", field="layer")
+
+    def key(self) -> tuple:
+        return ("coupled", self.size, self.beams, self.l, self.couplings)
+
+    def __repr__(self):
+        return f"CoupledSegment({self.beams}, {self.l}, {self.couplings})"
