@@ -45,7 +45,7 @@ from .elements import (
 from .elements.base import CONJUGATE, LAM
 from .model import BOUNDARY_CONDITIONS, Model
 
-__all__ = ["Layout", "Interval", "Station", "BodyLayout", "overall_transfer_matrix",
+__all__ = ["Layout", "Interval", "Station", "BodyLayout", "overall_transfer_matrix", "state_rows",
            "boundary_matrix", "characteristic_determinant", "point_elements"]
 
 
@@ -84,7 +84,8 @@ class Interval:
 
     x_start: sp.Expr
     x_end: sp.Expr
-    #: ``(level, segment)`` for every beam spanning the interval
+    #: ``(level, segment)`` for every beam spanning the interval; beams joined there by
+    #: layers come as one ``(levels, CoupledSegment)`` (see :func:`state_rows`)
     segments: tuple
 
 
@@ -198,6 +199,7 @@ class Layout:
         points += [x for x, _ in self._points]
         self.bodies = self._place_bodies()
         points += [a.x for bl in self.bodies for a in bl.body.attachments]
+        points += [x for la in self.model.layers for x in (la.x0, la.x1)]
         xs = _sorted_unique(points, sample)
         stations, steps = [], []
         for i, x in enumerate(xs):
@@ -215,9 +217,51 @@ class Layout:
                     if _before(x, b.x0, sample) is not True
                     and _before(b.x1, x_end, sample) is not True
                 )
-                steps.append(Interval(x, x_end, segs))
+                steps.append(Interval(x, x_end, self._coupled(segs, x, x_end, sample)))
         self.stations = tuple(stations)
         self.steps = tuple(steps)
+
+    def _coupled(self, segs, x, x_end, sample) -> tuple:
+        """The segments of an interval with the beams joined there by layers made one
+        ``(levels, CoupledSegment)`` entry (levels in increasing order)."""
+        if not self.model.layers:
+            return segs
+        index = {b.name: i for i, b in enumerate(self.model.beams)}
+        cover = [la for la in self.model.layers
+                 if _before(x, la.x0, sample) is not True
+                 and _before(la.x1, x_end, sample) is not True]
+        if not cover:
+            return segs
+        parent = {lvl: lvl for lvl, _ in segs}
+
+        def root(v):
+            while parent[v] != v:
+                v = parent[v]
+            return v
+        for la in cover:
+            parent[root(index[la.a])] = root(index[la.b])
+        groups: dict = {}
+        for lvl, _ in segs:
+            groups.setdefault(root(lvl), []).append(lvl)
+        from .elements.layer import CoupledSegment
+        out = []
+        done = set()
+        beams = self.model.beams
+        for lvl, seg in segs:
+            members = groups[root(lvl)]
+            if len(members) == 1:
+                out.append((lvl, seg))
+                continue
+            if root(lvl) in done:
+                continue
+            done.add(root(lvl))
+            pos = {j: p for p, j in enumerate(members)}
+            couplings = [(pos[index[la.a]], pos[index[la.b]], la.k, la.c) for la in cover
+                         if index[la.a] in pos]
+            out.append((tuple(members), CoupledSegment(
+                [(beams[j].EI, beams[j].m, beams[j].kw) for j in members], x_end - x,
+                couplings)))
+        return tuple(out)
 
     # -- rigid bodies -------------------------------------------------------------------
     def _place_bodies(self) -> tuple:
@@ -381,8 +425,21 @@ def _step_matrix(step, size: int, lam, segment_matrix) -> sp.Matrix:
             out[row, col] += value.xreplace({LAM: lam}) if lam is not LAM else value
         return out
     for lvl, seg in step.segments:
-        out[4 * lvl:4 * lvl + 4, 4 * lvl:4 * lvl + 4] = segment_matrix(seg)
+        rows = state_rows(lvl)
+        U = segment_matrix(seg)
+        for i, r in enumerate(rows):
+            for j, c in enumerate(rows):
+                out[r, c] = U[i, j]
     return out
+
+
+def state_rows(levels) -> list:
+    """Indices in the extended state of a segment's state variables: ``[Y, Theta, M, Q]``
+    of a beam (``levels`` an int), or of several beams joined by layers, variable by
+    variable (``[Y_1..Y_N, Theta_1.., M_1.., Q_1..]``)."""
+    if isinstance(levels, int):
+        return [4 * levels + v for v in range(4)]
+    return [4 * lvl + v for v in range(4) for lvl in levels]
 
 
 def overall_transfer_matrix(model: Model, lam=LAM, segment_matrix=None) -> sp.Matrix:

@@ -7,7 +7,8 @@ sliding: a wall on rollers, free: nothing); springs as zigzags (to the ground
 downwards), dashpots as pistons beside them, rotational ones as a coil symbol;
 lumped masses as squares; rigid bodies as a grey frame joining their points
 (joints of beam ends as a dot, hinged ones open); sprung masses as blocks on
-their springs. With a mode, every beam is displaced by its ``Y`` (scaled so the
+their springs; continuous layers as a hatched band between their beams (dotted
+hatching when the layer has damping). With a mode, every beam is displaced by its ``Y`` (scaled so the
 largest displacement is a third of the spacing of the levels) and every point
 element and body moves with it; :func:`animate_mode` writes the motion as a GIF
 (``Y cos(omega t)``, damped shapes as ``Re(Y e^{i omega t})``).
@@ -147,6 +148,12 @@ def _draw(ax, model: Model, mode=None, phase: complex = 1, labels: bool = True):
     for p in model.masses:
         x = float(p.x)
         ax.plot([x], [y_at(p.beam, x)], marker="s", ms=9, color="0.35", zorder=5)
+    for la in model.layers:
+        xs = np.linspace(float(la.x0), float(la.x1), 60)
+        ya = np.array([y_at(la.a, x) for x in xs])
+        yb = np.array([y_at(la.b, x) for x in xs])
+        ax.fill_between(xs, ya, yb, facecolor="none", edgecolor="0.55", lw=0.0,
+                        hatch="||" if la.c == 0 else "|.", zorder=1)
     for body in model.bodies:
         _draw_body(ax, body, level, y_at, mode, amp, phase, span, element)
     ax.set_aspect("auto")

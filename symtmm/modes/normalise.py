@@ -38,6 +38,7 @@ from ..errors import ComputationError
 from ..numeric.arith import Arithmetic
 from ..numeric.linalg import cholesky, lower_inverse
 from ..numeric.quadrature import gauss_legendre, gauss_legendre_nodes
+from ..numeric.transfer import block
 
 __all__ = ["Inertia", "Energy", "mass_orthonormaliser", "complex_scaler"]
 
@@ -112,6 +113,12 @@ class Energy:
         kind, items = self.plan.steps[i]
         if kind == "segments":
             for lvl, k in items:
+                if not isinstance(lvl, int):
+                    parts = coupled_gram(self.plan, self.ar, k, self.lam2, self.lam2_c,
+                                         before[0, block(lvl), :], self.digits)
+                    for level, part in zip(lvl, parts):
+                        self._add(part, level)
+                    continue
                 blk = slice(4 * lvl, 4 * lvl + 4)
                 self._add(segment_gram(self.plan, self.ar, k, self.lam2, self.lam2_c,
                                        before[0, blk, :], after[0, blk, :], self.digits), lvl)
@@ -203,6 +210,31 @@ def _quadrature(plan, ar, k, lam2, lam2_c, Z0, m, rhoI, digits):
         if rhoI is not None and rhoI != 0:
             part = part + (z[:, 1, :].T * w) @ z[:, 1, :] * rhoI
         out = part if out is None else out + part
+        if p + 1 < pieces:
+            Z = step @ Z
+    return out
+
+
+def coupled_gram(plan, ar: Arithmetic, k: int, lam2, lam2_c: complex, Z0, digits: int) -> list:
+    """Per beam of a coupled piece (kind ``k``, beams joined by layers; the layers are
+    massless), ``integral of m Y_i Y_j`` for the columns of ``Z0`` (the coupled state at
+    its start), by Gauss–Legendre quadrature as :func:`_quadrature`."""
+    seg = plan.kind_segments[k]
+    N = seg.size
+    pieces = max(1, math.ceil(float(np.max(seg.wave_number(lam2_c))) * float(seg.l)))
+    h = ar.exact(seg.l) / pieces
+    nodes, weights = gauss_legendre(ar, gauss_legendre_nodes(digits))
+    U = plan.piece_matrices(ar, k, lam2, ar.array(list(nodes * h) + [h]))[0]
+    to_nodes, step = U[:-1, :N, :], U[-1]          # Y of every beam at the nodes
+    w = weights * h
+    masses = [ar.exact(m) for _, m, _ in seg.beams]
+    out = [None] * N
+    Z = Z0
+    for p in range(pieces):
+        z = to_nodes @ Z                             # (nodes, N, k)
+        for i in range(N):
+            part = (z[:, i, :].T * w) @ z[:, i, :] * masses[i]
+            out[i] = part if out[i] is None else out[i] + part
         if p + 1 < pieces:
             Z = step @ Z
     return out

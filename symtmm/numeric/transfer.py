@@ -47,12 +47,12 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
-from ..assembly import Interval, Layout
+from ..assembly import Interval, Layout, state_rows
 from ..elements.base import LAM
 from .arith import DOUBLE, Arithmetic, Batch, memo
 from .linalg import det
+from .segments import family_matrices, kind_order, kind_tables
 from .segments import kind as segment_kind
-from .segments import kind_tables, transfer_matrices
 
 __all__ = ["TransferPlan", "propagate", "boundary", "delta", "log_delta", "NU_STEP",
            "digits_lost", "Sampling", "sample", "convert"]
@@ -62,12 +62,36 @@ __all__ = ["TransferPlan", "propagate", "boundary", "delta", "log_delta", "NU_ST
 NU_STEP = 4.0
 
 
+#: where each family keeps a segment's length among its constants
+_LENGTH_AT = {"eb": 2, "theory": 7, "coupled": 1}
+
+
 def _with_length(kind, length):
     """A segment kind ``(family, constants)`` with its length replaced."""
     family, consts = kind
     consts = list(consts)
-    consts[2 if family == "eb" else 7] = length
+    consts[_LENGTH_AT[family]] = length
     return family, tuple(consts)
+
+
+def _length(kind):
+    return kind[1][_LENGTH_AT[kind[0]]]
+
+
+def block(levels):
+    """The rows of a segment's state in the extended state: a slice for one beam, an index
+    array for beams joined by layers (:func:`symtmm.assembly.state_rows`)."""
+    if isinstance(levels, int):
+        return slice(4 * levels, 4 * levels + 4)
+    return np.array(state_rows(levels))
+
+
+def kind_matrices(ar: Arithmetic, tables, lam2, lam=None) -> list:
+    """The transfer matrices of every kind, one array ``(B, s, s)`` per kind in order."""
+    out = []
+    for U in family_matrices(ar, tables, lam2, lam):
+        out += [U[:, j] for j in range(U.shape[1])]
+    return out
 
 
 class TransferPlan:
@@ -116,7 +140,7 @@ class TransferPlan:
             else:
                 raw.append(("jumps", [(r, c, sp.Poly(sp.expand(v), LAM).all_coeffs()[::-1])
                                       for r, c, v in step.terms]))
-        order = sorted(found, key=lambda k: (k[0] != "eb", found[k]))
+        order = sorted(found, key=lambda k: (kind_order(k), found[k]))
         index = {found[k]: i for i, k in enumerate(order)}
         self.kinds = order
         self.kind_segments = [None] * len(order)     # an element of each kind (wave numbers)
@@ -146,7 +170,7 @@ class TransferPlan:
         """The kinds' constants in ``ar`` for pieces ``1/divide`` of their length."""
 
         def build():
-            kinds = [_with_length(k, (k[1][2] if k[0] == "eb" else k[1][7]) / divide)
+            kinds = [_with_length(k, _length(k) / divide)
                      for k in self.kinds] if divide != 1 else self.kinds
             return kind_tables(ar, kinds)
         return memo(self, ar, f"kinds/{divide}", build)
@@ -155,10 +179,12 @@ class TransferPlan:
         """Kind ``k`` cut to each of ``lengths`` (an array of numbers of ``ar``): the tables
         of :func:`~symtmm.numeric.segments.transfer_matrices`, one segment per length."""
         family = self.kinds[k][0]
+        n = len(lengths)
+        if family == "coupled":
+            return [("coupled", self._coupled_piece_tables(ar, k, lengths))]
         tables = dict(self.kind_tables(ar))
         j = k if family == "eb" else k - sum(f == "eb" for f, _ in self.kinds)
         one = {name: column[j] for name, column in tables[family].items()}
-        n = len(lengths)
         out = {name: ar.array([value] * n) for name, value in one.items()}
         out["l"] = lengths
         if family == "eb":
@@ -168,10 +194,26 @@ class TransferPlan:
             out["A"], out["F"] = r4 * one["A"], r4 * one["F"]
         return [(family, out)]
 
-    def piece_matrices(self, ar: Arithmetic, k: int, lam2, lengths) -> np.ndarray:
-        """Transfer matrices ``(B, P, 4, 4)`` of kind ``k`` over each of ``lengths`` ``(P,)``."""
+    def _coupled_piece_tables(self, ar: Arithmetic, k: int, lengths) -> dict:
+        """The constants of coupled kind ``k`` cut to each of ``lengths``."""
+        from .segments import coupled_constants
+        one = memo(self, ar, f"coupled/{k}", lambda: coupled_constants(ar, [self.kinds[k][1]]))
+        r = lengths / one["l"][0]
+        r2 = r * r
+        powers = {"A": r2 * r2, "F": r2 * r2, "Kl": r2 * r2, "Cl": r2 * r2, "sM": r2,
+                  "sQ": r2 * r}
+        out = {"N": one["N"], "damped": one["damped"], "l": lengths}
+        for name in ("A", "F", "sM", "sQ"):
+            out[name] = [powers[name] * v[0] for v in one[name]]
+        for name in ("Kl", "Cl"):
+            out[name] = [[powers[name] * v[0] for v in row] for row in one[name]]
+        return out
+
+    def piece_matrices(self, ar: Arithmetic, k: int, lam2, lengths, lam=None) -> np.ndarray:
+        """Transfer matrices ``(B, P, s, s)`` of kind ``k`` over each of ``lengths`` ``(P,)``
+        (``lam`` for a damped layer)."""
         with ar:
-            return transfer_matrices(ar, self.piece_tables(ar, k, lengths), lam2)
+            return family_matrices(ar, self.piece_tables(ar, k, lengths), lam2, lam)[0]
 
     def jump_coefficients(self, ar: Arithmetic) -> list:
         return memo(self, ar, "jumps", lambda: [[ar.exact(c) for c in cs]
@@ -226,14 +268,14 @@ def propagate(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None, start=Non
                 E[:, c, j] = one
         else:
             E = np.array(start, copy=True)
-        U = transfer_matrices(ar, plan.kind_tables(ar), lam2) if plan.kinds else None
+        U = kind_matrices(ar, plan.kind_tables(ar), lam2, lam) if plan.kinds else None
         values = plan.jump_values(ar, lam, lam2) if plan.coefficients else []
         for i, (kind, items) in enumerate(plan.steps):
             before = E.copy() if observe is not None else None
             if kind == "segments":
                 for lvl, k in items:
-                    blk = slice(4 * lvl, 4 * lvl + 4)
-                    E[:, blk, :] = U[:, k] @ E[:, blk, :]
+                    blk = block(lvl)
+                    E[:, blk, :] = U[k] @ E[:, blk, :]
             else:
                 for row, col, j in items:
                     E[:, row, :] = E[:, row, :] + values[j][:, None] * E[:, col, :]
@@ -355,16 +397,17 @@ class Sampling:
             if kind == "segments":
                 xs, xe = step.x_start, step.x_end
                 segs = next(segments)
-                for pos, (lvl, _k) in enumerate(items):
-                    for n, (x, _side) in enumerate(points[lvl]):
-                        slot = index[(lvl, n)]
-                        if _same(x, xs):
-                            where.setdefault(slot, ("end", i, "before", lvl))
-                        elif _same(x, xe):
-                            where[slot] = ("end", i, "after", lvl)
-                        elif _before(xs, x) and _before(x, xe):
-                            where[slot] = ("inside", i, (pos, segs[pos]),
-                                           _fraction((x - xs) / (xe - xs)))
+                for pos, (levels, _k) in enumerate(items):
+                    for lvl in (levels,) if isinstance(levels, int) else levels:
+                        for n, (x, _side) in enumerate(points[lvl]):
+                            slot = index[(lvl, n)]
+                            if _same(x, xs):
+                                where.setdefault(slot, ("end", i, "before", lvl))
+                            elif _same(x, xe):
+                                where[slot] = ("end", i, "after", lvl)
+                            elif _before(xs, x) and _before(x, xe):
+                                where[slot] = ("inside", i, (pos, segs[pos]),
+                                               _fraction((x - xs) / (xe - xs)))
                 continue
             levels = sorted({row // 4 for row, _, _ in items if row < 4 * plan.layout.levels})
             for lvl in levels:
@@ -449,9 +492,11 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
             # a copy: the walk goes on changing ``after`` in place
             out[slot] = convert(ar, inner, state[:, 4 * lvl:4 * lvl + 4, :].copy())
         for pos, seg, items in sampling.inside.get(i, ()):
-            lvl, k = plan.steps[i][1][pos]
-            _inside(plan, ar, inner, k, seg, lam2, lam2_c, lam2_in,
-                    before[:, 4 * lvl:4 * lvl + 4, :], items, out)
+            levels, k = plan.steps[i][1][pos]
+            _inside(plan, ar, inner, k, seg, lam, lam2, lam2_c, lam2_in,
+                    before[:, block(levels), :], items, out,
+                    None if isinstance(levels, int) else
+                    [levels.index(sampling.slots[slot][0]) for slot, _ in items])
         if observe is not None:
             observe(i, before, after)
 
@@ -461,41 +506,51 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
     return E, np.stack([out[n] for n in range(len(sampling))], axis=1)
 
 
-def _inside(plan, ar, inner, k, seg, lam2, lam2_c, lam2_in, Z0, items, out):
-    """States at points strictly inside one segment (kind ``k``) from its start ``Z0``."""
+def _inside(plan, ar, inner, k, seg, lam, lam2, lam2_c, lam2_in, Z0, items, out,
+            positions=None):
+    """States at points strictly inside one segment (kind ``k``) from its start ``Z0``.
+
+    ``positions``: for beams joined by layers, each item's beam among them (its state is
+    picked from the coupled one)."""
     n = max(1, math.ceil(float(np.max(seg.wave_number(lam2_c), initial=0.0)) * float(seg.l)))
     groups: dict = {}
-    for slot, f in items:
+    for q, (slot, f) in enumerate(items):
         j, r = _split(f, n)
-        groups.setdefault(j, []).append((slot, r))
+        groups.setdefault(j, []).append((slot, r, None if positions is None else positions[q]))
     anchors = sorted(groups)
-    length = plan.kinds[k][1][2 if plan.kinds[k][0] == "eb" else 7]
+    length = _length(plan.kinds[k])
+    lam_in = None if lam is None else convert(ar, inner, lam)
     with ar:
         far = [j for j in anchors if j > 0]
         reached = {0: Z0}
         if far:
             l_ar = ar.exact(length)
             U = plan.piece_matrices(ar, k, lam2, ar.array([_number(ar, Fraction(j, n)) * l_ar
-                                                            for j in far]))
+                                                            for j in far]), lam)
             for q, j in enumerate(far):
                 reached[j] = U[:, q] @ Z0
     l_in = inner.exact(length)
+    N = Z0.shape[1] // 4
+
+    def own(Z, p):
+        # the sample's beam's [Y, Theta, M, Q] from a coupled state (variable by variable)
+        return Z if p is None else Z[..., [v * N + p for v in range(4)], :]
     slots, lengths, sources = [], [], []
     for j in anchors:
         Zj = convert(ar, inner, reached[j])
-        for slot, r in groups[j]:
+        for slot, r, p in groups[j]:
             if r == 0:
-                out[slot] = Zj
+                out[slot] = own(Zj, p)
             else:
-                slots.append(slot)
+                slots.append((slot, p))
                 lengths.append(_number(inner, r) * l_in)
                 sources.append(Zj)
     if slots:
         with inner:
-            U = plan.piece_matrices(inner, k, lam2_in, inner.array(lengths))
+            U = plan.piece_matrices(inner, k, lam2_in, inner.array(lengths), lam_in)
             states = U @ np.stack(sources, axis=1)
-        for q, slot in enumerate(slots):
-            out[slot] = states[:, q]
+        for q, (slot, p) in enumerate(slots):
+            out[slot] = own(states[:, q], p)
 
 
 # -- double precision, stable at any mode ---------------------------------------------------
@@ -581,7 +636,8 @@ def _log_delta(plan: TransferPlan, flat, steps) -> tuple:
 
     def pieces(divide):
         if divide not in matrices:
-            matrices[divide] = transfer_matrices(DOUBLE, plan.kind_tables(DOUBLE, divide), lam2)
+            matrices[divide] = kind_matrices(DOUBLE, plan.kind_tables(DOUBLE, divide), lam2,
+                                             flat)
         return matrices[divide]
 
     interval = 0
@@ -596,8 +652,8 @@ def _log_delta(plan: TransferPlan, flat, steps) -> tuple:
             U = pieces(n_sub)
             subs = []
             for lvl, k in items:
-                blk = slice(4 * lvl, 4 * lvl + 4)
-                subs.append((blk, U[:, k] * (D[:, blk, None] / D[:, None, blk])))
+                blk = block(lvl)
+                subs.append((blk, U[k] * (D[:, blk, None] / D[:, None, blk])))
             for _ in range(n_sub):
                 # orthonormalise only once the columns may have grown by exp(NU_STEP)
                 if grown + nu > NU_STEP:
