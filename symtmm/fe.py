@@ -35,6 +35,19 @@ Rigid bodies
     Theta_c``; at each attachment the beam's ``Y`` is the body's, and so is its
     ``Theta`` unless the attachment is hinged. A joint of beam ends (a tree, a
     closed loop) is a massless body whose attachments share one ``x``.
+Layers
+    Dicts with keys ``between`` (a pair of distinct beam names, not
+    ``"ground"``: a foundation under one beam is its ``kw``) and ``k`` (stiffness
+    per unit length), optionally ``x0`` and ``x1`` (the global interval of the
+    layer, by default the overlap of the two beams); an optional damping ``c``
+    must be zero (the model is undamped). The strain energy per unit length
+    over ``[x0, x1]`` is ``k (Y_a - Y_b)**2 / 2``. Both beams get nodes at the
+    layer's ends and the same element boundaries inside it (every point
+    required on one is required on the other, and the intervals between are
+    split alike), so the layer's element matrix ``k int (N_a - N_b)^T (N_a -
+    N_b) dx`` (``N`` the shape functions of ``Y``) is exact:
+    ``[[Kf, -Kf], [-Kf, Kf]]`` with ``Kf`` the Winkler foundation matrix of the
+    element.
 
 Elements
     Rigid in shear, cubic Hermite elements (``Y`` and ``Y'`` at the nodes).
@@ -302,6 +315,40 @@ def _normalise_bodies(bodies, beams):
     return parsed
 
 
+def _normalise_layers(layers, beams):
+    """Validate layer dicts and return (name_a, name_b, x0, x1, k) tuples."""
+    parsed = []
+    for index, layer in enumerate(_list_of(layers, "layers")):
+        what = f"layer #{index}"
+        _require_keys(layer, ("between", "k"), what)
+        pair = layer["between"]
+        if isinstance(pair, str) or not isinstance(pair, Sequence) or len(pair) != 2:
+            raise ValueError(f"'between' of {what} must be a pair of names, got {pair!r}")
+        if GROUND in pair:
+            raise ValueError(f"{what} must join two beams, not {GROUND!r} (a foundation "
+                             "under one beam is its kw)")
+        name_a, name_b = (_known_beam(name, beams, what) for name in pair)
+        if name_a == name_b:
+            raise ValueError(f"{what} connects beam {name_a!r} to itself")
+        k = _nonnegative_float(layer["k"], f"k of {what}")
+        c = _number(layer.get("c", 0.0) or 0.0, f"c of {what}")
+        if c != 0.0:
+            raise ValueError(f"{what} has a damping c={layer['c']!r}; the FE model is undamped")
+        a, b = beams[name_a], beams[name_b]
+        x0, x1 = layer.get("x0"), layer.get("x1")
+        x0 = max(a["x0"], b["x0"]) if x0 is None else _number(x0, f"x0 of {what}")
+        x1 = (min(a["x0"] + a["L"], b["x0"] + b["L"]) if x1 is None
+              else _number(x1, f"x1 of {what}"))
+        for name in (name_a, name_b):
+            _check_on_beam(x0, name, beams[name], f"the start of {what}")
+            _check_on_beam(x1, name, beams[name], f"the end of {what}")
+        if x1 - x0 <= max(_position_tolerance(a), _position_tolerance(b)):
+            raise ValueError(f"{what} needs x0 < x1, got x0={x0!r}, x1={x1!r} (by default "
+                             "the overlap of the two beams)")
+        parsed.append((name_a, name_b, x0, x1, k))
+    return parsed
+
+
 def _check_positive_int(value, what):
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise ValueError(f"{what} must be an integer, got {value!r}")
@@ -328,22 +375,86 @@ def _required_points(beam, positions):
     return np.array(points)
 
 
-def _beam_nodes(beam, positions, elements_per_beam, refine):
-    """Node coordinates: required points plus equal subdivisions in between.
+def _interval_counts(beam, points, elements_per_beam):
+    """Elements of the base mesh between consecutive required points.
+
+    The element budget is shared in proportion to length so the mesh stays
+    roughly uniform whatever the layout of the points; at least one each.
+    """
+    return [max(1, round(elements_per_beam * (stop - start) / beam["L"]))
+            for start, stop in itertools.pairwise(points)]
+
+
+def _subdivide(points, counts, refine):
+    """Node coordinates: ``points`` plus ``refine * count`` equal elements between each two.
 
     ``refine`` splits every element of the base mesh into that many equal ones,
     so meshes ``refine = 1, 2, 4`` are nested and their element sizes halve
     exactly (Richardson extrapolation needs that).
     """
-    points = _required_points(beam, positions)
-    pieces = []
-    for start, stop in itertools.pairwise(points):
-        # Share the element budget in proportion to length so the mesh stays
-        # roughly uniform whatever the layout of the points.
-        count = refine * max(1, round(elements_per_beam * (stop - start) / beam["L"]))
-        pieces.append(np.linspace(start, stop, count + 1)[:-1])
+    pieces = [np.linspace(start, stop, refine * count + 1)[:-1]
+              for (start, stop), count in zip(itertools.pairwise(points), counts)]
     pieces.append(points[-1:])
     return np.concatenate(pieces)
+
+
+def _layer_tolerance(beams, a, b):
+    return max(_position_tolerance(beams[a]), _position_tolerance(beams[b]))
+
+
+def _layer_span(points, x0, x1, tol):
+    """Indices of the first and the last of ``points`` in ``[x0, x1]`` (the layer's ends)."""
+    inside = np.flatnonzero((points >= x0 - tol) & (points <= x1 + tol))
+    return int(inside[0]), int(inside[-1])
+
+
+def _meshes(beams, positions, layers, elements_per_beam, refine):
+    """Node coordinates of every beam, the elements of the beams of each layer aligned.
+
+    Each beam has nodes at its ends and the ``positions`` (merged when closer than
+    the position tolerance), the intervals between split into equal elements
+    (:func:`_interval_counts`, :func:`_subdivide`). A layer's ends are
+    required points of both its beams, and so is, inside the layer, every point
+    required on either (repeated until nothing changes: layers chain); the
+    intervals between those points, the same on both beams, get the larger of the
+    two beams' element counts. Inside a layer both beams then have the same nodes.
+    """
+    positions = {name: list(positions[name]) for name in beams}
+    for a, b, x0, x1, _ in layers:
+        positions[a] += [x0, x1]
+        positions[b] += [x0, x1]
+    points = {name: _required_points(beams[name], positions[name]) for name in beams}
+    changed = bool(layers)
+    while changed:                   # the point sets only grow: this ends
+        changed = False
+        for a, b, x0, x1, _ in layers:
+            tol = _layer_tolerance(beams, a, b)
+            for source, target in ((a, b), (b, a)):
+                inside = [x for x in points[source] if x0 - tol <= x <= x1 + tol]
+                more = _required_points(beams[target], list(points[target]) + inside)
+                if len(more) > len(points[target]):
+                    points[target], changed = more, True
+    counts = {name: _interval_counts(beams[name], points[name], elements_per_beam)
+              for name in beams}
+    pairs = []                       # (beam a, interval index, beam b, interval index)
+    for a, b, x0, x1, _ in layers:
+        tol = _layer_tolerance(beams, a, b)
+        (i0, i1), (j0, j1) = (_layer_span(points[n], x0, x1, tol) for n in (a, b))
+        if i1 - i0 != j1 - j0 or np.any(np.abs(points[a][i0:i1 + 1] - points[b][j0:j1 + 1])
+                                        > tol):
+            raise ValueError(f"the meshes of beams {a!r} and {b!r} cannot be aligned under "
+                             f"their layer on [{x0!r}, {x1!r}]: points closer together than "
+                             "the position tolerance")
+        pairs += [(a, i, b, j) for i, j in zip(range(i0, i1), range(j0, j1))]
+    changed = True
+    while changed:                   # the counts only grow, to the largest: this ends
+        changed = False
+        for a, i, b, j in pairs:
+            count = max(counts[a][i], counts[b][j])
+            if counts[a][i] != count or counts[b][j] != count:
+                counts[a][i] = counts[b][j] = count
+                changed = True
+    return {name: _subdivide(points[name], counts[name], refine) for name in beams}
 
 
 def _nearest_node(nodes, x):
@@ -436,6 +547,36 @@ def _element_matrices(beam, lengths):
     return K, M
 
 
+def _layer_matrices(beam_a, beam_b, lengths, k):
+    """Stiffness of a layer over aligned elements of two beams, shape (n, d_a + d_b, ...).
+
+    ``k int (N_a - N_b)^T (N_a - N_b) dx`` on the local dofs of beam ``a``'s element
+    followed by those of beam ``b``'s (``N`` the shape functions of ``Y``):
+    ``[[Kf_a, -Kf_ab], [-Kf_ba, Kf_b]]``, each block a Winkler foundation matrix.
+    Integrated exactly (4-point Gauss, ``Y`` is cubic).
+    """
+    s, w = _gauss(lengths)
+    l = lengths[:, None, None]
+    shapes = []
+    for beam, sign in ((beam_a, 1.0), (beam_b, -1.0)):
+        d = _element_dofs(beam)
+        unit = np.eye(d)[None, :, :, None]
+        Y = _fields(beam, [unit[:, :, i] for i in range(d)], l, s[:, None, :])[0]
+        shapes.append(sign * np.broadcast_to(Y, (len(lengths), d, len(_GAUSS_W))))
+    N = np.concatenate(shapes, axis=1)
+    return k * np.einsum("nig,njg,ng->nij", N, N, w)
+
+
+def _layer_strain_energy(beam_a, beam_b, lengths, local_a, local_b, k):
+    """Twice the strain energy of a layer for each column of the elements' local values."""
+    s, w = _gauss(lengths)
+    l = lengths[:, None, None]
+    Y = [_fields(beam, [local[:, i, :, None] for i in range(local.shape[1])], l,
+                 s[:, None, :])[0]
+         for beam, local in ((beam_a, local_a), (beam_b, local_b))]
+    return k * np.einsum("nmg,ng->m", (Y[0] - Y[1]) ** 2, w)
+
+
 def _beam_strain_energy(beam, lengths, local):
     """Twice the strain energy of each column of the elements' local values.
 
@@ -472,13 +613,17 @@ def _beam_dof_count(beam, nodes):
 
 
 def _assemble_beam(K, M, beam, nodes, element_dofs):
-    lengths = np.diff(nodes)
-    d = element_dofs.shape[1]
+    Ke, Me = _element_matrices(beam, np.diff(nodes))
+    _add_elements(K, element_dofs, Ke)
+    _add_elements(M, element_dofs, Me)
+
+
+def _add_elements(K, element_dofs, Ke):
+    """Scatter element matrices ``Ke`` (n, d, d) into ``K`` at ``element_dofs`` (n, d)."""
+    n, d = element_dofs.shape
     rows = np.repeat(element_dofs, d, axis=1)
     cols = np.tile(element_dofs, (1, d))
-    Ke, Me = _element_matrices(beam, lengths)
-    np.add.at(K, (rows, cols), Ke.reshape(len(lengths), d * d))
-    np.add.at(M, (rows, cols), Me.reshape(len(lengths), d * d))
+    np.add.at(K, (rows, cols), Ke.reshape(n, d * d))
 
 
 def _add_spring(K, stretch, k):
@@ -522,7 +667,8 @@ def _reduction(constraints, total):
     return T, kept
 
 
-def _build(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1):
+def _build(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1,
+           layers=None):
     """Validate input, mesh, assemble and reduce by the constraints.
 
     Returns ``(K, M, dof_info, energy_terms)``; ``energy_terms`` lists what
@@ -532,15 +678,18 @@ def _build(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1
     springs = _normalise_springs(springs, beams)
     masses = _normalise_masses(masses, beams)
     bodies = _normalise_bodies(bodies, beams)
+    layers = _normalise_layers(layers, beams)
     elements_per_beam = _check_positive_int(elements_per_beam, "elements_per_beam")
     refine = _check_positive_int(refine, "refine")
 
-    nodes, first_dof, total = {}, {}, 0
+    positions = {}
+    for name in beams:
+        positions[name] = [x for a, b, x, _, _ in springs if name in (a, b)]
+        positions[name] += [x for n, x, _, _ in masses if n == name]
+        positions[name] += [x for body in bodies for n, x, _, _ in body["attach"] if n == name]
+    nodes = _meshes(beams, positions, layers, elements_per_beam, refine)
+    first_dof, total = {}, 0
     for name, beam in beams.items():
-        positions = [x for a, b, x, _, _ in springs if name in (a, b)]
-        positions += [x for n, x, _, _ in masses if n == name]
-        positions += [x for body in bodies for n, x, _, _ in body["attach"] if n == name]
-        nodes[name] = _beam_nodes(beam, positions, elements_per_beam, refine)
         first_dof[name] = total
         total += _beam_dof_count(beam, nodes[name])
     body_dofs = []
@@ -586,6 +735,17 @@ def _build(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1
                 constraints.append({node_dof(name, x, 1): 1.0, tc: -1.0})
     for stretch, k in spring_dofs:
         _add_spring(K, stretch, k)
+    layer_terms = []            # (beam a, beam b, lengths, element dofs on a, on b, k)
+    for a, b, x0, x1, k in layers:
+        # the elements of both beams between the layer's end nodes (aligned by _meshes)
+        i0, i1 = (_nearest_node(nodes[a], x) for x in (x0, x1))
+        j0, j1 = (_nearest_node(nodes[b], x) for x in (x0, x1))
+        assert i1 - i0 == j1 - j0 > 0
+        lengths = np.diff(nodes[a])[i0:i1]
+        dofs_a, dofs_b = element_dofs[a][i0:i1], element_dofs[b][j0:j1]
+        _add_elements(K, np.hstack([dofs_a, dofs_b]),
+                      _layer_matrices(beams[a], beams[b], lengths, k))
+        layer_terms.append((beams[a], beams[b], lengths, dofs_a, dofs_b, k))
 
     T, kept = _reduction(constraints, total)
     K = T.T @ K @ T
@@ -606,6 +766,7 @@ def _build(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1
         "beams": [(beam, np.diff(nodes[name]), element_dofs[name])
                   for name, beam in beams.items()],
         "springs": spring_dofs,
+        "layers": layer_terms,
         "T": T,
     }
     return K, M, info, energy_terms
@@ -626,6 +787,8 @@ def _strain_energy(energy_terms, vectors):
     energy = np.zeros(vectors.shape[1])
     for beam, lengths, dofs in energy_terms["beams"]:
         energy += _beam_strain_energy(beam, lengths, full[dofs])
+    for beam_a, beam_b, lengths, dofs_a, dofs_b, k in energy_terms["layers"]:
+        energy += _layer_strain_energy(beam_a, beam_b, lengths, full[dofs_a], full[dofs_b], k)
     for terms, k in energy_terms["springs"]:
         stretch = sum(c * full[dof] for dof, c in terms.items())
         energy += k * stretch * stretch
@@ -694,7 +857,8 @@ def _refined_eigenvalues(K, M, energy_terms, subset):
 # Public API
 # ---------------------------------------------------------------------------
 
-def fe_matrices(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1):
+def fe_matrices(beams, springs, elements_per_beam, masses=None, bodies=None, refine=1,
+                layers=None):
     """Assemble the finite-element stiffness and mass matrices.
 
     Parameters
@@ -722,6 +886,10 @@ def fe_matrices(beams, springs, elements_per_beam, masses=None, bodies=None, ref
         (all but ``attach`` optional).
     refine : int, optional
         Split every element of that mesh into ``refine`` equal elements.
+    layers : list of dict, optional
+        Elastic layers ``{"between": (a, b), "k", "x0", "x1"}`` between two beams
+        (``x0``, ``x1`` optional, by default the overlap of the beams; an optional
+        ``c`` must be zero). Both beams get the same nodes inside a layer.
 
     Returns
     -------
@@ -743,7 +911,8 @@ def fe_matrices(beams, springs, elements_per_beam, masses=None, bodies=None, ref
     ------
     ValueError
         On malformed input, an unknown boundary condition or beam name, a
-        point outside its beam, or a non-zero dashpot.
+        point outside its beam, a layer to ground or of no length, or a non-zero
+        dashpot or layer damping.
 
     Examples
     --------
@@ -764,18 +933,29 @@ def fe_matrices(beams, springs, elements_per_beam, masses=None, bodies=None, ref
     >>> K, M, info = fe_matrices([a, b], [], 4, bodies=[joint])
     >>> info["n_dofs"]      # 2 * (5 + 5) + 2 dofs, 2 at the clamp, 4 tied by the joint
     16
+
+    A layer over ``[0.3, 0.7]`` between beams of different lengths: nodes at its ends
+    on both, and the same ones in between:
+
+    >>> c = dict(beam, name="c", L=2.0)
+    >>> layer = {"between": ("a", "c"), "k": 50.0, "x0": 0.3, "x1": 0.7}
+    >>> K, M, info = fe_matrices([a, c], [], 4, layers=[layer])
+    >>> info["nodes"]["a"].round(2).tolist()
+    [0.0, 0.3, 0.5, 0.7, 1.0]
+    >>> info["nodes"]["c"].round(2).tolist()
+    [0.0, 0.3, 0.5, 0.7, 1.13, 1.57, 2.0]
     """
-    K, M, info, _ = _build(beams, springs, elements_per_beam, masses, bodies, refine)
+    K, M, info, _ = _build(beams, springs, elements_per_beam, masses, bodies, refine, layers)
     return K, M, info
 
 
 def fe_frequencies(beams, springs, elements_per_beam, count=None, masses=None, bodies=None,
-                   refine=1):
+                   refine=1, layers=None):
     """Natural circular frequencies of the finite-element model.
 
     Parameters
     ----------
-    beams, springs, elements_per_beam, masses, bodies, refine
+    beams, springs, elements_per_beam, masses, bodies, refine, layers
         As for :func:`fe_matrices`.
     count : int, optional
         Number of lowest frequencies to return; all of them by default.
@@ -836,7 +1016,8 @@ def fe_frequencies(beams, springs, elements_per_beam, count=None, masses=None, b
     >>> print(np.round(fe_frequencies([taut], [], 20, count=1) ** 2 - np.pi**4, 3))
     [98.696]
     """
-    K, M, _, energy_terms = _build(beams, springs, elements_per_beam, masses, bodies, refine)
+    K, M, _, energy_terms = _build(beams, springs, elements_per_beam, masses, bodies, refine,
+                                   layers)
     n = int(np.count_nonzero(np.any(M != 0.0, axis=1)))     # dofs with mass: the modes
     if count is None:
         subset = None
@@ -853,7 +1034,7 @@ def fe_frequencies(beams, springs, elements_per_beam, count=None, masses=None, b
 
 
 def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=None,
-                 rate=4, levels=3):
+                 rate=4, levels=3, layers=None):
     """Frequencies extrapolated from nested meshes, with an error estimate.
 
     The meshes ``refine = 1, 2, 4, ...`` (``levels`` of them) halve every
@@ -864,7 +1045,7 @@ def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=N
 
     Parameters
     ----------
-    beams, springs, elements_per_beam, masses, bodies
+    beams, springs, elements_per_beam, masses, bodies, layers
         As for :func:`fe_matrices` (the coarsest mesh).
     count : int
         Number of lowest frequencies.
@@ -898,7 +1079,7 @@ def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=N
     if levels < 3:
         raise ValueError(f"levels must be at least 3, got {levels!r}")
     raw = np.array([fe_frequencies(beams, springs, elements_per_beam, count, masses, bodies,
-                                   refine=2**j) for j in range(levels)])
+                                   refine=2**j, layers=layers) for j in range(levels)])
     column = raw
     for j in range(levels - 1):
         factor = 2.0 ** (rate + 2 * j)
