@@ -996,7 +996,7 @@ class Model:
         command) does not take them yet."""
         if self.layers:
             raise ModelError(f"{what} does not take beams joined by a layer yet (solve, "
-                             "modes, sweep, scan and draw do)", field="layer[1]",
+                             "modes, sweep, scan, codegen and draw do)", field="layer[1]",
                              source=self.source)
 
     def beam(self, name: str) -> Beam:

@@ -59,12 +59,57 @@ k = 3
 """
 
 
+LAYERS = """
+title = "three beams joined by overlapping layers (one damped), and a spring"
+[parameters]
+K = 30
+x1 = 0.3
+[[beam]]
+name = "a"
+EI = 1
+m = 1
+L = 1
+left = "clamped"
+right = "free"
+[[beam]]
+name = "b"
+EI = 2
+m = 1.5
+L = 1
+left = "pinned"
+right = "pinned"
+kw = 4
+[[beam]]
+name = "c"
+EI = 1
+m = 1
+L = 1
+left = "free"
+right = "clamped"
+[[layer]]
+between = ["a", "b"]
+k = "K"
+c = 0.5
+to = 0.6
+[[layer]]
+between = ["b", "c"]
+k = 20
+from = "x1"
+[[spring]]
+between = ["a", "c"]
+x = 0.8
+k = 6
+"""
+
+
 def _models():
     return {
         "ex1": (load(EXAMPLES + "paper_ex1_ff_cc.toml"), ()),
         "ex3_symbolic": (load(EXAMPLES + "paper_ex3_three_pp_coupled.toml"), ("K", "x1")),
         "mixed": (loads(MIXED, source="mixed.toml"), ()),
         "sprung_masses": (load(EXAMPLES + "tuned_mass_damper.toml"), ()),
+        "layers": (loads(LAYERS, source="layers.toml"), ()),
+        "layers_symbolic": (loads(LAYERS, source="layers.toml"), ("K", "x1")),
     }
 
 
@@ -395,11 +440,12 @@ right = "pinned"
 # --- other interpreters, when installed -----------------------------------------------
 
 
-def test_octave_runs_when_installed(tmp_path):
+@pytest.mark.parametrize("name", ["ex1", "layers"])
+def test_octave_runs_when_installed(tmp_path, name):
     octave = shutil.which("octave-cli") or shutil.which("octave")
     if octave is None:
         pytest.skip("Octave is not installed")
-    model, _ = MODELS["ex1"]
+    model, _ = MODELS[name]
     (tmp_path / "symtmm_delta.m").write_text(generate(model, "octave"))
     lams = np.array([2j, 35j, -3 + 20j])
     expr = "[" + ", ".join(f"complex({float(z.real)!r}, {float(z.imag)!r})" for z in lams) + "]"
@@ -414,11 +460,12 @@ def test_octave_runs_when_installed(tmp_path):
     assert np.max(np.abs(got - ref) / np.abs(ref)) < 1e-12
 
 
-def test_julia_runs_when_installed(tmp_path):
+@pytest.mark.parametrize("name", ["ex1", "layers"])
+def test_julia_runs_when_installed(tmp_path, name):
     julia = shutil.which("julia")
     if julia is None:
         pytest.skip("Julia is not installed")
-    model, _ = MODELS["ex1"]
+    model, _ = MODELS[name]
     (tmp_path / "delta.jl").write_text(generate(model, "julia"))
     lams = np.array([2j, 35j, -3 + 20j])
     calls = "; ".join(f"d = symtmm_delta(ComplexF64({z.real!r}, {z.imag!r})); "

@@ -14,6 +14,9 @@ as text. The references owe nothing to the kernels:
   Timoshenko, Rayleigh and axial-force segments against the exact transfer
   matrix ``exp(A h)`` of :mod:`symtmm.elements` (SymPy, 30 digits), with
   pieces long enough that the theory routine halves and doubles;
+* one of ``n`` steps of a member of beams joined by layers (two beams, damped,
+  on a foundation; three beams) against ``exp(A h)`` of its ``4N``-state
+  generator, written from the field equations and summed by mpmath;
 * the units, the determinant of chosen rows and the re-orthonormalisation
   (orthonormal, spanning the same columns, ``log det F`` from the Gram
   determinant) against numpy.
@@ -75,6 +78,50 @@ GEN_CASES = [
 ]
 
 
+# (member, lam, n): beams joined by layers (EI, m, kw per beam; layers i, j, k, c)
+COUPLED_CASES = [
+    (((R(1), R(1), R(0)), (R(2), R(3), R(5))), R(3, 5), ((0, 1, R(100), R(2)),),
+     R(-1, 2) + R(9) * sp.I, 1),
+    (((R(1), R(1), R(0)), (R(2), R(3), R(5))), R(3, 5), ((0, 1, R(100), R(2)),), R(25) * sp.I, 3),
+    (((R(1), R(1), R(0)), (R(3, 2), R(2), R(0)), (R(1), R(1, 2), R(1))), R(2, 5),
+     ((0, 1, R(40), R(0)), (1, 2, R(20), R(1, 3))), R(-2) + R(14) * sp.I, 2),
+]
+
+
+def _coupled_generator(beams, lam):
+    """The state matrix of beams joined by layers in ``[Y.., Theta.., M.., Q..]``, from the
+    field equations ``Y' = Theta``, ``Theta' = M/EI``, ``M' = Q``, ``Q' = -(m lam**2 + kw) Y
+    + sum kappa (Y_other - Y)``, mpmath numbers."""
+    members, _, layers = beams
+    n = len(members)
+    A = mpmath.zeros(4 * n, 4 * n)
+    for i, (EI, m, kw) in enumerate(members):
+        A[i, n + i] = 1
+        A[n + i, 2 * n + i] = 1 / mpmath.mpf(sp.N(EI, 40))
+        A[2 * n + i, 3 * n + i] = 1
+        A[3 * n + i, i] = -(mpmath.mpf(sp.N(m, 40)) * lam**2 + mpmath.mpf(sp.N(kw, 40)))
+    for i, j, k, c in layers:
+        kappa = mpmath.mpf(sp.N(k, 40)) + mpmath.mpf(sp.N(c, 40)) * lam
+        for p, q in ((i, j), (j, i)):
+            A[3 * n + p, p] -= kappa
+            A[3 * n + p, q] += kappa
+    return A
+
+
+def _coupled_exact(members, l, layers, lam, n):
+    with mpmath.workdps(40):
+        z = mpmath.mpc(sp.N(sp.re(lam), 40), sp.N(sp.im(lam), 40))
+        A = _coupled_generator((members, l, layers), z)
+        U = mpmath.expm(A * mpmath.mpf(sp.N(l, 40)) / n)
+        return np.array([[complex(U[i, j]) for j in range(U.cols)] for i in range(U.rows)])
+
+
+def _coupled_args(members, l, layers, lam, n):
+    from symtmm.elements.layer import CoupledSegment
+    cp = [float(v) for v in CoupledSegment(members, l, layers).constants()]
+    return complex(lam), complex(sp.N(lam**2, 30)), cp, len(members), n
+
+
 def _theory(seg) -> list:
     """``[EI, a, b, cN, rhoI, m, kw]`` of a segment, as the runtime reads a theory."""
     a, b, cN, _ = seg.coefficients(0)
@@ -132,6 +179,10 @@ class _Python:
     def units(self, cases):
         return np.array([kernels._units(np.array([b]), EI, L)[0] for b, EI, L in cases])
 
+    def segment_coupled(self, cases):
+        return [kernels._segment_coupled(np.array([lam]), np.array([lam2]), tuple(cp), nb, n)[0]
+                for lam, lam2, cp, nb, n in cases]
+
     def det(self, E, rows):
         return complex(np.linalg.det(E[rows, :]))   # the generated Python's own determinant
 
@@ -158,6 +209,18 @@ void t_scaled_apply(int nc, double complex *U, const double *D, double complex *
     double complex Us[4][4];
     symtmm_scaled((double complex (*)[4])U, D, Us);
     symtmm_apply(nc, Us, (double complex (*)[nc])E);
+}
+void t_segment_coupled(const double complex *lam, const double complex *lam2, const double *cp,
+                       int nb, int n, double complex *U)
+{ symtmm_segment_coupled(*lam, *lam2, cp, nb, n, (double complex (*)[4 * nb])U); }
+double t_wave_coupled(const double complex *lam2, const double *cp, int nb)
+{ return symtmm_wave_coupled(*lam2, cp, nb); }
+void t_rows(int m, int nc, double complex *U, const double *D, const int *rows,
+            double complex *E)
+{
+    double complex Us[m][m];
+    symtmm_scaled_rows(m, (double complex (*)[m])U, D, rows, Us);
+    symtmm_apply_rows(m, nc, Us, (double complex (*)[nc])E, rows);
 }
 """
 
@@ -204,6 +267,19 @@ contains
     complex(c_double_complex), intent(out) :: d
     d = symtmm_det(e(rows, :))
   end subroutine t_det
+  subroutine t_segment_coupled(lam, lam2, cp, ncp, nb, n, u) bind(C, name="t_segment_coupled")
+    complex(c_double_complex), intent(in) :: lam, lam2
+    integer(c_int), value, intent(in) :: ncp, nb, n
+    real(c_double), intent(in) :: cp(ncp)
+    complex(c_double_complex), intent(out) :: u(4 * nb, 4 * nb)
+    call symtmm_segment_coupled(lam, lam2, cp, int(nb), int(n), u)
+  end subroutine t_segment_coupled
+  real(c_double) function t_wave_coupled(lam2, cp, ncp, nb) bind(C, name="t_wave_coupled")
+    complex(c_double_complex), intent(in) :: lam2
+    integer(c_int), value, intent(in) :: ncp, nb
+    real(c_double), intent(in) :: cp(ncp)
+    t_wave_coupled = symtmm_wave_coupled(lam2, cp, int(nb))
+  end function t_wave_coupled
   subroutine t_orthonormalise(ns, nc, e, logscale) bind(C, name="t_orthonormalise")
     integer(c_int), value, intent(in) :: ns, nc
     complex(c_double_complex), intent(inout) :: e(ns, nc)
@@ -281,6 +357,18 @@ class _Compiled:
                              self._ptr(out[i]))
         return out
 
+    def segment_coupled(self, cases):
+        out = []
+        for lam, lam2, cp, nb, n in cases:
+            U = np.zeros((4 * nb, 4 * nb), dtype=complex, order=self.order)
+            cp = np.array(cp, dtype=float)
+            sizes = [ctypes.c_int(len(cp))] if self.order == "F" else []
+            self.lib.t_segment_coupled(self._ptr(np.array([lam])), self._ptr(np.array([lam2])),
+                                       self._ptr(cp), *sizes, ctypes.c_int(nb), ctypes.c_int(n),
+                                       self._ptr(U))
+            out.append(np.array(U))
+        return out
+
     def det(self, E, rows):
         E = np.array(E, dtype=complex, order=self.order)
         d = np.zeros(1, dtype=complex)
@@ -346,6 +434,12 @@ class _Octave:
         return np.array(self._run([f"v = symtmm_probe('symtmm_units', {b!r}, {EI!r}, {L!r});"
                                    for b, EI, L in cases])).real
 
+    def segment_coupled(self, cases):
+        out = self._run([f"v = symtmm_probe('symtmm_segment_coupled', {self._c(lam)}, "
+                         f"{self._c(lam2)}, [{', '.join(map(repr, cp))}], {nb}, {n});"
+                         for lam, lam2, cp, nb, n in cases])
+        return [v.reshape(4 * nb, 4 * nb, order="F") for v, (*_, nb, n) in zip(out, cases)]
+
     def det(self, E, rows):
         picked = " ".join(str(r + 1) for r in rows)
         return complex(self._run([f"E = {self._matrix(E)}; v = det(E([{picked}], :));"])[0][0])
@@ -398,6 +492,36 @@ def test_theory_step_is_the_exact_matrix(runtime):
         assert _close(U, _exact(seg, lam, n), 1e-13), (seg.parameters, lam, n)
     assert max(float(seg.wave_number(complex(lam) ** 2)) * float(seg.l) / n
                for seg, lam, n in GEN_CASES) > 8
+
+
+def test_coupled_step_is_the_exact_matrix(runtime):
+    """Beams joined by layers: two (damped, one on a foundation) and three, one of n steps."""
+    got = runtime.segment_coupled([_coupled_args(*case) for case in COUPLED_CASES])
+    for U, case in zip(got, COUPLED_CASES):
+        assert _close(U, _coupled_exact(*case), 1e-13), case
+
+
+def test_c_coupled_wave_and_rows(tmp_path):
+    """symtmm_wave_coupled bounds the eigenvalues of X; the rows routines act on their rows."""
+    lib = _Compiled("c", tmp_path).lib
+    lib.t_wave_coupled.restype = ctypes.c_double
+    for members, l, layers, lam, n in COUPLED_CASES:
+        lam_, lam2, cp, nb, _ = _coupled_args(members, l, layers, lam, n)
+        w = lib.t_wave_coupled(_Compiled._ptr(np.array([lam2])), _Compiled._ptr(np.array(cp)),
+                               ctypes.c_int(nb))
+        A = np.array(_coupled_generator((members, l, layers), mpmath.mpc(lam_)).tolist(),
+                     dtype=complex)
+        # |beta| l of every wave of the member: |eigenvalue of A| times l
+        assert np.max(np.abs(np.linalg.eigvals(A))) * float(l) <= w * (1 + 1e-12)
+    rng = np.random.default_rng(3)
+    U = rng.normal(size=(8, 8)) + 1j * rng.normal(size=(8, 8))
+    D = rng.uniform(0.1, 3.0, size=12)
+    rows = np.array([0, 4, 1, 5, 2, 6, 3, 7], dtype=np.intc)
+    E = rng.normal(size=(12, 3)) + 1j * rng.normal(size=(12, 3))
+    ref = E.copy()
+    ref[rows] = (U * D[rows][:, None] / D[rows][None, :]) @ E[rows]
+    lib.t_rows(8, 3, _Compiled._ptr(U), _Compiled._ptr(D), _Compiled._ptr(rows), _Compiled._ptr(E))
+    assert np.allclose(E, ref, rtol=1e-15, atol=1e-14 * np.abs(ref).max())
 
 
 def test_units_follow_the_wave_number(runtime):

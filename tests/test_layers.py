@@ -220,10 +220,25 @@ def test_layer_needs_euler_bernoulli_beams(tmp_path):
     assert run.code == 2 and "layer[1].between: a layer joins Euler-Bernoulli" in run.stderr
 
 
-@pytest.mark.parametrize("command", [["derive"], ["codegen", "--lang", "c"]])
-def test_commands_without_layers_say_so(tmp_path, command):
+@pytest.mark.parametrize("json_flag", [[], ["--json"]])
+def test_derive_says_it_does_not_take_layers(tmp_path, json_flag):
     path = tmp_path / "pair.toml"
     path.write_text(LAYERED + '\n[[layer]]\nbetween = ["a", "b"]\nk = 80\n')
-    run = run_cli([command[0], path] + command[1:], limit=30)
+    run = run_cli(["derive", path, *json_flag], limit=30)
     assert_contract(run, 30)
-    assert run.code == 2 and "does not take beams joined by a layer" in run.stderr
+    assert run.code == 2 and "derive does not take beams joined by a layer" in run.stderr
+
+
+def test_generated_evaluator_vanishes_at_the_closed_form_roots():
+    """The generated (numpy) evaluator of a different pair on a full layer, at the roots of
+    the per-n quadratic: |Delta| there is 1e-9 of its size a little off."""
+    from symtmm.codegen import generate
+    EI, m, k = (1, 2), (1, 3), 100
+    model = Model((Beam("a", EI[0], m[0], 1, **PP), Beam("b", EI[1], m[1], 1, **PP)),
+                  layers=(Layer("a", "b", k=k),))
+    ns: dict = {}
+    exec(generate(model, "python"), ns)  # noqa: S102 - the generated module
+    roots = np.array(_pinned_family(EI, m, (0, 0), [[k, -k], [-k, k]], 6))
+    at = np.abs(ns["symtmm_delta"](1j * roots))
+    off = np.abs(ns["symtmm_delta"](1j * roots * (1 + 1e-4)))
+    assert np.all(at < 1e-9 * off)

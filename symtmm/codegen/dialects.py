@@ -62,6 +62,8 @@ class Dialect:
     against_row = ()              # extra index of a per-point value that multiplies a row
     call = "{out} = {fn}({args})"  # a runtime routine that returns an array
     scale = apply = orthonormalise = det = ""
+    # a member of beams joined by layers: its m rows of the state (a list), Us{m}
+    scale_rows = apply_rows = ""
     nan_exit: tuple = ()
     deliver = ("return delta",)
     row_loop = False              # whether a row of E is updated column by column (C)
@@ -134,7 +136,7 @@ class C(Dialect):
     name, extension = "c", "c"
     printer = staticmethod(sp.ccode)
     end = ";"
-    runtime = ("core", "euler_bernoulli", "theory")
+    runtime = ("core", "euler_bernoulli", "theory", "layer")
     brackets, base = "[]", 0
     declares_in_place = True
     if_open, if_close = "if ({}) {{", "}"
@@ -145,6 +147,8 @@ class C(Dialect):
     call = "{fn}({args}, {out});"
     scale = "symtmm_scaled(U{k}, {D}, Us);"
     apply = "symtmm_apply({nc}, Us, {E});"
+    scale_rows = "symtmm_scaled_rows({m}, U{k}, {D}, {Us});"
+    apply_rows = "symtmm_apply_rows({m}, {nc}, {Us}, {E});"
     orthonormalise = "symtmm_orthonormalise({ns}, {nc}, E, &logscale);"
     det = "symtmm_det({ns}, {nc}, {E})"
     nan_exit = ("*delta_re = NAN;", "*delta_im = NAN;", "return;")
@@ -205,7 +209,7 @@ class C(Dialect):
 class Fortran(Dialect):
     name, extension = "fortran", "f90"
     indent, comment = "  ", "!"
-    runtime = ("core", "euler_bernoulli", "theory")
+    runtime = ("core", "euler_bernoulli", "theory", "layer")
     zeros = "{name} = 0"
     if_open, if_close = "if ({}) then", "end if"
     for_open, for_close = "do {} = 1, {}", "end do"
@@ -215,6 +219,8 @@ class Fortran(Dialect):
     call = "call {fn}({args}, {out})"
     scale = "Us = U{k} * (spread({D}, 2, 4) / spread({D}, 1, 4))"
     apply = "{E} = matmul(Us, {E})"
+    scale_rows = "{Us} = U{k} * (spread({D}, 2, {m}) / spread({D}, 1, {m}))"
+    apply_rows = "{E} = matmul({Us}, {E})"
     orthonormalise = "call symtmm_orthonormalise(E, logscale)"
     det = "symtmm_det({E})"
     nan_exit = ("delta_re = ieee_value(delta_re, ieee_quiet_nan)", "delta_im = delta_re",
@@ -312,6 +318,8 @@ class Octave(Dialect):
     call = "{out} = {fn}({args});"
     scale = "Us = U{k} .* ({D} ./ {D}.');"
     apply = "{E} = Us * {E};"
+    scale_rows = "{Us} = U{k} .* ({D} ./ {D}.');"
+    apply_rows = "{E} = {Us} * {E};"
     orthonormalise = "[E, logscale] = symtmm_orthonormalise(E, logscale);"
     det = "det({E})"
     nan_exit = ("d(:) = NaN;", "return")
@@ -356,6 +364,8 @@ class Julia(Dialect):
     steps = "max(1, ceil(Int, {} / nu_step))"
     scale = "Us = U{k} .* ({D} ./ transpose({D}))"
     apply = "{E} = Us * {E}"
+    scale_rows = "{Us} = U{k} .* ({D} ./ transpose({D}))"
+    apply_rows = "{E} = {Us} * {E}"
     orthonormalise = "logscale = symtmm_orthonormalise!(E, logscale)"
     det = "symtmm_det({E})"
     nan_exit = ("return ComplexF64(NaN, NaN)",)
@@ -397,6 +407,8 @@ class Python(Dialect):
     against_row = ("None",)
     scale = "Us = U{k} * ({D}[:, :, None] / {D}[:, None, :])"
     apply = "{E} = Us @ {E}"
+    scale_rows = "{Us} = U{k} * ({D}[:, :, None] / {D}[:, None, :])"
+    apply_rows = "{E} = {Us} @ {E}"
     orthonormalise = "E, logscale = _orthonormalise(E, logscale)"
     det = "np.linalg.det({E})"
     nan_exit = ("return np.full(lam.shape, np.nan + 1j * np.nan)",)

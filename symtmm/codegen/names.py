@@ -24,8 +24,8 @@ __all__ = ["argument_names", "code_names", "for_language"]
 #: C99 guarantees 63 significant ones.
 MAX_NAME = 63
 _ASCII_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")
-# numbered locals of the generated code (U1, s0, n2, th0, nu3)
-_NUMBERED = re.compile(r"^(?:[Usn]|th|nu)\d+$")
+# numbered locals of the generated code (U1, s0, n2, th0, nu3, cp0, Us8)
+_NUMBERED = re.compile(r"^(?:[Usn]|th|nu|cp|Us)\d+$")
 
 
 def argument_names(params, dialect, used=()) -> list:

@@ -32,6 +32,7 @@ from ..assembly import Interval, Layout
 from ..characteristic import _check_order, _prepare
 from ..elements import STATE, BeamSegment
 from ..elements.base import LAM
+from ..elements.layer import CoupledSegment
 from ..errors import ModelError
 
 __all__ = ["Plan", "float_literal", "placeholder", "plan", "mapped"]
@@ -84,8 +85,11 @@ class Plan:
     levels: list = field(default_factory=list)
     theories: list = field(default_factory=list)  # (EI, a, b, cN, rhoI, m, kw) of a BeamSegment
     virtual: list = field(default_factory=list)   # (index, source): a body's unit is D[source]
-    # ("eb", a, l, EI, s) with a = m l^4/EI, s = kw/m; or ("gen", th, l)
+    # ("eb", a, l, EI, s) with a = m l^4/EI, s = kw/m; ("gen", th, l); or ("coupled", nb,
+    # cp) for beams joined by layers, their constants in couplings[cp]
     segments: list = field(default_factory=list)
+    # per kind of member of beams joined by layers: CoupledSegment.constants()
+    couplings: list = field(default_factory=list)
     guards: list = field(default_factory=list)    # lengths that must not be negative
     # ("seg", index, level) | ("point", [(row, [(sign, col, stiff index), ...]), ...])
     steps: list = field(default_factory=list)
@@ -99,6 +103,11 @@ class Plan:
     def has_eb(self) -> bool:
         """Whether some segment is a plain Euler–Bernoulli one (the c_j routine)."""
         return any(seg[0] == "eb" for seg in self.segments)
+
+    @property
+    def has_coupled(self) -> bool:
+        """Whether some member is beams joined by layers (the coupled routines)."""
+        return bool(self.couplings)
 
     @property
     def has_gen(self) -> bool:
@@ -130,7 +139,6 @@ def plan(model, symbolic=()) -> Plan:
     the order of the cuts is the one at the values of the model (checked).
     """
     model_in = model
-    model.refuse_layers("codegen")
     model, sample = _prepare(model, tuple(symbolic))
     layout = Layout(model, sample)
     _check_order(layout, sample, model.source)
@@ -178,7 +186,10 @@ def plan(model, symbolic=()) -> Plan:
                 key = (type(seg).__name__,) + tuple(seg.key)
                 if key not in seg_index:
                     seg_index[key] = len(out.segments)
-                    if isinstance(seg, BeamSegment):
+                    if isinstance(seg, CoupledSegment):
+                        out.segments.append(("coupled", seg.size, len(out.couplings)))
+                        out.couplings.append(tuple(slot(v) for v in seg.constants()))
+                    elif isinstance(seg, BeamSegment):
                         out.segments.append(("gen", theory(seg), slot(seg.l)))
                     else:
                         # a foundation kw: the bare segment at lam**2 + kw/m
@@ -240,5 +251,6 @@ def mapped(p: Plan, fn) -> Plan:
                    levels=[sub(v) for v in p.levels],
                    theories=[sub(v) for v in p.theories],
                    segments=[sub(v) for v in p.segments],
+                   couplings=[sub(v) for v in p.couplings],
                    stiff=[sub(v) for v in p.stiff],
                    guards=[sub(v) for v in p.guards])

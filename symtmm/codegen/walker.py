@@ -46,6 +46,7 @@ from importlib import resources
 import sympy as sp
 
 from .. import __version__
+from ..assembly import state_rows
 from ..compile import NU_STEP
 from ..text import comment_text
 
@@ -144,6 +145,8 @@ def walk(plan, d) -> Body:
         b.close()
     for t, th in enumerate(plan.theories):     # EI, a, b, cN, rhoI, m, kw
         b.let(f"th{t}", d.vector.format(", ".join(value(v) for v in th)), dims=(7,))
+    for c, cp in enumerate(plan.couplings):    # l, A, F, K, C, l^2/EI, l^3/EI
+        b.let(f"cp{c}", d.vector.format(", ".join(value(v) for v in cp)), dims=(len(cp),))
     b.split = len(b.lines)
     # units of each beam's state from its wave number, a body's from the beam variable's
     b.array("D", "real", (plan.size,), zero=True)
@@ -173,6 +176,10 @@ def walk(plan, d) -> Body:
             lam2 = "lam2" if s == 0 else f"(lam2 + {value(s)})"    # a foundation: kw/m
             b.waves.append(d.fourth_root.format(f"-{lam2} * {value(a)}"))
             routine, args = "segment", [lam2, value(a), value(l), value(EI)]
+        elif seg[0] == "coupled":
+            _, nb, c = seg
+            b.waves.append(f"{d.fn('wave_coupled')}(lam2, cp{c}, {nb})")
+            routine, args = "segment_coupled", [d.lam, "lam2", f"cp{c}", str(nb)]
         else:
             _, t, l = seg
             b.waves.append(f"{d.fn('wave')}(lam2, th{t}) * {value(l)}")
@@ -180,7 +187,8 @@ def walk(plan, d) -> Body:
         b.let("w", b.waves[-1])
         b.let(f"n{i}", d.steps.format("w", i), "int")
         b.let(f"nu{i}", f"{d.peak.format('w')} / n{i}")
-        b.array(f"U{i}", "complex", (4, 4))
+        size = 4 * seg[1] if seg[0] == "coupled" else 4
+        b.array(f"U{i}", "complex", (size, size))
         b.put(d.call.format(fn=d.fn(routine), args=", ".join([*args, f"n{i}"]), out=f"U{i}"))
     for i, coeffs in enumerate(plan.stiff):
         b.let(f"s{i}", d.stiffness.format(_polynomial(coeffs, value, d.lam)), "complex")
@@ -190,14 +198,23 @@ def walk(plan, d) -> Body:
     for step in plan.steps:
         if step[0] == "seg":
             _, k, level = step
-            b.array("Us", "complex", (4, 4))
-            b.put(d.scale.format(k=k, D=d.index("D", (4 * level, 4))))
+            if isinstance(level, int):
+                b.array("Us", "complex", (4, 4))
+                b.put(d.scale.format(k=k, D=d.index("D", (4 * level, 4))))
+                apply = d.apply.format(E=d.index("E", (4 * level, 4), ":"), **sizes)
+            else:
+                # beams joined by layers: their rows, variable by variable
+                rows = state_rows(level)
+                m, us = len(rows), f"Us{len(rows)}"
+                b.array(us, "complex", (m, m))
+                b.put(d.scale_rows.format(k=k, D=d.index("D", rows), m=m, Us=us))
+                apply = d.apply_rows.format(E=d.index("E", rows, ":"), m=m, Us=us, **sizes)
             b.loop("it", f"n{k}")
             b.open(d.if_open.format(f"grown + nu{k} > nu_step"), d.if_close)
             b.put(d.orthonormalise.format(**sizes))
             b.let("grown", d.literal(0))
             b.close()
-            b.put(d.apply.format(E=d.index("E", (4 * level, 4), ":"), **sizes))
+            b.put(apply)
             b.let("grown", f"grown + nu{k}")
             b.close()
         elif step[1]:
@@ -245,6 +262,10 @@ def header_lines(plan, lang: str) -> list:
     if plan.has_eb:
         lines += ["Euler-Bernoulli segments: matrices from c_j(x) = sum_k x^k/(4k+j)!,",
                   "x = -lam^2 m l^4/EI (series for |x| < 1)."]
+    if plan.couplings:
+        lines += ["Beams joined by continuous layers: one member whose transfer matrix has the",
+                  "blocks c_j(X) and X c_j(X) of the N x N matrix X = -l^4 EI^-1 (diag(m lam^2 +",
+                  "kw) + L_k + lam L_c) (symtmm.elements.layer), series of 11 terms per step."]
     if plan.theories:
         lines += ["Other beam theories (axial force N, rotary inertia rhoI, shear kGA): exp(A l)",
                   "from alpha, beta of cosh and sinh/s in (t, d) = (trace, det) of G = B C,",
@@ -289,7 +310,8 @@ def runtime_source(stem: str, dialect) -> str:
 
 def emit(plan, d) -> str:
     """The source file of ``plan``'s evaluator in dialect ``d``."""
-    needed = {"euler_bernoulli": plan.has_eb, "theory": plan.has_gen}
+    needed = {"euler_bernoulli": plan.has_eb, "theory": plan.has_gen,
+              "layer": plan.has_coupled}
     runtime = "\n\n".join(runtime_source(stem, d).strip("\n")
                           for stem in d.runtime if needed.get(stem, True))
     return d.finish(d.file(d.header(header_lines(plan, d.name)), runtime,

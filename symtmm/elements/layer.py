@@ -101,11 +101,26 @@ class CoupledSegment:
     def transfer_matrix(self, lam=None):
         from ..errors import ModelError
         raise ModelError("closed forms of beams joined by a layer are not available: "
-                         "derive and codegen do not take [[layer]] yet (solve, modes, sweep "
-                         "and scan do)", field="layer")
+                         "derive does not take [[layer]] yet", field="layer")
 
+    @property
     def key(self) -> tuple:
         return ("coupled", self.size, self.beams, self.l, self.couplings)
+
+    def constants(self) -> list:
+        """The member's constants for generated code, exact: ``l``, ``A_i = m_i l**4/EI_i``,
+        ``F_i = kw_i l**4/EI_i``, the Laplacians times ``l**4/EI_i`` row by row (``K``,
+        then ``C``), ``l**2/EI_i`` and ``l**3/EI_i``."""
+        l, n = self.l, self.size
+        Lk, Lc = self.laplacians()
+        EI = [b[0] for b in self.beams]
+        out = [l]
+        out += [m * l**4 / e for e, m, _ in self.beams]
+        out += [kw * l**4 / e for e, _, kw in self.beams]
+        out += [Lk[i][j] * l**4 / EI[i] for i in range(n) for j in range(n)]
+        out += [Lc[i][j] * l**4 / EI[i] for i in range(n) for j in range(n)]
+        out += [l**2 / e for e in EI] + [l**3 / e for e in EI]
+        return out
 
     def __repr__(self):
         return f"CoupledSegment({self.beams}, {self.l}, {self.couplings})"

@@ -36,8 +36,10 @@ static void symtmm_units(double b, double EI, double L, double D[4])
     D[3] = 1.0 / (EI * b * b * b);
 }
 
-/* Us = D U D^-1: the matrix U of a beam acting on its state in units D */
-static void symtmm_scaled(double complex U[4][4], const double D[4], double complex Us[4][4])
+/* Us = D U D^-1: the matrix U of a beam acting on its state in units D (inline, as
+   symtmm_apply: a model whose every segment is beams joined by layers uses neither,
+   and -Wunused-function passes over unused inline functions only) */
+static inline void symtmm_scaled(double complex U[4][4], const double D[4], double complex Us[4][4])
 {
     for (int i = 0; i < 4; i++)
         for (int k = 0; k < 4; k++)
@@ -45,7 +47,7 @@ static void symtmm_scaled(double complex U[4][4], const double D[4], double comp
 }
 
 /* rows 0..3 of E := Us * (those rows); E points at the beam's first row */
-static void symtmm_apply(int nc, double complex Us[4][4], double complex E[][nc])
+static inline void symtmm_apply(int nc, double complex Us[4][4], double complex E[][nc])
 {
     for (int j = 0; j < nc; j++) {
         double complex t[4];

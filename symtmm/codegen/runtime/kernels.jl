@@ -170,3 +170,59 @@ function symtmm_segment_gen(lam2, th, l, n)
     U[[2, 4], [1, 3]] = [0 1/EI; -mu 0] * (a1 * I2 + b1 * G)
     return U
 end
+
+# Beams joined by continuous layers: one member of nb beams whose transfer matrix is
+# the single beam's with the scalar x replaced by the nb x nb matrix
+# X = -(diag(A lam^2 + F) + K + lam C) (symtmm.elements.layer): blocks c_j(X) above
+# the diagonal and X c_j(X) below, in the state Y_1..Y_nb, Theta_1.., M_1.., Q_1..
+# The member's constants cp: l, A (nb), F (nb), K (nb x nb), C (nb x nb), l^2/EI (nb),
+# l^3/EI (nb); K and C are the layers' Laplacians times l^4/EI, row by row.
+
+function symtmm_coupled_parts(cp, nb)
+    v = collect(cp)
+    A = v[2:1+nb]
+    F = v[2+nb:1+2nb]
+    K = permutedims(reshape(v[2+2nb:1+2nb+nb^2], nb, nb))
+    C = permutedims(reshape(v[2+2nb+nb^2:1+2nb+2nb^2], nb, nb))
+    sM = v[2+2nb+2nb^2:1+3nb+2nb^2]
+    sQ = v[2+3nb+2nb^2:1+4nb+2nb^2]
+    return v[1], A, F, K, C, sM, sQ
+end
+
+# |beta| l of the member: the fourth root of the infinity norm of X (|lam| as sqrt|lam2|)
+function symtmm_wave_coupled(lam2, cp, nb)
+    _, A, F, K, C, _, _ = symtmm_coupled_parts(cp, nb)
+    D = [i == j ? A[i] * lam2 + F[i] : zero(lam2) for i in 1:nb, j in 1:nb]
+    M = abs.(K .+ D) .+ abs.(C) .* sqrt(abs(lam2))
+    return maximum(sum(M, dims=2))^0.25
+end
+
+# transfer matrix of one of n equal steps of the member (|X| <= nu_step^4 = 256 per
+# step: 11 terms, the rest below 1e-27); I for l = 0
+function symtmm_segment_coupled(lam, lam2, cp, nb, n)
+    l, A, F, K, C, sM, sQ = symtmm_coupled_parts(cp, nb)
+    m = 4 * nb
+    if l == 0
+        return Matrix{ComplexF64}([i == j ? 1.0 : 0.0 for i in 1:m, j in 1:m])
+    end
+    D = [i == j ? A[i] * lam2 + F[i] : zero(lam2) for i in 1:nb, j in 1:nb]
+    X = -(K .+ lam .* C .+ D) ./ n^4
+    Id = [i == j ? 1.0 + 0.0im : 0.0im for i in 1:nb, j in 1:nb]
+    c = [SYMTMM_IFACT[q] .* Id for q in 1:4]
+    P = Id
+    for k in 1:10
+        P = P * X
+        for q in 1:4
+            c[q] = c[q] .+ SYMTMM_IFACT[4k + q] .* P
+        end
+    end
+    # the scaled state (Y, h Theta, h^2 M/EI, h^3 Q/EI) back to (Y, Theta, M, Q)
+    h = l / n
+    s = [ones(nb), fill(h, nb), sM ./ n^2, sQ ./ n^3]
+    U = zeros(ComplexF64, m, m)
+    for a in 0:3, b in 0:3
+        V = b >= a ? c[b - a + 1] : X * c[4 + b - a + 1]
+        U[a*nb .+ (1:nb), b*nb .+ (1:nb)] = V .* (transpose(s[b + 1]) ./ s[a + 1])
+    end
+    return U
+end

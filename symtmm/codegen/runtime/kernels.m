@@ -141,3 +141,64 @@ function U = symtmm_segment_gen(lam2, th, l, n)
   U([1 3], [2 4]) = [a, b; c, a] * F1P;
   U([2 4], [1 3]) = [0, 1 / EI; -mu, 0] * F1G;
 end
+
+% Beams joined by continuous layers: one member of nb beams whose transfer matrix is
+% the single beam's with the scalar x replaced by the nb x nb matrix
+% X = -(diag(A lam^2 + F) + K + lam C) (symtmm.elements.layer): blocks c_j(X) above
+% the diagonal and X c_j(X) below, in the state Y_1..Y_nb, Theta_1.., M_1.., Q_1..
+% The member's constants cp: l, A (nb), F (nb), K (nb x nb), C (nb x nb), l^2/EI (nb),
+% l^3/EI (nb); K and C are the layers' Laplacians times l^4/EI, row by row.
+
+function [l, A, F, K, C, sM, sQ] = symtmm_coupled_parts(cp, nb)
+  l = cp(1);
+  A = cp(2:1 + nb);
+  F = cp(2 + nb:1 + 2 * nb);
+  K = reshape(cp(2 + 2 * nb:1 + 2 * nb + nb^2), nb, nb).';
+  C = reshape(cp(2 + 2 * nb + nb^2:1 + 2 * nb + 2 * nb^2), nb, nb).';
+  sM = cp(2 + 2 * nb + 2 * nb^2:1 + 3 * nb + 2 * nb^2);
+  sQ = cp(2 + 3 * nb + 2 * nb^2:1 + 4 * nb + 2 * nb^2);
+end
+
+function w = symtmm_wave_coupled(lam2, cp, nb)
+  % |beta| l of the member: the fourth root of the infinity norm of X (|lam| as sqrt|lam2|)
+  [~, A, F, K, C] = symtmm_coupled_parts(cp, nb);
+  M = abs(K + diag(A * lam2 + F)) + abs(C) * sqrt(abs(lam2));
+  w = max(sum(M, 2))^0.25;
+end
+
+function U = symtmm_segment_coupled(lm, lam2, cp, nb, n)
+  % transfer matrix of one of n equal steps of the member (|X| <= nu_step^4 = 256 per
+  % step: 11 terms, the rest below 1e-27); I for l = 0
+  [l, A, F, K, C, sM, sQ] = symtmm_coupled_parts(cp, nb);
+  if l == 0
+    U = eye(4 * nb);
+    return
+  end
+  f = symtmm_ifact();
+  X = -(K + lm * C + diag(A * lam2 + F)) / n^4;
+  c = cell(1, 4);
+  for q = 1:4
+    c{q} = f(q) * eye(nb);
+  end
+  P = eye(nb);
+  for k = 1:10
+    P = P * X;
+    for q = 1:4
+      c{q} = c{q} + f(4 * k + q) * P;
+    end
+  end
+  % the scaled state (Y, h Theta, h^2 M/EI, h^3 Q/EI) back to (Y, Theta, M, Q)
+  h = l / n;
+  s = [ones(1, nb); h * ones(1, nb); sM / n^2; sQ / n^3];
+  U = zeros(4 * nb);
+  for a = 0:3
+    for b = 0:3
+      if b >= a
+        V = c{b - a + 1};
+      else
+        V = X * c{4 + b - a + 1};
+      end
+      U(a * nb + (1:nb), b * nb + (1:nb)) = V .* (s(b + 1, :) ./ s(a + 1, :).');
+    end
+  end
+end

@@ -149,3 +149,65 @@ def _segment_gen(lam2, th, length, n):
     U[..., 1, 0], U[..., 1, 2] = k10 / EI, k11 / EI
     U[..., 3, 0], U[..., 3, 2] = -mu * k00, -mu * k01
     return U
+
+
+# Beams joined by continuous layers: one member of nb beams whose transfer matrix is
+# the single beam's with the scalar x replaced by the nb x nb matrix
+# X = -(diag(A lam^2 + F) + K + lam C) (symtmm.elements.layer): blocks c_j(X) above
+# the diagonal and X c_j(X) below, in the state Y_1..Y_nb, Theta_1.., M_1.., Q_1..
+# The member's constants cp: l, A (nb), F (nb), K (nb x nb), C (nb x nb), l^2/EI (nb),
+# l^3/EI (nb); K and C are the layers' Laplacians times l^4/EI, row by row.
+
+def _coupled_parts(cp, nb):
+    v = np.asarray(cp, dtype=float)
+    K = v[1 + 2 * nb:1 + 2 * nb + nb * nb].reshape(nb, nb)
+    C = v[1 + 2 * nb + nb * nb:1 + 2 * nb + 2 * nb * nb].reshape(nb, nb)
+    rest = v[1 + 2 * nb + 2 * nb * nb:]
+    return v[0], v[1:1 + nb], v[1 + nb:1 + 2 * nb], K, C, rest[:nb], rest[nb:2 * nb]
+
+
+def _coupled_x(lam, lam2, A, F, K, C):
+    """X at every point, (N, nb, nb)."""
+    nb = len(A)
+    X = K + lam[..., None, None] * C
+    idx = np.arange(nb)
+    X = X + np.zeros(lam2.shape + (1, 1), dtype=complex)
+    X[..., idx, idx] += lam2[..., None] * A + F
+    return -X
+
+
+def _wave_coupled(lam2, cp, nb):
+    """|beta| l of the member per point: the fourth root of the infinity norm of X
+    (|lam| taken as sqrt|lam2|)."""
+    _, A, F, K, C, _, _ = _coupled_parts(cp, nb)
+    idx = np.arange(nb)
+    M = np.abs(K + np.zeros(lam2.shape + (1, 1), dtype=complex))
+    D = np.abs(K[idx, idx] + lam2[..., None] * A + F)
+    M[..., idx, idx] = D
+    M = M + np.abs(C) * np.sqrt(np.abs(lam2))[..., None, None]
+    return np.max(np.sum(M, axis=-1), axis=-1) ** 0.25
+
+
+def _segment_coupled(lam, lam2, cp, nb, n):
+    """Transfer matrices of one of n equal steps of the member, (N, 4 nb, 4 nb)
+    (|X| <= nu_step^4 = 256 per step: 11 terms, the rest below 1e-27); I for l = 0."""
+    length, A, F, K, C, sM, sQ = _coupled_parts(cp, nb)
+    m = 4 * nb
+    if length == 0:
+        return np.broadcast_to(np.eye(m, dtype=complex), lam2.shape + (m, m))
+    X = _coupled_x(lam, lam2, A, F, K, C) / n**4
+    eye = np.broadcast_to(np.eye(nb, dtype=complex), X.shape)
+    c = [_IFACT[q] * eye for q in range(4)]
+    P = eye
+    for k in range(1, 11):
+        P = P @ X
+        c = [c[q] + _IFACT[4 * k + q] * P for q in range(4)]
+    # the scaled state (Y, h Theta, h^2 M/EI, h^3 Q/EI) back to (Y, Theta, M, Q)
+    h = length / n
+    s = [np.ones(nb), np.full(nb, h), sM / n**2, sQ / n**3]
+    U = np.empty(lam2.shape + (m, m), dtype=complex)
+    for a in range(4):
+        for b in range(4):
+            V = c[b - a] if b >= a else X @ c[4 + b - a]
+            U[..., a * nb:(a + 1) * nb, b * nb:(b + 1) * nb] = V * (s[b][None, :] / s[a][:, None])
+    return U
