@@ -155,10 +155,19 @@ class Arithmetic:
     #: pivots' signs are still taken for the inertia of ``K`` (see numeric.stiffness)
     growth_limit = float("inf")
 
-    def widen(self, x, radius):
+    def widen(self, x, radius, wrt=None, slope=None, curve=None):
         """``x`` with ``radius`` (an exact rational: a truncation error) added to its
-        uncertainty; a no-op but for balls, whose enclosures must contain it."""
+        uncertainty; a no-op but for balls, whose enclosures must contain it.
+
+        ``wrt``, ``slope``, ``curve``: the series variable and bounds on the tail's first
+        and second derivatives with respect to it, for arithmetics that carry derivatives
+        (:class:`~symtmm.numeric.jet.BallJet`)."""
         return x
+
+    def norm_variable(self, X):
+        """For arithmetics that carry derivatives: a stand-in series variable whose
+        derivatives bound those of the matrix ``X`` (nested lists of arrays) in norm, for
+        :meth:`widen`; None otherwise."""
 
     def series_terms(self, log2_bound) -> int:
         """The smallest ``K >= 2`` with ``log2_bound(K)`` below ``-(prec + 4)``: terms of a
@@ -436,16 +445,33 @@ class Ball(Arithmetic):
         flint = self.flint
         half = None
 
+        def principal(v):
+            # Arb's root of a wide ball is loose (twenty times its width at a relative
+            # width of 1e-3): the root of the midpoint, widened by the width times the
+            # largest |d x**(1/4) / dx| = 1 / (4 |x|**(3/4)) on the ball (mean value), which
+            # the ball keeps away from 0 and from the cut (the midpoint's real part is not
+            # negative: the cut's nearest point is 0)
+            if v.real.rad() == 0 and v.imag.rad() == 0:
+                return v.root(4)
+            rad = (flint.arb(v.real.rad()) ** 2 + flint.arb(v.imag.rad()) ** 2).sqrt().upper()
+            mid = flint.acb(v.mid())
+            low = abs(mid).lower() - rad
+            if not low > 0:
+                return v.root(4)
+            width = flint.arb(rad) / (4 * low ** flint.arb(0.75))
+            ball = flint.arb(0, width.upper())
+            return mid.root(4) + flint.acb(ball, ball)
+
         def root(v):
             nonlocal half
             v = flint.acb(v)
             # a branch whose cut (the negative axis) is away from the ball: the c_j that
             # use the root are even functions of it, so any fourth root serves
             if v.mid().real >= 0:
-                return v.root(4)
+                return principal(v)
             if half is None:
                 half = flint.arb(2).sqrt() / 2
-            return (-v).root(4) * flint.acb(half, half)
+            return principal(-v) * flint.acb(half, half)
         return _ufunc(root)(x)
 
     def upper(self, x):
@@ -464,7 +490,7 @@ class Ball(Arithmetic):
             sign = np.array([-1 if v < 0 else 1 for v in flat], dtype=np.int8)
         return sign.reshape(np.shape(pivot)), decided.reshape(np.shape(pivot))
 
-    def widen(self, x, radius):
+    def widen(self, x, radius, wrt=None, slope=None, curve=None):
         flint = self.flint
         with self:
             r = flint.arb(0, self.exact(radius))       # a ball about 0 holding the bound
