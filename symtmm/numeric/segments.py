@@ -90,7 +90,12 @@ def _c_series(ar: Arithmetic, x):
         acc = 0 * x + inv[4 * (K - 1) + j]
         for k in range(K - 2, -1, -1):
             acc = acc * x + inv[4 * k + j]
-        out.append(ar.widen(acc, sp.Rational(2, math.factorial(4 * K + j))))
+        # the tail beyond K terms, and (for jets) the tails of its derivatives in x: the
+        # terms k x**(k-1)/(4k+j)! and k(k-1) x**(k-2)/(4k+j)! shrink 2x as well, so
+        # their sums are below 2K/(4K+j)! and 2K(K-1)/(4K+j)!
+        out.append(ar.widen(acc, sp.Rational(2, math.factorial(4 * K + j)), wrt=x,
+                            slope=sp.Rational(2 * K, math.factorial(4 * K + j)),
+                            curve=sp.Rational(2 * K * (K - 1), math.factorial(4 * K + j))))
     return out
 
 
@@ -343,12 +348,20 @@ def coupled_matrices(ar: Arithmetic, consts: dict, lam2, lam=None) -> np.ndarray
     for _ in range(1, K):
         powers.append(_matmul(powers[-1], X))
     rho_exact = sp.Rational(rho)
+    # for jets: the derivatives of X bounded in norm, as the tail's variable (the tail of
+    # sum X**k/(4k+j)! has derivatives below k |X|**(k-1) |X'| and k(k-1) |X|**(k-2) |X'|**2
+    # + k |X|**(k-1) |X''| per term, which shrink 2x as the terms do)
+    wrt = ar.norm_variable(X)
     c = []
     for j in range(4):
         cj = [[sum((P[r][q] * inv[4 * k + j] for k, P in enumerate(powers) if k), powers[0][r][q]
                    * inv[j]) for q in range(n)] for r in range(n)]
-        tail = 2 * rho_exact**K / math.factorial(4 * K + j)
-        c.append([[ar.widen(v, tail) for v in row] for row in cj])
+        f = math.factorial(4 * K + j)
+        tail = 2 * rho_exact**K / f
+        slope = 2 * K * rho_exact ** (K - 1) / f
+        curve = 2 * K * (K - 1) * rho_exact ** max(K - 2, 0) / f
+        c.append([[ar.widen(v, tail, wrt=wrt, slope=slope, curve=curve) for v in row]
+                  for row in cj])
     Xc = [None, _matmul(X, c[1]), _matmul(X, c[2]), _matmul(X, c[3])]
     # scaled blocks V[a][b]: c_(b-a) above the diagonal, X c_(4+b-a) below
     l = consts["l"]

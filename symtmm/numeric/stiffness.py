@@ -133,6 +133,54 @@ def coupled_stiffness(U, n: int):
     return stack_matrix(rows), det
 
 
+def eb_closed_stiffness(ar: Arithmetic, consts: dict, lam2):
+    """``(D, det U12)`` of Euler–Bernoulli segments by the closed forms in ``nu = x**(1/4)``
+    where ``|x| >= 1`` (the U path of :func:`segment_stiffness` elsewhere): with ``Phi = 1 -
+    cosh nu cos nu``, ``k11 = EI b**3 (cos sinh + sin cosh)/Phi``, ``k12 = EI b**2 sin sinh /
+    Phi``, ``k13 = EI b**3 (sinh + sin)/Phi``, ``k14 = EI b**2 (cosh - cos)/Phi``, ``k22 = EI b
+    (cosh sin - cos sinh)/Phi``, ``k24 = EI b (sinh - sin)/Phi`` (``b = nu / l``) and ``det U12
+    = l**4 Phi / (2 x EI**2)``; all even in ``nu``, so any fourth root serves.
+
+    The same numbers as the U path, with far less dependency among the operations: over a
+    box of ``lam`` (jets, :mod:`symtmm.numeric.jet`) the enclosures stay narrow where the
+    U path's inversion of ``U12`` multiplies their widths a hundredfold.
+    """
+    from .segments import eb_matrices
+    lam2 = np.asarray(lam2)
+    EI, l, A, F = consts["EI"], consts["l"], consts["A"], consts["F"]
+    x = -(lam2[:, None] * A + F)
+    big = ar.upper(x.reshape(-1)).reshape(x.shape) >= 1.0
+    if not big.all():
+        D, det = segment_stiffness(eb_matrices(ar, consts, lam2))
+        if not big.any():
+            return D, det
+    else:
+        D, det = ar.zeros(x.shape + (4, 4), like=x), ar.zeros(x.shape, like=x)
+    idx = np.nonzero(big)
+    xb = x[idx]
+    nu = ar.root4(xb)
+    ch, co, sh, si = ar.cosh(nu), ar.cos(nu), ar.sinh(nu), ar.sin(nu)
+    Phi = 1 - ch * co
+    EIb, lb = EI[idx[1]], l[idx[1]]
+    b = nu / lb
+    k11 = EIb * b * b * b * (co * sh + si * ch) / Phi
+    k12 = EIb * b * b * (si * sh) / Phi
+    k13 = EIb * b * b * b * (sh + si) / Phi
+    k14 = EIb * b * b * (ch - co) / Phi
+    k22 = EIb * b * (ch * si - co * sh) / Phi
+    k24 = EIb * b * (sh - si) / Phi
+    rows = [[k11, k12, -k13, k14], [k12, k22, -k14, k24],
+            [-k13, -k14, k11, -k12], [k14, k24, -k12, k22]]
+    D = D.copy()
+    det = det.copy()
+    for i in range(4):
+        for j in range(4):
+            D[idx + (i, j)] = rows[i][j]
+    l2 = lb * lb
+    det[idx] = l2 * l2 * Phi / (2 * xb * EIb * EIb)
+    return D, det
+
+
 def stiffness_values(ar: Arithmetic, kinds, lam2, lam=None):
     """``(D, det U12)``: every segment kind's stiffness flattened and concatenated ``(B, *)``
     (kind after kind, row-major), and ``det U12`` per kind ``(B, kinds)``."""
@@ -141,6 +189,8 @@ def stiffness_values(ar: Arithmetic, kinds, lam2, lam=None):
     for (family, consts), U in zip(kinds, family_matrices(ar, kinds, lam2, lam)):
         if family == "coupled":
             D, det = coupled_stiffness(U, consts["N"])
+        elif family == "eb" and getattr(ar, "closed_stiffness", False):
+            D, det = eb_closed_stiffness(ar, consts, lam2)
         else:
             D, det = segment_stiffness(U)
         Ds.append(D.reshape(B, -1))
