@@ -18,18 +18,19 @@ from .roots.undamped import solve_undamped
 __all__ = ["solve", "METHODS"]
 
 
-def _default(model, count, omega_max, sigma_max, digits):
+def _default(model, count, omega_max, sigma_max, digits, prove_count=False):
     if model.damped:
         return solve_damped(model, count=count, omega_max=omega_max, sigma_max=sigma_max,
-                            digits=digits)
+                            digits=digits, prove_count=prove_count)
+    # (the count on the frequency axis is proved already: Wittrick-Williams in balls)
     return solve_undamped(model, count=count, omega_max=omega_max, digits=digits)
 
 
-def _contour(model, count, omega_max, sigma_max, digits):
+def _contour(model, count, omega_max, sigma_max, digits, prove_count=False):
     # the complex-plane search for any model (for undamped ones: a second, independent method)
     from dataclasses import replace
     spectrum = solve_damped(model, count=count, omega_max=omega_max, sigma_max=sigma_max,
-                            digits=digits)
+                            digits=digits, prove_count=prove_count)
     return replace(spectrum, method="contour")
 
 
@@ -38,7 +39,7 @@ METHODS = {"default": _default, "contour": _contour, "fmin1d": fmin1d, "fmin2d":
 
 
 def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
-          digits: int = 15, method: str = "default") -> Spectrum:
+          digits: int = 15, method: str = "default", prove_count: bool = False) -> Spectrum:
     """Eigenvalues ``lam`` with ``Im lam >= 0``, ascending by ``Im lam``.
 
     Parameters
@@ -56,6 +57,11 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
         Significant digits, all correct.
     method : str
         A key of :data:`METHODS`.
+    prove_count : bool
+        Damped models (default and contour methods): also prove the number of
+        eigenvalues in the search region by a winding number in ball arithmetic
+        (python-flint; :func:`symtmm.roots.damped.solve_damped`). Undamped models have
+        their count proved always.
 
     Examples
     --------
@@ -75,5 +81,9 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
         count = 10
     model = model.require_numeric()
     check_search(model, count, omega_max, sigma_max)
-    spectrum = METHODS[method](model, count, omega_max, sigma_max, digits)
+    if prove_count and method in ("fmin1d", "fmin2d"):
+        raise ModelError(f"method {method} is a grid search: it proves nothing; a proved count "
+                         "needs the default or the contour method", field="method")
+    extra = {"prove_count": True} if prove_count else {}
+    spectrum = METHODS[method](model, count, omega_max, sigma_max, digits, **extra)
     return spectrum.with_model_name(spectrum.model_name or model.source or "", model.title)

@@ -38,7 +38,9 @@ def add_arguments(parser):
     parser.add_argument("--json", action="store_true", help="JSON output")
     add_csv_argument(parser)
     parser.add_argument("--certified", action="store_true",
-                        help="add rigorous enclosures from ball arithmetic (needs python-flint)")
+                        help="add rigorous enclosures from ball arithmetic, and for damped "
+                             "models prove the count in the search region (a winding number "
+                             "in balls: seconds to minutes) (needs python-flint)")
 
 
 def run(args) -> int:
@@ -53,7 +55,8 @@ def run(args) -> int:
     count = args.count if args.count is not None or args.omega_max is not None else 10
     try:
         spectrum = solve(model, count=count, omega_max=args.omega_max,
-                         sigma_max=args.sigma_max, digits=args.digits, method=args.method)
+                         sigma_max=args.sigma_max, digits=args.digits, method=args.method,
+                         prove_count=args.certified and args.method in ("default", "contour"))
     except ModelError as exc:
         raise exc.with_source(args.model) from None
     spectrum = spectrum.with_model_name(args.model)

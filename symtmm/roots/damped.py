@@ -11,7 +11,9 @@ conjugate pairs; those with ``Im lam >= 0`` are reported. The search region is
 
 1. **Count.** The number of zeros in a rectangle is the change of
    ``arg Delta`` around it over ``2 pi`` (:mod:`symtmm.roots.contour`), sampled
-   in double precision in batches; a point whose pivots cannot all be trusted
+   in double precision in batches (proved on request: ``prove_count``, the winding
+   number in ball arithmetic of :mod:`symtmm.roots.winding`, checked against this
+   count); a point whose pivots cannot all be trusted
    (very close to a zero) is evaluated again in the proof arithmetic (Arb balls,
    or mpmath at two precisions without python-flint). The region is enlarged
    slightly beyond ``Re lam = 0`` (no eigenvalue of a passive model lies to the
@@ -996,6 +998,25 @@ def _region(omega_max: float, sigma_max: float, lam_ref: float, attempt: int):
     return rects
 
 
+def _prove_count(search: _Search, cells, digits: int) -> str:
+    """The counts of the region's rectangles proved in balls (:mod:`symtmm.roots.winding`),
+    checked against the double-precision ones; a note saying what was proved."""
+    from .winding import proved_count
+    segments = 0
+    for rect, n, _ in cells:
+        res = proved_count(search.p.kernel, rect, digits, spacing=search.p.spacing)
+        if res.count is None:
+            return f"the count in the search region is not proved: {res.reason}"
+        if res.count != n:
+            raise ComputationError(f"{rect} holds {res.count} zero(s) of Delta by its winding "
+                                   f"number in ball arithmetic, {n} by the argument principle "
+                                   "in double precision")
+        segments += res.segments
+        search.p.extra += res.evaluations
+    return ("the count in the search region is proved: the winding number of Delta around "
+            f"it in ball arithmetic ({segments} segments)")
+
+
 def _count_region(search: _Search, rects):
     cells = []
     for r in rects:
@@ -1048,7 +1069,8 @@ def _search_region(model, omega_max, sigma_max, digits, certified):
 
 
 def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
-                 digits: int = 15, certified: bool | None = None) -> Spectrum:
+                 digits: int = 15, certified: bool | None = None,
+                 prove_count: bool = False) -> Spectrum:
     """Eigenvalues ``lam = -sigma + i omega`` (``omega >= 0``) of a damped model.
 
     Parameters
@@ -1071,6 +1093,12 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         The high-precision arithmetic: Arb balls (python-flint; real eigenvalues are
         then proved by a sign change of ball values), or mpmath checked at a second
         precision (False); None (default): balls where python-flint is installed.
+    prove_count : bool
+        Also prove the number of eigenvalues in the search region: the winding number
+        of ``Delta`` around each of its rectangles in ball arithmetic
+        (:mod:`symtmm.roots.winding`; python-flint). Seconds to tens of seconds; a note
+        says whether it closed. Without it the count is the argument principle in
+        double precision (every eigenvalue found is still proved, one by one).
 
     Returns
     -------
@@ -1116,6 +1144,7 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
             if W > 1e12:
                 raise ComputationError(f"fewer than {count} eigenvalues below |lam| = 1e12")
     search.zero_order = order
+    count_note = _prove_count(search, cells, digits) if prove_count else None
     with progress.stages("solve", ["isolating", "refining and proving",
                                    "close and multiple roots"]) as next_stage:
         singles, clusters = search.isolate(cells, _TINY)
@@ -1143,6 +1172,8 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         eigen = first(eigen, count)
     notes.insert(0, f"search region: {-S:.6g} <= Re lam <= 0, 0 <= Im lam <= {W:.6g} "
                     f"({total} eigenvalue(s) with Im lam >= 0 counted in the enlarged region)")
+    if count_note:
+        notes.append(count_note)
     if search.idle:
         notes.append(f"Re lam = 0 for {search.idle} eigenvalue(s): also eigenvalues of the "
                      f"model without dashpots and with doubled dashpots to "
