@@ -62,7 +62,7 @@ import numpy as np
 
 from ..numeric.arith import Ball, ball_available
 from ..numeric.jet import BallJet, Jet
-from ..numeric.stiffness import assemble, dense
+from ..numeric.stiffness import assemble
 from .contour import Rectangle
 
 __all__ = ["ProvedCount", "proved_count", "MAX_SEGMENTS"]
@@ -138,7 +138,6 @@ class _Prover:
             lam = np.array(boxes, dtype=object)
             Kb, d12b = assemble(plan, self.box, lam * lam, lam)
         self.evaluations += len(boxes) - len(segments)
-        Kp, Kb = dense(plan, Kp), dense(plan, Kb)
         m = SUB_BOXES
         out = []
         with self.ball, np.errstate(all="ignore"):
@@ -211,23 +210,23 @@ def _ball_union(balls):
 
 
 def _split(K, k) -> tuple:
-    """``(mid, rad)`` float arrays of Taylor coefficient ``k`` of a dense matrix of jets (a
-    structural zero of the band comes as the integer 0): complex midpoints and upper
-    bounds of the distance to them."""
-    n = K.shape[0]
+    """``(mid, rad)`` float arrays (dense, symmetric) of Taylor coefficient ``k`` of a band of
+    jets ``(n, b + 1)`` (:func:`~symtmm.numeric.stiffness.assemble`): complex midpoints and
+    upper bounds of the distance to them; an entry that is the integer 0 is an exact 0."""
+    n, w = K.shape
     mid = np.zeros((n, n), dtype=complex)
     rad = np.zeros((n, n))
-    for i in range(n):
-        for j in range(n):
-            v = K[i, j]
+    for r in range(n):
+        for j in range(min(w, n - r)):
+            v = K[r, j]
             if not isinstance(v, Jet):
                 continue
             c = v.c[k]
             if isinstance(c, int):
                 continue
             re, im = c.real, c.imag
-            mid[i, j] = complex(float(re.mid()), float(im.mid()))
-            rad[i, j] = float(re.rad()) + float(im.rad())
+            mid[r, r + j] = mid[r + j, r] = complex(float(re.mid()), float(im.mid()))
+            rad[r, r + j] = rad[r + j, r] = float(re.rad()) + float(im.rad())
     return mid, rad * (1 + 1e-15)
 
 
