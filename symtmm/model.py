@@ -991,14 +991,6 @@ class Model:
         layers = tuple(replace(la, c=la.c * factor) for la in self.layers)
         return replace(self, springs=springs, bodies=bodies, layers=layers)
 
-    def refuse_layers(self, what: str) -> None:
-        """A one-line :class:`ModelError` when the model has layers and ``what`` (a
-        command) does not take them yet."""
-        if self.layers:
-            raise ModelError(f"{what} does not take beams joined by a layer yet (solve, "
-                             "modes, sweep, scan, codegen and draw do)", field="layer[1]",
-                             source=self.source)
-
     def beam(self, name: str) -> Beam:
         """The beam called ``name``."""
         for beam in self.beams:

@@ -221,12 +221,13 @@ def test_layer_needs_euler_bernoulli_beams(tmp_path):
 
 
 @pytest.mark.parametrize("json_flag", [[], ["--json"]])
-def test_derive_says_it_does_not_take_layers(tmp_path, json_flag):
+def test_derive_takes_a_layered_pair(tmp_path, json_flag):
+    """(The closed forms themselves: tests/test_layers_derive.py.)"""
     path = tmp_path / "pair.toml"
     path.write_text(LAYERED + '\n[[layer]]\nbetween = ["a", "b"]\nk = 80\n')
     run = run_cli(["derive", path, *json_flag], limit=30)
     assert_contract(run, 30)
-    assert run.code == 2 and "derive does not take beams joined by a layer" in run.stderr
+    assert run.code == 0 and "q_a_b" in run.stdout, run.stderr
 
 
 def test_generated_evaluator_vanishes_at_the_closed_form_roots():

@@ -33,6 +33,25 @@ model's variable and :attr:`~CharacteristicEquation.delta` has them
 substituted. ``Delta`` is an entire function of every ``t_j, d_j``, so any
 branch of the roots gives the same value.
 
+Beams joined by a layer
+-----------------------
+Over a layer two Euler–Bernoulli beams are one member (:mod:`symtmm.elements.layer`):
+``Y'''' = (X / l**4) Y`` with the ``2 x 2`` matrix ``X / l**4`` of trace ``t`` and
+determinant ``d``. Its eigenvalues are ``p**4`` and ``q**4``, the roots of
+``mu**2 - t mu + d``, and every block of the member's transfer matrix, a function
+``f`` of ``X``, is ``f(p) E1 + f(q) E2`` with the projectors ``E1, E2 = 1/2 +- C``,
+``C = (X/l**4 - t/2) / (p**4 - q**4)``: two beams of wave numbers ``p`` and ``q``
+(``cos, sin, cosh, sinh`` of ``p l`` and ``q l``, powers of ``p, q`` and their
+inverses) coupled through ``C`` (``C**2 = I/4``). The closed form is written in
+``p_<a>_<b>``, ``q_<a>_<b>`` (after the two beams), defined like the waves' ``a, b``
+(:attr:`CharacteristicEquation.definitions`; a note gives the quadratic). Where the
+eigenvalues are polynomials (identical beams), one that is a constant times
+``Omega**4`` is written in ``Omega``, one that is ``b**4`` of a beam on a foundation
+in that ``b``, and mirrored identical beams are split into their in-phase and
+out-of-phase families before the determinant is expanded: the in-phase family is
+the single beam's. A layer between different beams over part of their length soon
+exceeds the budgets; three beams joined over one stretch are refused (one line).
+
 The form
 --------
 ``det R = constant * Omega**power * prod(f_i**e_i)`` where the constant does

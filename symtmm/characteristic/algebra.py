@@ -1,8 +1,9 @@
 """The algebra of the atoms: the polynomial ring with its reductions, and ``R`` in it.
 
 Step 2 of the method (:mod:`symtmm.characteristic`): ``cos, sin, cosh, sinh``
-of each argument, ``W = 1/Omega``, the waves' ``Dl, iq`` and the symbolic
-parameters are the variables of a polynomial ring over the rationals; the
+of each argument, ``W = 1/Omega``, the waves' ``Dl, iq``, the layered members' ``p,
+1/p, q, 1/q`` and coupling ``c, e``, and the symbolic parameters are the variables
+of a polynomial ring over the rationals; the
 relations between them (``s**2 = 1 - c**2``, ``Dl**2 = disc``, ...) are
 rewriting rules with a unique normal form. :meth:`_Algebra.boundary_matrix`
 propagates the columns of the unknowns through the cuts in that ring.
@@ -12,6 +13,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from ..assembly import state_rows
 from ..errors import ComputationError
 from .budget import spend
 from .problem import _W, _Problem
@@ -23,7 +25,8 @@ class _Algebra:
 
     Every reduction rewrites a power ``x**q`` of one variable by a polynomial of
     lower degree in ``x`` (``s**2 = 1 - c**2``, ``c**2 = 1 - b**2 Sn**2``,
-    ``Dl**2 = disc``, ``I**2 = -1``, ``root**Q = base``), and ``W * Omega = 1``;
+    ``Dl**2 = disc``, a member's ``c**2 = 1/4 - rho e**2``, ``I**2 = -1``, ``root**Q =
+    base``), and ``W * Omega = 1`` (and ``p * (1/p) = 1``);
     the leading terms are powers of distinct variables, so the normal form is
     unique.
     """
@@ -53,6 +56,22 @@ class _Algebra:
             self.wave_index[k] = (len(names), len(names) + 1)
             names += [f"Dl{k}", f"iq{k}"]
             symbols += [wave.Dl, wave.iq]
+        # layered members: V, 1/V of each free branch, the coupling's c, e unless numbers
+        self.member_index = {}
+        for k, mb in enumerate(problem.members):
+            slots = {}
+            for i, br in enumerate(mb.branches):
+                if br.kind == "free" and br.V not in symbols:   # (once if members share it)
+                    slots[f"V{i}"], slots[f"Wv{i}"] = br.V, br.Wv
+            if mb.c_value is None:
+                slots["c"] = mb.c
+            if mb.e_value is None:
+                slots["e"] = mb.e
+            self.member_index[k] = {}
+            for key, symbol in slots.items():
+                self.member_index[k][key] = len(names)
+                names.append(f"{key}m{k}")
+                symbols.append(symbol)
         self.extra_index = {}
         for e in problem.extra:
             self.extra_index[e] = len(names)
@@ -69,6 +88,9 @@ class _Algebra:
             inv = self.extra_index.get(1 / problem.waves[k].Wb)
             if inv is not None:
                 self.inverse_pairs.append((idx, inv))
+        for k, index in self.member_index.items():
+            self.inverse_pairs += [(index[f"Wv{i}"], index[f"V{i}"]) for i in range(2)
+                                   if f"V{i}" in index]
         G = self.ring.gens
         half = self.ring.coefficient(sp.Rational(1, 2))
         self.rules = []   # (variable, power q, replacement of x**q); applied in this order
@@ -77,6 +99,8 @@ class _Algebra:
             c, s, ch, sh = G[4 * g:4 * g + 4]
             if plain_like(grp):
                 self.rules += [(4 * g + 1, 2, 1 - c * c), (4 * g + 3, 2, ch * ch - 1)]
+                if grp.member is not None:
+                    continue          # a layered member's branch: its matrix is the member's
                 S, T, U, V = (ch + c) * half, (sh + s) * half, (ch - c) * half, (sh - s) * half
                 self.N[g] = [[S, T, U, V], [V, S, T, U], [U, V, S, T], [T, U, V, S]]
             else:
@@ -84,6 +108,11 @@ class _Algebra:
                 self.rules += [(4 * g, 2, 1 - B * s * s), (4 * g + 2, 2, 1 + A * sh * sh)]
         for k, (dl, _) in self.wave_index.items():
             self.rules.append((dl, 2, self.from_expr(problem.waves[k].disc_ring)))
+        for k, mb in enumerate(problem.members):   # c**2 + rho e**2 = 1/4
+            relation = mb.relation()
+            if relation is not None:
+                index = self.member_index[k]["c" if relation[0] == mb.c else "e"]
+                self.rules.append((index, 2, self.from_expr(mb.rule_ring)))
         for e, idx in self.extra_index.items():
             if e == sp.I:
                 self.rules.append((idx, 2, self.ring.one * -1))
@@ -205,12 +234,15 @@ class _Algebra:
             if kind == "segments":
                 for lvl, g in data:
                     N = self.N[g] if g in self.N else self.N[(g, lvl)]
-                    blk = E[4 * lvl:4 * lvl + 4]
-                    E[4 * lvl:4 * lvl + 4] = [
-                        [self.reduce(sum((N[i][k] * blk[k][j] for k in range(4)
-                                          if blk[k][j] != 0 and N[i][k] != 0), ring.zero))
-                         for j in range(len(cols))]
-                        for i in range(4)]
+                    rows = state_rows(lvl)     # 4, or the 8 of a layered member
+                    blk = [E[r] for r in rows]
+                    n = len(rows)
+                    new = [[self.reduce(sum((N[i][k] * blk[k][j] for k in range(n)
+                                             if blk[k][j] != 0 and N[i][k] != 0), ring.zero))
+                            for j in range(len(cols))]
+                           for i in range(n)]
+                    for r, row in zip(rows, new):
+                        E[r] = row
             else:
                 new = {}
                 for (row, col), expr in data.items():

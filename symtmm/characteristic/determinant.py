@@ -61,11 +61,13 @@ def _eliminate_constants(alg: _Algebra, M) -> tuple[sp.Rational, list]:
     return factor, M
 
 
-def _det_minors(M, zero, one):
+def _det_minors(M, zero, one, reduce=None):
     """Division-free determinant: expansion along rows with memoised minors.
 
     ``O(2**n n)`` products; exact in any commutative ring, and it keeps the
-    product structure of block-decoupled matrices (no reduction in between).
+    product structure of block-decoupled matrices (no reduction in between, unless
+    ``reduce`` is given: then each minor is reduced, which layered members need, whose
+    ``p`` and ``1/p`` cancel only in the normal form).
     """
     n = len(M)
     if n == 0:
@@ -85,6 +87,8 @@ def _det_minors(M, zero, one):
                 spend_product(a, m)
                 acc = acc - a * m if (r - pos) % 2 else acc + a * m
                 spend(acc)
+            if reduce is not None and acc != 0:
+                acc = reduce(acc)
             if acc != 0:
                 new[cols] = acc
         minors = new
@@ -137,3 +141,41 @@ def _perm_sign(perm) -> int:
         if length % 2 == 0:
             sign = -sign
     return sign
+
+
+def _decouple_pairs(alg: _Algebra, M) -> tuple[sp.Rational, list]:
+    """Identical beams joined by a layer, mirrored: ``det M = factor * det M'`` with their
+    sums and differences in place of their rows and columns.
+
+    When swapping the two beams of a layered member leaves ``M`` as it is (the same right-
+    and left-end conditions, the same entries, every other row and column alike for both),
+    the sums of their rows and columns and the differences make ``M'`` block-triangular:
+    the in-phase and out-of-phase families are separate blocks (:func:`_blocks`), whose
+    determinants are far smaller than the expansion of ``M``, where they cancel.
+    """
+    layout = alg.problem.layout
+    rows = list(layout.conditions) + [None] * (len(M) - len(layout.conditions))
+    cols = list(layout.unknowns) + [None] * (len(M) - len(layout.unknowns))
+    M = [row[:] for row in M]
+    factor = sp.Integer(1)
+    for a, b in dict.fromkeys(member.levels for member in alg.problem.members):
+        ra = [i for i, rc in enumerate(rows) if rc and rc[0] == a]
+        rb = [i for i, rc in enumerate(rows) if rc and rc[0] == b]
+        ca = [j for j, rc in enumerate(cols) if rc and rc[0] == a]
+        cb = [j for j, rc in enumerate(cols) if rc and rc[0] == b]
+        if [rows[i][1] for i in ra] != [rows[i][1] for i in rb] \
+                or [cols[j][1] for j in ca] != [cols[j][1] for j in cb]:
+            continue
+        swap_r = dict(zip(ra, rb)) | dict(zip(rb, ra))
+        swap_c = dict(zip(ca, cb)) | dict(zip(cb, ca))
+        if any(M[i][j] != M[swap_r.get(i, i)][swap_c.get(j, j)]
+               for i in range(len(M)) for j in range(len(M))):
+            continue
+        for i, k in zip(ra, rb):
+            M[i], M[k] = [x + y for x, y in zip(M[i], M[k])], [x - y for x, y in zip(M[i], M[k])]
+        for row in M:
+            for j, k in zip(ca, cb):
+                row[j], row[k] = row[j] + row[k], row[j] - row[k]
+        # det [[I, I], [I, -I]] = (-2)**n on each side
+        factor /= sp.Integer(-2) ** (len(ra) + len(ca))
+    return factor, M

@@ -24,7 +24,7 @@ from .algebra import _Algebra
 from .budget import _BUDGET, budget, spend
 from .factor import _factorise
 from .order import _prepare
-from .problem import OMEGA, OMEGA_DIMLESS, _build_problem, _is_plain, _Problem, _wave_segment
+from .problem import OMEGA, OMEGA_DIMLESS, _build_problem, _Problem, _wave_segment
 from .writer import _Writer
 
 __all__ = ["CharacteristicEquation", "characteristic_equation"]
@@ -63,7 +63,8 @@ class CharacteristicEquation:
         How the result is structured (e.g. kept factored).
     definitions : dict
         The wave numbers ``a_<beam>``, ``b_<beam>`` of beams that are not
-        plain Euler–Bernoulli beams, and ``Omega`` when the closed form uses it,
+        plain Euler–Bernoulli beams, ``p_<a>_<b>``, ``q_<a>_<b>`` of beams joined
+        by a layer, and ``Omega`` when the closed form uses it,
         as functions of :attr:`variable`; :attr:`delta_Omega` and
         :attr:`factors` are written in them, :attr:`delta` has them substituted.
     """
@@ -282,7 +283,8 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float,
     pre_c, pre_p, pre_b = _split_powers(problem.prefactor, Om, founded)
     power = pre_p
     out_factors = [(bk, p) for bk, p in pre_b.items() if p]
-    frequency_symbols = [s for w in problem.waves for s in (w.a, w.b)]
+    frequency_symbols = [s for w in problem.waves for s in (w.a, w.b)] + [
+        br.symbol for mb in problem.members for br in mb.branches if br.kind == "free"]
     for poly, e in factors:
         spend()
         m, expr, ratio = writer.best(poly)
@@ -303,7 +305,8 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float,
         variable, lam = OMEGA, sp.I * OMEGA
         Omega_of_var = L1 * mu1 * sp.sqrt(OMEGA)
     definitions = _wave_definitions(problem, lam)
-    if problem.waves and not any(_is_plain(b) for b in problem.layout.model.beams):
+    definitions.update(_member_definitions(problem, lam, Omega_of_var))
+    if (problem.waves or problem.members) and not any(g.plain for g in problem.groups):
         # no plain beam: the frequency left in the coefficients is the model's variable
         back = {Om: Omega_of_var}
         c_poly, out_factors = _polynomials_in(variable, [(_tidy(f.xreplace(back)), e)
@@ -336,9 +339,10 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float,
     if len(out_factors) > 1 or any(e > 1 for _, e in out_factors):
         notes.append("kept factored: " + ", ".join(
             f"{sp.count_ops(f)} ops x{e}" for f, e in out_factors))
-    if problem.waves:
+    if problem.waves or problem.members:
         notes.append("wave numbers: " + ", ".join(
             f"{s} = {v}" for s, v in definitions.items() if s != Om))
+    notes += _member_notes(problem, lam)
     if not alg.ring.can_factor and any(sp.count_ops(f) > 100 for f, _ in out_factors):
         notes.append("factored by the structure of R only: python-flint (pip install "
                      "python-flint) factors the polynomials and gives fewer, smaller factors")
@@ -487,6 +491,49 @@ def _wave_definitions(problem: _Problem, lam) -> dict:
         root = sp.sqrt(sp.factor(t**2 / 4 - d))
         out[wave.a] = sp.sqrt(t / 2 + root)
         out[wave.b] = sp.sqrt(-t / 2 + root)
+    return out
+
+
+def _member_invariants(member, lam):
+    """``(t, d)`` of a layered member's ``X / l**4`` in the model's variable."""
+    X = member.segment.field_matrix(lam=lam, lam2=sp.expand(lam**2))
+    return sp.expand(X.trace()), sp.expand(X.det())
+
+
+def _member_definitions(problem: _Problem, lam, Omega_of_var) -> dict:
+    """``{p: (p**4)**(1/4), q: ...}`` of the layered members' free branches in the model's
+    variable: ``p**4, q**4`` the roots of ``mu**2 - t mu + d``, ``p**4`` with the ``+``
+    of the square root (or of the polynomial root of the discriminant); a branch that is
+    ``Omega`` or a founded wave's ``b`` needs none."""
+    out = {}
+    for member in problem.members:
+        if member.root is not None:
+            mus = [_tidy(sp.expand(br.mu.xreplace({OMEGA_DIMLESS: Omega_of_var})))
+                   for br in member.branches]
+        else:
+            t, d = _member_invariants(member, lam)
+            root = sp.sqrt(sp.factor(t**2 - 4 * d))
+            mus = [sp.factor((t + root) / 2), sp.factor((t - root) / 2)]
+        for br, mu in zip(member.branches, mus):
+            if br.kind == "free":
+                out[br.symbol] = mu ** sp.Rational(1, 4)
+    return out
+
+
+def _member_notes(problem: _Problem, lam) -> list:
+    """How each layered member's wave numbers are defined: ``p**4, q**4`` are the
+    eigenvalues of ``X / l**4``."""
+    out = []
+    mu = sp.Symbol("mu")
+    beams = problem.layout.model.beams
+    for member in problem.members:
+        t, d = _member_invariants(member, lam)
+        where = ", ".join(f"[{a}, {b}]" for a, b in dict.fromkeys(member.stretches))
+        p, q = (br.printed(problem.waves) for br in member.branches)
+        out.append(f"{p**4} and {q**4}: the roots of {sp.collect(mu**2 - t * mu + d, mu)} "
+                   f"= 0, the eigenvalues of X/l**4 (Y'''' = (X/l**4) Y) of beams "
+                   f"{' and '.join(beams[j].name for j in member.levels)} joined by a layer "
+                   f"over {where}")
     return out
 
 

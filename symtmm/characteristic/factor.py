@@ -17,7 +17,7 @@ import sympy as sp
 from ..errors import ComputationError
 from .algebra import _Algebra
 from .budget import spend
-from .determinant import _blocks, _det_minors, _eliminate_constants
+from .determinant import _blocks, _decouple_pairs, _det_minors, _eliminate_constants
 from .ring import _rational
 
 
@@ -47,7 +47,8 @@ _IDENTICALLY_ZERO = ("the characteristic determinant vanishes identically "
 def _factorise(alg: _Algebra, R):
     """``det R = constant * prod(f**e)``, the factors reduced and merged.
 
-    Constant pivots are eliminated first; each independent block of the rest
+    Mirrored pairs of beams are decoupled and constant pivots eliminated first
+    (:mod:`~symtmm.characteristic.determinant`); each independent block of the rest
     is expanded on its own; its determinant is factored before the reduction
     (where products are still visible), ``1/disc`` cleared, each factor
     reduced and factored again. A factor of the denominators ``disc`` has a
@@ -56,11 +57,12 @@ def _factorise(alg: _Algebra, R):
     content are split off (SymPy's multivariate factoring is too slow for
     these sizes).
     """
+    mirrored, R = _decouple_pairs(alg, R)
     pivots, R = _eliminate_constants(alg, R)
     sign, blocks = _blocks(R)
     if sign == 0:
         raise ComputationError(_IDENTICALLY_ZERO)
-    constant = sp.Integer(sign) * pivots
+    constant = sp.Integer(sign) * pivots * mirrored
     found: dict = {}   # key -> [poly, multiplicity]
 
     def add(h, e):
@@ -86,13 +88,15 @@ def _factorise(alg: _Algebra, R):
             add(h, e * int(e2))
 
     for block in blocks:
-        det = _det_minors(block, alg.ring.zero, alg.ring.one)
+        det = _det_minors(block, alg.ring.zero, alg.ring.one,
+                          alg.reduce if alg.problem.members else None)
         if det == 0:
             raise ComputationError(_IDENTICALLY_ZERO)
         if not alg.ring.can_factor:  # pragma: no cover
             first = [(det, 1)]
         else:
-            if alg.problem.waves and len(alg.ring.terms(det)) > _FACTOR_UNREDUCED:
+            if (alg.problem.waves or alg.problem.members) \
+                    and len(alg.ring.terms(det)) > _FACTOR_UNREDUCED:
                 # too long to factor as it is (with the waves' Dl, iq it takes minutes):
                 # the normal form is far shorter, at the price of products it may hide
                 det = alg.reduce(det)

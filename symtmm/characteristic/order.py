@@ -45,11 +45,12 @@ def _complete_sample(model: Model, sample: dict) -> dict:
     """Order positions whose symbols have no value, when the model allows only one order.
 
     Random values of the remaining symbols are tried; those that put every
-    spring inside its beams are kept. If they all order the cuts alike, one of
+    spring and layer inside its beams are kept. If they all order the cuts alike, one of
     them orders the cuts (it does not enter the result); if they disagree the
     order is left open and :func:`_check_order` asks for a value.
     """
-    positions = [p for b in model.beams for p in (b.x0, b.x1)] + [s.x for s in model.springs]
+    positions = [p for b in model.beams for p in (b.x0, b.x1)] + [s.x for s in model.springs] \
+        + [x for la in model.layers for x in (la.x0, la.x1)]
     free = set().union(*(sp.sympify(p).free_symbols for p in positions)) - set(sample)
     if not free:
         return sample
@@ -69,7 +70,9 @@ def _complete_sample(model: Model, sample: dict) -> dict:
             continue
         inside = all(beams[n].x0.xreplace(trial) <= s.x.xreplace(trial)
                      <= beams[n].x1.xreplace(trial)
-                     for s in model.springs for n in (s.a, s.b) if n in beams)
+                     for s in model.springs for n in (s.a, s.b) if n in beams) and all(
+            beams[n].x0.xreplace(trial) <= la.x0.xreplace(trial) < la.x1.xreplace(trial)
+            <= beams[n].x1.xreplace(trial) for la in model.layers for n in (la.a, la.b))
         if not inside:
             continue
         ranks = tuple(sorted(set(values)).index(v) for v in values)

@@ -76,7 +76,9 @@ class _Writer:
         p = alg.problem
         self.trig_args, self.hyp_args, self.atoms = [], [], []
         for grp in p.groups:
-            if grp.wave is None:
+            if grp.member is not None:
+                trig = hyp = (p.members[grp.member].branches[grp.branch].symbol, grp.arg)
+            elif grp.wave is None:
                 trig = hyp = (Omega, grp.arg)
             elif p.waves[grp.wave].scaled:
                 trig = hyp = (p.waves[grp.wave].b, grp.arg)
@@ -94,6 +96,12 @@ class _Writer:
             self.outer += [(dl, wave.a**2 + wave.b**2), (iq, (wave.a**2 + wave.b**2) ** -2)]
         for k, idx in alg.scaled_index.items():
             self.outer.append((idx, 1 / p.waves[k].b))
+        for k, index in alg.member_index.items():
+            member = p.members[k]
+            forms = {"c": member.c_form, "e": member.e_form}
+            for i, br in enumerate(member.branches):
+                forms[f"V{i}"], forms[f"Wv{i}"] = br.symbol, 1 / br.symbol
+            self.outer += [(idx, forms[key]) for key, idx in index.items()]
         for e, idx in alg.extra_index.items():
             if idx == alg.inv_w:
                 continue

@@ -11,7 +11,10 @@ Beams with a Winkler foundation, an axial force, rotary inertia or shear
 (Rayleigh, Timoshenko) are written in their wave numbers a_<beam>
 (hyperbolic) and b_<beam> (trigonometric), each defined in the variable
 (printed, and in JSON under "definitions"); Delta in the variable alone has
-them substituted.
+them substituted. Two beams joined by a layer are written in the wave numbers
+p_<a>_<b>, q_<a>_<b> of the pair (p**4, q**4 the eigenvalues of the layered
+member's matrix, given in a note), or in Omega where one of them is the single
+beam's (identical beams).
 """
 
 from __future__ import annotations

@@ -100,8 +100,32 @@ class CoupledSegment:
 
     def transfer_matrix(self, lam=None):
         from ..errors import ModelError
-        raise ModelError("closed forms of beams joined by a layer are not available: "
-                         "derive does not take [[layer]] yet", field="layer")
+        raise ModelError("beams joined by a layer have no transfer matrix in lam alone: it is "
+                         "a function of the matrix X, written through X's two wave numbers by "
+                         "symtmm.characteristic (derive)", field="layer")
+
+    def field_matrix(self, lam=None, lam2=None) -> sp.Matrix:
+        """``X / l**4 = -EI**-1 (diag(m lam**2 + kw) + L_k + lam L_c)``, exact: the matrix
+        of the field equations ``Y'''' = (X / l**4) Y``, independent of the length.
+
+        ``lam2`` stands for ``lam**2`` where given (the closed forms write both through
+        one frequency variable); ``lam`` defaults to :data:`symtmm.elements.base.LAM`.
+
+        Examples
+        --------
+        >>> CoupledSegment(((1, 1, 0), (2, 3, 0)), 1, ((0, 1, 100, 0),)).field_matrix(lam2=-4)
+        Matrix([
+        [-96, 100],
+        [ 50, -44]])
+        """
+        from .base import LAM
+        lam = LAM if lam is None else sp.sympify(lam)
+        lam2 = lam**2 if lam2 is None else sp.sympify(lam2)
+        Lk, Lc = self.laplacians()
+        n = self.size
+        return sp.Matrix(n, n, lambda i, j: sp.expand(
+            -((self.beams[i][1] * lam2 + self.beams[i][2] if i == j else 0)
+              + Lk[i][j] + lam * Lc[i][j]) / self.beams[i][0]))
 
     @property
     def key(self) -> tuple:
