@@ -302,11 +302,7 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
     for i, raw in enumerate(springs_raw, 1):
         where = f"spring[{i}]"
         _check_keys(raw, _SPRING_REQUIRED, _SPRING_OPTIONAL, where)
-        between = raw["between"]
-        if (not isinstance(between, list) or len(between) != 2
-                or not all(isinstance(b, str) for b in between)):
-            raise ModelError('expected two names, e.g. ["upper", "lower"] or ["upper", "ground"]',
-                             field=f"{where}.between")
+        between = _pair(raw, where, '["upper", "lower"] or ["upper", "ground"]')
         fields = {k: _number(raw[k], f"{where}.{k}") for k in ("x", "k")}
         fields["c"] = _number(raw.get("c", 0), f"{where}.c")
         kind = raw.get("kind", "translational")
@@ -342,11 +338,7 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
     for i, raw in enumerate(layers_raw, 1):
         where = f"layer[{i}]"
         _check_keys(raw, _LAYER_REQUIRED, _LAYER_OPTIONAL, where)
-        between = raw["between"]
-        if (not isinstance(between, list) or len(between) != 2
-                or not all(isinstance(b, str) for b in between)):
-            raise ModelError('expected two beam names, e.g. ["upper", "lower"]',
-                             field=f"{where}.between")
+        between = _pair(raw, where, '["upper", "lower"]', "beam names")
         fields = {"k": _number(raw["k"], f"{where}.k"), "c": _number(raw.get("c", 0), f"{where}.c")}
         for key, attr in (("from", "x0"), ("to", "x1")):
             if key in raw:
@@ -381,6 +373,15 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
     except ModelError as exc:
         raise ModelError(exc.message, field=_spring_field(exc.field, springs, beams, masses,
                                                           body_fields, layers)) from None
+
+
+def _pair(raw: dict, where: str, example: str, what: str = "names") -> list:
+    """The field ``between`` of a table: two names (one clear line otherwise)."""
+    between = raw["between"]
+    if (not isinstance(between, list) or len(between) != 2
+            or not all(isinstance(b, str) for b in between)):
+        raise ModelError(f"expected two {what}, e.g. {example}", field=f"{where}.between")
+    return between
 
 
 def _attachment_point(text, beams: dict, where: str):
