@@ -419,6 +419,14 @@ def _case(case) -> list:
                        f"{_g(d['seconds'] / max(o['seconds'], 1e-9))}.")
     if "profile" in d:
         out.append("Default search, " + _profile_sentence(d["profile"]) + ".")
+    proved = case["methods"].get("default, count proved")
+    if proved and proved.get("status") == "ok":
+        note = next((n for n in proved.get("notes", ()) if "count in the search region" in n),
+                    "no note on the count")
+        out.append(f"With the count proved (`prove_count`, `solve --certified`): "
+                   f"{_g(proved['seconds'])} s, {_g(proved['seconds'] / max(d['seconds'], 1e-9))}"
+                   f" times the default search's time, {proved['evaluations']} evaluations; "
+                   f"{note}.")
     if "reference_check" in case:
         c = case["reference_check"]
         out.append(f"Reference cross-checked by {c['method']}: largest relative "
