@@ -43,7 +43,7 @@ __all__ = [
     "MAX_EXPRESSION_LENGTH", "MAX_NESTING", "MAX_DECADES", "MAX_EXPONENT", "FIELD_MIN",
     "FIELD_MAX", "MAX_PARAMETER_DEPTH", "MAX_FILE_BYTES", "MAX_BEAMS", "MAX_POINTS_ON_BEAMS",
     "MAX_PARAMETERS", "MAX_EIGENVALUES", "MAX_DIGITS", "MAX_GRID_POINTS", "MAX_STEPS",
-    "MAX_JOBS", "FLAG_MAX", "DERIVE_SECONDS", "DERIVE_TERMS",
+    "MAX_JOBS", "FLAG_MAX", "DERIVE_SECONDS", "DERIVE_TERMS", "MAX_PIECES",
 ]
 
 # -- expressions (symtmm.expr) ---------------------------------------------------------
@@ -84,6 +84,12 @@ MAX_GRID_POINTS = 100_000
 MAX_STEPS = 10_000
 #: Most local worker processes (``--jobs``).
 MAX_JOBS = 1024
+#: Most pieces the dynamic-stiffness mesh may cut the beams into for one frequency range.
+#: A piece keeps ``|beta| l <= 3``: a foundation or layer far stiffer than the beam's
+#: bending (``kw L**4 / EI ~ 1e30``) would need ten million pieces (and minutes of exact
+#: arithmetic before the first evaluation); the paper's examples need a few dozen, a
+#: 50-level chain about 550.
+MAX_PIECES = 100_000
 #: Largest frequency or decay rate on the command line (rad/s): ``omega**2`` of every
 #: model within the field limits stays a double.
 FLAG_MAX = 1e100

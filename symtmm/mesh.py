@@ -20,7 +20,8 @@ import sympy as sp
 
 from .assembly import point_elements
 from .elements import Coupling
-from .errors import ModelError
+from .errors import ComputationError, ModelError
+from .limits import MAX_PIECES
 from .model import Model
 
 __all__ = ["Mesh", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
@@ -202,20 +203,36 @@ class Mesh:
             c = sum((la[4].c for la in used if i in la[:2]), sp.Integer(0))
             if k == 0 and c == 0:
                 return piece(beam, beam.segment(length))
-            # |X| of the coupled piece is at most that of a beam with mass m' and foundation
-            # kw' (2 c |lam| <= m |lam|**2 + c**2 / m): the rule of such a beam bounds it
+            # |X| of the coupled piece is at most that of a beam on the foundation
+            # kw + 2 |k + c lam| <= kw + 2 k + 2 c |lam|: with the range |lam|**2 <= radius
+            # the piece rule knows (plans tell it), else through 2 c |lam| <= m |lam|**2 +
+            # c**2 / m (a beam of mass 2 m)
             from .elements import EulerBernoulliSegment
+            radius = getattr(piece, "radius", None)
+            if radius is not None:
+                lam = sp.Rational(math.sqrt(max(float(radius), 0.0))) * (1 + sp.Rational(1, 10**9))
+                return piece(beam, EulerBernoulliSegment(beam.EI, beam.m, length,
+                                                         beam.kw + 2 * k + 2 * c * lam))
             m = beam.m * (2 if c != 0 else 1)
             return piece(beam, EulerBernoulliSegment(beam.EI, m, length,
                                                      beam.kw + 2 * k + c**2 / beam.m))
 
         subdivisions: dict = {}          # (beam, xa) -> number of pieces
         groups: dict = {}                # (beam, xa) -> (beams, layers) of a coupled stretch
+        total = 0
         for i, xs in enumerate(xs_of):
             for xa, xb in itertools.pairwise(xs):
                 members, used = group(i, xa, xb)
-                n_sub = max(max(1, math.ceil(float(xb - xa) / longest(j, xb - xa, used) - 1e-9))
-                            for j in members)
+                ratio = max(float(xb - xa) / longest(j, xb - xa, used) for j in members)
+                total += ratio
+                if not total <= MAX_PIECES:
+                    # (before the exact coordinates of millions of pieces are made)
+                    raise ComputationError(
+                        f"beam '{model.beams[i].name}' would need more than {MAX_PIECES} "
+                        "pieces for this frequency range: its waves are far shorter than it "
+                        "(a foundation kw or a layer k far stiffer than its EI / L**4, or a "
+                        "range far above its first modes); soften them or lower the range")
+                n_sub = max(1, math.ceil(ratio - 1e-9))
                 for j in members:
                     subdivisions[(j, xa)] = max(subdivisions.get((j, xa), 1), n_sub)
                 if len(members) > 1:

@@ -243,3 +243,18 @@ def test_generated_evaluator_vanishes_at_the_closed_form_roots():
     at = np.abs(ns["symtmm_delta"](1j * roots))
     off = np.abs(ns["symtmm_delta"](1j * roots * (1 + 1e-4)))
     assert np.all(at < 1e-9 * off)
+
+
+@pytest.mark.parametrize("table", ['\n[[layer]]\nbetween = ["a", "b"]\nk = 1e30\n',
+                                   ""])
+def test_a_foundation_or_layer_too_stiff_for_the_mesh_is_one_line(tmp_path, table):
+    """Ten million pieces would be needed (|beta| l <= 3 per piece at kw L**4 / EI ~ 1e30):
+    refused before the mesh is made, in one line, quickly."""
+    path = tmp_path / "stiff.toml"
+    text = LAYERED + table
+    if not table:
+        text = text.replace('right = "pinned"\n', 'right = "pinned"\nkw = 1e30\n', 1)
+    path.write_text(text)
+    run = run_cli(["solve", path, "--count", "2"], limit=30)
+    assert_contract(run, 30)
+    assert run.code == 1 and "would need more than 100000 pieces" in run.stderr, run.stderr

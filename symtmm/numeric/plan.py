@@ -187,7 +187,10 @@ class StiffnessPlan:
         self.model = model
         self.radius = float(radius)
         self.damped = model.damped
-        mesh = self.mesh = Mesh(model, lambda beam, seg: piece_length(seg, self.radius, nu_max))
+        def piece(beam, seg):
+            return piece_length(seg, self.radius, nu_max)
+        piece.radius = self.radius          # (the mesh bounds a layer's k + c lam with it)
+        mesh = self.mesh = Mesh(model, piece)
         n = self.n = mesh.size
         cliques = ([[g for c in places for g, _ in c] for places in mesh.segment_places]
                    + [[g for c in places for g, _ in c] for places, _ in mesh.point_places]
