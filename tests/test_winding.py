@@ -62,6 +62,14 @@ def test_counts_in_rectangles_match_the_reference(dashpot_roots):
     assert proved_count(ev, Rectangle(-60.0, 1.0, -5.0, 5.0, symmetric=True)).count == 0
 
 
+def test_third_order_model_counts_alike(dashpot_roots):
+    """The Taylor model of order 3 (third-order jets over the segments) proves the same."""
+    ev = Evaluator(_dashpot_beam(), 140.0)
+    rect = Rectangle(-10.0, 1.0, 20.0, 60.0)
+    expected = sum(rect.contains(complex(z)) for z in dashpot_roots)
+    assert proved_count(ev, rect, order=3).count == expected
+
+
 def test_a_contour_through_a_zero_stays_unproved():
     """Undamped: the zeros (n pi)^2 i lie exactly on the line Re lam = 0."""
     ev = Evaluator(Model((Beam("b", 1, 1, 1, **PP),)), 50.0)

@@ -155,13 +155,13 @@ class Arithmetic:
     #: pivots' signs are still taken for the inertia of ``K`` (see numeric.stiffness)
     growth_limit = float("inf")
 
-    def widen(self, x, radius, wrt=None, slope=None, curve=None):
+    def widen(self, x, radius, wrt=None, slope=None, curve=None, third=None):
         """``x`` with ``radius`` (an exact rational: a truncation error) added to its
         uncertainty; a no-op but for balls, whose enclosures must contain it.
 
-        ``wrt``, ``slope``, ``curve``: the series variable and bounds on the tail's first
-        and second derivatives with respect to it, for arithmetics that carry derivatives
-        (:class:`~symtmm.numeric.jet.BallJet`)."""
+        ``wrt``, ``slope``, ``curve``, ``third``: the series variable and bounds on the
+        tail's first three derivatives with respect to it, for arithmetics that carry
+        derivatives (:class:`~symtmm.numeric.jet.BallJet`)."""
         return x
 
     def norm_variable(self, X):
@@ -490,7 +490,7 @@ class Ball(Arithmetic):
             sign = np.array([-1 if v < 0 else 1 for v in flat], dtype=np.int8)
         return sign.reshape(np.shape(pivot)), decided.reshape(np.shape(pivot))
 
-    def widen(self, x, radius, wrt=None, slope=None, curve=None):
+    def widen(self, x, radius, wrt=None, slope=None, curve=None, third=None):
         flint = self.flint
         with self:
             r = flint.arb(0, self.exact(radius))       # a ball about 0 holding the bound

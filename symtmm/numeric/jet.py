@@ -113,6 +113,20 @@ class Jet:
         return f"Jet({', '.join(map(str, self.c))})"
 
 
+def _compose(f, u) -> list:
+    """Taylor coefficients of ``f(u)`` from ``f`` and its first three derivatives at ``u0``
+    (``f``, four balls) and the coefficients of ``u`` (at most four)."""
+    n = len(u)
+    if n > 4:
+        raise NotImplementedError("jets beyond the third order")
+    out = [f[0], f[1] * u[1]]
+    if n > 2:
+        out.append(f[1] * u[2] + f[2] * u[1] * u[1] / 2)
+    if n > 3:
+        out.append(f[1] * u[3] + f[2] * u[1] * u[2] + f[3] * u[1] * u[1] * u[1] / 6)
+    return out
+
+
 class BallJet(Ball):
     """Ball arithmetic on :class:`Jet` values of ``order`` 1 or 2 (see the module docstring).
 
@@ -130,36 +144,35 @@ class BallJet(Ball):
         flint = self.flint
 
         def lift(derivatives):
-            # f(u) for a jet u: the chain rule to second order, from f(u0), f'(u0), f''(u0)
+            # f(u) for a jet u: the chain rule (Faa di Bruno) to third order on Taylor
+            # coefficients, from f and its first three derivatives at u0
             def apply(u):
                 if not isinstance(u, Jet):
                     return derivatives(flint.acb(u))[0]
                 f = derivatives(flint.acb(u.c[0]))
-                out = [f[0], f[1] * u.c[1]]
-                if len(u.c) > 2:
-                    out.append(f[1] * u.c[2] + f[2] * u.c[1] * u.c[1] / 2)
-                return Jet(out)
+                return Jet(_compose(f, u.c))
             return _ufunc(apply)
 
         def cos(v):
             s, c = v.sin(), v.cos()
-            return c, -s, -c
+            return c, -s, -c, s
 
         def sin(v):
             s, c = v.sin(), v.cos()
-            return s, c, -s
+            return s, c, -s, -c
 
         def cosh(v):
             s, c = v.sinh(), v.cosh()
-            return c, s, c
+            return c, s, c, s
 
         def sinh(v):
             s, c = v.sinh(), v.cosh()
-            return s, c, s
+            return s, c, s, c
 
         def sqrt(v):
             r = v.sqrt()
-            return r, 1 / (2 * r), -1 / (4 * r * r * r)
+            r3 = r * r * r
+            return r, 1 / (2 * r), -1 / (4 * r3), 3 / (8 * r3 * r * r)
 
         self.cos, self.sin = lift(cos), lift(sin)
         self.cosh, self.sinh, self.sqrt = lift(cosh), lift(sinh), lift(sqrt)
@@ -195,20 +208,20 @@ class BallJet(Ball):
                 return base(np.array([u], dtype=object))[0]
             r = base(np.array([u.c[0]], dtype=object))[0]
             r3 = r * r * r
-            d1 = 1 / (4 * r3)
-            out = [r, d1 * u.c[1]]
-            if len(u.c) > 2:
-                d2 = -3 / (16 * r3 * r3 * r)
-                out.append(d1 * u.c[2] + d2 * u.c[1] * u.c[1] / 2)
-            return Jet(out)
+            r7 = r3 * r3 * r
+            # x**(1/4): derivatives 1/(4 r**3), -3/(16 r**7), 21/(64 r**11)
+            f = (r, 1 / (4 * r3), -3 / (16 * r7), 21 / (64 * r7 * r3 * r))
+            return Jet(_compose(f, u.c))
         return _ufunc(root)(x)
 
     def is_complex(self, x):
         return True
 
     def norm_variable(self, X):
-        """Jets ``(0, |X'|, |X''/2|)`` (infinity norms over the rows, upper bounds) per
-        element of the arrays of the matrix ``X`` (nested lists of equally shaped arrays)."""
+        """Jets ``(0, |X1|, |X2|, ...)`` (the norms of the Taylor coefficients of ``X``,
+        infinity norms over the rows, upper bounds) per element of the arrays of the matrix
+        ``X`` (nested lists of equally shaped arrays): a scalar series in this variable
+        majorizes the matrix series in ``X`` coefficient by coefficient."""
         flint = self.flint
         n = len(X)
         shape = np.shape(X[0][0])
@@ -228,15 +241,16 @@ class BallJet(Ball):
             out[idx] = Jet((flint.acb(0), *bounds))
         return out
 
-    def widen(self, x, radius, wrt=None, slope=None, curve=None):
+    def widen(self, x, radius, wrt=None, slope=None, curve=None, third=None):
         """``x`` with the tail ``T`` of a truncated series in ``wrt`` (a jet): ``radius``
-        bounds ``|T|``, ``slope`` ``|T'|`` and ``curve`` ``|T''|`` (derivatives in the
-        series variable) where the series is summed; the jet's coefficients get
-        ``T' x1`` and ``T' x2 + T'' x1**2 / 2`` (``x1, x2`` those of ``wrt``).
+        bounds ``|T|``, ``slope``, ``curve`` and ``third`` bound its first three derivatives
+        in the series variable where the series is summed; the jet's coefficients get
+        those of ``T(x)`` by the chain rule (``x1, x2, x3`` those of ``wrt``): ``T' x1``,
+        ``T' x2 + T'' x1**2 / 2``, ``T' x3 + T'' x1 x2 + T''' x1**3 / 6``.
 
-        Without the bounds its derivatives need, a tail is refused (a jet must not lose
-        them)."""
-        if slope is None or (self.order > 1 and curve is None):
+        Without the bounds its order needs, a tail is refused (a jet must not lose them)."""
+        if (slope is None or (self.order > 1 and curve is None)
+                or (self.order > 2 and third is None)):
             raise NotImplementedError("a series tail without bounds on its derivatives")
         flint = self.flint
 
@@ -253,15 +267,14 @@ class BallJet(Ball):
             # float bounds computed in floats: a margin for their own rounding
             return v * (1 + 1e-14) + 1e-300
 
-        r0, s, k = (up(float(flint.arb(self.exact(v).c[0]).upper())) for v in
-                    (radius, slope, curve if curve is not None else 0))
+        r0, s, k, t = (up(float(flint.arb(self.exact(v).c[0]).upper())) for v in
+                       (radius, slope, curve if curve is not None else 0,
+                        third if third is not None else 0))
 
         def add(v, w):
-            x = w.c if isinstance(w, Jet) else (w, 0, 0)
-            x1 = upper(x[1]) if len(x) > 1 else 0.0
-            out = [v.c[0] + ball(r0), v.c[1] + ball(up(s * x1))]
-            if len(v.c) > 2:
-                x2 = upper(x[2]) if len(x) > 2 else 0.0
-                out.append(v.c[2] + ball(up(s * x2 + k * x1 * x1 / 2)))
-            return Jet(out)
+            x = w.c if isinstance(w, Jet) else (w, 0, 0, 0)
+            x1, x2, x3 = ((upper(x[i]) if len(x) > i else 0.0) for i in (1, 2, 3))
+            bounds = [r0, up(s * x1), up(s * x2 + k * x1 * x1 / 2),
+                      up(s * x3 + k * x1 * x2 + t * x1 * x1 * x1 / 6)]
+            return Jet([c + ball(b) for c, b in zip(v.c, bounds)])
         return np.frompyfunc(add, 2, 1)(x, wrt)

@@ -91,11 +91,13 @@ def _c_series(ar: Arithmetic, x):
         for k in range(K - 2, -1, -1):
             acc = acc * x + inv[4 * k + j]
         # the tail beyond K terms, and (for jets) the tails of its derivatives in x: the
-        # terms k x**(k-1)/(4k+j)! and k(k-1) x**(k-2)/(4k+j)! shrink 2x as well, so
-        # their sums are below 2K/(4K+j)! and 2K(K-1)/(4K+j)!
-        out.append(ar.widen(acc, sp.Rational(2, math.factorial(4 * K + j)), wrt=x,
-                            slope=sp.Rational(2 * K, math.factorial(4 * K + j)),
-                            curve=sp.Rational(2 * K * (K - 1), math.factorial(4 * K + j))))
+        # terms k x**(k-1)/(4k+j)!, k(k-1) x**(k-2)/(4k+j)! and k(k-1)(k-2) x**(k-3)/(4k+j)!
+        # shrink 2x as well, so their sums are below 2K/(4K+j)!, 2K(K-1)/(4K+j)! and
+        # 2K(K-1)(K-2)/(4K+j)!
+        f = math.factorial(4 * K + j)
+        out.append(ar.widen(acc, sp.Rational(2, f), wrt=x, slope=sp.Rational(2 * K, f),
+                            curve=sp.Rational(2 * K * (K - 1), f),
+                            third=sp.Rational(2 * K * (K - 1) * (K - 2), f)))
     return out
 
 
@@ -360,8 +362,9 @@ def coupled_matrices(ar: Arithmetic, consts: dict, lam2, lam=None) -> np.ndarray
         tail = 2 * rho_exact**K / f
         slope = 2 * K * rho_exact ** (K - 1) / f
         curve = 2 * K * (K - 1) * rho_exact ** max(K - 2, 0) / f
-        c.append([[ar.widen(v, tail, wrt=wrt, slope=slope, curve=curve) for v in row]
-                  for row in cj])
+        third = 2 * K * (K - 1) * (K - 2) * rho_exact ** max(K - 3, 0) / f
+        c.append([[ar.widen(v, tail, wrt=wrt, slope=slope, curve=curve, third=third)
+                   for v in row] for row in cj])
     Xc = [None, _matmul(X, c[1]), _matmul(X, c[2]), _matmul(X, c[3])]
     # scaled blocks V[a][b]: c_(b-a) above the diagonal, X c_(4+b-a) below
     l = consts["l"]
