@@ -10,8 +10,9 @@
 Models come from files (:func:`load`), from TOML text (:func:`loads`), from plain
 dicts laid out like a file (:func:`from_dict`) or are built in code from
 :class:`Beam`, :class:`Spring`, :class:`Mass`, :class:`RigidBody` (with its
-:class:`Attachment` points), :func:`joint` (beam ends joined at one point) and
-:func:`oscillator` (a sprung mass). Results print as tables,
+:class:`Attachment` points), :func:`joint` (beam ends joined at one point),
+:func:`oscillator` (a sprung mass) and :class:`Layer` (a continuous elastic or
+viscoelastic layer between two beams). Results print as tables,
 render as HTML/LaTeX in Jupyter, and have ``to_dict()``/``to_json()`` (the
 command line's JSON) and ``plot()`` (a :class:`matplotlib.figure.Figure`).
 
@@ -19,6 +20,8 @@ command line's JSON) and ``plot()`` (a :class:`matplotlib.figure.Figure`).
 command line                    Python
 ==============================  =========================================
 ``symtmm solve M --count N``    ``solve(model, count=N)``
+``solve M --certified`` (damped) ``solve(model, ..., prove_count=True)`` and
+                                ``certify(model, spectrum)``
 ``symtmm modes M --count N``    ``modes(model, count=N)``
 ``symtmm sweep M --param P …``  ``sweep(model, "P", A, B, steps, count=K)``
 ``symtmm scan M --omega-max W`` ``scan(model, omega_max=W)``
@@ -52,19 +55,21 @@ from .characteristic import characteristic_equation
 from .codegen import generate
 from .drawing import animate_mode, draw_model
 from .limits import DERIVE_SECONDS
-from .model import Attachment, Beam, Mass, Model, RigidBody, Spring, joint, oscillator
+from .model import Attachment, Beam, Layer, Mass, Model, RigidBody, Spring, joint, oscillator
 from .modelfile import from_dict as _from_dict
 from .modelfile import load as _load_file
 from .modelfile import loads as _loads_text
 from .modes import evaluate_mode
 from .modes import mode_shapes as modes
 from .plot import plot_modes, plot_scan, plot_scan_map, plot_sweep
+from .roots.certified import certify
 from .scan import scan
 from .solve import METHODS, solve
 from .sweep import sweep
 
-__all__ = ["METHODS", "Attachment", "Beam", "Mass", "Model", "RigidBody", "Spring",
-           "animate_mode", "codegen", "derive", "draw_model", "evaluate_mode", "from_dict",
+__all__ = ["METHODS", "Attachment", "Beam", "Layer", "Mass", "Model", "RigidBody", "Spring",
+           "animate_mode", "certify", "codegen", "derive", "draw_model", "evaluate_mode",
+           "from_dict",
            "joint", "load", "loads", "modes", "oscillator",
            "plot_modes", "plot_scan", "plot_scan_map", "plot_sweep", "scan", "solve", "sweep"]
 
