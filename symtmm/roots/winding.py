@@ -236,8 +236,12 @@ def _split(K, k) -> tuple:
             if isinstance(c, int):
                 continue
             re, im = c.real, c.imag
-            mid[r, r + j] = mid[r + j, r] = complex(float(re.mid()), float(im.mid()))
-            rad[r, r + j] = rad[r + j, r] = float(re.rad()) + float(im.rad())
+            m = complex(float(re.mid()), float(im.mid()))
+            mid[r, r + j] = mid[r + j, r] = m
+            # the balls' radii, and the rounding of their midpoints to doubles (half an
+            # ulp of each part, at most 2**-53 of it; 2**-52 of |m| bounds both)
+            rad[r, r + j] = rad[r + j, r] = (float(re.rad()) + float(im.rad())
+                                             + 2.0**-52 * abs(m) + 1e-300)
     return mid, rad * (1 + 1e-15)
 
 
@@ -259,20 +263,28 @@ def _product(X, B, identity: bool = False) -> tuple:
     if identity:
         mid = mid - np.eye(n)
         rad = rad + 2.0**-52 * np.abs(mid)
-    return mid, rad * (1 + 1e-12) + 1e-300
+    # (the bounds themselves are sums of n nonnegative terms in floats: their own
+    # relative rounding is below gamma(n))
+    return mid, rad * (1 + 2 * _gamma(n) + 1e-15) + 1e-300
 
 
 def _norm(E) -> float:
     """An upper bound of the infinity norm of a ``(mid, rad)`` matrix."""
     mid, rad = E
-    return float(np.max(np.sum(np.abs(mid) + rad, axis=1), initial=0.0)) * (1 + 1e-12) + 1e-300
+    n = mid.shape[0]
+    rows = np.sum(np.abs(mid) + rad, axis=1)
+    return float(np.max(rows, initial=0.0)) * (1 + 2 * _gamma(n) + 1e-15) + 1e-300
 
 
 def _trace(E, flint):
-    """The trace of a ``(mid, rad)`` matrix as a complex ball."""
+    """The trace of a ``(mid, rad)`` matrix as a complex ball (the floating sum's rounding
+    bounded by gamma(n) times the sum of the moduli)."""
     mid, rad = E
+    n = mid.shape[0]
     t = np.trace(mid)
-    r = float(np.trace(rad)) * (1 + 1e-12) + abs(t) * 2.0**-50 + 1e-300
+    d = np.diagonal(mid)
+    r = (float(np.trace(rad)) + _gamma(n) * float(np.sum(np.abs(d)))) * (1 + 2 * _gamma(n)) \
+        + 1e-300
     return flint.acb(flint.arb(t.real, r), flint.arb(t.imag, r))
 
 
