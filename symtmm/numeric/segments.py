@@ -95,9 +95,12 @@ def _c_series(ar: Arithmetic, x):
         # shrink 2x as well, so their sums are below 2K/(4K+j)!, 2K(K-1)/(4K+j)! and
         # 2K(K-1)(K-2)/(4K+j)!
         f = math.factorial(4 * K + j)
+        # (the k-th derivative's terms vanish below k = 2, 3: their sums start there)
+        K2, K3 = max(K, 2), max(K, 3)
         out.append(ar.widen(acc, sp.Rational(2, f), wrt=x, slope=sp.Rational(2 * K, f),
-                            curve=sp.Rational(2 * K * (K - 1), f),
-                            third=sp.Rational(2 * K * (K - 1) * (K - 2), f)))
+                            curve=sp.Rational(2 * K2 * (K2 - 1), math.factorial(4 * K2 + j)),
+                            third=sp.Rational(2 * K3 * (K3 - 1) * (K3 - 2),
+                                              math.factorial(4 * K3 + j))))
     return out
 
 
@@ -308,11 +311,14 @@ def _matmul(X, Y):
 
 def _coupled_terms(ar: Arithmetic, rho: float) -> int:
     """Terms ``K`` of ``c_j(X) = sum_k X**k / (4k+j)!`` for ``|X| <= rho``: the tail is
-    below the precision and beyond ``K`` every term is at most half the one before, so
-    the tail is at most ``2 rho**K / (4K + j)!``."""
+    below the precision and beyond ``K`` every term is at most half the one before (also
+    in the series of its first three derivatives), so the tail is at most ``2 rho**K /
+    (4K + j)!``."""
     log_rho = math.log2(max(rho, 1e-300))
-    K = ar.series_terms(lambda k: k * log_rho + _log2_inverse_factorial(4 * k))
-    while rho > (4 * K + 1) * (4 * K + 2) * (4 * K + 3) * (4 * K + 4) / 2:
+    K = max(3, ar.series_terms(lambda k: k * log_rho + _log2_inverse_factorial(4 * k)))
+    # consecutive terms shrink at least 2x also for the derivatives' series (jets: their
+    # terms carry an extra factor of at most (k + 1)/(k - 2) <= 4 from k = 3 on)
+    while rho > (4 * K + 1) * (4 * K + 2) * (4 * K + 3) * (4 * K + 4) / 8:
         K += 1
     return K
 
@@ -361,8 +367,10 @@ def coupled_matrices(ar: Arithmetic, consts: dict, lam2, lam=None) -> np.ndarray
         f = math.factorial(4 * K + j)
         tail = 2 * rho_exact**K / f
         slope = 2 * K * rho_exact ** (K - 1) / f
-        curve = 2 * K * (K - 1) * rho_exact ** max(K - 2, 0) / f
-        third = 2 * K * (K - 1) * (K - 2) * rho_exact ** max(K - 3, 0) / f
+        # (the k-th derivative's terms vanish below k = 2, 3: their sums start there)
+        K2, K3 = max(K, 2), max(K, 3)
+        curve = 2 * K2 * (K2 - 1) * rho_exact ** (K2 - 2) / math.factorial(4 * K2 + j)
+        third = 2 * K3 * (K3 - 1) * (K3 - 2) * rho_exact ** (K3 - 3) / math.factorial(4 * K3 + j)
         c.append([[ar.widen(v, tail, wrt=wrt, slope=slope, curve=curve, third=third)
                    for v in row] for row in cj])
     Xc = [None, _matmul(X, c[1]), _matmul(X, c[2]), _matmul(X, c[3])]
