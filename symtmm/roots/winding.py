@@ -135,13 +135,18 @@ class _Prover:
         with self.box:
             for (a, b), c in zip(segments, centres):
                 rx, ry = abs(b.real - a.real) / 2, abs(b.imag - a.imag) / 2
+                # outward by two ulps in the direction the segment runs: the float centre
+                # and half-length must not leave an end of the segment out of its boxes
+                pad = 2 * math.ulp(max(abs(a.real), abs(b.real), abs(a.imag), abs(b.imag)))
+                rx, ry = (rx + pad if rx else 0.0), (ry + pad if ry else 0.0)
                 steps.append(flint.acb(flint.arb(0, rx), flint.arb(0, ry)))
                 # the top coefficient over the segment as the union over SUB_BOXES pieces
                 # (the enclosure of a box widens much faster than the box)
                 for k in range(SUB_BOXES):
-                    u = a + (b - a) * (k + 0.5) / SUB_BOXES
+                    u = c if SUB_BOXES == 1 else a + (b - a) * (k + 0.5) / SUB_BOXES
                     boxes.append(self.box.variable(flint.acb(
-                        flint.arb(u.real, rx / SUB_BOXES), flint.arb(u.imag, ry / SUB_BOXES))))
+                        flint.arb(u.real, rx / SUB_BOXES + (pad if rx else 0.0)),
+                        flint.arb(u.imag, ry / SUB_BOXES + (pad if ry else 0.0)))))
             lam = np.array(boxes, dtype=object)
             Kb, d12b = assemble(plan, self.box, lam * lam, lam)
         self.evaluations += len(boxes) - len(segments)
@@ -152,7 +157,8 @@ class _Prover:
                 if not trusted[p] or flint.acb(values[p]).contains(0):
                     out.append(None)
                     continue
-                Ktop = _union([_split(Kb[p * m + k], top) for k in range(m)])
+                parts = [_split(Kb[p * m + k], top) for k in range(m)]
+                Ktop = parts[0] if m == 1 else _union(parts)
                 dtop = [_ball_union([flint.acb(d12b[p * m + k][i].c[top]) for k in range(m)])
                         for i in range(len(d12p[p]))]
                 out.append(self._interval(flint.acb(values[p]), Kp[p], Ktop, d12p[p], dtop,
@@ -312,6 +318,8 @@ def proved_count(evaluator, rect: Rectangle, digits: int = 15, spacing=None,
         ``count`` None where the proof did not close: python-flint missing, an element
         without jets (a series tail whose derivative is not bounded), the budget spent.
     """
+    if order not in (2, 3):
+        raise ValueError(f"order must be 2 or 3, not {order!r}")
     if not ball_available():
         return ProvedCount(None, 0, 0, "python-flint is not installed")
     prover = _Prover(evaluator, rect, digits, order)
@@ -363,10 +371,14 @@ def proved_count(evaluator, rect: Rectangle, digits: int = 15, spacing=None,
         total += _principal(c1 - c0)
     if rect.symmetric:
         # the argument at each real end: the multiple of pi inside its segment's interval
-        c_first, _ = intervals[0]
-        c_last, _ = intervals[-1]
+        # (Delta is real on the real axis); one that is not inside means it is not real
+        c_first, h_first = intervals[0]
+        c_last, h_last = intervals[-1]
         start = math.pi * round(c_first / math.pi)
         end = math.pi * round(c_last / math.pi)
+        if abs(c_first - start) > h_first or abs(c_last - end) > h_last:
+            return ProvedCount(None, len(done), prover.evaluations,
+                               "Delta is not real at the ends on the real axis")
         total += (c_first - start) + (end - c_last)
         turns = total / math.pi
     else:
