@@ -128,9 +128,11 @@ def _compose(f, u) -> list:
 
 
 class BallJet(Ball):
-    """Ball arithmetic on :class:`Jet` values of ``order`` 1 or 2 (see the module docstring).
+    """Ball arithmetic on :class:`Jet` values of ``order`` 1 to 3 (see the module docstring).
 
-    Only what the dynamic-stiffness assembly needs: no pivots are decided on jets.
+    Only what the dynamic-stiffness assembly needs: no pivots are decided on jets. Its
+    square and fourth roots are any roots (the kernel only takes even functions of them),
+    chosen with their cuts away from the ball.
     """
 
     name = "balljet"
@@ -170,7 +172,11 @@ class BallJet(Ball):
             return s, c, s, c
 
         def sqrt(v):
-            r = v.sqrt()
+            # a square root whose cut stays away from the ball (i sqrt(-v) left of the
+            # imaginary axis): the kernel's closed forms are even in every root they take,
+            # and a ball straddling the negative axis (a real negative value) would
+            # otherwise come out as everything
+            r = v.sqrt() if v.mid().real >= 0 else flint.acb(0, 1) * (-v).sqrt()
             r3 = r * r * r
             return r, 1 / (2 * r), -1 / (4 * r3), 3 / (8 * r3 * r * r)
 
