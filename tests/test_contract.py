@@ -9,7 +9,8 @@ shares no code with the kernel), for the properties every transfer matrix must
 have (``det U = 1``, ``U(a + b) = U(b) U(a)``), and the arithmetics against each
 other (a ball contains the exact value). The assembled kernel (dynamic stiffness
 ``Delta = det K prod det U12 P``) is checked against ``det R`` of the transfer
-formulation (the product of transfer matrices along x, at 90 digits).
+formulation (the product of transfer matrices along x, at 90 digits), beams joined by
+layers included; the jets of :mod:`symtmm.numeric.jet` against the balls.
 """
 
 import random
@@ -22,7 +23,7 @@ import sympy as sp
 from symtmm.compile import Evaluator
 from symtmm.elements import BeamSegment, EulerBernoulliSegment
 from symtmm.elements.base import LAM
-from symtmm.model import Attachment, Beam, Mass, Model, RigidBody, Spring
+from symtmm.model import Attachment, Beam, Layer, Mass, Model, RigidBody, Spring
 from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
 from symtmm.numeric.plan import StiffnessPlan
 from symtmm.numeric.segments import kind, kind_tables, transfer_matrices
@@ -170,6 +171,13 @@ MODELS = {
                    Beam("v", 1, 1, R(1, 2), x0=1, right="pinned")),
                   bodies=(RigidBody("j", (Attachment("t", 1), Attachment("u", 1),
                                           Attachment("v", 1, True))),)),
+    # beams joined by layers: a damped patch between two, three over one stretch
+    "layers": Model((Beam("a", 1, 1, 1, left="clamped", right="free"),
+                     Beam("b", 2, R(3, 2), 1, left="pinned", right="pinned", kw=4),
+                     Beam("c", 1, 1, R(9, 10), x0=R(1, 10), left="free", right="clamped")),
+                    (Spring("a", "c", R(4, 5), 6),),
+                    layers=(Layer("a", "b", 30, R(1, 2), x1=R(3, 5)),
+                            Layer("b", "c", 20, x0=R(3, 10)))),
 }
 
 
@@ -196,6 +204,38 @@ def test_stiffness_delta_is_the_transfer_determinant(name, arith):
                     if model.damped else None)
         value = fa.delta()[0]
     assert _close(ar, value, exact, abs(complex(exact)))
+
+
+@pytest.mark.skipif(not ball_available(), reason="python-flint not installed")
+@pytest.mark.parametrize("name", list(MODELS))
+def test_jets_hold_the_balls_values(name):
+    """The kernel on first-order jets (symtmm.numeric.jet) gives, as its values, balls that
+    overlap those of the ball arithmetic at the same point, for every model whose
+    elements have jets; the other theories are refused, not approximated."""
+    from symtmm.numeric.jet import BallJet
+    from symtmm.numeric.stiffness import assemble
+    model = MODELS[name].require_numeric()
+    plan = StiffnessPlan(model, 14.0**2)
+    ball, jet = Ball(120), BallJet(120, order=1)
+    lam = R(-1, 5) + 13 * sp.I
+    with ball:
+        z = _exact_number(ball, lam)
+        K, d12 = assemble(plan, ball, ball.array([z * z]), ball.array([z]))
+    if name == "theories":
+        with pytest.raises(NotImplementedError), jet:
+            v = jet.variable(z)
+            assemble(plan, jet, np.array([v * v], dtype=object), np.array([v], dtype=object))
+        return
+    with jet:
+        v = jet.variable(z)
+        Kj, d12j = assemble(plan, jet, np.array([v * v], dtype=object),
+                            np.array([v], dtype=object))
+    for a, b in zip(K.reshape(-1), Kj.reshape(-1)):
+        if isinstance(b, int):
+            continue
+        assert ball.flint.acb(a).overlaps(b.c[0])
+    for a, b in zip(d12.reshape(-1), d12j.reshape(-1)):
+        assert ball.flint.acb(a).overlaps(b.c[0])
 
 
 @pytest.mark.parametrize("arith", ARITHMETICS)
