@@ -62,7 +62,7 @@ import numpy as np
 
 from ..numeric.arith import Ball, ball_available
 from ..numeric.jet import BallJet, Jet
-from ..numeric.stiffness import assemble
+from ..numeric.stiffness import _ldl, assemble
 from .contour import Rectangle
 
 __all__ = ["ProvedCount", "proved_count", "MAX_SEGMENTS"]
@@ -125,12 +125,11 @@ class _Prover:
         """``(centre, half-width)`` of ``arg Delta`` on each segment ``(a, b)``, or None."""
         flint, plan = self.flint, self.plan
         centres = [0.5 * (a + b) for a, b in segments]
-        self.evaluations += 3 * len(segments)
-        # Delta at the centres (band LDL^T, or Arb's determinant where it breaks down)
-        values, trusted = self.ev.delta(centres, self.ball)
+        self.evaluations += 2 * len(segments)
         with self.point:
             lam = np.array([self.point.variable(c) for c in centres], dtype=object)
             Kp, d12p = assemble(plan, self.point, lam * lam, lam)
+        values, trusted = self._delta(centres, Kp, d12p)
         boxes, steps = [], []
         with self.box:
             for (a, b), c in zip(segments, centres):
@@ -164,6 +163,26 @@ class _Prover:
                 out.append(self._interval(flint.acb(values[p]), Kp[p], Ktop, d12p[p], dtop,
                                           dz))
         return out
+
+    def _delta(self, centres, Kp, d12p):
+        """``(Delta, trusted)`` at the centres from the jets' values (their ``K`` and ``det
+        U12`` are the ball arithmetic's): the ball ``LDL^T`` of that band; where it leaves a
+        pivot undecided, the evaluator's own (more bits, or Arb's determinant)."""
+        flint, ball = self.flint, self.ball
+        with ball:
+            K = np.frompyfunc(lambda v: flint.acb(v.c[0]) if isinstance(v, Jet)
+                              else flint.acb(v), 1, 1)(Kp)
+            det12 = np.frompyfunc(lambda v: flint.acb(v.c[0]), 1, 1)(d12p)
+            fa = _ldl(self.plan, ball, K, det12)
+            values, trusted = fa.delta(), fa.trusted.copy()
+        bad = np.nonzero(~trusted)[0]
+        if bad.size:
+            again, ok = self.ev.delta([centres[i] for i in bad], ball)
+            self.evaluations += bad.size
+            values = values.copy()
+            for i, v, good in zip(bad, again, ok):
+                values[i], trusted[i] = v, good
+        return values, trusted
 
     def _interval(self, delta_c, Kp, Ktop, d12p, dtop, dz):
         """The interval of ``arg Delta`` on one segment from the Taylor model ``K(z) in
