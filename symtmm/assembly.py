@@ -232,35 +232,17 @@ class Layout:
                  and _before(la.x1, x_end, sample) is not True]
         if not cover:
             return segs
-        parent = {lvl: lvl for lvl, _ in segs}
-
-        def root(v):
-            while parent[v] != v:
-                v = parent[v]
-            return v
-        for la in cover:
-            parent[root(index[la.a])] = root(index[la.b])
-        groups: dict = {}
-        for lvl, _ in segs:
-            groups.setdefault(root(lvl), []).append(lvl)
-        from .elements.layer import CoupledSegment
-        out = []
-        done = set()
-        beams = self.model.beams
+        from .elements.layer import joined, member
+        groups = joined([lvl for lvl, _ in segs], cover, index)
+        out, done = [], set()
         for lvl, seg in segs:
-            members = groups[root(lvl)]
+            members, used = groups[lvl]
             if len(members) == 1:
                 out.append((lvl, seg))
-                continue
-            if root(lvl) in done:
-                continue
-            done.add(root(lvl))
-            pos = {j: p for p, j in enumerate(members)}
-            couplings = [(pos[index[la.a]], pos[index[la.b]], la.k, la.c) for la in cover
-                         if index[la.a] in pos]
-            out.append((tuple(members), CoupledSegment(
-                [(beams[j].EI, beams[j].m, beams[j].kw) for j in members], x_end - x,
-                couplings)))
+            elif members not in done:
+                done.add(members)
+                out.append((members, member(self.model.beams, members, used, index,
+                                            x_end - x)))
         return tuple(out)
 
     # -- rigid bodies -------------------------------------------------------------------

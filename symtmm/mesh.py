@@ -20,6 +20,7 @@ import sympy as sp
 
 from .assembly import point_elements
 from .elements import Coupling
+from .elements.layer import joined, member
 from .errors import ComputationError, ModelError
 from .limits import MAX_PIECES
 from .model import Model
@@ -183,19 +184,12 @@ class Mesh:
 
         def group(i, xa, xb):
             """The beams joined to ``i`` over ``[xa, xb]`` through layers, and those layers."""
-            found, todo, used = {i}, [i], []
             cover = covering(xa, xb)
-            while todo:
-                v = todo.pop()
-                for la in cover:
-                    if v in la[:2]:
-                        if la not in used:
-                            used.append(la)
-                        w = la[1] if la[0] == v else la[0]
-                        if w not in found:
-                            found.add(w)
-                            todo.append(w)
-            return sorted(found), used
+            if not cover:
+                return [i], []
+            members, used = joined(range(len(model.beams)), [la[4] for la in cover],
+                                   index)[i]
+            return list(members), [la for la in cover if la[4] in used]
 
         def longest(i, length, used):
             beam = model.beams[i]
@@ -263,12 +257,8 @@ class Mesh:
                 if len(members) == 1:
                     self.segments.append((b_idx, beam.segment(length), ia[0], ib[0]))
                 else:
-                    from .elements.layer import CoupledSegment
-                    pos = {j: p for p, j in enumerate(members)}
-                    seg = CoupledSegment(
-                        [(model.beams[j].EI, model.beams[j].m, model.beams[j].kw)
-                         for j in members], length,
-                        [(pos[la[0]], pos[la[1]], la[4].k, la[4].c) for la in used])
+                    seg = member(model.beams, tuple(members), [la[4] for la in used], index,
+                                 length)
                     self.segments.append((tuple(members), seg, ia, ib))
                 for i in ia + ib:
                     self._node_length[i] = max(self._node_length[i], float(length))

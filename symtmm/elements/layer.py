@@ -35,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-__all__ = ["CoupledSegment"]
+__all__ = ["CoupledSegment", "joined", "member"]
 
 
 class CoupledSegment:
@@ -148,3 +148,42 @@ class CoupledSegment:
 
     def __repr__(self):
         return f"CoupledSegment({self.beams}, {self.l}, {self.couplings})"
+
+
+def joined(levels, layers, index) -> dict:
+    """Per level, the beams joined to it through ``layers`` (those covering a stretch)
+    and those layers: ``{level: (members, layers)}``, members sorted; a level no layer
+    touches is alone. ``index`` maps beam names to levels. The layout (transfer walk)
+    and the mesh (stiffness) group the beams of an interval with it.
+
+    Examples
+    --------
+    >>> from symtmm.model import Layer
+    >>> g = joined([0, 1, 2], [Layer("a", "b", 1)], {"a": 0, "b": 1, "c": 2})
+    >>> g[0][0], g[1][0], g[2]
+    ((0, 1), (0, 1), ((2,), []))
+    """
+    parent = {lvl: lvl for lvl in levels}
+
+    def root(v):
+        while parent[v] != v:
+            v = parent[v]
+        return v
+    for la in layers:
+        parent[root(index[la.a])] = root(index[la.b])
+    members: dict = {}
+    for lvl in levels:
+        members.setdefault(root(lvl), []).append(lvl)
+    out = {}
+    for lvl in levels:
+        group = tuple(sorted(members[root(lvl)]))
+        out[lvl] = (group, [la for la in layers if index[la.a] in group] if len(group) > 1
+                    else [])
+    return out
+
+
+def member(beams, levels, layers, index, length) -> CoupledSegment:
+    """The piece ``length`` long of the beams ``levels`` (sorted) joined by ``layers``."""
+    pos = {j: p for p, j in enumerate(levels)}
+    return CoupledSegment([(beams[j].EI, beams[j].m, beams[j].kw) for j in levels], length,
+                          [(pos[index[la.a]], pos[index[la.b]], la.k, la.c) for la in layers])
