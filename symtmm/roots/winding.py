@@ -74,9 +74,6 @@ MAX_SEGMENTS = 20000
 HALF_WIDTH = math.pi / 2 - 0.05
 #: The largest ``|F|`` on a segment (the logarithm's series needs ``q < 1``).
 Q_MAX = 0.5
-#: Pieces of a segment over which the top Taylor coefficient of ``K`` is enclosed (their
-#: union holds it on all of it).
-SUB_BOXES = 1
 #: Order of the Taylor model of ``K`` on a segment (coefficients at the centre up to
 #: ``ORDER - 1``, the last over the segment). Measured on example 4's region to 1500
 #: rad/s: order 2, 1363 segments in 13.9 s; order 3, 1043 segments in 14.4 s (each
@@ -139,27 +136,20 @@ class _Prover:
                 pad = 2 * math.ulp(max(abs(a.real), abs(b.real), abs(a.imag), abs(b.imag)))
                 rx, ry = (rx + pad if rx else 0.0), (ry + pad if ry else 0.0)
                 steps.append(flint.acb(flint.arb(0, rx), flint.arb(0, ry)))
-                # the top coefficient over the segment as the union over SUB_BOXES pieces
-                # (the enclosure of a box widens much faster than the box)
-                for k in range(SUB_BOXES):
-                    u = c if SUB_BOXES == 1 else a + (b - a) * (k + 0.5) / SUB_BOXES
-                    boxes.append(self.box.variable(flint.acb(
-                        flint.arb(u.real, rx / SUB_BOXES + (pad if rx else 0.0)),
-                        flint.arb(u.imag, ry / SUB_BOXES + (pad if ry else 0.0)))))
+                # the top coefficient over the whole segment: its box (padded as dz)
+                boxes.append(self.box.variable(flint.acb(
+                    flint.arb(c.real, rx), flint.arb(c.imag, ry))))
             lam = np.array(boxes, dtype=object)
             Kb, d12b = assemble(plan, self.box, lam * lam, lam)
-        self.evaluations += len(boxes) - len(segments)
-        m, top = SUB_BOXES, self.order
+        top = self.order
         out = []
         with self.ball, np.errstate(all="ignore"):
             for p, dz in enumerate(steps):
                 if not trusted[p] or flint.acb(values[p]).contains(0):
                     out.append(None)
                     continue
-                parts = [_split(Kb[p * m + k], top) for k in range(m)]
-                Ktop = parts[0] if m == 1 else _union(parts)
-                dtop = [_ball_union([flint.acb(d12b[p * m + k][i].c[top]) for k in range(m)])
-                        for i in range(len(d12p[p]))]
+                Ktop = _split(Kb[p], top)
+                dtop = [flint.acb(v.c[top]) for v in d12b[p]]
                 out.append(self._interval(flint.acb(values[p]), Kp[p], Ktop, d12p[p], dtop,
                                           dz))
         return out
@@ -224,25 +214,6 @@ class _Prover:
         if not half < HALF_WIDTH:
             return None
         return centre, half
-
-
-def _union(parts) -> tuple:
-    """One ``(mid, rad)`` matrix holding every one of ``parts`` (real and imaginary parts
-    bounded separately)."""
-    lo_re = np.min([m.real - r for m, r in parts], axis=0)
-    hi_re = np.max([m.real + r for m, r in parts], axis=0)
-    lo_im = np.min([m.imag - r for m, r in parts], axis=0)
-    hi_im = np.max([m.imag + r for m, r in parts], axis=0)
-    mid = (lo_re + hi_re) / 2 + 1j * (lo_im + hi_im) / 2
-    rad = (hi_re - lo_re) / 2 + (hi_im - lo_im) / 2
-    return mid, rad * (1 + 1e-12) + 1e-300
-
-
-def _ball_union(balls):
-    out = balls[0]
-    for b in balls[1:]:
-        out = out.union(b)
-    return out
 
 
 def _split(K, k) -> tuple:
