@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .arith import Arithmetic
-from .segments import family_matrices, stack_matrix
+from .segments import _matmul, family_matrices, stack_matrix
 
 __all__ = ["segment_stiffness", "coupled_stiffness", "stiffness_values", "assemble", "factor",
            "Factors", "dense"]
@@ -52,11 +52,6 @@ except ImportError:  # pragma: no cover - tested by switching it off
 #: Whether double-precision bands are eliminated by the C loop (where it was built);
 #: tests switch it off to run the numpy loop, which gives the same factors.
 COMPILED = _band is not None
-
-
-def _mul(X, Y):
-    """Product of 2x2 matrices given as nested lists of arrays."""
-    return [[X[i][0] * Y[0][k] + X[i][1] * Y[1][k] for k in range(2)] for i in range(2)]
 
 
 def segment_stiffness(U):
@@ -77,17 +72,7 @@ def segment_stiffness(U):
            [-12.,  -6.,  12.,  -6.],
            [  6.,   2.,  -6.,   4.]])
     """
-    def block(r, c):
-        return [[U[..., r + i, c + k] for k in range(2)] for i in range(2)]
-    U11, U12, U21, U22 = block(0, 0), block(0, 2), block(2, 0), block(2, 2)
-    det = U12[0][0] * U12[1][1] - U12[0][1] * U12[1][0]
-    inv = [[U12[1][1] / det, -U12[0][1] / det], [-U12[1][0] / det, U12[0][0] / det]]
-    A = [[-v for v in row] for row in _mul(inv, U11)]     # f0 = A d0 + inv d1
-    C = [[a + b for a, b in zip(r1, r2)] for r1, r2 in zip(U21, _mul(U22, A))]
-    E = _mul(U22, inv)                                     # f1 = C d0 + E d1
-    f0 = [A[i] + inv[i] for i in range(2)]                 # rows M0, Q0
-    f1 = [C[i] + E[i] for i in range(2)]                   # rows M1, Q1
-    return stack_matrix([f0[1], [-v for v in f0[0]], [-v for v in f1[1]], f1[0]]), det
+    return coupled_stiffness(U, 1)
 
 
 def _inverse(M):
@@ -95,6 +80,9 @@ def _inverse(M):
     elimination without pivoting (for the ``U12`` of short coupled pieces, whose leading
     minors are those of the static flexibility, far from singular)."""
     n = len(M)
+    if n == 2:          # (one beam: the closed form, as cheap as it gets on the hot path)
+        det = M[0][0] * M[1][1] - M[0][1] * M[1][0]
+        return [[M[1][1] / det, -M[0][1] / det], [-M[1][0] / det, M[0][0] / det]], det
     A = [list(row) + [1 + 0 * row[0] if i == j else 0 * row[0] for j in range(n)]
          for i, row in enumerate(M)]
     det = 1 + 0 * M[0][0]
@@ -114,7 +102,7 @@ def coupled_stiffness(U, n: int):
 
     ``U`` ``(..., 4n, 4n)`` in the order ``[Y_1..Y_n, Theta_1.., M_1.., Q_1..]``; rows of
     ``D`` are the end actions ``(Q0, -M0, -Q1, M1)`` (each ``n`` long) conjugate to
-    ``(Y0, Theta0, Y1, Theta1)``, as :func:`segment_stiffness` for one beam.
+    ``(Y0, Theta0, Y1, Theta1)``; for ``n = 1`` the one beam's (:func:`segment_stiffness`).
     """
     m = 2 * n
 
@@ -122,7 +110,6 @@ def coupled_stiffness(U, n: int):
         return [[U[..., r + i, c + k] for k in range(m)] for i in range(m)]
     U11, U12, U21, U22 = block(0, 0), block(0, m), block(m, 0), block(m, m)
     inv, det = _inverse(U12)
-    from .segments import _matmul
     A = [[-v for v in row] for row in _matmul(inv, U11)]      # f0 = A d0 + inv d1
     C = [[a + b for a, b in zip(r1, r2)] for r1, r2 in zip(U21, _matmul(U22, A))]
     E = _matmul(U22, inv)                                      # f1 = C d0 + E d1
