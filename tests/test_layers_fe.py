@@ -90,12 +90,17 @@ def two_pinned_beams_closed_form(EI, m, k, L, count):
 
 
 def test_fe_full_layer_between_pinned_beams_closed_form():
-    """Reference: the closed form above (EI 1, m 1 and EI 2, m 3, L 1, k 100; the first
-    value 8.47033876644455 also given with the layer's specification)."""
+    """Reference: the closed form above (EI 1, m 1 and EI 2, m 3, L 1, k 100), its first
+    value checked against the root of the n = 1 quadratic in omega**2 written out."""
     beams = [pinned("a", 1.0, 1.0), pinned("b", 2.0, 3.0)]
     layers = [dict(between=("a", "b"), k=100.0)]
     ref = two_pinned_beams_closed_form((1.0, 2.0), (1.0, 3.0), 100.0, 1.0, 6)
-    assert ref[0] == pytest.approx(8.47033876644455, rel=1e-14)
+    # m1 m2 w**4 - (m1 (EI2 b4 + k) + m2 (EI1 b4 + k)) w**2 + (EI1 b4 + k)(EI2 b4 + k) - k**2
+    b4, k = np.pi**4, 100.0
+    A, B = 3.0, -(1.0 * (2 * b4 + k) + 3.0 * (b4 + k))
+    C = (b4 + k) * (2 * b4 + k) - k * k
+    first = np.sqrt((-B - np.sqrt(B * B - 4 * A * C)) / (2 * A))
+    assert ref[0] == pytest.approx(first, rel=1e-14)
     out = fe_converged(beams, [], 16, 6, layers=layers)
     assert np.all(np.abs(out["omega"] / ref - 1) < 1e-9), out["omega"] / ref - 1
     assert np.all(np.abs(out["omega"] - ref) <= out["error"])     # the estimate is honest
