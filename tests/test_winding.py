@@ -186,3 +186,46 @@ def test_fourth_root_of_a_ball_holds_the_roots_of_its_points():
         root = ar.root4(np.array([flint.acb(flint.arb(m.real, r), flint.arb(m.imag, r))],
                                  dtype=object))[0]
     assert float(root.real.rad()) < 3 * math.sqrt(2) * r / (4 * abs(m) ** 0.75)
+
+
+def test_layer_count_proved_against_the_identical_pair():
+    """Two identical pinned-pinned beams on a viscoelastic layer (k, c per unit length):
+    in phase the layer does not act (``lam = +-i (n pi)**2``), out of phase ``lam**2 + 2 c
+    lam + (n pi)**4 + 2 k = 0``. The contour's Delta is negative real along stretches of
+    it (each crossing of the cut of arg), and the coupled pieces' balls are wide there."""
+    from symtmm.model import Layer
+    k, c, top = 50.0, 2.0, 200.0
+    beams = (Beam("a", 1, 1, 1, **PP), Beam("b", 1, 1, 1, **PP))
+    model = Model(beams, layers=(Layer("a", "b", k=k, c=c),))
+    roots = []
+    for n in range(1, 8):
+        w2 = (n * math.pi) ** 4
+        roots += [complex(0, math.sqrt(w2)), complex(0, -math.sqrt(w2))]
+        disc = complex(c * c - w2 - 2 * k) ** 0.5
+        roots += [-c + disc, -c - disc]
+    rect = Rectangle(-10.0, 1.0, -top, top, symmetric=True)
+    expected = sum(rect.contains(z) for z in roots)
+    assert expected == 16
+    got = proved_count(Evaluator(model, top * 1.1), rect)
+    assert got.count == expected, got
+
+
+def test_argument_near_the_negative_real_axis_is_an_interval():
+    """Where ``Delta`` is close to the negative real axis its ball straddles the cut of the
+    principal argument; the interval of ``arg Delta`` on the segment must still be narrow,
+    and hold the argument at both ends (mpmath at 50 digits, a second arithmetic)."""
+    from symtmm.roots.winding import _Prover
+    model = load("examples/double_beam_layer.toml").require_numeric()
+    ev = Evaluator(model, 440.0)
+    a, b = complex(16, 393.7), complex(16, 393.74)
+    prover = _Prover(ev, Rectangle(-800.0, 16.0, -400.0, 400.0, True), 15)
+    (got,) = prover.intervals([(a, b)])
+    assert got is not None
+    centre, half = got
+    assert half < 0.01
+    values, trusted = ev.delta([a, b], MP(170))
+    assert trusted.all()
+    for v in values:
+        arg = float(mpmath.arg(v))
+        assert abs(math.remainder(arg - centre, 2 * math.pi)) <= half
+        assert abs(abs(arg) - math.pi) < 0.1        # the case meant: near the cut

@@ -1002,19 +1002,23 @@ def _prove_count(search: _Search, cells, digits: int) -> str:
     """The counts of the region's rectangles proved in balls (:mod:`symtmm.roots.winding`),
     checked against the double-precision ones; a note saying what was proved."""
     from .winding import proved_count
-    segments = 0
-    for rect, n, _ in cells:
-        res = proved_count(search.p.kernel, rect, digits, spacing=search.p.spacing)
-        if res.count is None:
-            return f"the count in the search region is not proved: {res.reason}"
-        if res.count != n:
-            raise ComputationError(f"{rect} holds {res.count} zero(s) of Delta by its winding "
-                                   f"number in ball arithmetic, {n} by the argument principle "
-                                   "in double precision")
-        segments += res.segments
-        search.p.extra += res.evaluations
+    # One contour around the whole region (the rectangles' union, symmetric about the real
+    # axis, its upper half walked): the sides that separate the rectangles inside are not
+    # walked, and near them (a zero close to the strip's edge) segments would be short.
+    rects = [r for r, _, _ in cells]
+    top = max(r.y1 for r in rects)
+    whole = Rectangle(min(r.x0 for r in rects), max(r.x1 for r in rects), -top, top, True)
+    n = sum(k if r.symmetric else 2 * k for r, k, _ in cells)
+    res = proved_count(search.p.kernel, whole, digits, spacing=search.p.spacing)
+    search.p.extra += res.evaluations
+    if res.count is None:
+        return f"the count in the search region is not proved: {res.reason}"
+    if res.count != n:
+        raise ComputationError(f"{whole} holds {res.count} zero(s) of Delta by its winding "
+                               f"number in ball arithmetic, {n} by the argument principle "
+                               "in double precision")
     return ("the count in the search region is proved: the winding number of Delta around "
-            f"it in ball arithmetic ({segments} segments)")
+            f"it in ball arithmetic ({res.segments} segments)")
 
 
 def _count_region(search: _Search, rects):
