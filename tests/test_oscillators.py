@@ -271,3 +271,14 @@ def test_bad_springs_of_a_rigid_body(tmp_path, change, message):
     run = run_cli(["solve", path, "--count", "1"], limit=30)
     assert_contract(run, 30)
     assert run.code == 2 and message in run.stderr, run.stderr
+
+
+def test_every_eigenvalue_of_the_damper_example_is_proved_in_balls():
+    """Near the third eigenvalue the enclosure of Delta over a disk exceeds |Delta| by
+    about 1e14: of the disks 1e10, 1e14 and 1e18 times the box none leaves Rouche's
+    inequality room, a radius between them does."""
+    pytest.importorskip("flint")
+    from symtmm.modelfile import load
+    spec = solve(load("examples/tuned_mass_damper.toml"), count=10)
+    assert len(spec) == 10
+    assert all("ball" in e.proof for e in spec), [e.proof for e in spec]

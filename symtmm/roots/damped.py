@@ -615,31 +615,36 @@ class _Search:
         has one zero ``z* = z - Delta(z) / s``; if it lies in the box and ``eps < |s|
         dist(z*, boundary)`` on the boundary, Rouche's theorem gives ``Delta`` exactly one
         zero in the box too. Every quantity is a ball; the comparisons hold for all of
-        its points. ``rho`` is tried at ``1e10 .. 1e18`` times ``r``: large enough for the
-        remainder, small enough for the ball over the disk to stay narrow (the square is
-        enclosed by :meth:`symtmm.numeric.evaluator.Evaluator.enclose`).
+        its points. ``rho`` is tried at ``1e10, 1e14, 1e18`` times ``r``, then between:
+        large enough for the remainder, small enough for the ball over the disk to stay
+        narrow (the square is enclosed by :meth:`symtmm.numeric.evaluator.Evaluator.enclose`).
         """
         out = [False] * len(items)
         todo = list(range(len(items)))
-        for extra in (0, 30, 60):
-            # the balls of the two points must be narrow beside the box: where rounding
-            # grew too much for that, the same proof with more digits
+        every = (10, 12, 13, 14, 15, 16, 17, 18)
+        # the enclosure over the disk grows faster than its radius beyond some radius,
+        # and its excess over |Delta| can be large (measured: 1e14 near a zero of the
+        # tuned-mass-damper example): where three radii miss the window between the two,
+        # the radii between; the balls of the two points must be narrow beside the box:
+        # where rounding grew too much for that, the same proof with more digits
+        for extra, factors in ((0, (10, 14, 18)), (0, (12, 13, 15, 16, 17)), (30, every),
+                               (60, every)):
             if not todo:
                 break
-            proved = self._rouche_once([items[i] for i in todo], digits + extra)
+            proved = self._rouche_once([items[i] for i in todo], digits + extra, factors)
             for i, ok in zip(todo, proved):
                 out[i] = ok
             todo = [i for i, ok in zip(todo, proved) if not ok]
         return out
 
-    def _rouche_once(self, items, digits) -> list:
-        """One attempt of :meth:`_rouche` at ``digits``."""
+    def _rouche_once(self, items, digits, factors) -> list:
+        """One attempt of :meth:`_rouche` at ``digits``, with disks of radii ``10**k r`` for
+        ``k`` in ``factors``."""
         if not items:
             return []
         import flint
 
         ar = Ball.from_digits(digits)
-        factors = (10, 14, 18)
         points, boxes = [], []
         with ar:
             for z, r in items:
