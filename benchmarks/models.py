@@ -6,11 +6,12 @@ import random
 from fractions import Fraction
 from pathlib import Path
 
-from symtmm.model import Attachment, Beam, Model, RigidBody, Spring
+from symtmm.model import Attachment, Beam, Layer, Model, RigidBody, Spring, oscillator
 from symtmm.modelfile import load
 
 __all__ = ["EXAMPLES", "example", "clamped_clamped", "chain", "fe_input", "global_input",
-           "exact_global_input", "check_ex1_model", "multispan"]
+           "exact_global_input", "check_ex1_model", "multispan", "layered_chain",
+           "sprung_chain"]
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -61,6 +62,55 @@ def chain(levels: int, springs_per_level: int, seed: int = 1) -> Model:
     return Model(tuple(beams), tuple(springs),
                  title=f"random chain, {levels} levels, {springs_per_level} springs per level")
 
+
+
+def layered_chain(levels: int, seed: int = 1) -> Model:
+    """:func:`chain` with each pair of neighbouring levels also joined by a partial layer.
+
+    Level ``i`` and ``i + 1`` share an elastic layer (``k`` from ``100 ..
+    1000`` per unit length) over ``[1/10, 2/5]`` for odd ``i`` and ``[3/5, 9/10]`` for
+    even ``i``: no beam is joined by two layers at one ``x``, so every coupled piece
+    holds two beams and the model grows by pieces, not by the size of one member.
+
+    Examples
+    --------
+    >>> m = layered_chain(3)
+    >>> [(l.a, l.b, str(l.x0), str(l.x1)) for l in m.layers]
+    [('b1', 'b2', '1/10', '2/5'), ('b2', 'b3', '3/5', '9/10')]
+    """
+    base = chain(levels, 2, seed)
+    rng = random.Random(seed * 7919 + levels)
+    layers = tuple(Layer(f"b{i + 1}", f"b{i + 2}", k=rng.randint(100, 1000),
+                         x0="1/10" if i % 2 == 0 else "3/5", x1="2/5" if i % 2 == 0 else "9/10")
+                   for i in range(levels - 1))
+    return Model(base.beams, base.springs, layers=layers,
+                 title=f"random chain with partial layers, {levels} levels")
+
+
+def sprung_chain(levels: int, seed: int = 1) -> Model:
+    """:func:`chain` with a sprung mass (``M`` from ``1/20 .. 1/5``, tuned between 2 and
+    40 rad/s) on every level, at a position of its own.
+
+    Examples
+    --------
+    >>> m = sprung_chain(2)
+    >>> [(b.name, len(b.attachments)) for b in m.bodies]
+    [('o1', 1), ('o2', 1)]
+    """
+    base = chain(levels, 2, seed)
+    rng = random.Random(seed * 104729 + levels)
+    used = {str(s.x) for s in base.springs}
+    bodies = []
+    for i in range(levels):
+        x = next(f"{j}/1000" for j in iter(lambda: rng.randint(1, 999), None)
+                 if f"{j}/1000" not in used)
+        used.add(x)
+        M = Fraction(rng.randint(1, 4), 20)
+        w = rng.randint(2, 40)
+        bodies.append(oscillator(f"o{i + 1}", f"b{i + 1}", x=x, M=str(M),
+                                 k=str(M * w * w)))
+    return Model(base.beams, base.springs, bodies=tuple(bodies),
+                 title=f"random chain with sprung masses, {levels} levels")
 
 def fe_input(model: Model) -> tuple:
     """``(beams, springs)`` as the plain dicts of :mod:`symtmm.fe` (floats)."""

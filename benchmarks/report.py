@@ -200,6 +200,15 @@ def _why_scaling(sc) -> list:
                f"{_g(e['own_segments']['double'])} / {_g(e['own_segments']['high'])}, kernel "
                f"freedoms {_g(e['freedoms']['double'])} / {_g(e['freedoms']['high'])} (double / "
                f"{sc['high_digits']} digits).")
+    for name, fam in sc.get("families", {}).items():
+        fr, fe_ = fam["rows"], fam["exponents"]
+        tail = fe_["levels, largest three sizes"]
+        out.append(f"With {name} (reported): exponent against levels "
+                   f"{_g(fe_['levels']['double'])} / {_g(fe_['levels']['high'])} from "
+                   f"{fr[0]['levels']} to {fr[-1]['levels']} levels (half-bandwidth "
+                   f"{fr[0]['band']} to {fr[-1]['band']}), {_g(tail['double'])} / "
+                   f"{_g(tail['high'])} over the largest three sizes ({fr[-3]['levels']} to "
+                   f"{fr[-1]['levels']} levels).")
     if not t["met"]:
         per = [(r["levels"], r["double_seconds"] / r["freedoms"], r["high_seconds"] / r["freedoms"])
                for r in rows]
@@ -363,6 +372,17 @@ def _scaling(sc) -> list:
                   rows)
     out += _table(["size measure", "exponent, 15 digits", f"exponent, {sc['high_digits']} digits"],
                   [[k, _g(v["double"]), _g(v["high"])] for k, v in sc["exponents"].items()])
+    for name, fam in sc.get("families", {}).items():
+        out += [(f"The same chains with {name} ({fam['model']}; reported, not part of the "
+                 "target):"), ""]
+        rows = [[r["levels"], r["pieces"], r["kinds"], r["freedoms"], r["band"],
+                 _g(r["prepare_seconds"]), _g(r["double_seconds"] * 1e6),
+                 _g(r["high_seconds"] * 1e3)] for r in fam["rows"]]
+        out += _table(["levels", "pieces", "kinds", "freedoms", "band", "plan s",
+                       "15 digits us", f"{sc['high_digits']} digits ms"], rows)
+        out += _table(["size measure", "exponent, 15 digits",
+                       f"exponent, {sc['high_digits']} digits"],
+                      [[k, _g(v["double"]), _g(v["high"])] for k, v in fam["exponents"].items()])
     return out
 
 

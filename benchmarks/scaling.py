@@ -38,7 +38,7 @@ import mpmath
 import numpy as np
 
 from .kernel import internals
-from .models import chain
+from .models import chain, layered_chain, sprung_chain
 
 __all__ = ["run", "SIZES", "fit_exponent", "model_size", "BATCH", "REPEAT"]
 
@@ -83,8 +83,15 @@ def model_size(model) -> dict:
     return dict(levels=n, segments=len(cuts) + 1, size=n * (len(cuts) + 1), own_segments=own)
 
 
-def _prepare(levels: int) -> dict:
-    model = chain(levels, SPRINGS)
+#: The elements of the paper's literature, the same chains carrying them (reported beside
+#: the target): partial layers between neighbouring levels, a sprung mass on every level.
+FAMILIES = {"layers": layered_chain, "sprung masses": sprung_chain}
+#: Levels of those (full run, quick run).
+FAMILY_SIZES = ((1, 2, 5, 10, 20, 50), (1, 2, 5))
+
+
+def _prepare(levels: int, build=None) -> dict:
+    model = chain(levels, SPRINGS) if build is None else build(levels)
     start = time.perf_counter()
     k = internals().kernel(model, OMEGA_MAX)
     omegas = np.linspace(1.0, OMEGA_MAX, BATCH)
@@ -112,6 +119,18 @@ def _time_once(entry: dict, enough: float = 5.0) -> None:
     row["high_rounds"].append((time.perf_counter() - start) / HIGH_BATCH)
 
 
+def _rows(entries, measures) -> tuple:
+    """The rows of timed entries (best of their rounds) and the exponents of their cost
+    against each measure of size."""
+    rows = [e["row"] for e in entries]
+    for row in rows:
+        row["double_seconds"] = min(row["double_rounds"])
+        row["high_seconds"] = min(row["high_rounds"])
+    exps = {key: {p: fit_exponent([r[key] for r in rows], [r[f"{p}_seconds"] for r in rows])
+                  for p in ("double", "high")} for key in measures}
+    return rows, exps
+
+
 def run(quick: bool = False, progress=print) -> dict:
     sizes = SIZES[1] if quick else SIZES[0]
     entries = []
@@ -121,19 +140,31 @@ def run(quick: bool = False, progress=print) -> dict:
     for _ in range(REPEAT):
         for entry in entries:
             _time_once(entry)
-    rows = [e["row"] for e in entries]
-    for row in rows:
-        row["double_seconds"] = min(row["double_rounds"])
-        row["high_seconds"] = min(row["high_rounds"])
-    exps = {}
-    for key in ("size", "levels", "own_segments", "freedoms"):
-        exps[key] = {p: fit_exponent([r[key] for r in rows], [r[f"{p}_seconds"] for r in rows])
-                     for p in ("double", "high")}
+    rows, exps = _rows(entries, ("size", "levels", "own_segments", "freedoms"))
     met = all(v is not None and v <= LIMIT for v in exps["size"].values())
+    families = {}
+    for name, build in FAMILIES.items():
+        entries = []
+        for n in FAMILY_SIZES[1] if quick else FAMILY_SIZES[0]:
+            progress(f"scaling: {name}, {n} levels")
+            entries.append(_prepare(n, build))
+        for _ in range(REPEAT):
+            for entry in entries:
+                _time_once(entry)
+        f_rows, f_exps = _rows(entries, ("levels", "pieces", "freedoms"))
+        # the half-bandwidth grows with the first levels (layers make the freedom graph a
+        # grid of levels by pieces, whose band is set by its narrower side) and then stays:
+        # the slope over the largest sizes is the cost's growth from there on
+        tail = f_rows[-3:]
+        f_exps["levels, largest three sizes"] = {
+            p: fit_exponent([r["levels"] for r in tail], [r[f"{p}_seconds"] for r in tail])
+            for p in ("double", "high")}
+        families[name] = dict(model=f"benchmarks.models.{build.__name__}(levels)",
+                              rows=f_rows, exponents=f_exps)
     return dict(model=f"benchmarks.models.chain(levels, {SPRINGS})", omega_max=OMEGA_MAX,
                 batch=BATCH, high_batch=HIGH_BATCH, high_digits=HIGH_DIGITS,
                 high_arithmetic=internals().arithmetic_name(HIGH_DIGITS), repeat=REPEAT,
-                rows=rows, exponents=exps,
+                rows=rows, exponents=exps, families=families,
                 target=dict(text=f"cost per evaluation against model size (segments x levels), "
                                  f"1 to {sizes[-1]} levels: fitted exponent at most {LIMIT:g} "
                                  f"at 15 (double) and {HIGH_DIGITS} digits",
