@@ -92,6 +92,8 @@ def eigenvalues_below(model: Model, omega: float, cap: int = MAX_EIGENVALUES) ->
     for beam, length in _pieces(model):
         EI, m, kw, N = (float(v) for v in (beam.EI, beam.m, beam.kw, beam.N))
         tension = max(N, 0.0)
+        if beam.is_rod:
+            EI = 0.0        # a rod's axial modes alone (its N is EA): still a lower bound
 
         def below(n, EI=EI, m=m, kw=kw, tension=tension, length=length):
             b = ((n + 0.5) * math.pi + _ROOT_MARGIN) / length

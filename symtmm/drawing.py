@@ -58,6 +58,14 @@ def _dashpot(ax, x, y0, y1, span, **style):
     ax.plot([x, x], [mid, y1], **style)
 
 
+def _drawn_end(beam, side: str) -> str:
+    """The support drawn at an end: a rod's by its axial condition (a wall where it is held
+    along its axis), a beam's as it is."""
+    if not beam.is_rod:
+        return getattr(beam, side)
+    return "clamped" if beam.end(side) in ("fixed", "fixed-axial") else "free"
+
+
 def _support(ax, kind: str, x, y, side: int, span: float):
     """The symbol of a boundary condition at ``(x, y)``; ``side`` -1 left end, +1 right."""
     s = 0.035 * span
@@ -127,8 +135,8 @@ def _draw(ax, model: Model, mode=None, phase: complex = 1, labels: bool = True):
             ax.plot([x0, x1], [level[b.name]] * 2, **line)
         if labels:
             ax.text(lo - 0.06 * span, level[b.name], b.name, ha="right", va="center")
-        _support(ax, b.left, x0, y_at(b.name, x0), -1, span)
-        _support(ax, b.right, x1, y_at(b.name, x1), +1, span)
+        _support(ax, _drawn_end(b, "left"), x0, y_at(b.name, x0), -1, span)
+        _support(ax, _drawn_end(b, "right"), x1, y_at(b.name, x1), +1, span)
     for s in model.springs:
         x = float(s.x)
         ya = y_at(s.a, x)

@@ -366,9 +366,17 @@ def _segment_null_rows(beam, length) -> list:
     ``Y1 = Y0 + l Theta0``; for a shear-flexible piece ``Theta`` is the section's
     rotation, which a rigid motion turns with the line); an axial force
     resists every turn (its energy ``N Y'**2``), leaving the translation; a
-    foundation resists every motion.
+    foundation resists every motion. A rod (:func:`symtmm.model.rod`) translates and
+    twists rigidly, each on its own.
     """
     one, zero = sp.Integer(1), sp.Integer(0)
+    if beam.is_rod:
+        # axial motion and twist are independent: each is rigid (a foundation holds the
+        # axial one), and neither turns the other
+        rows = [[zero, -one, zero, one]]
+        if beam.kw != 0:
+            return rows + [[one, zero, zero, zero], [zero, zero, one, zero]]
+        return rows + [[-one, zero, one, zero]]
     if beam.kw != 0:
         return [[one, zero, zero, zero], [zero, one, zero, zero],
                 [zero, zero, one, zero], [zero, zero, zero, one]]

@@ -48,7 +48,8 @@ from .limits import (
     MAX_POINTS_ON_BEAMS,
 )
 
-__all__ = ["Beam", "Spring", "Mass", "Layer", "Attachment", "RigidBody", "joint", "oscillator",
+__all__ = ["Beam", "Spring", "Mass", "Layer", "Attachment", "RigidBody", "joint", "oscillator", "rod",
+           "ROD_ENDS",
            "Model",
            "BOUNDARY_CONDITIONS", "GROUND", "SPRING_KINDS"]
 
@@ -197,18 +198,22 @@ class Beam:
     kGA: sp.Expr | None = None
 
     def __post_init__(self):
-        where = f"beam '{self.name}'"
+        where = f"{self.kind} '{self.name}'"
         if not isinstance(self.name, str) or not _IDENTIFIER.fullmatch(self.name) or self.name == GROUND:
             raise ModelError(f"invalid name {self.name!r} (an identifier other than 'ground')",
-                             field="beam.name")
+                             field=f"{self.kind}.name")
         for attr in ("EI", "m", "L", "x0", "kw", "N", "rhoI"):
-            value = _exact(getattr(self, attr), f"{where}.{attr}")
+            field_name = f"{where}.{self.field_name(attr)}"
+            value = _exact(getattr(self, attr), field_name)
             object.__setattr__(self, attr, value)
-            if attr not in ("x0", "N"):
-                _check_sign(value, f"{where}.{attr}", allow_zero=attr in ("kw", "rhoI"))
+            if attr not in ("x0", "N") or (attr == "N" and self.is_rod):
+                _check_sign(value, field_name, allow_zero=attr in ("kw", "rhoI"))
         if self.theory not in THEORIES:
             raise ModelError(f"unknown theory {self.theory!r} (use one of {', '.join(THEORIES)})",
                              field=f"{where}.theory")
+        if self.is_rod:
+            self._check_rod(where)
+            return
         if self.kGA is not None:
             if self.theory != "timoshenko":
                 raise ModelError("a shear stiffness needs theory = \"timoshenko\"",
@@ -227,6 +232,50 @@ class Beam:
                 raise ModelError(f"unknown boundary condition {bc!r} "
                                  f"(use one of {', '.join(BOUNDARY_CONDITIONS)})",
                                  field=f"{where}.{attr}")
+
+    def _check_rod(self, where: str) -> None:
+        """A rod's internal fields as :func:`rod` sets them: ``kGA = 0``, the state ends."""
+        if self.kGA is None or sp.sympify(self.kGA) != 0:
+            raise ModelError("a rod is built by symtmm.model.rod (kGA = 0)", field=where)
+        object.__setattr__(self, "kGA", sp.Integer(0))
+        for attr in ("left", "right"):
+            bc = getattr(self, attr)
+            allowed = {v[attr == "right"] for v in
+                       (ROD_ENDS if self.torsion else ROD_ENDS_AXIAL).values()}
+            if bc not in allowed:
+                raise ModelError(f"not a rod end {bc!r} (build rods with symtmm.model.rod)",
+                                 field=f"{where}.{attr}")
+
+    @property
+    def kind(self) -> str:
+        """``"rod"`` for a rod, else ``"beam"`` (the word errors and output use)."""
+        return "rod" if self.is_rod else "beam"
+
+    @property
+    def is_rod(self) -> bool:
+        """A rod in axial (and torsional) vibration: see :func:`rod`."""
+        return self.theory == "rod"
+
+    @property
+    def torsion(self) -> bool:
+        """A rod that also vibrates in torsion (it has a polar inertia ``rhoIp``)."""
+        return self.is_rod and self.rhoI != 0
+
+    def field_name(self, attr: str) -> str:
+        """The model-file field of an attribute: a rod's ``EI``, ``N`` and ``rhoI`` are its
+        ``GJ``, ``EA`` and ``rhoIp``."""
+        if self.is_rod:
+            return {"EI": "GJ", "N": "EA", "rhoI": "rhoIp"}.get(attr, attr)
+        return attr
+
+    def end(self, side: str) -> str:
+        """The boundary condition at ``side`` (``"left"``/``"right"``) as the model file says
+        it (a rod's ``fixed``, ``free``, ...)."""
+        bc = getattr(self, side)
+        if not self.is_rod:
+            return bc
+        table = ROD_ENDS if self.torsion else ROD_ENDS_AXIAL
+        return next(k for k, v in table.items() if v[side == "right"] == bc)
 
     @property
     def x1(self) -> sp.Expr:
@@ -248,6 +297,79 @@ class Beam:
         if self.plain:
             return EulerBernoulliSegment(self.EI, self.m, length, self.kw)
         return BeamSegment(self.EI, self.m, length, self.kw, self.N, self.rhoI, self.kGA)
+
+
+#: The ends of a rod and the boundary conditions of the state they are. A rod's state is
+#: ``(u, phi, T, -N)`` in the slots ``(Y, Theta, M, Q)``: axial displacement, twist, torque
+#: and the axial force with the sign of a transverse force (see :func:`rod`).
+ROD_ENDS = {"fixed": ("clamped", "clamped"), "free": ("free", "free"),
+            "fixed-axial": ("pinned", "pinned"), "fixed-torsion": ("sliding", "sliding")}
+#: The ends of a rod without torsion: its torsion (massless) is held at the left end.
+ROD_ENDS_AXIAL = {"fixed": ("clamped", "pinned"), "free": ("sliding", "free")}
+
+
+def rod(name: str, EA, m, L, x0=0, left: str = "fixed", right: str = "fixed", kw=0,
+        GJ=None, rhoIp=None) -> Beam:
+    """A rod in axial vibration, and in torsion where ``GJ`` and ``rhoIp`` are given (one level).
+
+    Axially ``EA u'' = (m lam**2 + kw) u``, in torsion ``GJ phi'' = rhoIp lam**2 phi``; the two
+    are independent along a straight rod. Its state ``(u, phi, T, -N)`` (axial displacement,
+    twist, torque ``GJ phi'``, axial force ``N = EA u'`` with the sign of a transverse force)
+    is the first-order system of :class:`~symtmm.elements.theories.BeamSegment` with ``kGA = 0``
+    (``Y' = b Q``, ``b = -1/EA``; ``Theta' = M / GJ``, ``M' = rhoIp lam**2 Theta``; ``Q' = -mu
+    Y``), so every formulation of the package takes it as it comes: a spring (dashpot, mass)
+    on it acts axially, a rotational one in torsion.
+
+    Parameters
+    ----------
+    name : str
+    EA, m, L : number or str
+        Axial stiffness, mass per unit length, length.
+    x0 : number or str, optional
+        Global coordinate of the left end.
+    left, right : str
+        ``"fixed"`` or ``"free"``; with torsion also ``"fixed-axial"`` (``u = 0``, free to
+        twist) and ``"fixed-torsion"`` (``phi = 0``, free to move axially).
+    kw : number or str, optional
+        An axial foundation per unit length (``kw u`` resists the motion).
+    GJ, rhoIp : number or str, optional
+        Torsional stiffness and polar inertia per unit length, both or neither. Without
+        them the rod carries no torsion (inside, a massless twist held at its left end,
+        which adds no eigenvalue: rotational springs and inertias are refused on it).
+
+    Examples
+    --------
+    >>> r = rod("r", EA=2, m=1, L=1, left="fixed", right="free")
+    >>> r.kind, r.end("left"), r.end("right"), r.torsion
+    ('rod', 'fixed', 'free', False)
+    >>> rod("t", EA=2, m=1, L=1, GJ=1, rhoIp="1/10", left="fixed-axial").end("left")
+    'fixed-axial'
+    """
+    where = f"rod '{name}'"
+    if (GJ is None) != (rhoIp is None):
+        raise ModelError("torsion needs both GJ and rhoIp", field=f"{where}."
+                         + ("rhoIp" if rhoIp is None else "GJ"))
+    torsion = GJ is not None
+    table = ROD_ENDS if torsion else ROD_ENDS_AXIAL
+    ends = []
+    for i, (side, bc) in enumerate((("left", left), ("right", right))):
+        if not isinstance(bc, str) or bc not in table:
+            raise ModelError(f"unknown rod end {bc!r} (use one of {', '.join(table)})",
+                             field=f"{where}.{side}")
+        ends.append(table[bc][i])
+    EA_exact = _exact(EA, f"{where}.EA")
+    L_exact = _exact(L, f"{where}.L")
+    for value, what in ((EA_exact, "EA"), (L_exact, "L")):
+        _check_sign(value, f"{where}.{what}", allow_zero=False)
+    # without torsion the twist's stiffness only scales a constant factor of Delta: EA L**2
+    # keeps it of the axial stiffness's order
+    stiffness = GJ if torsion else EA_exact * L_exact**2
+    if torsion:
+        rhoIp_exact = _exact(rhoIp, f"{where}.rhoIp")
+        if rhoIp_exact.is_number and not rhoIp_exact.is_positive:
+            raise ModelError(f"must be positive, got {short(rhoIp_exact)}", field=f"{where}.rhoIp")
+    return Beam(name, stiffness, m, L_exact, x0, left=ends[0], right=ends[1], kw=kw,
+                theory="rod", N=EA_exact, rhoI=rhoIp if torsion else 0, kGA=0)
 
 
 @dataclass(frozen=True)
@@ -669,11 +791,14 @@ class Model:
             _check_magnitude(self._value(expr, name), name)
         resolved = {b.name: self._resolved_beam(b) for b in self.beams}
         for beam in resolved.values():
-            for attr in ("EI", "m", "L"):
-                _check_sign(getattr(beam, attr), f"beam '{beam.name}'.{attr}", allow_zero=False)
-            _check_sign(beam.kw, f"beam '{beam.name}'.kw", allow_zero=True)
-            _check_sign(beam.rhoI, f"beam '{beam.name}'.rhoI", allow_zero=True)
-            if beam.kGA is not None:
+            where = f"{beam.kind} '{beam.name}'"
+            # (a rod's EI without torsion is EA L**2: EA is named first)
+            for attr in ("N", "m", "L", "EI") if beam.is_rod else ("EI", "m", "L"):
+                _check_sign(getattr(beam, attr), f"{where}.{beam.field_name(attr)}",
+                            allow_zero=False)
+            _check_sign(beam.kw, f"{where}.kw", allow_zero=True)
+            _check_sign(beam.rhoI, f"{where}.{beam.field_name('rhoI')}", allow_zero=True)
+            if beam.kGA is not None and not beam.is_rod:
                 _check_sign(beam.kGA, f"beam '{beam.name}'.kGA", allow_zero=False)
                 margin = beam.kGA + beam.N
                 if margin.is_number and not margin.is_positive:
@@ -689,6 +814,14 @@ class Model:
                 if end == GROUND:
                     continue
                 _check_inside(x, resolved[end], f"{where}.x")
+            kinds = {resolved[e].is_rod for e in (spring.a, spring.b) if e != GROUND}
+            if len(kinds) > 1:
+                raise ModelError("a spring joins two beams or two rods: a beam's deflection "
+                                 "and a rod's axial motion are not along one line",
+                                 field=f"{where}.between")
+            if spring.kind == "rotational":
+                _no_twist(resolved, (spring.a, spring.b), f"{where}.kind",
+                          "a rotational spring on a rod acts in torsion")
             for attr in ("k", "c"):
                 _check_sign(self.value(getattr(spring, attr)), f"{where}.{attr}", allow_zero=True)
         for mass in self.masses:
@@ -700,6 +833,9 @@ class Model:
             _check_inside(self.value(mass.x), resolved[mass.beam], f"{where}.x")
             for attr in ("M", "J"):
                 _check_sign(self.value(getattr(mass, attr)), f"{where}.{attr}", allow_zero=True)
+            if self.value(mass.J) != 0:
+                _no_twist(resolved, (mass.beam,), f"{where}.J",
+                          "a mass's J on a rod is its polar inertia")
         for layer in self.layers:
             where = f"layer {layer.a}-{layer.b}"
             for end in (layer.a, layer.b):
@@ -755,6 +891,13 @@ class Model:
                 seen.add((att.beam, x))
             for attr in ("M", "J"):
                 _check_sign(self.value(getattr(body, attr)), f"{where}.{attr}", allow_zero=True)
+            rods = {resolved[a.beam].is_rod for a in body.attachments}
+            if True in rods and (len(rods) > 1 or body.rotates):
+                # a body that turns moves the points of a beam by its lever arms; along a rod
+                # every point of it moves alike
+                raise ModelError("a body on rods moves along them without turning (an "
+                                 "oscillator or a joint of kind 'hinge' with no J), and joins "
+                                 "rods only", field=f"{where}.attach")
             for att in body.attachments:
                 if att.elastic:
                     for attr in ("k", "c"):
@@ -1015,6 +1158,14 @@ class Model:
         return self.resolved()
 
 
+def _no_twist(resolved: dict, ends, field_name: str, what: str) -> None:
+    """Refuse a torsional element on a rod without torsion (its twist is a placeholder)."""
+    for end in ends:
+        if end != GROUND and resolved[end].is_rod and not resolved[end].torsion:
+            raise ModelError(f"{what}, and rod '{end}' has no torsion (give it GJ and rhoIp)",
+                             field=field_name)
+
+
 def check_size(beams: int, points: int, parameters: int, source: str | None = None) -> None:
     """The size of a model within the budgets of :mod:`symtmm.limits`."""
     for count, limit, what, where in ((beams, MAX_BEAMS, "beams", "beam"),
@@ -1046,7 +1197,9 @@ def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
     """All numeric fields of ``model`` as (field name, expression) pairs."""
     for beam in model.beams:
         for attr in ("EI", "m", "L", "x0", "kw"):
-            yield f"beam '{beam.name}'.{attr}", getattr(beam, attr)
+            if attr == "EI" and beam.is_rod and not beam.torsion:
+                continue        # EA L**2, a placeholder of EA and L (see rod)
+            yield f"{beam.kind} '{beam.name}'.{beam.field_name(attr)}", getattr(beam, attr)
     for spring in model.springs:
         for attr in ("x", "k", "c"):
             yield f"spring {spring.a}-{spring.b}.{attr}", getattr(spring, attr)
@@ -1055,8 +1208,8 @@ def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
             yield f"mass on {mass.beam}.{attr}", getattr(mass, attr)
     for beam in model.beams:
         for attr in ("N", "rhoI"):
-            yield f"beam '{beam.name}'.{attr}", getattr(beam, attr)
-        if beam.kGA is not None:
+            yield f"{beam.kind} '{beam.name}'.{beam.field_name(attr)}", getattr(beam, attr)
+        if beam.kGA is not None and not beam.is_rod:
             yield f"beam '{beam.name}'.kGA", beam.kGA
     for body in model.bodies:
         for attr in ("M", "J", "xc"):

@@ -55,6 +55,7 @@ from .model import (
     Spring,
     check_size,
     oscillator,
+    rod,
 )
 
 if sys.version_info >= (3, 11):
@@ -64,10 +65,14 @@ else:  # pragma: no cover
 
 __all__ = ["load", "loads", "from_dict", "parse_assignment"]
 
-_TOP = {"title", "parameters", "beam", "spring", "mass", "rigid", "joint", "oscillator",
+_TOP = {"title", "parameters", "beam", "rod", "spring", "mass", "rigid", "joint", "oscillator",
         "layer"}
 _BEAM_REQUIRED = ("name", "EI", "m", "L", "left", "right")
 _BEAM_OPTIONAL = ("x0", "kw", "theory", "N", "rhoI", "kGA")
+_ROD_REQUIRED = ("name", "EA", "m", "L", "left", "right")
+_ROD_OPTIONAL = ("x0", "kw", "GJ", "rhoIp")
+#: spring kinds a model file may name on rods, and the kind of the state slot they act on
+ROD_SPRING_KINDS = {"axial": "translational", "torsional": "rotational"}
 _RIGID_REQUIRED = ()
 _RIGID_OPTIONAL = ("name", "attach", "M", "J", "xc", "hinged", "springs", "k", "c")
 _JOINT_REQUIRED = ("ends",)
@@ -239,11 +244,14 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
     title = data.get("title", "")
     if not isinstance(title, str):
         raise ModelError("expected a string", field="title")
-    beams_raw = data.get("beam")
-    if beams_raw is None:
-        raise ModelError("missing field (at least one [[beam]] table)", field="beam")
+    if data.get("beam") is None and data.get("rod") is None:
+        raise ModelError("missing field (at least one [[beam]] or [[rod]] table)", field="beam")
+    beams_raw = data.get("beam", [])
     if not isinstance(beams_raw, list):
         raise ModelError("expected an array of tables: write [[beam]]", field="beam")
+    rods_raw = data.get("rod", [])
+    if not isinstance(rods_raw, list):
+        raise ModelError("expected an array of tables: write [[rod]]", field="rod")
     springs_raw = data.get("spring", [])
     if not isinstance(springs_raw, list):
         raise ModelError("expected an array of tables: write [[spring]]", field="spring")
@@ -256,7 +264,7 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         raise ModelError("expected an array of tables: write [[layer]]", field="layer")
     attachments += 2 * len(layers_raw)
     raw_params = data.get("parameters", {})
-    check_size(len(beams_raw), len(springs_raw) + (len(tables[0]) if isinstance(tables[0], list)
+    check_size(len(beams_raw) + len(rods_raw), len(springs_raw) + (len(tables[0]) if isinstance(tables[0], list)
                                                    else 0) + attachments,
                len(raw_params) if isinstance(raw_params, dict) else 0)
 
@@ -298,6 +306,31 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         for value in fields.values():
             known_names |= {s.name for s in value.free_symbols}
 
+    rods = set()
+    for i, raw in enumerate(rods_raw, 1):
+        where = f"rod[{i}]"
+        _check_keys(raw, _ROD_REQUIRED, _ROD_OPTIONAL, where)
+        name = raw["name"]
+        if not isinstance(name, str):
+            raise ModelError(f"expected a string, got {_kind(name)}", field=f"{where}.name")
+        where = f"rod[{i}] ({name})"
+        fields = {k: _number(raw[k], f"{where}.{k}") for k in ("EA", "m", "L")}
+        fields["x0"] = _number(raw.get("x0", 0), f"{where}.x0")
+        fields["kw"] = _number(raw.get("kw", 0), f"{where}.kw")
+        for k in ("GJ", "rhoIp"):
+            if k in raw:
+                fields[k] = _number(raw[k], f"{where}.{k}")
+        for k in ("left", "right"):
+            if not isinstance(raw[k], str):
+                raise ModelError(f"expected a string, got {_kind(raw[k])}", field=f"{where}.{k}")
+        try:
+            beams.append(rod(name, left=raw["left"], right=raw["right"], **fields))
+        except ModelError as exc:
+            raise ModelError(exc.message, field=_rename(exc.field, where)) from None
+        rods.add(name)
+        for value in fields.values():
+            known_names |= {s.name for s in value.free_symbols}
+
     springs = []
     for i, raw in enumerate(springs_raw, 1):
         where = f"spring[{i}]"
@@ -308,6 +341,10 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         kind = raw.get("kind", "translational")
         if not isinstance(kind, str):
             raise ModelError(f"expected a string, got {_kind(kind)}", field=f"{where}.kind")
+        if kind in ROD_SPRING_KINDS:
+            if not all(end in rods or end == "ground" for end in between):
+                raise ModelError(f"kind = \"{kind}\" is for springs on rods", field=f"{where}.kind")
+            kind = ROD_SPRING_KINDS[kind]
         try:
             springs.append(Spring(between[0], between[1], kind=kind, **fields))
         except ModelError as exc:

@@ -127,7 +127,7 @@ def plot_modes(modes, variable: str = "Y", which=None, x_label: str = "x [m]",
         for spring in modes.model.springs:
             if beam.name in (spring.a, spring.b):
                 ax.axvline(float(spring.x), color="0.75", lw=0.8, ls=":")
-        ax.set_title(f"beam {beam.name} ({beam.left}-{beam.right})")
+        ax.set_title(f"{beam.kind} {beam.name} ({beam.end('left')}-{beam.end('right')})")
         ax.set_ylabel(_UNITS[variable] + (" (mass-normalised)" if not damped else " (max |Y| = 1)"))
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel(x_label + "   (dotted: springs)" if modes.model.springs else x_label)

@@ -224,7 +224,7 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
     # the curve costs about as much as a search up to omega_max (segments cut by wave number)
     check_search(model, omega_max=omega_max, sigma_max=sigma_max)
     plan = transfer.TransferPlan(model)
-    name, scale = omega_scale(model)
+    scale = omega_scale(model)
     if spacing == "Omega":
         omega = np.linspace(math.sqrt(omega_min), math.sqrt(omega_max), int(points)) ** 2
         omega[[0, -1]] = omega_min, omega_max
@@ -257,5 +257,6 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
         map_omega = np.linspace(omega_min, omega_max, n_im)
         lam = -map_sigma[None, :] + 1j * map_omega[:, None]
         map_log10 = _log10_abs(plan, lam)
-    return Scan(omega, curve, spectrum, (name, float(scale)), model.source or "", map_sigma,
+    scale = None if scale is None else (scale[0], float(scale[1]))
+    return Scan(omega, curve, spectrum, scale, model.source or "", map_sigma,
                 map_omega, map_log10, tuple(notes), model.title)

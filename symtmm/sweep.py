@@ -420,6 +420,8 @@ class Sweep(Tabular):
                     elif quantity == "zeta":
                         ys.append(-lam.real / abs(lam) if lam != 0 else 0.0)
                     elif quantity == "Omega":
+                        if not spectrum.omega_scale:
+                            raise ValueError("Omega needs a beam (a model of rods has none)")
                         ys.append((lam.imag / float(spectrum.omega_scale[1])) ** 0.5)
                     else:
                         raise ValueError(f"unknown quantity {quantity!r}")

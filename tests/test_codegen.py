@@ -102,6 +102,44 @@ k = 6
 """
 
 
+RODS = """
+[parameters]
+k = 7
+[[rod]]
+name = "a"
+EA = 2
+m = 1
+L = 1
+left = "fixed"
+right = "free"
+[[rod]]
+name = "s"
+EA = 1
+m = 2
+L = 1.5
+x0 = 0.25
+GJ = 3
+rhoIp = 0.5
+left = "free"
+right = "fixed-axial"
+[[spring]]
+between = ["a", "s"]
+x = 0.6
+k = "k"
+c = 0.3
+[[spring]]
+between = ["s", "ground"]
+x = 1
+k = 4
+kind = "torsional"
+[[mass]]
+beam = "s"
+x = 1.75
+M = 0.2
+J = 0.1
+"""
+
+
 def _models():
     return {
         "ex1": (load(EXAMPLES + "paper_ex1_ff_cc.toml"), ()),
@@ -110,6 +148,8 @@ def _models():
         "sprung_masses": (load(EXAMPLES + "tuned_mass_damper.toml"), ()),
         "layers": (loads(LAYERS, source="layers.toml"), ()),
         "layers_symbolic": (loads(LAYERS, source="layers.toml"), ("K", "x1")),
+        "rods": (loads(RODS, source="rods.toml"), ()),
+        "rods_symbolic": (loads(RODS, source="rods.toml"), ("k",)),
     }
 
 
@@ -248,7 +288,7 @@ def _agree_reference(name):
     """The probes of a model and their 40-digit references, computed once for all languages."""
     if name not in _AGREE_REFERENCES:
         model, symbolic = MODELS[name]
-        values = {"K": "40", "x1": "0.2"} if symbolic else {}
+        values = {"K": "40", "x1": "0.2", "k": "7"} if symbolic else {}
         ev = Evaluator(_reference_model(model, symbolic, values))
         lams = _lams(np.random.default_rng(7), n=60, scale=20.0)
         _AGREE_REFERENCES[name] = (lams, [float(values[p]) for p in symbolic],

@@ -98,13 +98,24 @@ def test_grid_methods_cannot_prove_a_count():
 # -- the pieces --------------------------------------------------------------------------
 
 
-def test_jets_enclose_the_derivatives_of_the_stiffness():
+def _damped_rods():
+    from symtmm.model import rod
+    return Model((rod("a", EA=900, m=1, L=1, left="fixed", right="free"),
+                  rod("s", EA=400, m=2, L=1, GJ=300, rhoIp="1/2", left="free",
+                      right="fixed-axial")),
+                 (Spring("a", "s", "3/5", k=50, c=2), Spring("s", "ground", 1, 4, 1,
+                                                             kind="rotational")))
+
+
+@pytest.mark.parametrize("build", [_dashpot_beam, _damped_rods])
+def test_jets_enclose_the_derivatives_of_the_stiffness(build):
     """K'(c) from first-order jets at a point, and K''/2 from second-order jets over a box
-    holding c, against mpmath's numerical derivatives of the same entries."""
+    holding c, against mpmath's numerical derivatives of the same entries (a beam; rods,
+    their pieces on both sides of the series' |z| = 1)."""
     from symtmm.numeric.jet import BallJet
     from symtmm.numeric.stiffness import assemble, dense
 
-    model = _dashpot_beam().require_numeric()
+    model = build().require_numeric()
     ev = Evaluator(model, 100.0)
     plan = ev.plan(100.0)
     c = complex(-2.5, 37.0)

@@ -60,6 +60,8 @@ THEORIES = {
     "euler-bernoulli": (),
     "rayleigh": ("rhoI",),
     "timoshenko": ("rhoI", "kGA"),
+    # axial (and torsional) vibration: symtmm.model.rod, the system with kGA = 0
+    "rod": (),
 }
 
 

@@ -38,6 +38,7 @@ from ..errors import ComputationError
 from ..numeric.arith import Arithmetic
 from ..numeric.linalg import cholesky, lower_inverse
 from ..numeric.quadrature import gauss_legendre, gauss_legendre_nodes
+from ..numeric.segments import kind_inertia
 from ..numeric.transfer import block
 
 __all__ = ["Inertia", "Energy", "mass_orthonormaliser", "complex_scaler"]
@@ -184,8 +185,8 @@ def segment_gram(plan, ar: Arithmetic, k: int, lam2, lam2_c: complex, Z0, Z1, di
             F0 = _bilinear_F(ar, None, kappa, EI, Z0)
             return (F1 - F0) * (m / (4 * kappa))
         return _quadrature(plan, ar, k, lam2, lam2_c, Z0, m, None, digits)
-    return _quadrature(plan, ar, k, lam2, lam2_c, Z0, ar.exact(consts[5]), ar.exact(consts[4]),
-                       digits)
+    m, rhoI = kind_inertia(plan.kinds[k])
+    return _quadrature(plan, ar, k, lam2, lam2_c, Z0, ar.exact(m), ar.exact(rhoI), digits)
 
 
 def _quadrature(plan, ar, k, lam2, lam2_c, Z0, m, rhoI, digits):

@@ -41,7 +41,8 @@ import sympy as sp
 
 from .arith import Arithmetic
 
-__all__ = ["eb_constants", "eb_matrices", "theory_constants", "theory_matrices",
+__all__ = ["eb_constants", "eb_matrices", "theory_constants", "theory_matrices", "rod_constants",
+           "rod_matrices", "f_functions", "kind_inertia",
            "coupled_constants", "coupled_matrices", "transfer_matrices", "family_matrices",
            "stack_matrix", "kind", "kind_order", "kind_size", "kind_tables", "segment_matrix"]
 
@@ -264,6 +265,111 @@ def theory_matrices(ar: Arithmetic, consts: dict, lam2) -> np.ndarray:
     return U
 
 
+# -- rods ------------------------------------------------------------------------------------
+def rod_constants(ar: Arithmetic, segments) -> dict:
+    """Constant arrays for :func:`rod_matrices` from ``(EA, GJ, m, kw, rhoIp, l)`` per segment.
+
+    ``A = m l**2 / EA``, ``F = kw l**2 / EA`` and ``R = rhoIp l**2 / GJ`` give the arguments
+    ``z_u = A lam**2 + F`` and ``z_t = R lam**2`` of the axial and the torsional motion.
+    """
+    cols = {"EA": [], "GJ": [], "m": [], "kw": [], "rhoIp": [], "l": [], "A": [], "F": [],
+            "R": []}
+    for EA, GJ, m, kw, rhoIp, l in segments:
+        EA, GJ, m, kw, rhoIp, l = (sp.sympify(v) for v in (EA, GJ, m, kw, rhoIp, l))
+        for k, v in (("EA", EA), ("GJ", GJ), ("m", m), ("kw", kw), ("rhoIp", rhoIp), ("l", l),
+                     ("A", m * l**2 / EA), ("F", kw * l**2 / EA), ("R", rhoIp * l**2 / GJ)):
+            cols[k].append(ar.exact(v))
+    return {k: ar.array(v) for k, v in cols.items()}
+
+
+def _f_series(ar: Arithmetic, z):
+    """``F0 = cosh(sqrt z)`` and ``F1 = sinh(sqrt z) / sqrt z`` by their series, ``|z| < 1``."""
+    # 1/(2K)! below the precision; for |z| <= 1 consecutive terms shrink at least 12x, so
+    # each tail (and those of its derivatives in z, as in _c_series) is at most twice its
+    # first term's bound
+    K = ar.series_terms(lambda k: _log2_inverse_factorial(2 * k))
+    inv = _inverse_factorials(ar, 2 * K + 2)
+    out = []
+    for j in range(2):
+        acc = 0 * z + inv[2 * (K - 1) + j]
+        for k in range(K - 2, -1, -1):
+            acc = acc * z + inv[2 * k + j]
+        f = math.factorial(2 * K + j)
+        K2, K3 = max(K, 2), max(K, 3)
+        out.append(ar.widen(acc, sp.Rational(2, f), wrt=z, slope=sp.Rational(2 * K, f),
+                            curve=sp.Rational(2 * K2 * (K2 - 1), math.factorial(2 * K2 + j)),
+                            third=sp.Rational(2 * K3 * (K3 - 1) * (K3 - 2),
+                                              math.factorial(2 * K3 + j))))
+    return out
+
+
+def _real_part(v) -> float:
+    """The real part of a number of any arithmetic as a float (a jet's value's, a ball's
+    midpoint's): only to choose a branch, never a bound."""
+    v = v.c[0] if hasattr(v, "c") else v
+    try:
+        return complex(v).real
+    except TypeError:
+        return float(v)
+
+
+def f_functions(ar: Arithmetic, z) -> list:
+    """``F0 = cosh(sqrt z)``, ``F1 = sinh(sqrt z) / sqrt z`` of every element of ``z`` (any
+    shape): entire in ``z``, so any square root serves; the closed forms take the one whose
+    cut is away from ``z`` (``i sqrt(-z)`` where ``Re z < 0``: ``cos`` and ``sin``)."""
+    shape = np.shape(z)
+    flat = np.asarray(z).reshape(-1)
+    big = ar.upper(flat) >= 1.0
+    out = [ar.zeros(flat.shape, like=flat) for _ in range(2)]
+    small = ~big
+    if small.any():
+        for o, v in zip(out, _f_series(ar, flat[small])):
+            o[small] = v
+    if big.any():
+        zb = flat[big]
+        idx = np.nonzero(big)[0]
+        centre = np.array([_real_part(v) for v in zb])
+        for mask, wave in ((centre < 0, True), (centre >= 0, False)):
+            if not mask.any():
+                continue
+            if wave:
+                t = ar.sqrt(-zb[mask])
+                values = [ar.cos(t), ar.sin(t) / t]
+            else:
+                t = ar.sqrt(zb[mask])
+                values = [ar.cosh(t), ar.sinh(t) / t]
+            if not ar.is_complex(zb):
+                values = [ar.real(v) for v in values]
+            for o, v in zip(out, values):
+                o[idx[mask]] = v
+    return [o.reshape(shape) for o in out]
+
+
+def rod_matrices(ar: Arithmetic, consts: dict, lam2) -> np.ndarray:
+    """Transfer matrices ``(B, S, 4, 4)`` of rod segments at ``lam2`` ``(B,)``.
+
+    The state ``[Y, Theta, M, Q] = [u, phi, T, -N]``: ``Y' = -Q/EA``, ``Q' = -mu Y`` and
+    ``Theta' = M/GJ``, ``M' = rhoIp lam**2 Theta`` (:func:`symtmm.model.rod`), so ``exp(A l)``
+    is ``F0 I + l F1 A`` on each pair, at ``z_u = mu l**2/EA`` and ``z_t = rhoIp lam**2
+    l**2/GJ``.
+    """
+    lam2 = np.asarray(lam2)[:, None]
+    EA, GJ, l = consts["EA"], consts["GJ"], consts["l"]
+    zu = lam2 * consts["A"] + consts["F"]
+    zt = lam2 * consts["R"]
+    u0, u1 = f_functions(ar, zu)
+    t0, t1 = f_functions(ar, zt)
+    mu = consts["m"] * lam2 + consts["kw"]
+    c = consts["rhoIp"] * lam2
+    zero = 0 * u0
+    return stack_matrix([
+        [u0, zero, zero, -l * u1 / EA],
+        [zero, t0, l * t1 / GJ, zero],
+        [zero, c * l * t1, t0, zero],
+        [-mu * l * u1, zero, zero, u0],
+    ])
+
+
 # -- beams joined by layers -----------------------------------------------------------------
 def coupled_constants(ar: Arithmetic, segments) -> dict:
     """Constant arrays for :func:`coupled_matrices` from ``(N, l, beams, couplings)`` per
@@ -402,7 +508,7 @@ def family_matrices(ar: Arithmetic, kinds, lam2, lam=None) -> list:
         if family == "coupled":
             out.append(coupled_matrices(ar, consts, lam2, lam))
         else:
-            out.append((eb_matrices if family == "eb" else theory_matrices)(ar, consts, lam2))
+            out.append(_MATRICES[family](ar, consts, lam2))
     return out
 
 
@@ -411,10 +517,7 @@ def transfer_matrices(ar: Arithmetic, kinds, lam2) -> np.ndarray:
 
     ``family`` is ``"eb"`` or ``"theory"``; each family's segments are evaluated together.
     """
-    parts = []
-    for family, consts in kinds:
-        fn = eb_matrices if family == "eb" else theory_matrices
-        parts.append(fn(ar, consts, lam2))
+    parts = [_MATRICES[family](ar, consts, lam2) for family, consts in kinds]
     return parts[0] if len(parts) == 1 else np.concatenate(parts, axis=1)
 
 
@@ -423,7 +526,7 @@ def kind(seg) -> tuple:
     """``(family, exact constants)`` of a segment element: equal kinds have equal matrices.
 
     ``"eb"``: ``(EI, m, l, kw)``; ``"theory"``: ``(EI, a, b, cN, rhoI, m, kw, l)`` (see
-    :func:`theory_constants`).
+    :func:`theory_constants`); ``"rod"``: ``(EA, GJ, m, kw, rhoIp, l)``.
     """
     from ..elements import EulerBernoulliSegment
     from ..elements.layer import CoupledSegment
@@ -431,15 +534,31 @@ def kind(seg) -> tuple:
         return ("eb", (seg.EI, seg.m, seg.l, seg.kw))
     if isinstance(seg, CoupledSegment):
         return ("coupled", (seg.size, seg.l, seg.beams, seg.couplings))
+    if seg.kGA is not None and seg.kGA == 0:
+        # a rod (symtmm.model.rod): its two motions by their own closed forms
+        return ("rod", (seg.N, seg.EI, seg.m, seg.kw, seg.rhoI, seg.l))
     a, b, cN, _ = seg.coefficients(sp.Integer(0))
     return ("theory", (seg.EI, a, b, cN, seg.rhoI, seg.m, seg.kw, seg.l))
 
 
 def kind_order(kind_) -> tuple:
     """Sort key of segment kinds: the order of :func:`kind_tables`' groups (``"eb"``, then
-    ``"theory"``, then ``"coupled"`` by the number of beams)."""
+    ``"theory"``, ``"rod"``, then ``"coupled"`` by the number of beams)."""
     family, consts = kind_
-    return {"eb": (0, 0), "theory": (1, 0)}.get(family) or (2, consts[0])
+    return {"eb": (0, 0), "theory": (1, 0), "rod": (1, 1)}.get(family) or (2, consts[0])
+
+
+def kind_inertia(kind_) -> tuple:
+    """``(m, rhoI)`` of a 4-state segment kind: the mass and the rotary (a rod's polar)
+    inertia per unit length, for the kinetic energy ``m Y**2 + rhoI Theta**2``."""
+    family, consts = kind_
+    if family == "eb":
+        return consts[1], 0
+    if family == "rod":
+        return consts[2], consts[4]
+    if family == "theory":
+        return consts[5], consts[4]
+    raise ValueError(f"no inertia pair for a {family!r} segment")
 
 
 def kind_size(kind_) -> int:
@@ -455,11 +574,14 @@ def kind_tables(ar: Arithmetic, kinds) -> list:
         raise ValueError("segment kinds must be sorted by kind_order")
     eb = [c for f, c in kinds if f == "eb"]
     th = [c for f, c in kinds if f == "theory"]
+    rods = [c for f, c in kinds if f == "rod"]
     out = []
     if eb:
         out.append(("eb", eb_constants(ar, eb)))
     if th:
         out.append(("theory", theory_constants(ar, th)))
+    if rods:
+        out.append(("rod", rod_constants(ar, rods)))
     sizes = sorted({c[0] for f, c in kinds if f == "coupled"})
     for n in sizes:
         out.append(("coupled", coupled_constants(ar, [c for f, c in kinds
@@ -481,3 +603,7 @@ def segment_matrix(ar: Arithmetic, seg, lam2) -> np.ndarray:
     """
     with ar:
         return transfer_matrices(ar, kind_tables(ar, [kind(seg)]), lam2)[:, 0]
+
+
+#: The transfer matrices of each family of 4-state segments.
+_MATRICES = {"eb": eb_matrices, "theory": theory_matrices, "rod": rod_matrices}

@@ -63,7 +63,7 @@ NU_STEP = 4.0
 
 
 #: where each family keeps a segment's length among its constants
-_LENGTH_AT = {"eb": 2, "theory": 7, "coupled": 1}
+_LENGTH_AT = {"eb": 2, "theory": 7, "rod": 5, "coupled": 1}
 
 
 def _with_length(kind, length):
@@ -183,15 +183,19 @@ class TransferPlan:
         if family == "coupled":
             return [("coupled", self._coupled_piece_tables(ar, k, lengths))]
         tables = dict(self.kind_tables(ar))
-        j = k if family == "eb" else k - sum(f == "eb" for f, _ in self.kinds)
+        j = sum(f == family for f, _ in self.kinds[:k])      # its place in its family
         one = {name: column[j] for name, column in tables[family].items()}
         out = {name: ar.array([value] * n) for name, value in one.items()}
         out["l"] = lengths
+        r = lengths / one["l"]
         if family == "eb":
             # A = m l**4 / EI and F = kw l**4 / EI scale with the fourth power of the length
-            r = lengths / one["l"]
             r4 = (r * r) * (r * r)
             out["A"], out["F"] = r4 * one["A"], r4 * one["F"]
+        elif family == "rod":
+            # A, F, R (the arguments' factors) scale with its square
+            for name in ("A", "F", "R"):
+                out[name] = (r * r) * one[name]
         return [(family, out)]
 
     def _coupled_piece_tables(self, ar: Arithmetic, k: int, lengths) -> dict:

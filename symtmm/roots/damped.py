@@ -1188,6 +1188,6 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
                      f"model without dashpots and with doubled dashpots to "
                      f"{digits + 20} digits (modes that do not move the dashpots)")
     evaluations += search.p.evaluations
-    name, scale_mp = omega_scale(model, digits + 10)
     return Spectrum(tuple(eigen), digits, "default", evaluations, time.perf_counter() - start,
-                    model.source or "", (name, scale_mp), tuple(notes), title=model.title)
+                    model.source or "", omega_scale(model, digits + 10), tuple(notes),
+                    title=model.title)

@@ -135,9 +135,12 @@ def omega_scale(model: Model, digits: int | None = None):
     """``(name, sqrt(EI/(m L^4)))`` of the first beam: ``omega = Omega**2 * scale``.
 
     Exact (SymPy), or with ``digits`` a global mpmath number good to that many digits
-    (what a :class:`~symtmm.results.Spectrum` carries).
+    (what a :class:`~symtmm.results.Spectrum` carries). None for a model of rods only
+    (a rod's ``beta L`` is ``omega L sqrt(m/EA)``, not the paper's ``Omega``).
     """
-    b = model.resolved().beams[0]
+    b = next((b for b in model.resolved().beams if not b.is_rod), None)
+    if b is None:
+        return None
     scale = sp.sqrt(b.EI / (b.m * b.L**4))
     if digits is None:
         return b.name, scale
@@ -671,9 +674,8 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     elif omega_max is not None:
         top = _exact_mpf(float(omega_max) * (1 + 4e-16))
         eigen = [e for e in eigen if e.omega <= top]
-    name, scale_mp = omega_scale(model, digits + 10)
     return Spectrum(tuple(eigen), digits, "default", search.evaluations,
-                    time.perf_counter() - start, model.source or "", (name, scale_mp),
+                    time.perf_counter() - start, model.source or "", omega_scale(model, digits + 10),
                     _notes(eigen, digits), title=model.title)
 
 
