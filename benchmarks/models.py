@@ -6,12 +6,12 @@ import random
 from fractions import Fraction
 from pathlib import Path
 
-from symtmm.model import Attachment, Beam, Layer, Model, RigidBody, Spring, oscillator
+from symtmm.model import Attachment, Beam, Layer, Model, RigidBody, Spring, oscillator, rod
 from symtmm.modelfile import load
 
 __all__ = ["EXAMPLES", "example", "clamped_clamped", "chain", "fe_input", "global_input",
            "exact_global_input", "check_ex1_model", "multispan", "layered_chain",
-           "sprung_chain"]
+           "sprung_chain", "rod_chain"]
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -111,6 +111,27 @@ def sprung_chain(levels: int, seed: int = 1) -> Model:
                                  k=str(M * w * w)))
     return Model(base.beams, base.springs, bodies=tuple(bodies),
                  title=f"random chain with sprung masses, {levels} levels")
+
+
+def rod_chain(levels: int, seed: int = 1) -> Model:
+    """Kukla's system grown: ``levels`` rods over ``[0, 1]`` joined by axial springs.
+
+    :func:`chain`'s pattern with rods (``EA`` from ``{1/2, ..., 2}`` times 1000, so that
+    the frequencies of :data:`benchmarks.scaling.OMEGA_MAX` cover a few modes per rod;
+    ends fixed or free, the last level also held by its springs to the ground).
+
+    Examples
+    --------
+    >>> m = rod_chain(3)
+    >>> [b.kind for b in m.beams], len(m.springs)
+    (['rod', 'rod', 'rod'], 6)
+    """
+    base = chain(levels, 2, seed)
+    rng = random.Random(seed * 15485863 + levels)
+    rods = tuple(rod(b.name, EA=f"{rng.randint(5, 20) * 100}", m=b.m, L=b.L,
+                     left=rng.choice(("fixed", "free")), right="fixed")
+                 for b in base.beams)
+    return Model(rods, base.springs, title=f"random chain of rods, {levels} levels")
 
 def fe_input(model: Model) -> tuple:
     """``(beams, springs)`` as the plain dicts of :mod:`symtmm.fe` (floats)."""

@@ -38,7 +38,7 @@ import mpmath
 import numpy as np
 
 from .kernel import internals
-from .models import chain, layered_chain, sprung_chain
+from .models import chain, layered_chain, rod_chain, sprung_chain
 
 __all__ = ["run", "SIZES", "fit_exponent", "model_size", "BATCH", "REPEAT"]
 
@@ -84,8 +84,9 @@ def model_size(model) -> dict:
 
 
 #: The elements of the paper's literature, the same chains carrying them (reported beside
-#: the target): partial layers between neighbouring levels, a sprung mass on every level.
-FAMILIES = {"layers": layered_chain, "sprung masses": sprung_chain}
+#: the target): partial layers between neighbouring levels, a sprung mass on every level,
+#: rods joined by axial springs in place of the beams.
+FAMILIES = {"layers": layered_chain, "sprung masses": sprung_chain, "rods": rod_chain}
 #: Levels of those (full run, quick run).
 FAMILY_SIZES = ((1, 2, 5, 10, 20, 50), (1, 2, 5))
 
