@@ -52,6 +52,26 @@ out-of-phase families before the determinant is expanded: the in-phase family is
 the single beam's. A layer between different beams over part of their length soon
 exceeds the budgets; three beams joined over one stretch are refused (one line).
 
+Rods
+----
+A rod (:func:`symtmm.model.rod`) vibrates axially with the wave number ``beta_u``,
+``beta_u**2 = (m omega**2 - kw) / EA``, and in torsion with ``beta_t = omega
+sqrt(rhoIp / GJ)``: its segments hold ``cos`` and ``sin`` of ``beta_u l`` and ``beta_t l``
+only (the state scaled by ``diag(1, 1, GJ beta_t, EA beta_u)``), a spring on it enters as
+``k / (EA beta_u)``. Without a foundation both are proportional to ``omega``: beside plain
+beams they are written in ``Omega**2``, and in a model without plain beams ``Omega`` is
+the first rod's ``beta_u L`` (``L sqrt(m/EA) omega``), so a fixed-free rod gives ``cos
+Omega`` and a fixed-fixed one ``sin(Omega)/Omega``. On a foundation ``beta_u`` is the
+symbol ``b_<rod>`` (:attr:`CharacteristicEquation.definitions`), shared by rods with the
+same ``m/EA`` and ``kw/EA``. Beams and rods are never coupled: ``Delta`` is the product
+of their parts. A rod without torsion (no ``GJ``, ``rhoIp``) leaves no factor of its twist.
+
+>>> from symtmm.model import Model, Spring, rod
+>>> pair = Model((rod("a", 1, 1, 1, right="free"), rod("b", 1, 1, 1, right="free")),
+...              springs=(Spring("a", "b", "2/5", k=5),))
+>>> characteristic_equation(pair).delta
+(omega*cos(omega) - 5*sin(omega/5) + 5*sin(omega))*cos(omega)/omega
+
 The form
 --------
 ``det R = constant * Omega**power * prod(f_i**e_i)`` where the constant does

@@ -2,7 +2,8 @@
 
 Step 2 of the method (:mod:`symtmm.characteristic`): ``cos, sin, cosh, sinh``
 of each argument, ``W = 1/Omega``, the waves' ``Dl, iq``, the layered members' ``p,
-1/p, q, 1/q`` and coupling ``c, e``, and the symbolic parameters are the variables
+1/p, q, 1/q`` and coupling ``c, e``, the wave numbers ``b, 1/b`` of rods on a foundation
+and the symbolic parameters are the variables
 of a polynomial ring over the rationals; the
 relations between them (``s**2 = 1 - c**2``, ``Dl**2 = disc``, ...) are
 rewriting rules with a unique normal form. :meth:`_Algebra.boundary_matrix`
@@ -26,7 +27,7 @@ class _Algebra:
     Every reduction rewrites a power ``x**q`` of one variable by a polynomial of
     lower degree in ``x`` (``s**2 = 1 - c**2``, ``c**2 = 1 - b**2 Sn**2``,
     ``Dl**2 = disc``, a member's ``c**2 = 1/4 - rho e**2``, ``I**2 = -1``, ``root**Q =
-    base``), and ``W * Omega = 1`` (and ``p * (1/p) = 1``);
+    base``), and ``W * Omega = 1`` (and ``p * (1/p) = 1``, ``b * (1/b) = 1``);
     the leading terms are powers of distinct variables, so the normal form is
     unique.
     """
@@ -91,6 +92,10 @@ class _Algebra:
         for k, index in self.member_index.items():
             self.inverse_pairs += [(index[f"Wv{i}"], index[f"V{i}"]) for i in range(2)
                                    if f"V{i}" in index]
+        for rod in problem.rods:   # a rod's b and 1/b, where both occur
+            pair = (self.extra_index.get(rod.symbol), self.extra_index.get(1 / rod.symbol))
+            if None not in pair:
+                self.inverse_pairs.append(pair)
         G = self.ring.gens
         half = self.ring.coefficient(sp.Rational(1, 2))
         self.rules = []   # (variable, power q, replacement of x**q); applied in this order
@@ -99,8 +104,8 @@ class _Algebra:
             c, s, ch, sh = G[4 * g:4 * g + 4]
             if plain_like(grp):
                 self.rules += [(4 * g + 1, 2, 1 - c * c), (4 * g + 3, 2, ch * ch - 1)]
-                if grp.member is not None:
-                    continue          # a layered member's branch: its matrix is the member's
+                if grp.member is not None or grp.rod is not None:
+                    continue          # a layered member's branch, a rod's: their own matrices
                 S, T, U, V = (ch + c) * half, (sh + s) * half, (ch - c) * half, (sh - s) * half
                 self.N[g] = [[S, T, U, V], [V, S, T, U], [U, V, S, T], [T, U, V, S]]
             else:

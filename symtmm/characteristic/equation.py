@@ -64,7 +64,8 @@ class CharacteristicEquation:
     definitions : dict
         The wave numbers ``a_<beam>``, ``b_<beam>`` of beams that are not
         plain Euler–Bernoulli beams, ``p_<a>_<b>``, ``q_<a>_<b>`` of beams joined
-        by a layer, and ``Omega`` when the closed form uses it,
+        by a layer, ``b_<rod>`` of rods on an axial foundation, and ``Omega`` when
+        the closed form uses it,
         as functions of :attr:`variable`; :attr:`delta_Omega` and
         :attr:`factors` are written in them, :attr:`delta` has them substituted.
     """
@@ -279,12 +280,14 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float,
     next_stage(_STAGES[3])
     Om = OMEGA_DIMLESS
     writer = _Writer(alg, Om)
-    founded = [w.b for w in problem.waves if w.scaled]
+    rod_symbols = [rod.symbol for rod in problem.rods]
+    founded = [w.b for w in problem.waves if w.scaled] + rod_symbols
     pre_c, pre_p, pre_b = _split_powers(problem.prefactor, Om, founded)
     power = pre_p
     out_factors = [(bk, p) for bk, p in pre_b.items() if p]
     frequency_symbols = [s for w in problem.waves for s in (w.a, w.b)] + [
-        br.symbol for mb in problem.members for br in mb.branches if br.kind == "free"]
+        br.symbol for mb in problem.members for br in mb.branches if br.kind == "free"] \
+        + rod_symbols
     for poly, e in factors:
         spend()
         m, expr, ratio = writer.best(poly)
@@ -297,20 +300,25 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float,
     c_merge, p_merge, out_factors = _merge_factors(out_factors, Om)
     constant *= c_merge
     power += p_merge
-    mu1, L1 = problem.omega_of["mu1"], problem.omega_of["L1"]
     if problem.damped:
         variable, lam = LAM, LAM
-        Omega_of_var = L1 * mu1 * sp.sqrt(sp.I * LAM)
+        Omega_of_var = problem.omega_of["damped"]
     else:
         variable, lam = OMEGA, sp.I * OMEGA
-        Omega_of_var = L1 * mu1 * sp.sqrt(OMEGA)
+        Omega_of_var = problem.omega_of["undamped"]
     definitions = _wave_definitions(problem, lam)
     definitions.update(_member_definitions(problem, lam, Omega_of_var))
-    if (problem.waves or problem.members) and not any(g.plain for g in problem.groups):
+    definitions.update(_rod_definitions(problem, lam))
+    # atoms in Omega: plain beams', rods' without foundation
+    in_Omega = any(g.plain or (g.rod is not None and g.rod.has(Om)) for g in problem.groups)
+    if (problem.waves or problem.members or problem.rods) and not in_Omega:
         # no plain beam: the frequency left in the coefficients is the model's variable
         back = {Om: Omega_of_var}
         c_poly, out_factors = _polynomials_in(variable, [(_tidy(f.xreplace(back)), e)
                                                          for f, e in out_factors])
+        if problem.rods:
+            # (Omega = I kappa lam of a rod leaves products of sums with I in them)
+            out_factors = [(_by_functions(f), e) for f, e in out_factors]
         constant *= c_poly
         c_disc, out_factors = _discriminants_back(problem, lam, variable, out_factors)
         constant *= c_disc
@@ -324,6 +332,8 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float,
     constant_Omega = sp.simplify(pre_c * constant)
     delta_Omega = Om ** power * scale * sp.Mul(*[f**e for f, e in out_factors])
     delta = delta_Omega.xreplace({Om: Omega_of_var, **definitions})
+    if problem.damped and any(g.rod is not None for g in problem.groups):
+        delta = _imaginary_sums_out(delta)
     # what xreplace leaves as a constant factor in front of the power of the variable
     c_scale, rest = delta.as_independent(variable, as_Add=False)
     delta = rest
@@ -339,7 +349,7 @@ def _characteristic_equation(model: Model, symbolic: tuple, start: float,
     if len(out_factors) > 1 or any(e > 1 for _, e in out_factors):
         notes.append("kept factored: " + ", ".join(
             f"{sp.count_ops(f)} ops x{e}" for f, e in out_factors))
-    if problem.waves or problem.members:
+    if problem.waves or problem.members or problem.rods:
         notes.append("wave numbers: " + ", ".join(
             f"{s} = {v}" for s, v in definitions.items() if s != Om))
     notes += _member_notes(problem, lam)
@@ -407,6 +417,73 @@ def _single_angles(f, Om):
     if not changed:
         return f
     return sp.Add(*[k * v for k, v in parts.items()])
+
+
+def _over_i(expr):
+    """``expr / I`` written without ``I``, or None where ``expr`` is not ``I`` times an
+    expression free of it (every term of a sum, one factor of each product)."""
+    if expr == sp.I:
+        return sp.Integer(1)
+    if expr.is_Add:
+        terms = [_over_i(t) for t in expr.args]
+        return None if any(t is None for t in terms) else sp.Add(*terms)
+    if expr.is_Mul:
+        with_i = [k for k, a in enumerate(expr.args) if a.has(sp.I)]
+        if len(with_i) == 1:
+            k = with_i[0]
+            inner = _over_i(expr.args[k])
+            if inner is not None:
+                return sp.Mul(*expr.args[:k], inner, *expr.args[k + 1:])
+    return None
+
+
+def _imaginary_sums_out(expr):
+    """``expr`` with ``I`` taken out in front of each factor that is ``I`` times an
+    expression free of it.
+
+    A rod's factor in ``lam`` is such a factor: ``cos(I x) = cosh(x)``, ``sin(I x) = I
+    sinh(x)`` and its odd powers of ``beta = I ... lam`` leave ``I`` in every term.
+
+    Examples
+    --------
+    >>> lam = LAM
+    >>> _imaginary_sums_out((sp.I * lam * sp.cosh(lam) + sp.I * (lam + 3) * sp.sinh(lam)) / lam)
+    I*(lam*cosh(lam) + (lam + 3)*sinh(lam))/lam
+    """
+    def part(a):
+        base, e = (a.base, a.exp) if a.is_Pow and a.exp.is_Integer else (a, sp.Integer(1))
+        if not base.has(sp.I):
+            return a
+        inner = _over_i(base)
+        if inner is None:
+            return a
+        return sp.Mul(sp.I**e, inner**e, evaluate=False)
+
+    if expr.is_Mul:
+        return sp.Mul(*[part(a) for a in expr.args])
+    return part(expr)
+
+
+#: Operations beyond which a factor is not collected again (:func:`_by_functions`).
+_COLLECT_OPS = 300
+
+
+def _by_functions(f):
+    """``f`` collected by its trigonometric and hyperbolic functions with each coefficient
+    factored, where that is shorter.
+
+    Examples
+    --------
+    >>> b, lam = sp.Symbol("b", positive=True), LAM
+    >>> _by_functions(sp.cos(b) - sp.I * lam * (sp.I * lam + sp.I) * sp.sin(b) / b)
+    cos(b) + lam*(lam + 1)*sin(b)/b
+    """
+    functions = sorted(f.atoms(*_TRIG), key=str)
+    if not f.is_Add or not functions or sp.count_ops(f) > _COLLECT_OPS:
+        return f
+    spend()
+    candidate = sp.collect(sp.expand(f), functions, func=sp.factor)
+    return candidate if sp.count_ops(candidate) < sp.count_ops(f) else f
 
 
 def _merge_factors(factors, Om):
@@ -492,6 +569,13 @@ def _wave_definitions(problem: _Problem, lam) -> dict:
         out[wave.a] = sp.sqrt(t / 2 + root)
         out[wave.b] = sp.sqrt(-t / 2 + root)
     return out
+
+
+def _rod_definitions(problem: _Problem, lam) -> dict:
+    """``{b: sqrt(-(m lam**2 + kw) / EA)}`` of the rods on a foundation, in the model's
+    variable (``sqrt((m omega**2 - kw) / EA)`` undamped)."""
+    return {rod.symbol: sp.sqrt(sp.factor(rod.squared(sp.expand(lam**2))))
+            for rod in problem.rods}
 
 
 def _member_invariants(member, lam):

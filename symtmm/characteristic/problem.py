@@ -14,6 +14,16 @@ distinct matrix ``X / l**4``, see :func:`_member_matrix`): its ``8 x 8`` matrix 
 written through the two wave numbers ``p, q`` of ``X`` (``p**4, q**4`` its
 eigenvalues) and the coupling ``C`` between them; a beam that is nowhere outside
 such members keeps its physical state (scaled by ``diag(1, 1, EI, EI)`` only).
+
+A rod (:func:`symtmm.model.rod`) is two independent oscillators, axial on ``(Y, Q) = (u,
+-N)`` and torsional on ``(Theta, M) = (phi, T)``, with the wave numbers ``beta_u**2 = -(m
+lam**2 + kw) / EA`` and ``beta_t**2 = -rhoIp lam**2 / GJ``. Its state is scaled by
+``diag(1, 1, GJ beta_t, EA beta_u)`` so that a segment holds only ``cos, sin`` of ``beta
+l``: a rod's groups are those atoms of ``arg`` times its :attr:`_Group.rod` frequency,
+``Omega**2`` beside plain beams, ``Omega`` itself in a model without plain beams (then
+``Omega = beta_u L`` of the first rod), or the symbol ``b_<rod>`` of rods on an axial
+foundation (a :class:`_RodWave`, with ``1/b`` a generator like ``W``). A rod without
+torsion keeps its massless twist: ``Theta' = M / GJ``, ``M' = 0``, a constant block.
 """
 
 from __future__ import annotations
@@ -35,7 +45,8 @@ __all__ = ["OMEGA", "OMEGA_DIMLESS"]
 
 #: Circular frequency (rad/s) of an undamped model, ``lam = I*omega``.
 OMEGA = sp.Symbol("omega", positive=True)
-#: Dimensionless frequency ``Omega = beta_1 L_1`` of the first beam.
+#: Dimensionless frequency ``Omega = beta_1 L_1`` of the first plain beam (in a model
+#: without plain beams but with rods, of the first rod: ``beta_u L``).
 OMEGA_DIMLESS = sp.Symbol("Omega", positive=True)
 
 
@@ -204,21 +215,44 @@ class _Member:
 
 
 @dataclass
+class _RodWave:
+    """The axial wave number of rods on a foundation, ``b**2 = -(m lam**2 + kw) / EA``.
+
+    Not proportional to ``Omega``: its own generator :attr:`symbol` (printed ``b_<rod>``,
+    after the first rod of the kind) and ``1/b``, a Laurent pair like ``W`` and ``Omega``.
+    Rods with the same ``m / EA`` and ``kw / EA`` share it.
+    """
+
+    name: str
+    symbol: sp.Symbol
+    inertia: sp.Expr       # m / EA
+    foundation: sp.Expr    # kw / EA
+
+    def squared(self, lam2) -> sp.Expr:
+        """``b**2`` at ``lam**2``."""
+        return sp.expand(-(self.inertia * lam2 + self.foundation))
+
+
+@dataclass
 class _Group:
     """Atoms of one argument: ``Omega * arg`` (plain), ``b l``, ``a l`` of a wave kind,
-    or ``p l`` (``branch`` 0), ``q l`` (``branch`` 1) of a layered member."""
+    ``p l`` (``branch`` 0), ``q l`` (``branch`` 1) of a layered member, or ``rod * arg`` of
+    rods (``rod`` ``Omega``, ``Omega**2`` or the ``b`` of a :class:`_RodWave`; only
+    ``cos``, ``sin``)."""
 
-    arg: sp.Expr              # plain: argument / Omega; wave, member: the length l
+    arg: sp.Expr              # plain: argument / Omega; wave, member: the length l;
+                              # rod: argument / rod
     wave: int | None = None   # index into _Problem.waves, None for plain
     dummies: tuple = field(default_factory=lambda: tuple(sp.Dummy(n) for n in
                                                           ("c", "s", "ch", "sh")))
     member: int | None = None  # index into _Problem.members
     branch: int = 0
+    rod: sp.Expr | None = None  # the frequency of a rod's atoms (argument = rod * arg)
 
     @property
     def plain(self) -> bool:
         """Atoms of ``Omega * arg``."""
-        return self.wave is None and self.member is None
+        return self.wave is None and self.member is None and self.rod is None
 
 
 @dataclass
@@ -229,11 +263,12 @@ class _Problem:
     groups: list          # _Group per distinct argument
     waves: list           # _Wave per kind of non-plain beam
     #: ("segments", [(level, group)]) | ("point", {(row, col): expr in W}); a layered
-    #: member is ((level_a, level_b), ("layer", member, group_p, group_q))
+    #: member is ((level_a, level_b), ("layer", member, group_p, group_q)), a rod's
+    #: segment (level, ("rod", group_u, group_t, l)) (``group_t`` None without torsion)
     steps: list
     #: (group, level) -> 4x4 SymPy entries of a wave segment; for a member
     #: (("layer", member, gp, gq), levels) -> 8x8 in the rows of
-    #: :func:`symtmm.assembly.state_rows`
+    #: :func:`symtmm.assembly.state_rows`; for a rod (("rod", ...), level) -> 4x4
     matrices: dict
     prefactor: sp.Expr    # prod D[rows] / prod D[cols], in Omega
     extra: list           # generators besides atoms, W and the waves' dummies
@@ -243,6 +278,7 @@ class _Problem:
     sample: dict          # values ordering the symbolic positions
     members: list = field(default_factory=list)   # _Member per kind of layered member
     scale: list = field(default_factory=list)     # D: the state's scaling, 4 per level
+    rods: list = field(default_factory=list)      # _RodWave per kind of rod on a foundation
 
     def in_ring(self, expr) -> sp.Expr:
         """``expr`` in Omega written for the ring (``Omega -> 1/W``)."""
@@ -270,6 +306,43 @@ def _is_founded(beam) -> bool:
 def _is_plain(beam) -> bool:
     """Euler–Bernoulli without foundation or axial force: wave number ``~ Omega``."""
     return beam.theory == "euler-bernoulli" and beam.N == 0 and beam.kw == 0
+
+
+def _is_rod(beam) -> bool:
+    """A rod (:func:`symtmm.model.rod`): axial and torsional oscillators, atoms ``cos, sin``."""
+    return beam.theory == "rod"
+
+
+def _fresh_symbol(name: str, taken: set) -> sp.Symbol:
+    """A positive symbol ``name`` (underscores added while taken), marked taken."""
+    while name in taken:
+        name += "_"
+    taken.add(name)
+    return sp.Symbol(name, positive=True)
+
+
+def _rod_matrix(problem: _Problem, key, level: int) -> list:
+    """``exp(A l)`` of a rod segment in the scaled state ``(Y, Theta, M / (GJ beta_t), Q /
+    (EA beta_u))``: a rotation by ``beta_u l`` on ``(Y, Q)`` and one by ``beta_t l`` on
+    ``(Theta, M)``.
+
+    Axially ``Y' = -Q / EA``, ``Q' = EA beta_u**2 Y``: ``Y = c Y0 - s q0``, ``q = s Y0 + c
+    q0``; in torsion ``Theta' = M / GJ``, ``M' = -GJ beta_t**2 Theta``: ``Theta = c Theta0 +
+    s m0``, ``m = -s Theta0 + c m0``. Without torsion the twist is massless (``M' = 0``):
+    ``Theta = Theta0 + l M0 / GJ``, ``M = M0``.
+    """
+    _, gu, gt, length = key
+    c, s = problem.groups[gu].dummies[:2]
+    zero, one = sp.Integer(0), sp.Integer(1)
+    U = [[zero] * 4 for _ in range(4)]
+    U[0][0], U[0][3], U[3][0], U[3][3] = c, -s, s, c
+    if gt is None:
+        GJ = problem.layout.model.beams[level].EI
+        U[1][1], U[1][2], U[2][2] = one, problem.in_ring(length / GJ), one
+    else:
+        ct, st = problem.groups[gt].dummies[:2]
+        U[1][1], U[1][2], U[2][1], U[2][2] = ct, st, -st, ct
+    return U
 
 
 def _wave_segment(beam, l=1) -> BeamSegment:
@@ -442,12 +515,31 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
     Om = OMEGA_DIMLESS
     beams = model.beams
     plain = [_is_plain(b) for b in beams]
-    ref = plain.index(True) if any(plain) else 0
+    rods = [_is_rod(b) for b in beams]
+    # the reference: the first plain beam, else the first rod (one without foundation first)
+    order = [j for j in range(len(beams)) if plain[j]] \
+        + [j for j, b in enumerate(beams) if rods[j] and b.kw == 0] \
+        + [j for j in range(len(beams)) if rods[j]]
+    ref = order[0] if order else 0
     mu = [(b.m / b.EI) ** sp.Rational(1, 4) for b in beams]
     L1 = beams[ref].L
-    # lam in terms of Omega: beta_ref**4 = -m lam**2 / EI  =>  lam = -I Omega**2 / (mu L)**2
-    lam_of_Omega = -sp.I * Om**2 / (mu[ref] * L1) ** 2
-    lam2 = sp.expand(-Om**4 * beams[ref].EI / (beams[ref].m * L1**4))
+    if rods[ref]:
+        # no plain beam: Omega = beta_u L of the first rod, beta_u**2 = -m lam**2 / EA
+        # (Omega = kappa omega undamped; Omega = I kappa lam damped, which writes cos(Omega)
+        # as cosh(kappa lam); either branch gives the same Delta)
+        kappa = sp.simplify(L1 * sp.sqrt(beams[ref].m / beams[ref].N))
+        sign = -1 if model.damped else 1
+        lam_of_Omega = sign * sp.I * Om / kappa
+        lam2 = sp.expand(-Om**2 / kappa**2)
+        rod_power = 1
+        omega_of = {"undamped": kappa * OMEGA, "damped": sp.I * kappa * LAM}
+    else:
+        # lam in terms of Omega: beta_ref**4 = -m lam**2 / EI  =>  lam = -I Omega**2 / (mu L)**2
+        lam_of_Omega = -sp.I * Om**2 / (mu[ref] * L1) ** 2
+        lam2 = sp.expand(-Om**4 * beams[ref].EI / (beams[ref].m * L1**4))
+        rod_power = 2
+        omega_of = {"undamped": L1 * mu[ref] * sp.sqrt(OMEGA),
+                    "damped": L1 * mu[ref] * sp.sqrt(sp.I * LAM)}
     taken = set(model.parameters) | {"Omega", "omega", "lam", "I", "E", "pi"}
     intervals = {id(step): _interval_segments(layout, step) for step in layout.steps
                  if isinstance(step, Interval)}
@@ -460,8 +552,37 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
     waves: list = []
     level_wave: dict = {}
     r: dict = {}
+    rod_waves: list = []
+    # level -> ((frequency, ratio) axial, (frequency, ratio) torsional or None): a rod's
+    # wave numbers beta = ratio * frequency, the frequency Omega**rod_power or a b_<rod>
+    rod_beta: dict = {}
+
+    def rod_ratio(inertia, stiffness):
+        """``beta / Omega**rod_power`` of ``beta**2 = -inertia lam**2 / stiffness``."""
+        return sp.sqrt(sp.factor(-inertia * lam2 / (stiffness * Om**(2 * rod_power))))
+
     D = []
     for j, b in enumerate(beams):
+        if rods[j]:
+            if b.kw == 0:
+                axial = (Om**rod_power, rod_ratio(b.m, b.N))
+            else:
+                inertia, foundation = sp.simplify(b.m / b.N), sp.simplify(b.kw / b.N)
+                for rw in rod_waves:
+                    if sp.simplify(rw.inertia - inertia) == 0 \
+                            and sp.simplify(rw.foundation - foundation) == 0:
+                        break
+                else:
+                    rw = _RodWave(b.name, _fresh_symbol(f"b_{b.name}", taken), inertia,
+                                  foundation)
+                    rod_waves.append(rw)
+                axial = (rw.symbol, sp.Integer(1))
+            torsion = (Om**rod_power, rod_ratio(b.rhoI, b.EI)) if b.torsion else None
+            rod_beta[j] = (axial, torsion)
+            beta_u = axial[0] * axial[1]
+            D += [sp.Integer(1), sp.Integer(1),
+                  b.EI * torsion[0] * torsion[1] if torsion else sp.Integer(1), b.N * beta_u]
+            continue
         if not outside[j]:
             # only inside members: the physical state (M, Q over EI as the member has them)
             D += [sp.Integer(1), sp.Integer(1), b.EI, b.EI]
@@ -493,13 +614,24 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
     members: list = []
     steps: list = []
 
-    def group(arg, wave=None, member=None, branch=0) -> int:
+    def group(arg, wave=None, member=None, branch=0, rod=None) -> int:
         for g, grp in enumerate(groups):
             if (grp.wave, grp.member, grp.branch) == (wave, member, branch) \
+                    and (grp.rod is None) == (rod is None) \
+                    and (rod is None or grp.rod == rod) \
                     and sp.expand(grp.arg - arg) == 0:
                 return g
-        groups.append(_Group(arg, wave, member=member, branch=branch))
+        groups.append(_Group(arg, wave, member=member, branch=branch, rod=rod))
         return len(groups) - 1
+
+    def rod_key(lvl, length):
+        """A rod segment: its axial group, its torsional group (None without), length."""
+        (fu, ru), torsion = rod_beta[lvl]
+        gu = group(sp.expand(ru * length), rod=fu)
+        if torsion is None:
+            return ("rod", gu, None, length)
+        ft, rt = torsion
+        return ("rod", gu, group(sp.expand(rt * length), rod=ft), None)
 
     def member_kind(levels, seg) -> int:
         X = seg.field_matrix(lam=lam_of_Omega, lam2=lam2).applyfunc(sp.expand)
@@ -550,7 +682,7 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
         if isinstance(step, Interval):
             segs = []
             for lvl, seg in intervals[id(step)]:
-                if isinstance(lvl, tuple):
+                if isinstance(lvl, tuple) or rods[lvl]:
                     arg = sp.expand(seg.l)
                 else:
                     arg = sp.expand(sp.simplify(r[lvl] * seg.l / L1)) if plain[lvl] \
@@ -563,6 +695,8 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
                     members[k].stretches.append((step.x_start, step.x_end))
                     segs.append((lvl, ("layer", k, branch_group(k, 0, arg),
                                        branch_group(k, 1, arg))))
+                elif rods[lvl]:
+                    segs.append((lvl, rod_key(lvl, arg)))
                 elif plain[lvl]:
                     segs.append((lvl, group(arg)))
                 else:
@@ -580,11 +714,16 @@ def _build_problem(model: Model, sample: dict) -> _Problem:
                            / sp.Mul(*[D_ext[i] for i in layout.columns]))
     problem = _Problem(layout=layout, groups=groups, waves=waves, steps=steps, matrices={},
                        prefactor=prefactor, extra=[], relations={},
-                       omega_of={"mu1": mu[ref], "L1": L1, "lam2": lam2},
-                       damped=model.damped, sample=sample, members=members, scale=D)
+                       omega_of={"lam2": lam2, **omega_of},
+                       damped=model.damped, sample=sample, members=members, scale=D,
+                       rods=rod_waves)
     for kind, data in steps:
         if kind == "segments":
             for lvl, g in data:
+                if isinstance(g, tuple) and g[0] == "rod":
+                    if (g, lvl) not in problem.matrices:
+                        problem.matrices[(g, lvl)] = _rod_matrix(problem, g, lvl)
+                    continue
                 if isinstance(lvl, tuple):
                     if (g, lvl) not in problem.matrices:
                         problem.matrices[(g, lvl)] = _member_matrix(problem, g, lvl)

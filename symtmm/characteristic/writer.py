@@ -76,7 +76,9 @@ class _Writer:
         p = alg.problem
         self.trig_args, self.hyp_args, self.atoms = [], [], []
         for grp in p.groups:
-            if grp.member is not None:
+            if grp.rod is not None:
+                trig = hyp = (grp.rod, grp.arg)
+            elif grp.member is not None:
                 trig = hyp = (p.members[grp.member].branches[grp.branch].symbol, grp.arg)
             elif grp.wave is None:
                 trig = hyp = (Omega, grp.arg)

@@ -14,7 +14,9 @@ Beams with a Winkler foundation, an axial force, rotary inertia or shear
 them substituted. Two beams joined by a layer are written in the wave numbers
 p_<a>_<b>, q_<a>_<b> of the pair (p**4, q**4 the eigenvalues of the layered
 member's matrix, given in a note), or in Omega where one of them is the single
-beam's (identical beams).
+beam's (identical beams). Rods are written in cos and sin of their wave numbers:
+in a model of rods only Omega is the first rod's beta L = omega L sqrt(m/EA), and
+a rod on an axial foundation has its own b_<rod> = sqrt((m omega**2 - kw)/EA).
 """
 
 from __future__ import annotations
