@@ -18,14 +18,34 @@ Beams
 
     with ``psi = Y'`` when ``kGA`` is None. Each node carries ``Y`` and
     ``Theta`` (``Y'``, or ``psi`` for a shear-flexible beam).
+Rods
+    Dicts with ``"rod": True`` and keys ``name``, ``EA`` (axial stiffness),
+    ``m``, ``L``, ``x0``, ``left`` and ``right``, and optionally ``kw`` (an
+    axial foundation) and ``GJ`` and ``rhoIp`` (torsional stiffness and polar
+    inertia per unit length, both or neither: without them the rod has no
+    torsion). The axial displacement ``u`` and the twist ``phi`` are
+    independent, with the energy per unit length::
+
+        strain   (EA u'**2 + kw u**2 + GJ phi'**2) / 2
+        kinetic  (m u_t**2 + rhoIp phi_t**2) / 2
+
+    Each node carries ``u`` and ``phi`` in the slots of ``Y`` and ``Theta``, so a
+    translational spring, a mass's ``M`` and a body act axially, a rotational
+    spring and a mass's ``J`` in torsion. Ends are ``"fixed"`` (``u = phi =
+    0``) or ``"free"``, with torsion also ``"fixed-axial"`` (``u = 0``, free to
+    twist) and ``"fixed-torsion"`` (``phi = 0``, free to move axially). Beam
+    keys (``EI``, ``N``, ``rhoI``, ``kGA``) are refused on a rod.
 Springs
     Dicts with keys ``between`` (a pair of beam names, one of which may be
     ``"ground"``), ``x`` (global coordinate) and ``k``; ``kind`` is
     ``"translational"`` (default, on ``Y``) or ``"rotational"`` (on
-    ``Theta``); an optional dashpot ``c`` must be zero (the model is undamped).
+    ``Theta``), on rods also ``"axial"`` (translational) or ``"torsional"``
+    (rotational); an optional dashpot ``c`` must be zero (the model is undamped).
+    A spring joins two beams or two rods (a beam to a rod is refused: the
+    deflection and the axial motion are not along one line).
 Masses
     Dicts with keys ``beam``, ``x``, ``M`` and optionally ``J`` (rotary
-    inertia acting on ``Theta``).
+    inertia acting on ``Theta``; on a rod the polar inertia, which needs torsion).
 Rigid bodies
     Dicts with keys ``attach`` (a list of dicts ``{"beam", "x", "hinged", "k"}``,
     ``hinged`` optional and False by default; with ``k`` a spring joins the beam
@@ -35,8 +55,11 @@ Rigid bodies
     Theta_c``; at each attachment the beam's ``Y`` is the body's, and so is its
     ``Theta`` unless the attachment is hinged. A joint of beam ends (a tree, a
     closed loop) is a massless body whose attachments share one ``x``.
+    A body on rods joins rods only and moves along them without turning (every
+    attachment hinged or elastic and at ``xc``, ``J = 0``: an oscillator or a hinge
+    joint of rod ends); each rod's ``u`` there is the body's ``Y_c``.
 Layers
-    Dicts with keys ``between`` (a pair of distinct beam names, not
+    Dicts with keys ``between`` (a pair of distinct beam names, not rods and not
     ``"ground"``: a foundation under one beam is its ``kw``) and ``k`` (stiffness
     per unit length), optionally ``x0`` and ``x1`` (the global interval of the
     layer, by default the overlap of the two beams); an optional damping ``c``
@@ -63,14 +86,21 @@ Elements
     Rayleigh-Ritz models: the frequencies are upper bounds (also under
     compression) and converge as ``h**4``; :func:`fe_converged` extrapolates.
     Dofs without mass (``psi`` where ``rhoI = 0``) are condensed statically.
+    Rods, cubic hierarchical bar elements for ``u`` and for ``phi``: the nodal
+    values interpolated linearly plus two internal bubble dofs per element and
+    motion, ``xi (1 - xi)`` and ``xi (1 - xi)(1 - 2 xi)`` (the space of the
+    four-node Lagrange element), consistent mass and foundation, integrated
+    exactly. Conforming too, the frequencies are upper bounds and converge as
+    ``h**6`` (``2 p`` for elements of degree ``p = 3``); a rod without torsion has
+    no twist dofs (its nodal ``phi`` are constrained to zero).
 
 Constraints
     Boundary conditions and the bodies' attachments are homogeneous linear
     constraints ``C u = 0`` on the nodal dofs and the bodies' ``Y_c,
     Theta_c``; the model is reduced to a basis of their null space (master-slave
-    elimination): dofs not named by any constraint are kept as they are, the
-    others are replaced by an orthonormal basis of the constraints' null space
-    among them.
+    elimination): dofs not named by any constraint are kept as they are, dofs a
+    support fixes (a constraint on one dof) are dropped, the others are replaced
+    by an orthonormal basis of the constraints' null space among them.
 """
 
 from __future__ import annotations
@@ -94,7 +124,21 @@ _CONSTRAINED_DOFS = {
     "sliding": (1,),
 }
 
+# The same for the ends of a rod (0 = u, 1 = phi); without torsion only "fixed", "free".
+_ROD_CONSTRAINED_DOFS = {
+    "fixed": (0, 1),
+    "free": (),
+    "fixed-axial": (0,),
+    "fixed-torsion": (1,),
+}
+_ROD_ENDS_AXIAL = ("fixed", "free")
+
+# Keys of a beam that a rod does not have (a rod's are EA, GJ, rhoIp).
+_BEAM_ONLY_KEYS = ("EI", "N", "rhoI", "kGA")
+
 _SPRING_KINDS = {"translational": 0, "rotational": 1}
+# On rods the kinds also go by their model-file names.
+_ROD_SPRING_KINDS = {"axial": 0, "torsional": 1}
 
 # Relative tolerance used to decide whether a point lies on a beam and
 # whether two mesh points coincide; it absorbs rounding in user coordinates
@@ -164,22 +208,66 @@ def _boundary_condition(value, what):
     return value.lower()
 
 
+def _rod_end(value, what, torsion):
+    allowed = tuple(_ROD_CONSTRAINED_DOFS) if torsion else _ROD_ENDS_AXIAL
+    if not isinstance(value, str) or value.lower() not in allowed:
+        raise ValueError(
+            f"unknown rod end {value!r} for {what}; expected one of "
+            f"{', '.join(map(repr, allowed))}"
+            + ("" if torsion else " (the others need torsion: GJ and rhoIp)")
+        )
+    return value.lower()
+
+
+def _normalise_rod(rod, what):
+    """Validate a rod dict (``"rod": True``) and return its properties as floats."""
+    _require_keys(rod, ("EA", "m", "L", "x0", "left", "right"), what)
+    extra = [key for key in _BEAM_ONLY_KEYS if rod.get(key) is not None]
+    if extra:
+        raise ValueError(f"{what} is a rod: it has EA, GJ and rhoIp, not "
+                         f"{', '.join(map(repr, extra))}")
+    GJ, rhoIp = rod.get("GJ"), rod.get("rhoIp")
+    if (GJ is None) != (rhoIp is None):
+        raise ValueError(f"torsion of {what} needs both GJ and rhoIp")
+    torsion = GJ is not None
+    return {
+        "rod": True,
+        "torsion": torsion,
+        "EA": _positive_float(rod["EA"], f"EA of {what}"),
+        "m": _positive_float(rod["m"], f"m of {what}"),
+        "L": _positive_float(rod["L"], f"L of {what}"),
+        "x0": _number(rod["x0"], f"x0 of {what}"),
+        "left": _rod_end(rod["left"], f"the left end of {what}", torsion),
+        "right": _rod_end(rod["right"], f"the right end of {what}", torsion),
+        "kw": _nonnegative_float(rod.get("kw", 0.0) or 0.0, f"kw of {what}"),
+        "GJ": _positive_float(GJ, f"GJ of {what}") if torsion else 0.0,
+        "rhoIp": _positive_float(rhoIp, f"rhoIp of {what}") if torsion else 0.0,
+    }
+
+
 def _normalise_beams(beams):
-    """Validate beam dicts and return their properties as floats, keyed by name."""
+    """Validate beam and rod dicts and return their properties as floats, keyed by name."""
     if isinstance(beams, Mapping) or not isinstance(beams, Sequence) or not beams:
         raise ValueError("beams must be a non-empty list of beam dicts")
     parsed = {}
     for index, beam in enumerate(beams):
         what = f"beam #{index}"
-        _require_keys(beam, ("name", "EI", "m", "L", "x0", "left", "right"), what)
+        _require_keys(beam, ("name",), what)
+        is_rod = beam.get("rod", False)
+        if not isinstance(is_rod, (bool, np.bool_)):
+            raise ValueError(f"'rod' of {what} must be True or False, got {is_rod!r}")
         name = beam["name"]
         if not isinstance(name, str) or not name:
             raise ValueError(f"{what} must have a non-empty string name, got {name!r}")
-        what = f"beam {name!r}"
+        what = f"{'rod' if is_rod else 'beam'} {name!r}"
         if name == GROUND:
             raise ValueError(f"{GROUND!r} is reserved for springs to ground and cannot name a beam")
         if name in parsed:
             raise ValueError(f"duplicate beam name {name!r}")
+        if is_rod:
+            parsed[name] = _normalise_rod(beam, what)
+            continue
+        _require_keys(beam, ("EI", "m", "L", "x0", "left", "right"), what)
         EI = _positive_float(beam["EI"], f"EI of {what}")
         kGA = beam.get("kGA")
         kGA = None if kGA is None else _positive_float(kGA, f"kGA of {what}")
@@ -187,6 +275,7 @@ def _normalise_beams(beams):
         if kGA is not None and kGA + N <= 0.0:
             raise ValueError(f"N of {what}: the compression must stay below kGA (kGA + N > 0)")
         parsed[name] = {
+            "rod": False,
             "EI": EI,
             "m": _positive_float(beam["m"], f"m of {what}"),
             "L": _positive_float(beam["L"], f"L of {what}"),
@@ -250,15 +339,32 @@ def _normalise_springs(springs, beams):
         c = _number(spring.get("c", 0.0) or 0.0, f"c of {what}")
         if c != 0.0:
             raise ValueError(f"{what} has a dashpot c={spring['c']!r}; the FE model is undamped")
+        members = [beams[name] for name in (name_a, name_b) if name != GROUND]
+        rods = {member["rod"] for member in members}
+        if len(rods) > 1:
+            raise ValueError(f"{what} joins a beam to a rod: a spring joins two beams or two "
+                             "rods (a beam's deflection and a rod's axial motion are not "
+                             "along one line)")
+        on_rods = rods == {True}
+        kinds = _SPRING_KINDS | (_ROD_SPRING_KINDS if on_rods else {})
         kind = spring.get("kind", "translational")
-        if kind not in _SPRING_KINDS:
-            raise ValueError(f"kind of {what} must be 'translational' or 'rotational', "
+        if not isinstance(kind, str) or kind not in kinds:
+            raise ValueError(f"kind of {what} must be one of {', '.join(map(repr, kinds))}, "
                              f"got {kind!r}")
+        if on_rods and kinds[kind] == 1:
+            _require_torsion((name_a, name_b), beams, f"{what} acts in torsion")
         for name in (name_a, name_b):
             if name != GROUND:
                 _check_on_beam(x, name, beams[name], what)
-        parsed.append((name_a, None if name_b == GROUND else name_b, x, k, _SPRING_KINDS[kind]))
+        parsed.append((name_a, None if name_b == GROUND else name_b, x, k, kinds[kind]))
     return parsed
+
+
+def _require_torsion(names, beams, what):
+    """Refuse a torsional element on a rod without torsion (it has no twist dofs)."""
+    for name in names:
+        if name != GROUND and beams[name]["rod"] and not beams[name]["torsion"]:
+            raise ValueError(f"{what}, and rod {name!r} has no torsion (give it GJ and rhoIp)")
 
 
 def _normalise_masses(masses, beams):
@@ -270,8 +376,10 @@ def _normalise_masses(masses, beams):
         name = _known_beam(mass["beam"], beams, what)
         x = _number(mass["x"], f"x of {what}")
         _check_on_beam(x, name, beams[name], what)
-        parsed.append((name, x, _nonnegative_float(mass["M"], f"M of {what}"),
-                       _nonnegative_float(mass.get("J", 0.0) or 0.0, f"J of {what}")))
+        J = _nonnegative_float(mass.get("J", 0.0) or 0.0, f"J of {what}")
+        if J != 0.0:
+            _require_torsion((name,), beams, f"J of {what} is a polar inertia on a rod")
+        parsed.append((name, x, _nonnegative_float(mass["M"], f"M of {what}"), J))
     return parsed
 
 
@@ -310,6 +418,13 @@ def _normalise_bodies(bodies, beams):
         xc = attach[0][1] if xc is None else _number(xc, f"xc of {what}")
         # The rotation is a dof of its own unless nothing feels or fixes it (a pin joint).
         rotates = J != 0.0 or any((not h and k is None) or x != xc for _, x, h, k in attach)
+        rods = {beams[name]["rod"] for name, _, _, _ in attach}
+        if True in rods and (len(rods) > 1 or rotates):
+            # a turning body moves the points of a beam by its lever arms; along a rod every
+            # point of it moves alike
+            raise ValueError(f"{what} is on rods: it must join rods only and move along them "
+                             "without turning (every attachment hinged or elastic, at xc, "
+                             "and J = 0)")
         parsed.append({"attach": attach, "M": M, "J": J, "xc": xc, "rotates": rotates,
                        "what": what})
     return parsed
@@ -330,6 +445,9 @@ def _normalise_layers(layers, beams):
         name_a, name_b = (_known_beam(name, beams, what) for name in pair)
         if name_a == name_b:
             raise ValueError(f"{what} connects beam {name_a!r} to itself")
+        for name in (name_a, name_b):
+            if beams[name]["rod"]:
+                raise ValueError(f"{what} must join two beams, and {name!r} is a rod")
         k = _nonnegative_float(layer["k"], f"k of {what}")
         c = _number(layer.get("c", 0.0) or 0.0, f"c of {what}")
         if c != 0.0:
@@ -462,12 +580,44 @@ def _nearest_node(nodes, x):
 
 
 # ---------------------------------------------------------------------------
-# The elements: cubic Hermite (rigid in shear), cubic/quadratic mixed (Timoshenko)
+# The elements: cubic Hermite (rigid in shear), cubic/quadratic mixed (Timoshenko),
+# cubic hierarchical bars (rods)
 # ---------------------------------------------------------------------------
 
 def _element_dofs(beam):
-    """Local dofs of an element: 4 nodal ones, plus 3 internal ones when shear-flexible."""
+    """Local dofs of an element: 4 nodal ones, plus 3 internal ones when shear-flexible;
+    on a rod 2 internal ones for ``u`` and, with torsion, 2 for ``phi``."""
+    if beam["rod"]:
+        return 8 if beam["torsion"] else 6
     return 4 if beam["g"] == 0.0 else 7
+
+
+def _bar(start, stop, bubbles, l, xi):
+    """A cubic bar field and its derivative: the linear interpolation of the nodal values
+    ``start``, ``stop`` plus the hierarchical bubbles ``xi (1 - xi)`` and ``xi (1 - xi)(1 - 2
+    xi)`` with the amplitudes ``bubbles`` (none: linear)."""
+    value = start + (stop - start) * xi
+    slope = (stop - start) / l
+    if bubbles:
+        b2, b3 = bubbles
+        bubble = xi * (1.0 - xi)
+        value = value + b2 * bubble + b3 * bubble * (1.0 - 2.0 * xi)
+        slope = slope + (b2 * (1.0 - 2.0 * xi) + b3 * (1.0 - 6.0 * xi + 6.0 * xi * xi)) / l
+    return value, slope
+
+
+def _rod_fields(beam, values, l, s):
+    """``(u, u', phi, phi')`` of a rod element from its local values ``(u0, phi0, u1, phi1,
+    a2, a3)`` and, with torsion, ``(b2, b3)`` (the bubbles of ``u``, then of ``phi``).
+
+    Both fields are cubic (:func:`_bar`), written through differences of nodal values; the
+    twist of a rod without torsion is the linear interpolation of its nodal values, which
+    are constrained to zero.
+    """
+    xi = s / l
+    u, du = _bar(values[0], values[2], values[4:6], l, xi)
+    phi, dphi = _bar(values[1], values[3], values[6:8] if beam["torsion"] else (), l, xi)
+    return u, du, phi, dphi
 
 
 def _fields(beam, values, l, s):
@@ -486,7 +636,11 @@ def _fields(beam, values, l, s):
     element's error in ``omega`` is ``O(h**4)`` like Hermite's. (The
     interdependent interpolation element, four dofs with ``Y' - psi`` constant per
     element, only reaches ``O(h**2)`` in frequency.)
+
+    On a rod, ``(u, u', phi, phi')`` (:func:`_rod_fields`).
     """
+    if beam["rod"]:
+        return _rod_fields(beam, values, l, s)
     w0, t0, w1, t1 = values[:4]
     chord = (w1 - w0) / l
     if beam["g"] == 0.0:
@@ -515,6 +669,9 @@ def _gauss(l):
 def _energy_densities(beam, fields):
     """Twice the strain and the kinetic energy densities (``omega**2`` factored out)."""
     Y, dY, psi, dpsi = fields
+    if beam["rod"]:
+        return (beam["EA"] * dY**2 + beam["kw"] * Y**2 + beam["GJ"] * dpsi**2,
+                beam["m"] * Y**2 + beam["rhoIp"] * psi**2)
     strain = beam["EI"] * dpsi**2 + beam["N"] * dY**2 + beam["kw"] * Y**2
     if beam["g"] != 0.0:
         strain = strain + beam["EI"] / beam["g"] * (dY - psi) ** 2
@@ -527,7 +684,8 @@ def _element_matrices(beam, lengths):
     The energy integrated exactly (4-point Gauss; the integrands are polynomials of
     degree 6 at most) on the local unit vectors: the bilinear forms of ``K = EI
     psi'psi' + kGA gamma gamma + N Y'Y' + kw Y Y`` and ``M = m Y Y + rhoI psi psi``
-    (``gamma = Y' - psi``).
+    (``gamma = Y' - psi``); on a rod of ``K = EA u'u' + kw u u + GJ phi'phi'`` and ``M = m u
+    u + rhoIp phi phi`` (the integrands of degree 6 at most as well).
     """
     d = _element_dofs(beam)
     unit = np.eye(d)[None, :, :, None]              # (1, d unit vectors, d values, 1)
@@ -540,6 +698,10 @@ def _element_matrices(beam, lengths):
     def gram(f, coefficient):
         return coefficient * np.einsum("nig,njg,ng->nij", f, f, w)
 
+    if beam["rod"]:
+        # EA u'u' + kw u u + GJ phi'phi',  m u u + rhoIp phi phi
+        K = gram(dY, beam["EA"]) + gram(Y, beam["kw"]) + gram(dpsi, beam["GJ"])
+        return K, gram(Y, beam["m"]) + gram(psi, beam["rhoIp"])
     K = gram(dpsi, beam["EI"]) + gram(dY, beam["N"]) + gram(Y, beam["kw"])
     if beam["g"] != 0.0:
         K = K + gram(dY - psi, beam["EI"] / beam["g"])
@@ -598,13 +760,15 @@ def _beam_strain_energy(beam, lengths, local):
 def _beam_element_dofs(beam, nodes, first_dof):
     """Global dof of each element's local dofs, shape (elements, d).
 
-    A beam's dofs are ``Y, Theta`` of each node, then the internal ones of each element.
+    A beam's dofs are ``Y, Theta`` (a rod's ``u, phi``) of each node, then the internal
+    ones of each element.
     """
     n = len(nodes) - 1
     dofs = first_dof + 2 * np.arange(n)[:, None] + np.arange(4)[None, :]
-    if _element_dofs(beam) == 4:
+    k = _element_dofs(beam) - 4
+    if k == 0:
         return dofs
-    internal = first_dof + 2 * len(nodes) + 3 * np.arange(n)[:, None] + np.arange(3)[None, :]
+    internal = first_dof + 2 * len(nodes) + k * np.arange(n)[:, None] + np.arange(k)[None, :]
     return np.hstack([dofs, internal])
 
 
@@ -634,9 +798,14 @@ def _add_spring(K, stretch, k):
 
 
 def _boundary_constraints(beam, first_dof, n_nodes):
+    """The dofs the ends fix, each a constraint ``{dof: 1}``; on a rod without torsion also
+    every nodal ``phi`` (the rod has no twist)."""
     last_node_dof = first_dof + 2 * (n_nodes - 1)
-    dofs = [first_dof + local for local in _CONSTRAINED_DOFS[beam["left"]]]
-    dofs += [last_node_dof + local for local in _CONSTRAINED_DOFS[beam["right"]]]
+    table = _ROD_CONSTRAINED_DOFS if beam["rod"] else _CONSTRAINED_DOFS
+    dofs = [first_dof + local for local in table[beam["left"]]]
+    dofs += [last_node_dof + local for local in table[beam["right"]]]
+    if beam["rod"] and not beam["torsion"]:
+        dofs = sorted(set(dofs) | {first_dof + 1 + 2 * i for i in range(n_nodes)})
     return [{dof: 1.0} for dof in dofs]
 
 
@@ -647,14 +816,22 @@ def _reduction(constraints, total):
     the named ones are replaced by an orthonormal basis of the constraints' null
     space among them (the last columns). Returns ``(T, kept)``, ``kept[i]`` the
     column of dof ``i`` or -1.
+
+    A constraint naming a single dof (a support) fixes it: it is dropped, and from
+    the other constraints too, before the null space of the rest is computed.
     """
-    involved = sorted({dof for row in constraints for dof in row})
-    free = np.setdiff1d(np.arange(total), involved)
+    fixed = {dof for row in constraints if len(row) == 1
+             for dof, value in row.items() if value != 0.0}
+    rows = [{dof: value for dof, value in row.items() if dof not in fixed}
+            for row in constraints]
+    rows = [row for row in rows if row]
+    involved = sorted({dof for row in rows for dof in row})
+    free = np.setdiff1d(np.arange(total), sorted(fixed.union(involved)))
     basis = np.zeros((len(involved), 0))
     if involved:
         position = {dof: i for i, dof in enumerate(involved)}
-        C = np.zeros((len(constraints), len(involved)))
-        for r, row in enumerate(constraints):
+        C = np.zeros((len(rows), len(involved)))
+        for r, row in enumerate(rows):
             for dof, value in row.items():
                 C[r, position[dof]] += value
         basis = scipy.linalg.null_space(C)
@@ -868,12 +1045,16 @@ def fe_matrices(beams, springs, elements_per_beam, masses=None, bodies=None, ref
         ``right``, optionally ``kw``, ``N``, ``rhoI``, ``kGA`` (see the module
         docstring); boundary conditions are ``"free"``, ``"clamped"`` (``Y =
         Theta = 0``), ``"pinned"`` (``Y = 0``) or ``"sliding"`` (``Theta = 0``).
+        Rods among them: ``{"rod": True, "name", "EA", "m", "L", "x0", "left",
+        "right"}`` with optional ``kw``, ``GJ`` and ``rhoIp``; ends ``"fixed"``,
+        ``"free"``, with torsion also ``"fixed-axial"`` and ``"fixed-torsion"``.
     springs : list of dict or None
         Springs with keys ``between`` (pair of beam names, either may be
         ``"ground"``), ``x`` (global coordinate on every connected beam,
         possibly at a beam end) and ``k`` (stiffness, non-negative); optional
-        ``kind`` (``"translational"`` or ``"rotational"``). An optional ``c``
-        must be zero; other keys are ignored.
+        ``kind`` (``"translational"`` or ``"rotational"``; between rods, or a rod
+        and the ground, axial or torsional, also named ``"axial"`` and
+        ``"torsional"``). An optional ``c`` must be zero; other keys are ignored.
     elements_per_beam : int
         Approximate number of elements per beam.  Every beam gets nodes at
         its ends and at each point where something acts on it; the intervals
@@ -900,8 +1081,10 @@ def fe_matrices(beams, springs, elements_per_beam, masses=None, bodies=None, ref
         ``"nodes"`` maps each beam name to its node coordinates (global
         ``x``); ``"dofs"`` maps each beam name to an integer array of shape
         ``(n_nodes, 2)`` giving the row of ``K``/``M`` holding ``Y`` and
-        ``Theta`` at each node, or ``-1`` where a boundary condition removed the
-        dof or a body's constraint made it a combination of others;
+        ``Theta`` (on a rod ``u`` and ``phi``) at each node, or ``-1`` where a
+        boundary condition removed the dof (every ``phi`` of a rod without
+        torsion) or a body's constraint made it a combination of others (the
+        rows no node holds are the elements' internal dofs and the bodies');
         ``"n_dofs"`` is ``n``. ``"transform"`` is ``T`` with ``u = T q`` from
         the reduced dofs ``q`` to all dofs ``u`` (the beams' nodal dofs, rows
         ``"full_dofs"``, then each body's ``Y_c`` and ``Theta_c``, rows
@@ -944,6 +1127,13 @@ def fe_matrices(beams, springs, elements_per_beam, masses=None, bodies=None, ref
     [0.0, 0.3, 0.5, 0.7, 1.0]
     >>> info["nodes"]["c"].round(2).tolist()
     [0.0, 0.3, 0.5, 0.7, 1.13, 1.57, 2.0]
+
+    A rod fixed at the left, without torsion: ``u`` and two bubbles per element, no ``phi``:
+
+    >>> r = dict(rod=True, name="r", EA=1.0, m=1.0, L=1.0, x0=0.0, left="fixed", right="free")
+    >>> K, M, info = fe_matrices([r], [], 4)
+    >>> info["n_dofs"], info["dofs"]["r"][:2].tolist()     # 4 nodal u, 8 bubbles
+    (12, [[-1, -1], [0, -1]])
     """
     K, M, info, _ = _build(beams, springs, elements_per_beam, masses, bodies, refine, layers)
     return K, M, info
@@ -981,7 +1171,8 @@ def fe_frequencies(beams, springs, elements_per_beam, count=None, masses=None, b
     The generalized problem ``K v = omega**2 M v`` is solved densely with
     :func:`scipy.linalg.eigh`, which is practical up to a few thousand
     degrees of freedom.  With consistent mass the frequencies converge from
-    above with error ``O(h**4)`` in the element size ``h``.
+    above with error ``O(h**4)`` in the element size ``h`` (a rod's as
+    ``O(h**6)``).
 
     The dense solver alone loses the lowest modes of fine meshes to rounding
     (absolute error about ``eps`` times the largest eigenvalue, which grows
@@ -1015,6 +1206,15 @@ def fe_frequencies(beams, springs, elements_per_beam, count=None, masses=None, b
     >>> taut = dict(beam, N=10.0)
     >>> print(np.round(fe_frequencies([taut], [], 20, count=1) ** 2 - np.pi**4, 3))
     [98.696]
+
+    A fixed-free rod with ``c = sqrt(EA/m) = 2``, also in torsion with ``c = 1`` and
+    free to twist at the left (``fixed-axial``): ``(2n - 1) pi c / 2`` and ``n pi c``
+    with a rigid twist:
+
+    >>> shaft = dict(rod=True, name="s", EA=4.0, m=1.0, L=1.0, x0=0.0, GJ=1.0, rhoIp=1.0,
+    ...              left="fixed-axial", right="free")
+    >>> print(np.round(fe_frequencies([shaft], [], 8, count=4) / np.pi, 5))
+    [0. 1. 1. 2.]
     """
     K, M, _, energy_terms = _build(beams, springs, elements_per_beam, masses, bodies, refine,
                                    layers)
@@ -1041,7 +1241,9 @@ def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=N
     element. The error of these elements is a series ``C4 h**4 + C6 h**6 + ...``
     in the element size (even powers: the elements are symmetric), so Romberg's
     scheme removes one term per mesh: Richardson's extrapolation with ``2**rate``,
-    then ``2**(rate + 2)``, and so on.
+    then ``2**(rate + 2)``, and so on. A rod's series starts at ``h**6``: with the
+    default ``rate`` its modes lose that term in the second column (its
+    ``"rate"`` reads 6), or ``rate=6`` suits a model of rods only.
 
     Parameters
     ----------
