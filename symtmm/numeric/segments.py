@@ -79,29 +79,32 @@ def eb_constants(ar: Arithmetic, segments) -> dict:
     return {k: ar.array(v) for k, v in cols.items()}
 
 
-def _c_series(ar: Arithmetic, x):
-    """``c_0..c_3`` by their series, for ``|x| < 1`` elementwise (``x`` flat)."""
-    # 1/(4K)! below the precision; consecutive terms shrink at least 2x for |x| <= 1,
+def _factorial_series(ar: Arithmetic, x, p: int) -> list:
+    """``sum_k x**k / (p k + j)!`` for ``j = 0 .. p - 1``, for ``|x| < 1`` elementwise
+    (``x`` flat), each with its rigorous tail: the entire functions of the segment
+    families (``p = 4``: the Euler–Bernoulli ``c_j``; ``p = 2``: a rod's ``cosh sqrt x``
+    and ``sinh sqrt x / sqrt x``)."""
+    # 1/(pK)! below the precision; consecutive terms shrink at least 2x for |x| <= 1,
     # so the tail beyond K is at most twice the first omitted term
-    K = ar.series_terms(lambda k: _log2_inverse_factorial(4 * k))
-    inv = _inverse_factorials(ar, 4 * K + 4)
+    K = ar.series_terms(lambda k: _log2_inverse_factorial(p * k))
+    inv = _inverse_factorials(ar, p * K + p)
     out = []
-    for j in range(4):
+    for j in range(p):
         # the array on the left: an mpmath number would first try (and fail) to convert it
-        acc = 0 * x + inv[4 * (K - 1) + j]
+        acc = 0 * x + inv[p * (K - 1) + j]
         for k in range(K - 2, -1, -1):
-            acc = acc * x + inv[4 * k + j]
+            acc = acc * x + inv[p * k + j]
         # the tail beyond K terms, and (for jets) the tails of its derivatives in x: the
-        # terms k x**(k-1)/(4k+j)!, k(k-1) x**(k-2)/(4k+j)! and k(k-1)(k-2) x**(k-3)/(4k+j)!
-        # shrink 2x as well, so their sums are below 2K/(4K+j)!, 2K(K-1)/(4K+j)! and
-        # 2K(K-1)(K-2)/(4K+j)!
-        f = math.factorial(4 * K + j)
+        # terms k x**(k-1)/(pk+j)!, k(k-1) x**(k-2)/(pk+j)! and k(k-1)(k-2) x**(k-3)/(pk+j)!
+        # shrink 2x as well, so their sums are below 2K/(pK+j)!, 2K(K-1)/(pK+j)! and
+        # 2K(K-1)(K-2)/(pK+j)!
+        f = math.factorial(p * K + j)
         # (the k-th derivative's terms vanish below k = 2, 3: their sums start there)
         K2, K3 = max(K, 2), max(K, 3)
         out.append(ar.widen(acc, sp.Rational(2, f), wrt=x, slope=sp.Rational(2 * K, f),
-                            curve=sp.Rational(2 * K2 * (K2 - 1), math.factorial(4 * K2 + j)),
+                            curve=sp.Rational(2 * K2 * (K2 - 1), math.factorial(p * K2 + j)),
                             third=sp.Rational(2 * K3 * (K3 - 1) * (K3 - 2),
-                                              math.factorial(4 * K3 + j))))
+                                              math.factorial(p * K3 + j))))
     return out
 
 
@@ -123,32 +126,42 @@ def _c_negative(ar: Arithmetic, x):
             (ch * si - sh * co) / (4 * s2 * s)]
 
 
-def c_functions(ar: Arithmetic, x) -> list:
-    """``c_0..c_3`` of every element of ``x`` (any shape), each piece by its best form."""
+def _by_form(ar: Arithmetic, x, p: int, closed) -> list:
+    """The ``p`` entire functions of a family at every element of ``x`` (any shape): the
+    series (:func:`_factorial_series`) where ``|x| < 1``, ``closed(ar, xb)`` elsewhere, which
+    returns ``[(mask over xb, values), ...]``."""
     shape = np.shape(x)
     flat = np.asarray(x).reshape(-1)
     big = ar.upper(flat) >= 1.0
-    out = [ar.zeros(flat.shape, like=flat) for _ in range(4)]
+    out = [ar.zeros(flat.shape, like=flat) for _ in range(p)]
     small = ~big
     if small.any():
-        for o, v in zip(out, _c_series(ar, flat[small])):
+        for o, v in zip(out, _factorial_series(ar, flat[small], p)):
             o[small] = v
     if big.any():
-        xb = flat[big]
-        if ar.is_complex(xb):
-            parts = [(np.ones(xb.shape, dtype=bool), _c_closed(ar, xb))]
-        else:
-            positive = np.array([v > 0 for v in xb], dtype=bool)
-            parts = []
-            if positive.any():
-                parts.append((positive, [ar.real(c) for c in _c_closed(ar, xb[positive])]))
-            if (~positive).any():
-                parts.append((~positive, _c_negative(ar, xb[~positive])))
         idx = np.nonzero(big)[0]
-        for mask, values in parts:
+        for mask, values in closed(ar, flat[big]):
             for o, v in zip(out, values):
                 o[idx[mask]] = v
     return [o.reshape(shape) for o in out]
+
+
+def _c_big(ar: Arithmetic, xb) -> list:
+    """``c_0..c_3`` where ``|x| >= 1``: the closed forms, in real functions for real ``x``."""
+    if ar.is_complex(xb):
+        return [(np.ones(xb.shape, dtype=bool), _c_closed(ar, xb))]
+    positive = np.array([v > 0 for v in xb], dtype=bool)
+    parts = []
+    if positive.any():
+        parts.append((positive, [ar.real(c) for c in _c_closed(ar, xb[positive])]))
+    if (~positive).any():
+        parts.append((~positive, _c_negative(ar, xb[~positive])))
+    return parts
+
+
+def c_functions(ar: Arithmetic, x) -> list:
+    """``c_0..c_3`` of every element of ``x`` (any shape), each piece by its best form."""
+    return _by_form(ar, x, 4, _c_big)
 
 
 def eb_matrices(ar: Arithmetic, consts: dict, lam2) -> np.ndarray:
@@ -282,27 +295,6 @@ def rod_constants(ar: Arithmetic, segments) -> dict:
     return {k: ar.array(v) for k, v in cols.items()}
 
 
-def _f_series(ar: Arithmetic, z):
-    """``F0 = cosh(sqrt z)`` and ``F1 = sinh(sqrt z) / sqrt z`` by their series, ``|z| < 1``."""
-    # 1/(2K)! below the precision; for |z| <= 1 consecutive terms shrink at least 12x, so
-    # each tail (and those of its derivatives in z, as in _c_series) is at most twice its
-    # first term's bound
-    K = ar.series_terms(lambda k: _log2_inverse_factorial(2 * k))
-    inv = _inverse_factorials(ar, 2 * K + 2)
-    out = []
-    for j in range(2):
-        acc = 0 * z + inv[2 * (K - 1) + j]
-        for k in range(K - 2, -1, -1):
-            acc = acc * z + inv[2 * k + j]
-        f = math.factorial(2 * K + j)
-        K2, K3 = max(K, 2), max(K, 3)
-        out.append(ar.widen(acc, sp.Rational(2, f), wrt=z, slope=sp.Rational(2 * K, f),
-                            curve=sp.Rational(2 * K2 * (K2 - 1), math.factorial(2 * K2 + j)),
-                            third=sp.Rational(2 * K3 * (K3 - 1) * (K3 - 2),
-                                              math.factorial(2 * K3 + j))))
-    return out
-
-
 def _real_part(v) -> float:
     """The real part of a number of any arithmetic as a float (a jet's value's, a ball's
     midpoint's): only to choose a branch, never a bound."""
@@ -313,36 +305,31 @@ def _real_part(v) -> float:
         return float(v)
 
 
+def _f_big(ar: Arithmetic, zb) -> list:
+    """``F0, F1`` where ``|z| >= 1``: ``cos, sin`` of ``sqrt(-z)`` where ``Re z < 0``, else
+    ``cosh, sinh`` of ``sqrt(z)`` (each root's cut away from its ``z``)."""
+    centre = np.array([_real_part(v) for v in zb])
+    parts = []
+    for mask, wave in ((centre < 0, True), (centre >= 0, False)):
+        if not mask.any():
+            continue
+        if wave:
+            t = ar.sqrt(-zb[mask])
+            values = [ar.cos(t), ar.sin(t) / t]
+        else:
+            t = ar.sqrt(zb[mask])
+            values = [ar.cosh(t), ar.sinh(t) / t]
+        if not ar.is_complex(zb):
+            values = [ar.real(v) for v in values]
+        parts.append((mask, values))
+    return parts
+
+
 def f_functions(ar: Arithmetic, z) -> list:
     """``F0 = cosh(sqrt z)``, ``F1 = sinh(sqrt z) / sqrt z`` of every element of ``z`` (any
     shape): entire in ``z``, so any square root serves; the closed forms take the one whose
     cut is away from ``z`` (``i sqrt(-z)`` where ``Re z < 0``: ``cos`` and ``sin``)."""
-    shape = np.shape(z)
-    flat = np.asarray(z).reshape(-1)
-    big = ar.upper(flat) >= 1.0
-    out = [ar.zeros(flat.shape, like=flat) for _ in range(2)]
-    small = ~big
-    if small.any():
-        for o, v in zip(out, _f_series(ar, flat[small])):
-            o[small] = v
-    if big.any():
-        zb = flat[big]
-        idx = np.nonzero(big)[0]
-        centre = np.array([_real_part(v) for v in zb])
-        for mask, wave in ((centre < 0, True), (centre >= 0, False)):
-            if not mask.any():
-                continue
-            if wave:
-                t = ar.sqrt(-zb[mask])
-                values = [ar.cos(t), ar.sin(t) / t]
-            else:
-                t = ar.sqrt(zb[mask])
-                values = [ar.cosh(t), ar.sinh(t) / t]
-            if not ar.is_complex(zb):
-                values = [ar.real(v) for v in values]
-            for o, v in zip(out, values):
-                o[idx[mask]] = v
-    return [o.reshape(shape) for o in out]
+    return _by_form(ar, z, 2, _f_big)
 
 
 def rod_matrices(ar: Arithmetic, consts: dict, lam2) -> np.ndarray:

@@ -228,7 +228,7 @@ class TransferPlan:
         x = lam2 if self.even else lam
         out = []
         for cs in self.jump_coefficients(ar):
-            v = 0 * x + cs[-1]          # the array on the left (see segments._c_series)
+            v = 0 * x + cs[-1]          # the array on the left (see segments._factorial_series)
             for c in cs[-2::-1]:
                 v = v * x + c
             out.append(v)
