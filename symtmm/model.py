@@ -842,6 +842,9 @@ class Model:
                 if end not in names:
                     raise ModelError(f"unknown beam '{end}'", field=f"{where}.between")
                 beam = resolved[end]
+                if beam.is_rod:
+                    raise ModelError(f"a layer joins Euler-Bernoulli beams without axial force; "
+                                     f"'{end}' is a rod", field=f"{where}.between")
                 if not beam.plain:
                     raise ModelError(f"a layer joins Euler-Bernoulli beams without axial force; "
                                      f"beam '{end}' is {beam.theory}"

@@ -273,7 +273,7 @@ BEAM = '[[beam]]\nname = "b"\nEI = 1\nm = 1\nL = 1\nleft = "pinned"\nright = "pi
     (BEAM + '[[spring]]\nbetween = ["b", "ground"]\nx = 0.5\nk = 1\nkind = "axial"\n', "kind",
      "springs on rods"),
     (ROD + ROD.replace('"r"', '"s"') + '[[layer]]\nbetween = ["r", "s"]\nk = 1\n', "between",
-     "layer"),
+     "'r' is a rod"),
     (ROD + '[[rigid]]\nattach = ["r@0.5"]\nM = 1\nJ = 1\n', "attach", "without turning"),
 ])
 def test_bad_rods_get_one_line_errors(text, field, message):
