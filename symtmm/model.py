@@ -243,6 +243,10 @@ class Beam:
             allowed = {v[attr == "right"] for v in
                        (ROD_ENDS if self.torsion else ROD_ENDS_AXIAL).values()}
             if bc not in allowed:
+                if not self.torsion and bc in {v[attr == "right"] for v in ROD_ENDS.values()}:
+                    # built with GJ and rhoIp, and rhoIp came out 0 (a parameter's value)
+                    raise ModelError("must be positive (a rod with GJ vibrates in torsion)",
+                                     field=f"{where}.rhoIp")
                 raise ModelError(f"not a rod end {bc!r} (build rods with symtmm.model.rod)",
                                  field=f"{where}.{attr}")
 

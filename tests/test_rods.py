@@ -275,6 +275,9 @@ BEAM = '[[beam]]\nname = "b"\nEI = 1\nm = 1\nL = 1\nleft = "pinned"\nright = "pi
     (ROD + ROD.replace('"r"', '"s"') + '[[layer]]\nbetween = ["r", "s"]\nk = 1\n', "between",
      "'r' is a rod"),
     (ROD + '[[rigid]]\nattach = ["r@0.5"]\nM = 1\nJ = 1\n', "attach", "without turning"),
+    # a polar inertia that a parameter makes 0, on a rod free to twist at both ends
+    ("[parameters]\np = 0\n" + ROD.replace('left = "fixed"', 'left = "free"')
+     + 'GJ = 1\nrhoIp = "p"\n', "rhoIp", "must be positive"),
 ])
 def test_bad_rods_get_one_line_errors(text, field, message):
     with pytest.raises(ModelError) as info:
