@@ -237,6 +237,24 @@ def _parameters(raw: dict, overrides: dict) -> dict:
     return values
 
 
+def _level_fields(raw, where: str, required, optional, stiffness) -> tuple:
+    """``(name, where, fields)`` of a ``[[beam]]`` or ``[[rod]]`` table: its keys checked,
+    its name and ends strings, ``fields`` its numbers ``stiffness`` (e.g. ``EI, m, L``),
+    ``x0`` and ``kw``; ``where`` names the table with its name (``beam[2] (upper)``)."""
+    _check_keys(raw, required, optional, where)
+    name = raw["name"]
+    if not isinstance(name, str):
+        raise ModelError(f"expected a string, got {_kind(name)}", field=f"{where}.name")
+    where = f"{where} ({name})"
+    for k in ("left", "right"):
+        if not isinstance(raw[k], str):
+            raise ModelError(f"expected a string, got {_kind(raw[k])}", field=f"{where}.{k}")
+    fields = {k: _number(raw[k], f"{where}.{k}") for k in stiffness}
+    fields["x0"] = _number(raw.get("x0", 0), f"{where}.x0")
+    fields["kw"] = _number(raw.get("kw", 0), f"{where}.kw")
+    return name, where, fields
+
+
 def _build(data: dict, overrides: dict, source: str) -> Model:
     for key in data:
         if key not in _TOP:
@@ -274,15 +292,8 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
 
     beams = []
     for i, raw in enumerate(beams_raw, 1):
-        where = f"beam[{i}]"
-        _check_keys(raw, _BEAM_REQUIRED, _BEAM_OPTIONAL, where)
-        name = raw["name"]
-        if not isinstance(name, str):
-            raise ModelError(f"expected a string, got {_kind(name)}", field=f"{where}.name")
-        where = f"beam[{i}] ({name})"
-        fields = {k: _number(raw[k], f"{where}.{k}") for k in ("EI", "m", "L")}
-        fields["x0"] = _number(raw.get("x0", 0), f"{where}.x0")
-        fields["kw"] = _number(raw.get("kw", 0), f"{where}.kw")
+        name, where, fields = _level_fields(raw, f"beam[{i}]", _BEAM_REQUIRED, _BEAM_OPTIONAL,
+                                            ("EI", "m", "L"))
         fields["N"] = _number(raw.get("N", 0), f"{where}.N")
         theory = raw.get("theory", "euler-bernoulli")
         if not isinstance(theory, str):
@@ -295,9 +306,6 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
             fields["rhoI"] = _number(raw["rhoI"], f"{where}.rhoI")
         if "kGA" in raw:
             fields["kGA"] = _number(raw["kGA"], f"{where}.kGA")
-        for k in ("left", "right"):
-            if not isinstance(raw[k], str):
-                raise ModelError(f"expected a string, got {_kind(raw[k])}", field=f"{where}.{k}")
         try:
             beams.append(Beam(name, left=raw["left"], right=raw["right"], theory=theory,
                               **fields))
@@ -308,21 +316,11 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
 
     rods = set()
     for i, raw in enumerate(rods_raw, 1):
-        where = f"rod[{i}]"
-        _check_keys(raw, _ROD_REQUIRED, _ROD_OPTIONAL, where)
-        name = raw["name"]
-        if not isinstance(name, str):
-            raise ModelError(f"expected a string, got {_kind(name)}", field=f"{where}.name")
-        where = f"rod[{i}] ({name})"
-        fields = {k: _number(raw[k], f"{where}.{k}") for k in ("EA", "m", "L")}
-        fields["x0"] = _number(raw.get("x0", 0), f"{where}.x0")
-        fields["kw"] = _number(raw.get("kw", 0), f"{where}.kw")
+        name, where, fields = _level_fields(raw, f"rod[{i}]", _ROD_REQUIRED, _ROD_OPTIONAL,
+                                            ("EA", "m", "L"))
         for k in ("GJ", "rhoIp"):
             if k in raw:
                 fields[k] = _number(raw[k], f"{where}.{k}")
-        for k in ("left", "right"):
-            if not isinstance(raw[k], str):
-                raise ModelError(f"expected a string, got {_kind(raw[k])}", field=f"{where}.{k}")
         try:
             beams.append(rod(name, left=raw["left"], right=raw["right"], **fields))
         except ModelError as exc:
