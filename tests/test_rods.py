@@ -27,6 +27,7 @@ import mpmath
 import numpy as np
 import pytest
 from cli_contract import assert_contract, run_cli
+from rod_reference import family, tip_roots
 
 from symtmm.errors import ModelError
 from symtmm.model import Beam, Mass, Model, Spring, joint, oscillator, rod
@@ -42,17 +43,15 @@ def _omegas(spectrum) -> list:
     return out
 
 
-@pytest.mark.parametrize("left, right, family", [
-    ("fixed", "fixed", lambda n: n * math.pi),
-    ("fixed", "free", lambda n: (2 * n - 1) * math.pi / 2),
-    ("free", "fixed", lambda n: (2 * n - 1) * math.pi / 2),
-    ("free", "free", lambda n: (n - 1) * math.pi),
+@pytest.mark.parametrize("left, right, kind", [
+    ("fixed", "fixed", "fixed-fixed"), ("fixed", "free", "fixed-free"),
+    ("free", "fixed", "fixed-free"), ("free", "free", "free-free"),
 ])
-def test_uniform_rod_against_its_closed_forms(left, right, family):
-    EA, m, L = 4, "1/4", 3           # c = 4, c / L = 4/3
+def test_uniform_rod_against_its_closed_forms(left, right, kind):
+    EA, m, L = 4, "1/4", 3           # c = 4
     model = Model((rod("r", EA=EA, m=m, L=L, left=left, right=right),))
     got = _omegas(solve(model, count=6))
-    ref = [family(n) * 4 / 3 for n in range(1, 7)]
+    ref = family(kind, 4.0, 3.0, 6)
     np.testing.assert_allclose(got, ref, rtol=1e-14, atol=1e-14)
 
 
@@ -73,14 +72,8 @@ def test_axial_and_torsional_families_meet_with_exact_multiplicity():
 ])
 def test_ends_per_motion(left, right, axial, torsion):
     """``c = 1`` axially and ``c = 3`` in torsion (L = 1): the union of the two families."""
-    def family(kind, c):
-        if kind == "free-free":
-            return [0.0] + [n * math.pi * c for n in range(1, 8)]
-        if kind == "fixed-fixed":
-            return [n * math.pi * c for n in range(1, 8)]
-        return [(2 * n - 1) * math.pi / 2 * c for n in range(1, 8)]
     model = Model((rod("s", EA=1, m=1, L=1, GJ=9, rhoIp=1, left=left, right=right),))
-    ref = sorted(family(axial, 1.0) + family(torsion, 3.0))[:8]
+    ref = sorted(family(axial, 1.0, 1.0, 8) + family(torsion, 3.0, 1.0, 8))[:8]
     got = _omegas(solve(model, count=8))
     np.testing.assert_allclose(got, ref, rtol=1e-14, atol=1e-12)
 
@@ -92,23 +85,13 @@ def test_axial_foundation():
     np.testing.assert_allclose(_omegas(solve(model, count=5)), ref, rtol=1e-14)
 
 
-def _tip_roots(ratio, count):
-    """``x tan x = ratio``: one root in each ``(n pi, n pi + pi/2)``."""
-    out = []
-    for n in range(count):
-        lo, hi = n * math.pi + 1e-12, n * math.pi + math.pi / 2 - 1e-12
-        out.append(float(mpmath.findroot(lambda x: x * mpmath.sin(x) - ratio * mpmath.cos(x),
-                                         (lo, hi), solver="anderson")))
-    return out
-
-
 def test_shaft_with_a_disc_example():
     """examples/shaft_with_disc.toml against the two tip-mass frequency equations."""
     model = load("examples/shaft_with_disc.toml")
     E, G, rho, d, L, M, J = 2.1e11, 8.1e10, 7850, 0.05, 1.5, 20, 0.4
     A, Ip = math.pi * d**2 / 4, math.pi * d**4 / 32
-    axial = [x / L * math.sqrt(E / rho) for x in _tip_roots(rho * A * L / M, 4)]
-    torsion = [x / L * math.sqrt(G / rho) for x in _tip_roots(rho * Ip * L / J, 4)]
+    axial = [x / L * math.sqrt(E / rho) for x in tip_roots(rho * A * L / M, 4)]
+    torsion = [x / L * math.sqrt(G / rho) for x in tip_roots(rho * Ip * L / J, 4)]
     ref = sorted(axial + torsion)[:6]
     np.testing.assert_allclose(_omegas(solve(model, count=6)), ref, rtol=1e-13)
 

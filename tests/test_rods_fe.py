@@ -51,6 +51,7 @@ import mpmath
 import numpy as np
 import pytest
 import scipy.linalg
+from rod_reference import family, tip_roots
 
 from symtmm.fe import fe_converged, fe_frequencies, fe_matrices
 from symtmm.model import Beam, Mass, Model, Spring, joint, oscillator, rod
@@ -134,24 +135,6 @@ def assert_agrees_with_fe(model: Model, count: int, elements: int = 16,
 def bar(name="r", EA=1.0, m=1.0, L=1.0, x0=0.0, left="fixed", right="fixed", **extra):
     return dict(rod=True, name=name, EA=EA, m=m, L=L, x0=x0, left=left, right=right, **extra)
 
-
-def family(kind: str, c: float, L: float, count: int) -> list:
-    """Closed forms of a uniform rod: ``kind`` its ends, ``c`` the wave speed."""
-    if kind == "free-free":
-        return [n * math.pi * c / L for n in range(count)]
-    if kind == "fixed-fixed":
-        return [n * math.pi * c / L for n in range(1, count + 1)]
-    return [(2 * n - 1) * math.pi * c / (2 * L) for n in range(1, count + 1)]
-
-
-def tip_roots(ratio: float, count: int) -> list:
-    """``x tan x = ratio``: one root in each ``(n pi, n pi + pi/2)``."""
-    out = []
-    for n in range(count):
-        lo, hi = n * math.pi + 1e-12, n * math.pi + math.pi / 2 - 1e-12
-        out.append(float(mpmath.findroot(lambda x: x * mpmath.sin(x) - ratio * mpmath.cos(x),
-                                         (lo, hi), solver="anderson")))
-    return out
 
 
 # -- the rod element ------------------------------------------------------------------------

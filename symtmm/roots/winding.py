@@ -75,7 +75,8 @@ HALF_WIDTH = math.pi / 2 - 0.05
 #: The largest ``|F|`` on a segment (the logarithm's series needs ``q < 1``).
 Q_MAX = 0.5
 #: The widest value of ``Delta`` at a segment's centre, relative to its modulus, taken as it
-#: comes; a wider one is evaluated again with more bits (its argument would be loose).
+#: comes; a wider one is evaluated again (its argument would be loose): by the evaluator's
+#: plain balls at the same bits, then at twice and four times as many.
 REL_RADIUS = 2.0**-10
 #: Order of the Taylor model of ``K`` on a segment (coefficients at the centre up to
 #: ``ORDER - 1``, the last over the segment). Measured on example 4's region to 1500
@@ -171,7 +172,8 @@ class _Prover:
         values = values.copy()
         # where the elimination left a pivot undecided, or lost so many bits to a small
         # pivot (a leading sub-structure near its own eigenvalue) that the value's ball
-        # is too wide for its argument, the evaluator's own at twice the bits, and again
+        # is too wide for its argument, the evaluator's own (plain balls, narrower than the
+        # jets' values) at the same bits, then at twice and four times as many
         bad = np.nonzero(~trusted | ~self._narrow(values))[0]
         prec = self.prec
         for _ in range(3):
