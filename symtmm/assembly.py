@@ -43,7 +43,7 @@ from .elements import (
     RotationalGroundSpring,
 )
 from .elements.base import CONJUGATE, LAM
-from .model import BOUNDARY_CONDITIONS, Model
+from .model import BOUNDARY_CONDITIONS, GROUND, Model
 
 __all__ = ["Layout", "Interval", "Station", "BodyLayout", "overall_transfer_matrix", "state_rows",
            "boundary_matrix", "characteristic_determinant", "point_elements"]
@@ -120,6 +120,22 @@ class BodyLayout:
     unknowns: dict
     equations: dict
     levels: tuple      # level of each attachment's beam
+    frame: object = None   # its BodyFrame
+
+
+@dataclass(frozen=True)
+class LinkLayout:
+    """Where an inextensible bar's force and equation sit (None for a bar with a free end:
+    only its mass acts), and its ends' rows ``(BodyLayout, {label: coefficient})``."""
+
+    link: object
+    force: int | None
+    equation: int | None
+    rows: tuple
+
+
+#: The equation of motion of each freedom of a body.
+_EQUATION = {"Y": "force", "Theta": "moment", "X": "force X"}
 
 
 def _before(a: sp.Expr, b: sp.Expr, sample: dict | None = None) -> bool | None:
@@ -252,6 +268,7 @@ class Layout:
         units = {}
         for body in self.model.bodies:
             levels = tuple(index[a.beam] for a in body.attachments)
+            frame = self.model.body_frame(body)
             unknowns, equations = {}, {}
 
             def new(table, label, level, var):
@@ -259,85 +276,119 @@ class Layout:
                 table[label] = nxt
                 units[nxt] = (level, var)
                 nxt += 1
-            rot = body.rotates
-            new(unknowns, "Y", levels[0], "Y")
-            if rot:
-                new(unknowns, "Theta", levels[0], "Theta")
+            # the freedoms Y, Theta, X (a translation in the unit of the first attachment's
+            # deflection, the rotation in that of its rotation)
+            for label in frame.freedoms:
+                new(unknowns, label, levels[0], "Theta" if label == "Theta" else "Y")
             # (an elastic attachment's force follows from the two deflections: no unknown
             # of its own and no compatibility equation)
             for i, (att, lvl) in enumerate(zip(body.attachments, levels)):
                 if att.elastic:
                     continue
                 new(unknowns, ("F", i), lvl, "Q")
-                if not att.hinged:
+                if frame.turns[i]:
                     new(unknowns, ("C", i), lvl, "M")
             for i, (att, lvl) in enumerate(zip(body.attachments, levels)):
                 if att.elastic:
                     continue
                 new(equations, ("Y", i), lvl, "Y")
-                if not att.hinged:
+                if frame.turns[i]:
                     new(equations, ("Theta", i), lvl, "Theta")
-            new(equations, "force", levels[0], "Q")
-            if rot:
-                new(equations, "moment", levels[0], "M")
-            out.append(BodyLayout(body, unknowns, equations, levels))
+            for label in frame.freedoms:
+                new(equations, _EQUATION[label], levels[0], "M" if label == "Theta" else "Q")
+            out.append(BodyLayout(body, unknowns, equations, levels, frame))
+        # an inextensible bar between bodies (or a body and the ground): its axial force
+        # is an unknown, the equality of its ends' motions along it an equation
+        self.links = []
+        placed = {bl.body.name: bl for bl in out}
+        for link in self.model.links:
+            ends = [(placed[body.name], row) for body, row in self.model.link_rows(link)]
+            rows = tuple((bl, row) for bl, row in ends if row)
+            if not rows:
+                continue                # held at both ends: nothing moves along it
+            # an end on the ground, or on a body held along the bar, holds it
+            held = GROUND in link.ends or len(rows) < len(ends)
+            if len(rows) == 2 or held:
+                level = rows[0][0].levels[0]
+                units[nxt], units[nxt + 1] = (level, "Q"), (level, "Y")
+                self.links.append(LinkLayout(link, nxt, nxt + 1, rows))
+                nxt += 2
+            else:
+                self.links.append(LinkLayout(link, None, None, rows))   # a free end: its mass
         self.size = nxt
         self._units = units
         return tuple(out)
 
     def _body_terms_at(self, x):
         """Entries of G of the bodies at ``x``: attachments, and each body's equations of
-        motion at the station of its first attachment."""
+        motion at the station of its first attachment.
+
+        Attachment ``i`` moves its member's ``Y`` by ``a_i . q`` (``q`` the body's freedoms,
+        ``a_i`` the row of :class:`~symtmm.model.BodyFrame`); the force ``F_i`` it exerts
+        there (``Q+ - Q- = F_i``) enters the body's equation of each freedom with the same
+        coefficient, by virtual work: ``m_q lam**2 q + sum_i a_i[q] F_i (+ C_i) = 0``.
+        """
         lam2 = LAM**2
         for bl in self.bodies:
-            body, u, e = bl.body, bl.unknowns, bl.equations
-            rot = "Theta" in u
+            body, u, e, frame = bl.body, bl.unknowns, bl.equations, bl.frame
             for i, (att, lvl) in enumerate(zip(body.attachments, bl.levels)):
                 if not _same(att.x, x):
                     continue
-                d = att.x - body.xc                  # arm from the centre of mass
+                row = frame.rows[i]
                 if att.elastic:
-                    # F = (k + c lam)(Y_c + d Theta_c - Y) on the beam (Q+ - Q- = F), and
-                    # into the body's equations of motion where it is: the sum of F_i
+                    # F = (k + c lam)(a_i . q - Y) on the beam (Q+ - Q- = F), and into the
+                    # body's equations of motion where it is
                     s = att.k + att.c * LAM
-                    force = [(u["Y"], s), (4 * lvl, -s)]
-                    if rot and d != 0:
-                        force.append((u["Theta"], s * d))
+                    force = [(u[label], s * a) for label, a in row.items()] + [(4 * lvl, -s)]
                     for col, value in force:
                         yield (4 * lvl + 3, col, value)
-                        yield (e["force"], col, value)
-                        if rot and d != 0:
-                            yield (e["moment"], col, d * value)
+                        for label, a in row.items():
+                            yield (e[_EQUATION[label]], col, a * value)
                     continue
                 # the body's force and couple on the beam: Q+ - Q- = F, M+ - M- = -C
                 yield (4 * lvl + 3, u[("F", i)], sp.Integer(1))
                 # compatibility: the beam's deflection (and rotation) are the body's there
                 yield (e[("Y", i)], 4 * lvl, sp.Integer(1))
-                yield (e[("Y", i)], u["Y"], sp.Integer(-1))
-                if rot and d != 0:
-                    yield (e[("Y", i)], u["Theta"], -d)
-                if not att.hinged:
+                for label, a in row.items():
+                    yield (e[("Y", i)], u[label], -a)
+                if frame.turns[i]:
                     yield (4 * lvl + 2, u[("C", i)], sp.Integer(-1))
                     yield (e[("Theta", i)], 4 * lvl + 1, sp.Integer(1))
-                    yield (e[("Theta", i)], u["Theta"], sp.Integer(-1))
+                    if "Theta" in u:
+                        yield (e[("Theta", i)], u["Theta"], sp.Integer(-1))
             if not _same(body.attachments[0].x, x):
                 continue
-            # M lam^2 Y_c + sum F_i = 0 and J lam^2 Theta_c + sum (d_i F_i + C_i) = 0: the
-            # reactions -F_i, -C_i of the beams accelerate the body (moments about xc)
-            if body.M != 0:
-                yield (e["force"], u["Y"], body.M * lam2)
+            # m_q lam^2 q + sum a_i[q] F_i (+ C_i) = 0: the reactions -F_i, -C_i of the
+            # beams accelerate the body (moments about its centre)
+            for label in frame.freedoms:
+                mass = frame.mass(body, label)
+                if mass != 0:
+                    yield (e[_EQUATION[label]], u[label], mass * lam2)
             for i, att in enumerate(body.attachments):
                 if att.elastic:
                     continue                        # (added at its own station)
-                yield (e["force"], u[("F", i)], sp.Integer(1))
-                if rot:
-                    d = att.x - body.xc
-                    if d != 0:
-                        yield (e["moment"], u[("F", i)], d)
-                    if not att.hinged:
-                        yield (e["moment"], u[("C", i)], sp.Integer(1))
-            if rot and body.J != 0:
-                yield (e["moment"], u["Theta"], body.J * lam2)
+                for label, a in frame.rows[i].items():
+                    yield (e[_EQUATION[label]], u[("F", i)], a)
+                if frame.turns[i]:
+                    yield (e["moment"], u[("C", i)], sp.Integer(1))
+        for ll in self.links:
+            first = ll.rows[0][0]
+            if not _same(first.body.attachments[0].x, x):
+                continue
+            # the bar's force N pulls its ends: t . (q_a - q_b) = 0, and N enters each end's
+            # equations with the same coefficients (virtual work); its mass M moves with the
+            # first end along t: M lam**2 (t . q_a) t in that end's equations
+            for bl, row in ll.rows:
+                for label, a in row.items():
+                    if ll.force is not None:
+                        yield (ll.equation, bl.unknowns[label], a)
+                        yield (bl.equations[_EQUATION[label]], ll.force, a)
+            bl, row = ll.rows[0]
+            if ll.link.M != 0:
+                for label, a in row.items():
+                    for label2, a2 in row.items():
+                        yield (bl.equations[_EQUATION[label]], bl.unknowns[label2],
+                               ll.link.M * a * a2 * lam2)
 
     def _terms_at(self, x, elements):
         """Every entry of G at the station ``x``: point elements, then bodies; summed."""
@@ -390,14 +441,16 @@ class Layout:
     def columns(self) -> list:
         """Indices (extended state) of the unknowns: beams' left-end variables, then bodies'."""
         out = [4 * lvl + STATE.index(v) for lvl, v in self.unknowns]
-        return out + [i for bl in self.bodies for i in bl.unknowns.values()]
+        return (out + [i for bl in self.bodies for i in bl.unknowns.values()]
+                + [ll.force for ll in self.links if ll.force is not None])
 
     @property
     def rows(self) -> list:
         """Indices (extended state) of the conditions: beams' right ends, then the bodies'
         equations (accumulators)."""
         out = [4 * lvl + STATE.index(v) for lvl, v in self.conditions]
-        return out + [i for bl in self.bodies for i in bl.equations.values()]
+        return (out + [i for bl in self.bodies for i in bl.equations.values()]
+                + [ll.equation for ll in self.links if ll.equation is not None])
 
 
 def _step_matrix(step, size: int, lam, segment_matrix) -> sp.Matrix:

@@ -1,7 +1,9 @@
 """Pictures of a model: its beams, supports and point elements, and its mode shapes in
 that layout (``symtmm draw``).
 
-The beams are drawn at their levels (the first on top), each from ``x0`` to
+A planar frame (members at angles, :mod:`symtmm.frame`) is drawn in its plane, each
+member displaced by its deflection and axial motion. Otherwise the beams are drawn at
+their levels (the first on top), each from ``x0`` to
 ``x0 + L``; supports at the ends (pinned: a triangle, clamped: a hatched wall,
 sliding: a wall on rollers, free: nothing); springs as zigzags (to the ground
 downwards), dashpots as pistons beside them, rotational ones as a coil symbol;
@@ -114,8 +116,106 @@ def _amplitude(mode) -> float:
     return _GAP / 3 / top if top > 0 else 0.0
 
 
+def is_planar(model: Model) -> bool:
+    """A model drawn in the plane: some member at an angle or placed by its point, or an
+    inextensible bar (a planar frame)."""
+    return bool(model.links) or any(not b.along_x or b.origin is not None for b in model.beams)
+
+
+def _draw_planar(ax, model: Model, mode=None, phase: complex = 1, labels: bool = True):
+    """A planar frame in its plane: every member at its place, displaced by its deflection
+    along its normal and, where it has one, its axial motion along its axis (its
+    ``name_axial`` rod, or the joints an inextensible bar moves with)."""
+    from .frame import AXIAL_SUFFIX
+
+    levels = {b.name: b for b in model.beams}
+    points = [b.point(x) for b in model.beams for x in (b.x0, b.x1)]
+    xs = [float(p[0]) for p in points]
+    ys = [float(p[1]) for p in points]
+    size = max(max(xs) - min(xs), max(ys) - min(ys), 1e-12)
+    links = {ln.name: ln for ln in model.links}
+    bodies = {b.name: b for b in model.bodies}
+
+    def samples(name):
+        shape = mode.beams[name]
+        return np.asarray(shape.x, dtype=float), np.real(np.asarray(shape.Y) * phase)
+
+    def body_motion(name):
+        """The translation (x, y) of a body in the mode."""
+        if mode is None or name not in bodies:
+            return np.zeros(2)
+        motion = mode.bodies.get(name, {})
+        frame = model.body_frame(bodies[name])
+        out = np.zeros(2)
+        for label, e in frame.directions.items():
+            value = np.real(complex(motion.get(label, 0)) * phase)
+            out += value * np.array([float(e[0]), float(e[1])])
+        return out
+
+    drawn = []              # (name, x samples, displacement vectors (n, 2))
+    for b in model.beams:
+        if b.is_rod and b.name.endswith(AXIAL_SUFFIX) and b.name[:-len(AXIAL_SUFFIX)] in levels:
+            continue        # the axial part of a member: drawn with its bending
+        t = np.array([float(v) for v in b.axis])
+        nrm = np.array([-t[1], t[0]])
+        if mode is None:
+            x = np.array([float(b.x0), float(b.x1)])
+            disp = np.zeros((2, 2))
+        else:
+            x, Y = samples(b.name)
+            disp = np.outer(Y, t if b.is_rod else nrm)
+            partner = levels.get(b.name + AXIAL_SUFFIX)
+            if partner is not None and not b.is_rod:
+                xa, u = samples(partner.name)
+                disp += np.outer(np.interp(x, xa, u), t)
+            link = links.get(b.name + AXIAL_SUFFIX)
+            if link is not None:
+                moving = [e for e in link.ends if e in bodies]
+                if moving:
+                    disp += np.outer(np.ones_like(x), t * float(body_motion(moving[0]) @ t))
+        drawn.append((b, x, disp))
+    top = max([float(np.max(np.linalg.norm(d, axis=1))) for _, _, d in drawn] + [0.0])
+    amp = 0.12 * size / top if top > 0 else 0.0
+    line = dict(color="C0", lw=2.2, zorder=3)
+    for b, x, disp in drawn:
+        base = np.array([[float(v) for v in b.point(xi)] for xi in x])
+        if mode is not None:
+            ends = np.array([[float(v) for v in b.point(xi)] for xi in (b.x0, b.x1)])
+            ax.plot(ends[:, 0], ends[:, 1], color="0.75", lw=0.8, ls="--", zorder=1)
+        shown = base + amp * disp
+        ax.plot(shown[:, 0], shown[:, 1], **line)
+        if labels:
+            mid = len(shown) // 2
+            ax.text(*(0.5 * (shown[0] + shown[-1]) if len(shown) == 2 else shown[mid]),
+                    " " + b.name, fontsize=8, color="0.3")
+        for side, k in (("left", 0), ("right", -1)):
+            bc = _drawn_end(b, side)
+            if bc != "free":
+                _support(ax, "pinned" if bc == "pinned" else "clamped", shown[k, 0],
+                         shown[k, 1], -1 if side == "left" else 1, size)
+    for body in model.bodies:
+        centre = np.array([float(v) for v in model.body_frame(body).centre])
+        at = centre + amp * body_motion(body.name)
+        _dot(ax, at[0], at[1], filled=not all(a.hinged for a in body.attachments
+                                              if not levels[a.beam].is_rod))
+        if body.fixed:
+            _support(ax, "clamped" if "Theta" in body.fixed else "pinned", at[0], at[1], -1,
+                     size)
+        if body.M != 0:
+            ax.plot([at[0]], [at[1]], marker="s", ms=10, color="0.35", zorder=5, ls="none")
+    ax.set_aspect("equal")
+    pad = 0.15 * size
+    ax.set_xlim(min(xs) - pad, max(xs) + pad)
+    ax.set_ylim(min(ys) - pad, max(ys) + pad)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+
+
 def _draw(ax, model: Model, mode=None, phase: complex = 1, labels: bool = True):
     model = model.resolved()
+    if is_planar(model):
+        _draw_planar(ax, model, mode, phase, labels)
+        return
     level, lo, hi, span = _layout(model)
     amp = _amplitude(mode)
     line = dict(color="C0", lw=2.2, zorder=3)
@@ -163,7 +263,7 @@ def _draw(ax, model: Model, mode=None, phase: complex = 1, labels: bool = True):
         ax.fill_between(xs, ya, yb, facecolor="none", edgecolor="0.55", lw=0.0,
                         hatch="||" if la.c == 0 else "|.", zorder=1)
     for body in model.bodies:
-        _draw_body(ax, body, level, y_at, mode, amp, phase, span, element)
+        _draw_body(ax, model, body, level, y_at, mode, amp, phase, span, element)
     ax.set_aspect("auto")
     ax.set_xlim(lo - 0.12 * span, hi + 0.06 * span)
     ax.set_ylim(-_GAP * (len(model.beams) - 1) - 0.7 * _GAP, 0.7 * _GAP)
@@ -173,9 +273,9 @@ def _draw(ax, model: Model, mode=None, phase: complex = 1, labels: bool = True):
         ax.spines[side].set_visible(False)
 
 
-def _draw_body(ax, body, level, y_at, mode, amp, phase, span, element):
+def _draw_body(ax, model, body, level, y_at, mode, amp, phase, span, element):
     """A rigid body: a frame joining its rigid and hinged points, a block on springs."""
-    xc = float(body.xc)
+    xc = float(model.body_frame(body).centre[0])
     motion = {} if mode is None else mode.bodies.get(body.name, {})
     if all(a.elastic for a in body.attachments):
         # a sprung mass: its block sits above its beam, or between its two beams
@@ -216,7 +316,8 @@ def draw_model(model: Model, mode=None, title: str | None = None, figsize=None):
     -------
     Figure
     """
-    fig = new_figure(figsize or (7.5, 1.2 + 1.3 * len(model.beams)))
+    planar = is_planar(model.resolved())
+    fig = new_figure(figsize or ((6.5, 6.0) if planar else (7.5, 1.2 + 1.3 * len(model.beams))))
     ax = fig.add_subplot()
     _draw(ax, model, mode)
     if title is None:

@@ -66,8 +66,9 @@ FIELD_MAX = 1e30
 MAX_PARAMETER_DEPTH = 32
 #: Largest model file, in bytes.
 MAX_FILE_BYTES = 1_000_000
-#: Most beams in one model.
-MAX_BEAMS = 100
+#: Most levels (beams and rods) in one model; a member of a planar frame is two (its
+#: bending and its axial motion), so a frame has at most 100 extensible members.
+MAX_BEAMS = 200
 #: Most springs, masses and rigid-body attachments together.
 MAX_POINTS_ON_BEAMS = 1000
 #: Most parameters.

@@ -23,7 +23,7 @@ from .elements import Coupling
 from .elements.layer import joined, member
 from .errors import ComputationError, ModelError
 from .limits import MAX_PIECES
-from .model import Model
+from .model import GROUND, Model
 
 __all__ = ["Mesh", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
 
@@ -115,23 +115,36 @@ class Mesh:
                 (tuple(combo(("n", at[lvl], 0 if var == "Y" else 1)) for lvl, var in el.dofs), el))
         self.body_places = []
         for bi, body in enumerate(model.bodies):
-            ks = (0, 1) if body.rotates else (0,)
-            masses = (body.M, body.J)[:len(ks)]
+            frame = model.body_frame(body)
+            ks = [frame.index(label) for label in frame.freedoms]
+            masses = tuple(frame.mass(body, label) for label in frame.freedoms)
             self.body_places.append((tuple(combo(("b", bi, k)) for k in ks), masses))
-            for att in body.attachments:
+            for att, row in zip(body.attachments, frame.rows):
                 if att.elastic:
-                    # a spring from the beam's deflection to the body's point above it,
-                    # Y_c + (x - xc) Theta_c: a coupling on those two combinations
+                    # a spring from the beam's motion to the body's point there, a_i . q:
+                    # a coupling on those two combinations
                     at = {}
-                    d = _canonical(att.x - body.xc)
-                    for v, f in [(("b", bi, 0), 1)] + ([(("b", bi, 1), d)] if body.rotates
-                                                        and d != 0 else []):
-                        for i, c in combo(v):
-                            at[i] = at.get(i, 0) + f * c
+                    for label, f in row.items():
+                        for i, c in combo(("b", bi, frame.index(label))):
+                            at[i] = at.get(i, 0) + _canonical(f) * c
                     point = tuple(sorted((i, c) for i, c in at.items() if c != 0))
                     beam = combo(("n", self._node(att.beam, att.x), 0))
                     self.point_places.append(
                         ((beam, point), Coupling(att.beam, body.name, att.k, att.c)))
+        body_index = {b.name: bi for bi, b in enumerate(model.bodies)}
+        for link in model.links:
+            ends = [(body_index[body.name], row) for body, row in model.link_rows(link) if row]
+            if link.M == 0 or not ends:
+                continue
+            # the bar's mass moves with its first end along it: M (t . q)**2
+            bi, row = ends[0]
+            at = {}
+            for label, a in row.items():
+                for i, c in combo(("b", bi, {"Y": 0, "Theta": 1, "X": 2}[label])):
+                    at[i] = at.get(i, 0) + _canonical(a) * c
+            point = tuple(sorted((i, c) for i, c in at.items() if c != 0))
+            if point:
+                self.body_places.append(((point,), (link.M,)))
         self.bandwidth = 0
         for places in (self.segment_places + [p for p, _ in self.point_places]
                        + [p for p, _ in self.body_places]):
@@ -278,35 +291,53 @@ class Mesh:
             first = min(body.attachments, key=lambda a: (float(a.x), index[a.beam]))
             node = self._node(first.beam, first.x)
             body_node.append(node)
-            for k in (0, 1) if body.rotates else (0,):
-                place[("b", bi, k)] = nodes[node] + (node, 2 + 2 * bi + k)
+            frame = self.model.body_frame(body)
+            for label in frame.freedoms:
+                k = frame.index(label)
+                place[("b", bi, k)] = nodes[node] + (node, 2 + 3 * bi + k)
         free = sorted((v for v in place if v not in subs), key=place.get)
         self.size = len(free)
         self.rotation_length = [
-            None if v[2] == 0 else
+            None if v[2] != 1 else
             self._node_length[v[1] if v[0] == "n" else body_node[v[1]]] or 1.0 for v in free]
         return {v: i for i, v in enumerate(free)}
 
     def _constraints(self) -> list:
         """``(body name or None, {freedom: coefficient})``: every ``sum = 0`` to eliminate.
 
-        Attachments first (``Y - Y_c - (x - xc) Theta_c``, and ``Theta - Theta_c`` when
-        rigid), then the boundary conditions (a freedom that is zero).
+        Attachments first (``Y - a_i . q``: the member's motion there is the body's, see
+        :class:`~symtmm.model.BodyFrame`; and ``Theta - Theta_c`` when rigid), then the boundary
+        conditions (a freedom that is zero).
         """
         constraints = []
         for bi, body in enumerate(self.model.bodies):
-            for att in body.attachments:
+            frame = self.model.body_frame(body)
+            for att, row, turns in zip(body.attachments, frame.rows, frame.turns):
                 if att.elastic:
                     continue                # a spring, not a constraint (see point_places)
                 node = self._node(att.beam, att.x)
-                d = _canonical(att.x - body.xc)
-                c = {("n", node, 0): sp.Integer(1), ("b", bi, 0): sp.Integer(-1)}
-                if body.rotates and d != 0:
-                    c[("b", bi, 1)] = -d
+                c = {("n", node, 0): sp.Integer(1)}
+                for label, a in row.items():
+                    c[("b", bi, frame.index(label))] = -_canonical(a)
                 constraints.append((body.name, c))
-                if not att.hinged:
-                    constraints.append((body.name, {("n", node, 1): sp.Integer(1),
-                                                    ("b", bi, 1): sp.Integer(-1)}))
+                if turns:
+                    # (a support that holds the body's rotation holds the member's)
+                    c = {("n", node, 1): sp.Integer(1)}
+                    if "Theta" in frame.freedoms:
+                        c[("b", bi, 1)] = sp.Integer(-1)
+                    constraints.append((body.name, c))
+        index = {b.name: bi for bi, b in enumerate(self.model.bodies)}
+        for link in self.model.links:
+            ends = self.model.link_rows(link)
+            held = GROUND in link.ends or any(not row for _, row in ends)
+            if len([row for _, row in ends if row]) == 2 or held:
+                c = {}
+                for body, row in ends:
+                    for label, a in row.items():
+                        c[("b", index[body.name], {"Y": 0, "Theta": 1, "X": 2}[label])] = \
+                            _canonical(a)
+                if c:
+                    constraints.append((ends[0][0].name if ends else None, c))
         for beam, nodes in zip(self.model.beams, self._beam_nodes):
             ends = sorted(nodes, key=float)
             for x, bc in ((ends[0], beam.left), (ends[-1], beam.right)):
@@ -343,7 +374,8 @@ class Mesh:
                                  "indeterminate: its reactions are not determined and the "
                                  "characteristic determinant vanishes identically)",
                                  field=f"body '{body}'.attach", source=self.model.source)
-            pivot = min(expr, key=lambda v: (v[0] == "b", v[2], v[1]))
+            # a node's freedom first, then a body's translations, then its rotation
+            pivot = min(expr, key=lambda v: (v[0] == "b", v[2] == 1, v[2], v[1]))
             cp = expr.pop(pivot)
             self.pivot_product *= cp**2
             value = {w: -c / cp for w, c in expr.items()}

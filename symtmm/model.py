@@ -48,7 +48,7 @@ from .limits import (
     MAX_POINTS_ON_BEAMS,
 )
 
-__all__ = ["Beam", "Spring", "Mass", "Layer", "Attachment", "RigidBody", "joint", "oscillator", "rod",
+__all__ = ["Beam", "Spring", "Mass", "Layer", "Attachment", "RigidBody", "BodyFrame", "body_frame", "Link", "joint", "oscillator", "rod",
            "ROD_ENDS",
            "Model",
            "BOUNDARY_CONDITIONS", "GROUND", "SPRING_KINDS"]
@@ -170,6 +170,15 @@ class Beam:
         stiffness ``kGA``); see :mod:`symtmm.elements.theories`.
     N : number or str, optional
         Axial force, tension positive (default 0), with any theory.
+    origin : pair of numbers, optional
+        The left end's point in the plane of a frame (default ``(x0, 0)``).
+    axis : pair of numbers, optional
+        The member's direction ``(cos a, sin a)`` in the plane (default ``(1, 0)``, the
+        ``x`` axis). A member at an angle meets others through joints only
+        (:func:`joint`); its coordinate ``x`` runs from ``x0`` to ``x0 + L`` as for any
+        beam, its point at ``x`` is ``origin + (x - x0) axis`` (:meth:`point`), and its
+        deflection ``Y`` is along the normal ``(-sin a, cos a)`` (a rod's axial motion
+        along ``axis``).
     rhoI : number or str, optional
         Rotary inertia per unit length (``rho I``, not negative); needed by
         the Rayleigh and Timoshenko theories.
@@ -196,9 +205,12 @@ class Beam:
     N: sp.Expr = 0  # made exact in __post_init__
     rhoI: sp.Expr = 0  # made exact in __post_init__
     kGA: sp.Expr | None = None
+    origin: tuple | None = None  # made exact in __post_init__
+    axis: tuple = (1, 0)  # made exact in __post_init__
 
     def __post_init__(self):
         where = f"{self.kind} '{self.name}'"
+        self._check_geometry(where)
         if not isinstance(self.name, str) or not _IDENTIFIER.fullmatch(self.name) or self.name == GROUND:
             raise ModelError(f"invalid name {self.name!r} (an identifier other than 'ground')",
                              field=f"{self.kind}.name")
@@ -232,6 +244,48 @@ class Beam:
                 raise ModelError(f"unknown boundary condition {bc!r} "
                                  f"(use one of {', '.join(BOUNDARY_CONDITIONS)})",
                                  field=f"{where}.{attr}")
+
+    def _check_geometry(self, where: str) -> None:
+        """``origin`` and ``axis`` pairs of exact numbers, ``axis`` a unit vector."""
+        for attr in ("origin", "axis"):
+            pair = getattr(self, attr)
+            if pair is None:
+                continue
+            if not isinstance(pair, (tuple, list)) or len(pair) != 2:
+                raise ModelError("expected a pair of numbers", field=f"{where}.{attr}")
+            pair = tuple(_exact(v, f"{where}.{attr}") for v in pair)
+            if not all(v.is_number for v in pair):
+                raise ModelError("must be numbers (a member's place in the plane takes no "
+                                 "parameter)", field=f"{where}.{attr}")
+            object.__setattr__(self, attr, pair)
+        axis = self.axis
+        norm = sp.nsimplify(sp.expand(axis[0]**2 + axis[1]**2 - 1))
+        if not (norm == 0 or sp.simplify(norm) == 0):
+            raise ModelError("must be a unit vector (cos a, sin a)", field=f"{where}.axis")
+
+    @property
+    def along_x(self) -> bool:
+        """True for a member along the ``x`` axis (the levels of a multilevel model)."""
+        return self.axis == (1, 0)
+
+    @property
+    def direction(self) -> tuple:
+        """The direction of the motion in the slot ``Y``, in the plane: a beam's deflection
+        along the normal ``(-sin a, cos a)``, a rod's axial motion along its axis."""
+        c, s = self.axis
+        return (c, s) if self.is_rod else (-s, c)
+
+    def point(self, x) -> tuple:
+        """The point of the plane at the member's coordinate ``x`` (exact).
+
+        Examples
+        --------
+        >>> Beam("c", 1, 1, 3, axis=(0, 1), origin=(0, 2)).point(3)
+        (0, 5)
+        """
+        d = sp.sympify(x) - self.x0
+        o = (self.x0, sp.Integer(0)) if self.origin is None else self.origin
+        return (o[0] + d * self.axis[0], o[1] + d * self.axis[1])
 
     def _check_rod(self, where: str) -> None:
         """A rod's internal fields as :func:`rod` sets them: ``kGA = 0``, the state ends."""
@@ -313,7 +367,7 @@ ROD_ENDS_AXIAL = {"fixed": ("clamped", "pinned"), "free": ("sliding", "free")}
 
 
 def rod(name: str, EA, m, L, x0=0, left: str = "fixed", right: str = "fixed", kw=0,
-        GJ=None, rhoIp=None) -> Beam:
+        GJ=None, rhoIp=None, origin=None, axis=(1, 0)) -> Beam:
     """A rod in axial vibration, and in torsion where ``GJ`` and ``rhoIp`` are given (one level).
 
     Axially ``EA u'' = (m lam**2 + kw) u``, in torsion ``GJ phi'' = rhoIp lam**2 phi``; the two
@@ -340,6 +394,8 @@ def rod(name: str, EA, m, L, x0=0, left: str = "fixed", right: str = "fixed", kw
         Torsional stiffness and polar inertia per unit length, both or neither. Without
         them the rod carries no torsion (inside, a massless twist held at its left end,
         which adds no eigenvalue: rotational springs and inertias are refused on it).
+    origin, axis : optional
+        Its place in the plane (:class:`Beam`), for the axial part of a frame member.
 
     Examples
     --------
@@ -373,7 +429,7 @@ def rod(name: str, EA, m, L, x0=0, left: str = "fixed", right: str = "fixed", kw
         if rhoIp_exact.is_number and not rhoIp_exact.is_positive:
             raise ModelError(f"must be positive, got {short(rhoIp_exact)}", field=f"{where}.rhoIp")
     return Beam(name, stiffness, m, L_exact, x0, left=ends[0], right=ends[1], kw=kw,
-                theory="rod", N=EA_exact, rhoI=rhoIp if torsion else 0, kGA=0)
+                theory="rod", N=EA_exact, rhoI=rhoIp if torsion else 0, kGA=0, origin=origin, axis=axis)
 
 
 @dataclass(frozen=True)
@@ -570,14 +626,16 @@ class Attachment:
 
 @dataclass(frozen=True)
 class RigidBody:
-    """A rigid body (mass ``M``, rotary inertia ``J`` about its centre of mass at ``xc``).
+    """A rigid body (mass ``M``, rotary inertia ``J`` about its centre of mass ``(xc, yc)``).
 
-    It moves in the plane of the beams as ``Y(x) = Y_c + (x - xc) Theta_c``
-    and holds them at its :class:`Attachment` points: carried by one beam, or
-    linking several (joints of beam ends, trees, closed loops). A joint of beam
-    ends is a massless body whose attachments share one ``x``; a sprung mass
-    (tuned mass damper) a body held by elastic attachments only
-    (:func:`oscillator`).
+    It moves in the plane of the beams (a translation and a rotation ``Theta_c``
+    about its centre) and holds them at its :class:`Attachment` points: carried by one
+    beam, or linking several (joints of beam ends, trees, closed loops, the joints of
+    a planar frame). A joint of beam ends is a massless body whose attachments meet at
+    one point; a sprung mass (tuned mass damper) a body held by elastic attachments
+    only (:func:`oscillator`). Which motions it has follows from where it holds what
+    (:meth:`Model.body_frame`): a translation along the common direction of every
+    attached motion, or both translations of the plane where members meet at an angle.
 
     Parameters
     ----------
@@ -585,16 +643,17 @@ class RigidBody:
     attachments : tuple of Attachment
     M, J : number or str, optional
         Mass and rotary inertia about the centre of mass (default 0).
-    xc : number or str, optional
-        Global coordinate of the centre of mass (default: the first attachment's).
+    xc, yc : number or str, optional
+        Centre of mass in the plane (default: the first attachment's point).
+    fixed : tuple of str, optional
+        Freedoms a support holds at zero (``"Y"``, ``"X"``, ``"Theta"``; a node of a
+        planar frame pinned or clamped); ``"X"`` makes the body translate in the plane.
 
     Examples
     --------
     >>> body = RigidBody("fork", (Attachment("trunk", 1), Attachment("branch", 1)))
-    >>> body.xc, body.rotates
-    (1, True)
-    >>> RigidBody("pin", (Attachment("a", 1, True), Attachment("b", 1, True))).rotates
-    False
+    >>> [a.beam for a in body.attachments], body.M
+    (['trunk', 'branch'], 0)
     """
 
     name: str
@@ -602,9 +661,17 @@ class RigidBody:
     M: sp.Expr = 0  # made exact in __post_init__
     J: sp.Expr = 0  # made exact in __post_init__
     xc: sp.Expr | None = None
+    yc: sp.Expr | None = None
+    fixed: tuple = ()
 
     def __post_init__(self):
         where = f"body '{self.name}'"
+        fixed = tuple(self.fixed)
+        if not all(isinstance(f, str) and f in ("X", "Y", "Theta") for f in fixed) \
+                or len(set(fixed)) != len(fixed):
+            raise ModelError("expected some of \"X\", \"Y\", \"Theta\", once each",
+                             field=f"{where}.fixed")
+        object.__setattr__(self, "fixed", fixed)
         if not isinstance(self.name, str) or not _IDENTIFIER.fullmatch(self.name):
             raise ModelError(f"invalid name {self.name!r}", field="rigid.name")
         attachments = tuple(self.attachments)
@@ -615,20 +682,161 @@ class RigidBody:
             value = _exact(getattr(self, attr), f"{where}.{attr}")
             object.__setattr__(self, attr, value)
             _check_sign(value, f"{where}.{attr}", allow_zero=True)
-        xc = attachments[0].x if self.xc is None else _exact(self.xc, f"{where}.xc")
-        object.__setattr__(self, "xc", xc)
+        for attr in ("xc", "yc"):
+            if getattr(self, attr) is not None:
+                object.__setattr__(self, attr, _exact(getattr(self, attr), f"{where}.{attr}"))
+
+
+@dataclass(frozen=True)
+class BodyFrame:
+    """How a rigid body moves the points it holds (:meth:`Model.body_frame`).
+
+    The body's freedoms are labelled ``"Y"`` (a translation), ``"Theta"`` (its rotation,
+    where anything feels it) and ``"X"`` (the second translation, where the attached
+    motions are not all parallel: members of a frame at an angle). With one translation
+    it is along the first attachment's motion (a beam's deflection, a rod's axial
+    motion); with two, ``"Y"`` and ``"X"`` are the plane's ``y`` and ``x``.
+
+    Attributes
+    ----------
+    freedoms : tuple of str
+        In the order ``"Y"``, ``"Theta"``, ``"X"`` (those it has).
+    directions : dict
+        Translation label -> exact unit vector in the plane.
+    rows : tuple of dict
+        Per attachment, ``{label: coefficient}``: the attached point's motion along the
+        attached member's ``Y`` direction is ``sum(coefficient * freedom)``.
+    turns : tuple of bool
+        Per attachment, whether the member's rotation is the body's (rigid, on a beam).
+    centre : tuple
+        The centre of mass ``(xc, yc)``.
+    """
+
+    freedoms: tuple
+    directions: dict
+    rows: tuple
+    turns: tuple
+    centre: tuple
 
     @property
     def rotates(self) -> bool:
-        """Whether the body's rotation is an unknown of its own.
+        """Whether the body's rotation is an unknown of its own."""
+        return "Theta" in self.freedoms
 
-        Not when every attachment is a hinge or a spring at the centre of mass and
-        ``J = 0``: then nothing fixes or feels the rotation (a pin joint of beam ends,
-        a sprung mass).
-        """
-        if self.J != 0 or any(not (a.hinged or a.elastic) for a in self.attachments):
-            return True
-        return any(sp.simplify(a.x - self.xc) != 0 for a in self.attachments)
+    @property
+    def planar(self) -> bool:
+        """Whether the body translates in both directions of the plane."""
+        return "X" in self.freedoms
+
+    def index(self, label: str) -> int:
+        """The freedom number of a label in the mesh: Y 0, Theta 1, X 2."""
+        return {"Y": 0, "Theta": 1, "X": 2}[label]
+
+    def mass(self, body, label: str):
+        """The inertia of a freedom: ``M`` for a translation, ``J`` for the rotation."""
+        return body.J if label == "Theta" else body.M
+
+
+@dataclass(frozen=True)
+class Link:
+    """An inextensible bar: the motions of its two ends along ``axis`` are equal.
+
+    The axial part of an inextensible frame member (:class:`symtmm.frame.Member` with
+    ``EA = None``): ``a`` and ``b`` are the bodies (joints) at its ends, or ``"ground"``
+    for a supported end, or ``None`` for a free end; its mass ``M`` (``m L``) moves
+    along ``axis`` with them. ``t . q_a = t . q_b`` is a constraint of the stiffness
+    formulation and, in the transfer walk, an unknown axial force with its equation.
+
+    Examples
+    --------
+    >>> Link("bar", "j1", "ground", (0, 1), M=3).ends
+    ('j1', 'ground')
+    """
+
+    name: str
+    a: str | None
+    b: str | None
+    axis: tuple
+    M: sp.Expr = 0  # made exact in __post_init__
+
+    def __post_init__(self):
+        where = f"link '{self.name}'"
+        axis = tuple(_exact(v, f"{where}.axis") for v in self.axis)
+        if len(axis) != 2 or not all(v.is_number for v in axis):
+            raise ModelError("expected a pair of numbers", field=f"{where}.axis")
+        object.__setattr__(self, "axis", axis)
+        value = _exact(self.M, f"{where}.M")
+        _check_sign(value, f"{where}.M", allow_zero=True)
+        object.__setattr__(self, "M", value)
+        if self.a is None and self.b is None:
+            raise ModelError("an inextensible member needs a joint or a support at one end "
+                             "(its axial motion would be held by nothing)", field=where)
+
+    @property
+    def ends(self) -> tuple:
+        """``(a, b)``."""
+        return (self.a, self.b)
+
+    def bodies(self) -> list:
+        """``(body name, sign)`` of the ends that are bodies: ``t . (q_a - q_b)``."""
+        return [(e, sign) for e, sign in ((self.a, 1), (self.b, -1)) if e not in (None, GROUND)]
+
+
+def _nonzero(expr) -> bool:
+    """An exact expression that is not identically zero (a symbol's may be: assume not)."""
+    return sp.simplify(sp.sympify(expr)) != 0
+
+
+def body_frame(body: RigidBody, beams: dict, links=()) -> BodyFrame:
+    """The :class:`BodyFrame` of ``body`` among ``beams`` (name -> :class:`Beam`) and the
+    :class:`Link` s of a model (those ending at the body pull along their axes).
+
+    A freedom the body's support holds (``body.fixed``) is not one of its freedoms: the
+    attached motions are held with it.
+
+    Examples
+    --------
+    A joint of a column and a beam at a right angle moves in both directions:
+
+    >>> beams = {"c": Beam("c", 1, 1, 1, axis=(0, 1)), "b": Beam("b", 1, 1, 1, origin=(0, 1))}
+    >>> f = body_frame(joint("j", [("c", 1), ("b", 0)]), beams)
+    >>> f.freedoms, f.rows
+    (('Y', 'Theta', 'X'), ({'X': -1}, {'Y': 1}))
+    """
+    atts = body.attachments
+    dirs = [beams[a.beam].direction for a in atts]
+    points = [beams[a.beam].point(a.x) for a in atts]
+    pulls = [ln.axis for ln in links if body.name in ln.ends]
+    d0 = dirs[0]
+    planar = "X" in body.fixed or any(_nonzero(d0[0] * d[1] - d0[1] * d[0])
+                                      for d in dirs[1:] + pulls)
+    if planar:
+        directions = {"Y": (sp.Integer(0), sp.Integer(1)), "X": (sp.Integer(1), sp.Integer(0))}
+    else:
+        directions = {"Y": d0}
+    centre = (points[0][0] if body.xc is None else body.xc,
+              points[0][1] if body.yc is None else body.yc)
+    turns = tuple(not (a.hinged or a.elastic or beams[a.beam].is_rod) for a in atts)
+    # the motion of the point P along d under a rotation Theta about C: Theta (d x (P - C))
+    arms = [sp.expand(d[1] * (p[0] - centre[0]) - d[0] * (p[1] - centre[1]))
+            for d, p in zip(dirs, points)]
+    # (a J that nothing it holds feels is refused by the model: a free rotation)
+    rotates = any(turns) or any(_nonzero(a) for a in arms)
+    rows = []
+    for d, arm in zip(dirs, arms):
+        row = {}
+        for label, e in directions.items():
+            coef = sp.nsimplify(sp.expand(d[0] * e[0] + d[1] * e[1])) \
+                if all(v.is_number for v in d + e) else sp.expand(d[0] * e[0] + d[1] * e[1])
+            if coef != 0:
+                row[label] = coef
+        if rotates and arm != 0:
+            row["Theta"] = arm
+        rows.append(row)
+    freedoms = ("Y",) + (("Theta",) if rotates else ()) + (("X",) if planar else ())
+    freedoms = tuple(f for f in freedoms if f not in body.fixed)
+    rows = [{label: a for label, a in row.items() if label in freedoms} for row in rows]
+    return BodyFrame(freedoms, directions, tuple(rows), turns, centre)
 
 
 def joint(name: str, points, kind: str = "rigid", M=0, J=0) -> RigidBody:
@@ -650,8 +858,8 @@ def joint(name: str, points, kind: str = "rigid", M=0, J=0) -> RigidBody:
     >>> j = joint("fork", [("trunk", 1), ("left", 1), ("right", 1)])
     >>> [(a.beam, a.hinged) for a in j.attachments]
     [('trunk', False), ('left', False), ('right', False)]
-    >>> joint("pin", [("a", 1), ("b", 1)], kind="hinge").rotates
-    False
+    >>> all(a.hinged for a in joint("pin", [("a", 1), ("b", 1)], kind="hinge").attachments)
+    True
     """
     if kind not in ("rigid", "hinge"):
         raise ModelError(f"unknown kind {kind!r} (use rigid or hinge)", field=f"joint '{name}'.kind")
@@ -683,8 +891,8 @@ def oscillator(name: str, beams, x, M, k, c=0) -> RigidBody:
     Examples
     --------
     >>> tmd = oscillator("tmd", "b", x="1/2", M="1/10", k=10)
-    >>> tmd.rotates, [(a.beam, a.k) for a in tmd.attachments]
-    (False, [('b', 10)])
+    >>> [(a.beam, a.k) for a in tmd.attachments]
+    [('b', 10)]
     >>> both = oscillator("m", ("a", "b"), x=1, M=1, k=(2, 3), c=(0, "1/2"))
     >>> [(a.beam, a.k, a.c) for a in both.attachments]
     [('a', 2, 0), ('b', 3, 1/2)]
@@ -702,6 +910,16 @@ def oscillator(name: str, beams, x, M, k, c=0) -> RigidBody:
     ks, cs = per_beam(k, "k"), per_beam(c, "c")
     return RigidBody(name, tuple(Attachment(b, x, k=kb, c=cb) for b, kb, cb in zip(beams, ks, cs)),
                      M=M, xc=x)
+
+
+def _parallel(resolved: dict, ends, field_name: str, what: str) -> None:
+    """Couplings at a coordinate ``x`` join members along the ``x`` axis only."""
+    ends = [e for e in ends if e != GROUND]
+    if len(ends) > 1 and any(not resolved[e].along_x for e in ends):
+        name = next(e for e in ends if not resolved[e].along_x)
+        raise ModelError(f"{what} joins members along the x axis at one x; '{name}' lies at "
+                         "an angle (join a frame's members at their ends, by a joint)",
+                         field=field_name)
 
 
 @dataclass(frozen=True)
@@ -725,6 +943,12 @@ class Model:
         Rigid bodies carried by the beams or joining them (joints).
     layers : tuple of Layer, optional
         Continuous elastic or viscoelastic layers between beams.
+    links : tuple of Link, optional
+        Inextensible bars between bodies (the axial parts of inextensible frame members).
+    geometry : tuple of str, optional
+        Parameters whose values placed a frame's members when the model file was read
+        (:mod:`symtmm.frame`): they cannot be changed afterwards (:meth:`with_parameters`
+        refuses them; the model file takes them through its overrides).
     """
 
     beams: tuple
@@ -735,9 +959,13 @@ class Model:
     masses: tuple = ()
     bodies: tuple = ()
     layers: tuple = ()
+    links: tuple = ()
+    geometry: tuple = ()
 
     def __post_init__(self):
         beams = tuple(self.beams)
+        object.__setattr__(self, "geometry", tuple(sorted(self.geometry)))
+        object.__setattr__(self, "links", tuple(self.links))
         springs = tuple(self.springs)
         object.__setattr__(self, "beams", beams)
         object.__setattr__(self, "springs", springs)
@@ -823,6 +1051,7 @@ class Model:
                 raise ModelError("a spring joins two beams or two rods: a beam's deflection "
                                  "and a rod's axial motion are not along one line",
                                  field=f"{where}.between")
+            _parallel(resolved, (spring.a, spring.b), f"{where}.between", "a spring")
             if spring.kind == "rotational":
                 _no_twist(resolved, (spring.a, spring.b), f"{where}.kind",
                           "a rotational spring on a rod acts in torsion")
@@ -854,6 +1083,7 @@ class Model:
                                      f"beam '{end}' is {beam.theory}"
                                      + (" with an axial force" if beam.N != 0 else ""),
                                      field=f"{where}.between")
+            _parallel(resolved, (layer.a, layer.b), f"{where}.between", "a layer")
             x0, x1 = self.value(layer.x0), self.value(layer.x1)
             for attr, x in (("from", x0), ("to", x1)):
                 for end in (layer.a, layer.b):
@@ -898,18 +1128,23 @@ class Model:
                 seen.add((att.beam, x))
             for attr in ("M", "J"):
                 _check_sign(self.value(getattr(body, attr)), f"{where}.{attr}", allow_zero=True)
-            rods = {resolved[a.beam].is_rod for a in body.attachments}
-            if True in rods and (len(rods) > 1 or body.rotates):
-                # a body that turns moves the points of a beam by its lever arms; along a rod
-                # every point of it moves alike
-                raise ModelError("a body on rods moves along them without turning (an "
-                                 "oscillator or a joint of kind 'hinge' with no J), and joins "
-                                 "rods only", field=f"{where}.attach")
+            for att in body.attachments:
+                target = resolved[att.beam]
+                if target.torsion and not (att.hinged or att.elastic):
+                    # the plane's rotation is not a twist: a body holds a rod axially only
+                    raise ModelError(f"a body holds rod '{att.beam}' axially only: its twist "
+                                     "stays free there (use kind 'hinge', or a torsional "
+                                     "spring for a twist held elastically)",
+                                     field=f"{where}.attach")
             for att in body.attachments:
                 if att.elastic:
                     for attr in ("k", "c"):
                         _check_sign(self.value(getattr(att, attr)), f"{where}.{attr}",
                                     allow_zero=True)
+            if self.value(body.J) != 0 and not self.body_frame(body).rotates:
+                raise ModelError("nothing it holds turns with it (every attachment hinged, "
+                                 "elastic or on a rod, at its centre): J would turn freely; "
+                                 "give J = 0, or hold a beam rigidly", field=f"{where}.J")
             if all(a.elastic for a in body.attachments):
                 M = self.value(body.M)
                 if M.is_number and not M.is_positive:
@@ -917,6 +1152,17 @@ class Model:
                     raise ModelError("a body held by springs only needs a mass M > 0",
                                      field=f"{where}.M")
             self._check_supports(body, resolved)
+        link_names = set()
+        for link in self.links:
+            if not isinstance(link, Link):
+                raise ModelError("expected a Link", field="link")
+            if link.name in link_names:
+                raise ModelError(f"duplicate link name '{link.name}'", field="link.name")
+            link_names.add(link.name)
+            for end in link.ends:
+                if end not in (None, GROUND) and end not in body_names:
+                    raise ModelError(f"unknown body '{end}'", field=f"link '{link.name}'.between")
+            _check_sign(self.value(link.M), f"link '{link.name}'.M", allow_zero=True)
 
     def _check_supports(self, body: RigidBody, resolved: dict) -> None:
         """A body held by supported beam ends no more times than it has freedoms.
@@ -925,8 +1171,9 @@ class Model:
         (a pinned trunk end pins the joint). Two supports fixing the same freedom
         leave the reactions undetermined and ``Delta`` zero for every ``lam``.
         """
+        frame = body_frame(self._resolved_body(body), resolved)
         rows = []
-        for att in body.attachments:
+        for att, row, turns in zip(body.attachments, frame.rows, frame.turns):
             if att.elastic:
                 continue                # a spring does not pass a support on to the body
             beam, x = resolved[att.beam], self.value(att.x)
@@ -935,20 +1182,56 @@ class Model:
                 if not (d.is_number and d == 0):
                     continue
                 zero = BOUNDARY_CONDITIONS[bc]
-                arm = self.value(att.x - body.xc)
                 if "Y" in zero:
-                    rows.append([1, arm if body.rotates else 0])
-                if "Theta" in zero and not att.hinged:
-                    rows.append([0, 1])
+                    rows.append([row.get(f, 0) for f in frame.freedoms])
+                if "Theta" in zero and turns:
+                    rows.append([int(f == "Theta") for f in frame.freedoms])
         if not rows:
             return
-        matrix = sp.Matrix(rows) if body.rotates else sp.Matrix(rows)[:, 0]
+        matrix = sp.Matrix(rows)
         if any(not v.is_number for v in matrix):
             return
         if matrix.rank() < len(rows):
             raise ModelError("held by more supported beam ends than it has freedoms: the "
                              "reactions are not determined (leave all but one end free)",
                              field=f"body '{body.name}'.attach")
+
+    def body_frame(self, body: RigidBody) -> BodyFrame:
+        """How ``body`` moves the points it holds: its freedoms and, per attachment, the
+        coefficients of the attached motion (:class:`BodyFrame`), with parameter values
+        substituted.
+
+        Examples
+        --------
+        >>> m = Model((Beam("a", 1, 1, 1, left="clamped"), Beam("b", 1, 1, 1, x0=1)),
+        ...           bodies=(joint("j", [("a", 1), ("b", 1)]),))
+        >>> m.body_frame(m.bodies[0]).freedoms
+        ('Y', 'Theta')
+        """
+        return self._frames[body.name]
+
+    @cached_property
+    def _frames(self) -> dict:
+        beams = {b.name: b for b in self.resolved().beams}
+        links = self.resolved().links
+        return {body.name: body_frame(self._resolved_body(body), beams, links)
+                for body in self.bodies}
+
+    def link_rows(self, link: Link) -> list:
+        """``(body, {label: coefficient})`` of each body end of ``link``: ``t . q_a - t . q_b``
+        on the bodies' free translations."""
+        by_name = {b.name: b for b in self.bodies}
+        out = []
+        for name, sign in link.bodies():
+            body = by_name[name]
+            frame = self.body_frame(body)
+            row = {}
+            for label, e in frame.directions.items():
+                coef = sp.nsimplify(sp.expand(link.axis[0] * e[0] + link.axis[1] * e[1]))
+                if coef != 0 and label in frame.freedoms:
+                    row[label] = sign * coef
+            out.append((body, row))
+        return out
 
     # -- parameters -----------------------------------------------------------------
     @cached_property
@@ -1046,8 +1329,10 @@ class Model:
             if a.elastic:
                 return replace(a, x=self.value(a.x), k=self.value(a.k), c=self.value(a.c))
             return replace(a, x=self.value(a.x))
-        return replace(body, M=self.value(body.M), J=self.value(body.J), xc=self.value(body.xc),
-                       attachments=tuple(resolved(a) for a in body.attachments))
+        def value(v):
+            return None if v is None else self.value(v)
+        return replace(body, M=self.value(body.M), J=self.value(body.J), xc=value(body.xc),
+                       yc=value(body.yc), attachments=tuple(resolved(a) for a in body.attachments))
 
     def resolved(self) -> Model:
         """The same model with every parameter value substituted into the fields.
@@ -1069,7 +1354,9 @@ class Model:
         layers = tuple(replace(la, k=self.value(la.k), c=self.value(la.c),
                                x0=self.value(la.x0), x1=self.value(la.x1)) for la in self.layers)
         keep = {n: v for n, v in self.parameters.items() if v is None}
-        return Model(beams, springs, keep, self.title, self.source, masses, bodies, layers)
+        links = tuple(replace(ln, M=self.value(ln.M)) for ln in self.links)
+        return Model(beams, springs, keep, self.title, self.source, masses, bodies, layers, links,
+                     self.geometry)
 
     def with_parameters(self, **values) -> Model:
         """A copy with some parameter values set or replaced.
@@ -1086,6 +1373,10 @@ class Model:
         """
         params = dict(self.parameters)
         for name, value in values.items():
+            if name in self.geometry:
+                raise ModelError(f"{name} places the members of the frame, which is fixed when "
+                                 f"the model is read: give its value when loading (--set "
+                                 f"{name}=...)", field=f"override {name}", source=self.source)
             params[name] = value
         return replace(self, parameters=params)
 
@@ -1100,7 +1391,8 @@ class Model:
             if beam.kGA is not None:
                 syms |= beam.kGA.free_symbols
         for body in resolved.bodies:
-            for expr in (body.M, body.J, body.xc, *(a.x for a in body.attachments),
+            for expr in (body.M, body.J, *(v for v in (body.xc, body.yc) if v is not None),
+                         *(a.x for a in body.attachments),
                          *(e for a in body.attachments if a.elastic for e in (a.k, a.c))):
                 syms |= expr.free_symbols
         for spring in self.resolved().springs:
@@ -1112,6 +1404,8 @@ class Model:
         for layer in resolved.layers:
             for attr in ("k", "c", "x0", "x1"):
                 syms |= getattr(layer, attr).free_symbols
+        for link in resolved.links:
+            syms |= link.M.free_symbols
         return tuple(sorted(s.name for s in syms))
 
     @property
@@ -1175,7 +1469,8 @@ def _no_twist(resolved: dict, ends, field_name: str, what: str) -> None:
 
 def check_size(beams: int, points: int, parameters: int, source: str | None = None) -> None:
     """The size of a model within the budgets of :mod:`symtmm.limits`."""
-    for count, limit, what, where in ((beams, MAX_BEAMS, "beams", "beam"),
+    for count, limit, what, where in ((beams, MAX_BEAMS, "levels (beams and rods; a frame "
+                                       "member is two)", "beam"),
                                       (points, MAX_POINTS_ON_BEAMS,
                                        "springs, masses and rigid-body attachments", "spring"),
                                       (parameters, MAX_PARAMETERS, "parameters", "parameters")):
@@ -1219,13 +1514,16 @@ def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
         if beam.kGA is not None and not beam.is_rod:
             yield f"beam '{beam.name}'.kGA", beam.kGA
     for body in model.bodies:
-        for attr in ("M", "J", "xc"):
-            yield f"body '{body.name}'.{attr}", getattr(body, attr)
+        for attr in ("M", "J", "xc", "yc"):
+            if getattr(body, attr) is not None:
+                yield f"body '{body.name}'.{attr}", getattr(body, attr)
         for att in body.attachments:
             yield f"body '{body.name}'.attach", att.x
             if att.elastic:
                 yield f"body '{body.name}'.k", att.k
                 yield f"body '{body.name}'.c", att.c
+    for link in model.links:
+        yield f"link '{link.name}'.M", link.M
     for layer in model.layers:
         for attr, name in (("k", "k"), ("c", "c"), ("x0", "from"), ("x1", "to")):
             if getattr(layer, attr) is not None:

@@ -150,10 +150,13 @@ def test_an_oscillator_is_a_body_on_springs():
     body on one spring at its centre of mass is the same sprung mass."""
     tmd = oscillator("o", "b", "1/4", 2, 30, "1/2")
     assert tmd == RigidBody("o", (Attachment("b", "1/4", k=30, c="1/2"),), M=2, xc="1/4")
-    assert not tmd.rotates
+    beam = Beam("b", 1, 1, 1, **PP)
+    assert Model((beam,), bodies=(tmd,)).body_frame(tmd).freedoms == ("Y",)
     rocking = RigidBody("r", (Attachment("b", "1/4", k=30), Attachment("b", "3/4", k=30)),
                         M=1, J="1/10", xc="1/2")
-    assert rocking.rotates
+    frame = Model((beam,), bodies=(rocking,)).body_frame(rocking)
+    assert frame.freedoms == ("Y", "Theta")
+    assert frame.rows == ({"Y": 1, "Theta": sp.Rational(-1, 4)}, {"Y": 1, "Theta": sp.Rational(1, 4)})
 
 
 def test_with_dashpots_scaled_reaches_the_oscillators():

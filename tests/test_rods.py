@@ -257,7 +257,7 @@ BEAM = '[[beam]]\nname = "b"\nEI = 1\nm = 1\nL = 1\nleft = "pinned"\nright = "pi
      "springs on rods"),
     (ROD + ROD.replace('"r"', '"s"') + '[[layer]]\nbetween = ["r", "s"]\nk = 1\n', "between",
      "'r' is a rod"),
-    (ROD + '[[rigid]]\nattach = ["r@0.5"]\nM = 1\nJ = 1\n', "attach", "without turning"),
+    (ROD + '[[rigid]]\nattach = ["r@0.5"]\nM = 1\nJ = 1\n', "J", "nothing it holds turns"),
     # a polar inertia that a parameter makes 0, on a rod free to twist at both ends
     ("[parameters]\np = 0\n" + ROD.replace('left = "fixed"', 'left = "free"')
      + 'GJ = 1\nrhoIp = "p"\n', "rhoIp", "must be positive"),

@@ -96,7 +96,8 @@ def fe_input(model: Model, stiffness: str = "k") -> dict:
     masses = [dict(beam=p.beam, x=float(p.x), M=float(p.M), J=float(p.J)) for p in model.masses]
     bodies = [dict(attach=[dict(beam=a.beam, x=float(a.x), hinged=a.hinged)
                            | ({"k": value(a)} if a.elastic else {})
-                           for a in b.attachments], M=float(b.M), J=float(b.J), xc=float(b.xc))
+                           for a in b.attachments], M=float(b.M), J=float(b.J),
+                           xc=None if b.xc is None else float(b.xc))
               for b in model.bodies]
     return dict(beams=beams, springs=springs, masses=masses, bodies=bodies)
 

@@ -85,10 +85,11 @@ class ModeShape:
     number : int
         Position of the mode in its set (1-based, ascending by ``Im lam``).
     bodies : dict
-        Rigid body (joint) name -> ``{"Y": Y_c, "Theta": Theta_c}``: the
-        deflection of its centre of mass and its rotation (``Theta`` only when
-        the body rotates, :attr:`~symtmm.model.RigidBody.rotates`); float
-        for undamped shapes, complex for damped ones.
+        Rigid body (joint) name -> ``{"Y": Y_c, "Theta": Theta_c, "X": X_c}``: the
+        motion of its centre of mass and its rotation, the freedoms it has
+        (:meth:`~symtmm.model.Model.body_frame`: ``Theta`` when it rotates, ``X`` when
+        it translates in the plane, ``Y`` and ``X`` then the plane's ``y`` and ``x``);
+        float for undamped shapes, complex for damped ones.
     """
 
     eigenvalue: Eigenvalue

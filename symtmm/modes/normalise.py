@@ -56,7 +56,9 @@ class Inertia:
         Step index -> ``[(displacement indices, exact mass matrix)]`` of the point
         elements there with inertia (masses).
     bodies : list
-        ``(index, exact M or J)``: the rigid bodies' deflection and rotation unknowns.
+        ``(indices, coefficients, exact M or J)``: the inertia ``M (sum c_i z_i)**2`` of
+        the rigid bodies' translations and rotations, and of inextensible bars moving
+        along their axes with the bodies at their ends.
     """
 
     def __init__(self, plan):
@@ -72,10 +74,15 @@ class Inertia:
                     self.stations.setdefault(i, []).append((disp, inertia))
         self.bodies = []
         for bl in plan.layout.bodies:
-            if bl.body.M != 0:
-                self.bodies.append((bl.unknowns["Y"], bl.body.M))
-            if "Theta" in bl.unknowns and bl.body.J != 0:
-                self.bodies.append((bl.unknowns["Theta"], bl.body.J))
+            for label in bl.frame.freedoms:
+                mass = bl.frame.mass(bl.body, label)
+                if mass != 0:
+                    self.bodies.append(((bl.unknowns[label],), (1,), mass))
+        for ll in plan.layout.links:
+            bl, row = ll.rows[0]
+            if ll.link.M != 0:
+                self.bodies.append((tuple(bl.unknowns[label] for label in row),
+                                    tuple(row.values()), ll.link.M))
 
 
 class Energy:
@@ -145,8 +152,11 @@ class Energy:
         return [self._levels[lvl] for lvl in sorted(self._levels)] + self._bodies(start)
 
     def _bodies(self, start) -> list:
-        return [np.outer(start[index, :], start[index, :]) * self.ar.exact(value)
-                for index, value in self.inertia.bodies]
+        ar, out = self.ar, []
+        for indices, coefs, value in self.inertia.bodies:
+            v = sum(start[i, :] * ar.exact(c) for i, c in zip(indices, coefs))
+            out.append(np.outer(v, v) * ar.exact(value))
+        return out
 
 
 def _bilinear_F(ar, x, kappa, EI, Z):

@@ -239,11 +239,12 @@ def displacements(model: Model, eigenvalues, points: int, digits: int,
 
 
 def _body_motion(layout, state, real: bool) -> dict:
-    """Per rigid body, its ``Y`` and ``Theta`` (if it rotates) from the extended state."""
+    """Per rigid body, its ``Y``, ``Theta`` (if it rotates) and ``X`` (if it translates in
+    the plane) from the extended state."""
     out = {}
     for bl in layout.bodies:
         motion = {}
-        for var in ("Y", "Theta"):
+        for var in bl.frame.freedoms:
             if var in bl.unknowns:
                 value = complex(state[bl.unknowns[var]])
                 motion[var] = value.real if real else value
