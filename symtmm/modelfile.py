@@ -42,7 +42,7 @@ import sympy as sp
 
 from .elements.theories import THEORIES
 from .errors import ModelError
-from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression
+from .expr import ExpressionError, exact_number, parameter_symbol, parse_expression, substitute
 from .limits import MAX_FILE_BYTES, MAX_PARAMETER_DEPTH
 from .model import (
     GROUND,
@@ -66,7 +66,7 @@ else:  # pragma: no cover
 __all__ = ["load", "loads", "from_dict", "parse_assignment"]
 
 _TOP = {"title", "parameters", "beam", "rod", "spring", "mass", "rigid", "joint", "oscillator",
-        "layer"}
+        "layer", "member", "node"}
 _BEAM_REQUIRED = ("name", "EI", "m", "L", "left", "right")
 _BEAM_OPTIONAL = ("x0", "kw", "theory", "N", "rhoI", "kGA")
 _ROD_REQUIRED = ("name", "EA", "m", "L", "left", "right")
@@ -85,6 +85,10 @@ _MASS_REQUIRED = ("beam", "x", "M")
 _MASS_OPTIONAL = ("J",)
 _LAYER_REQUIRED = ("between", "k")
 _LAYER_OPTIONAL = ("c", "from", "to")
+_MEMBER_REQUIRED = ("name", "from", "EI", "m")
+_MEMBER_OPTIONAL = ("to", "angle", "L", "EA", "inextensible")
+_NODE_REQUIRED = ("at",)
+_NODE_OPTIONAL = ("name", "support", "hinge", "M", "J")
 _OSCILLATOR_REQUIRED = ("x", "M", "k")
 _OSCILLATOR_OPTIONAL = ("name", "beam", "between", "c")
 
@@ -262,8 +266,9 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
     title = data.get("title", "")
     if not isinstance(title, str):
         raise ModelError("expected a string", field="title")
-    if data.get("beam") is None and data.get("rod") is None:
-        raise ModelError("missing field (at least one [[beam]] or [[rod]] table)", field="beam")
+    if data.get("beam") is None and data.get("rod") is None and data.get("member") is None:
+        raise ModelError("missing field (at least one [[beam]], [[rod]] or [[member]] table)",
+                         field="beam")
     beams_raw = data.get("beam", [])
     if not isinstance(beams_raw, list):
         raise ModelError("expected an array of tables: write [[beam]]", field="beam")
@@ -282,7 +287,14 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         raise ModelError("expected an array of tables: write [[layer]]", field="layer")
     attachments += 2 * len(layers_raw)
     raw_params = data.get("parameters", {})
-    check_size(len(beams_raw) + len(rods_raw), len(springs_raw) + (len(tables[0]) if isinstance(tables[0], list)
+    members_raw = data.get("member", [])
+    if not isinstance(members_raw, list):
+        raise ModelError("expected an array of tables: write [[member]]", field="member")
+    nodes_raw = data.get("node", [])
+    if not isinstance(nodes_raw, list):
+        raise ModelError("expected an array of tables: write [[node]]", field="node")
+    attachments += 4 * len(members_raw)
+    check_size(len(beams_raw) + len(rods_raw) + 2 * len(members_raw), len(springs_raw) + (len(tables[0]) if isinstance(tables[0], list)
                                                    else 0) + attachments,
                len(raw_params) if isinstance(raw_params, dict) else 0)
 
@@ -385,7 +397,11 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         for value in fields.values():
             known_names |= {s.name for s in value.free_symbols}
 
+    geometry: set = set()
+    frame_levels, frame_bodies, links = _frame(members_raw, nodes_raw, params, geometry)
+    beams += frame_levels
     bodies, body_fields = _bodies(data, {b.name: b for b in beams}, known_names)
+    bodies += frame_bodies
     oscillators, oscillator_fields = _oscillators(data, {b.name for b in beams}, known_names,
                                                   {b.name for b in bodies})
     bodies += oscillators
@@ -404,7 +420,7 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
             raise ModelError(f"'{name}' is not a parameter of this model", field=f"override {name}")
     try:
         return Model(tuple(beams), tuple(springs), params, title, source, tuple(masses),
-                     tuple(bodies), tuple(layers))
+                     tuple(bodies), tuple(layers), links, tuple(geometry))
     except ModelError as exc:
         raise ModelError(exc.message, field=_spring_field(exc.field, springs, beams, masses,
                                                           body_fields, layers)) from None
@@ -451,6 +467,100 @@ def _points_in(table) -> int:
         value = table.get(key)
         count += len(value) if isinstance(value, list) else 0
     return count + (1 if "beam" in table else 0)
+
+
+def _frame(members_raw: list, nodes_raw: list, params: dict, used: set) -> tuple:
+    """The ``[[member]]`` and ``[[node]]`` tables of a planar frame as levels and joints
+    (:func:`symtmm.frame.frame_parts`). A frame's geometry takes the parameters' values
+    (it fixes which ends meet), its stiffnesses and masses stay expressions."""
+    from .frame import Member, Node, frame_parts
+
+    symbols = {parameter_symbol(name): value for name, value in params.items()}
+
+    def geometry(value, field):
+        expr = _number(value, field, lambda name: parameter_symbol(name)
+                       if name in params else None)
+        for _ in range(MAX_PARAMETER_DEPTH + 1):
+            values = {s: v for s, v in symbols.items() if s in expr.free_symbols and v is not None}
+            if not values:
+                break
+            used.update(s.name for s in values)
+            try:
+                expr = substitute(expr, values)
+            except ExpressionError as exc:
+                raise ModelError(str(exc), field=field) from None
+        if not expr.is_number:
+            raise ModelError("must be a number: a frame's geometry takes parameters with a "
+                             "value only", field=field)
+        return expr
+
+    def pair(value, field):
+        if not isinstance(value, list) or len(value) != 2:
+            raise ModelError("expected a point [x, y]", field=field)
+        return tuple(geometry(v, field) for v in value)
+
+    members = []
+    for i, raw in enumerate(members_raw, 1):
+        where = f"member[{i}]"
+        _check_keys(raw, _MEMBER_REQUIRED, _MEMBER_OPTIONAL, where)
+        name = raw["name"]
+        if not isinstance(name, str):
+            raise ModelError(f"expected a string, got {_kind(name)}", field=f"{where}.name")
+        where = f"{where} ({name})"
+        start = pair(raw["from"], f"{where}.from")
+        if "to" in raw:
+            for k in ("angle", "L"):
+                if k in raw:
+                    raise ModelError("give either to = [x, y], or angle and L", field=f"{where}.{k}")
+            end = pair(raw["to"], f"{where}.to")
+        else:
+            if "angle" not in raw or "L" not in raw:
+                raise ModelError("missing field 'to' (or 'angle' in degrees and 'L')",
+                                 field=where)
+            angle = geometry(raw["angle"], f"{where}.angle")
+            length = geometry(raw["L"], f"{where}.L")
+            if not length.is_positive:
+                raise ModelError("must be positive", field=f"{where}.L")
+            a = angle * sp.pi / 180
+            end = (start[0] + length * sp.cos(a), start[1] + length * sp.sin(a))
+        inextensible = raw.get("inextensible", False)
+        if not isinstance(inextensible, bool):
+            raise ModelError("expected true or false", field=f"{where}.inextensible")
+        if inextensible == ("EA" in raw):
+            raise ModelError("give EA, or inextensible = true" if not inextensible else
+                             "an inextensible member has no EA", field=f"{where}.EA")
+        EA = None if inextensible else _number(raw["EA"], f"{where}.EA")
+        try:
+            members.append(Member(name, start, end, EI=_number(raw["EI"], f"{where}.EI"), EA=EA,
+                                  m=_number(raw["m"], f"{where}.m")))
+        except ModelError as exc:
+            raise ModelError(exc.message, field=_rename(exc.field, where)) from None
+    nodes = []
+    for i, raw in enumerate(nodes_raw, 1):
+        where = f"node[{i}]"
+        _check_keys(raw, _NODE_REQUIRED, _NODE_OPTIONAL, where)
+        name = raw.get("name")
+        if name is not None and not isinstance(name, str):
+            raise ModelError(f"expected a string, got {_kind(name)}", field=f"{where}.name")
+        support = raw.get("support", "free")
+        if not isinstance(support, str):
+            raise ModelError(f"expected a string, got {_kind(support)}", field=f"{where}.support")
+        try:
+            nodes.append(Node(pair(raw["at"], f"{where}.at"), support,
+                              raw.get("hinge", False),
+                              *(_number(raw.get(k, 0), f"{where}.{k}") for k in ("M", "J")),
+                              name=name))
+        except ModelError as exc:
+            raise ModelError(exc.message, field=_rename(exc.field, where)) from None
+    if not members:
+        if nodes:
+            raise ModelError("a node belongs to a frame: no [[member]] is given", field="node")
+        return [], [], ()
+    try:
+        levels, bodies, links = frame_parts(members, nodes)
+    except ModelError as exc:
+        raise ModelError(exc.message, field=exc.field) from None
+    return list(levels), list(bodies), links
 
 
 def _bodies(data: dict, beams: dict, known_names: set) -> tuple:
