@@ -1282,6 +1282,385 @@ def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=N
         raise ValueError(f"levels must be at least 3, got {levels!r}")
     raw = np.array([fe_frequencies(beams, springs, elements_per_beam, count, masses, bodies,
                                    refine=2**j, layers=layers) for j in range(levels)])
+    return _romberg(raw, rate)
+
+
+# ---------------------------------------------------------------------------
+# Planar frames
+# ---------------------------------------------------------------------------
+#
+# Members of a plane frame, each a beam in bending and a bar along its axis, from the
+# textbook (Przemieniecki, *Theory of matrix structural analysis*, ch. 5 and 11; Cook et
+# al., *Concepts and applications of finite element analysis*, 2-D frame element):
+#
+# * in the member's own axes (``e`` from start to end, ``n`` = ``e`` turned by +90
+#   degrees) every element has the Hermite bending element of the beams above on ``(w0,
+#   theta0, w1, theta1)`` and the cubic hierarchical bar of the rods above on ``(u0, u1)``
+#   and two bubbles; consistent mass for both;
+# * the nodal translations ``u``, ``w`` are the components of the global ``(X, Y)``
+#   along ``e`` and ``n`` (the rotation is the same in both frames): ``u = e . U``, ``w =
+#   n . U``. Inner nodes of a member keep local dofs ``(u, w, theta)``; the points where
+#   member ends lie (merged by their coordinates) carry global ``X, Y, Theta``;
+# * a hinge gives every member end at its node a rotation of its own; a support drops the
+#   dofs it holds (pinned ``X, Y``, clamped also ``Theta``, rollers and sliding supports
+#   as in :data:`symtmm.frame.SUPPORTS`); a node's ``M`` acts on both translations, its
+#   ``J`` on the rotation (at a hinge a rotation of the node's own, which nothing else
+#   turns);
+# * an inextensible member (``EA`` None) has no bubbles and a single axial dof ``a``: the
+#   axial displacement of all its points, its mass ``m L`` moving with it; both ends obey
+#   ``e . U_end = a`` exactly, eliminated with the other constraints by the null-space
+#   reduction above (:func:`_reduction`).
+
+_FRAME_SUPPORTS = {"free": (), "pinned": (0, 1), "clamped": (0, 1, 2),
+                   "roller-x": (1,), "roller-y": (0,), "sliding-x": (1, 2),
+                   "sliding-y": (0, 2)}
+
+# The element's local vector: bending (w0, theta0, w1, theta1), then the bar (u0, phi0, u1,
+# phi1, a2, a3) as :func:`_rod_fields` orders it (its phi never used).
+_FRAME_LOCAL = 10
+
+
+def _frame_point(value, what):
+    if isinstance(value, (str, Mapping)) or not isinstance(value, Sequence) or len(value) != 2:
+        raise ValueError(f"{what} must be a point (x, y), got {value!r}")
+    return np.array([_number(v, what) for v in value])
+
+
+def _normalise_frame(members, nodes):
+    """Validate member and node dicts: members with floats, their ends' point indices, the
+    points' coordinates and the node attached to each point (or None)."""
+    if isinstance(members, Mapping) or not isinstance(members, Sequence) or not members:
+        raise ValueError("members must be a non-empty list of member dicts")
+    parsed = []
+    for index, member in enumerate(members):
+        what = f"member {member.get('name', index)!r}" if isinstance(member, Mapping) \
+            else f"member #{index}"
+        _require_keys(member, ("start", "end", "EI", "EA", "m"), what)
+        start = _frame_point(member["start"], f"start of {what}")
+        end = _frame_point(member["end"], f"end of {what}")
+        L = float(np.hypot(*(end - start)))
+        if L == 0.0:
+            raise ValueError(f"the two ends of {what} are one point")
+        EA = member["EA"]
+        parsed.append({"what": what, "start": start, "end": end, "L": L,
+                       "e": (end - start) / L,
+                       "EI": _positive_float(member["EI"], f"EI of {what}"),
+                       "EA": None if EA is None else _positive_float(EA, f"EA of {what}"),
+                       "m": _positive_float(member["m"], f"m of {what}")})
+    size = max(max(np.abs(mb["start"]).max(), np.abs(mb["end"]).max(), mb["L"])
+               for mb in parsed)
+    tol = _POSITION_RTOL * size
+    points = []
+
+    def point_index(p):
+        for i, q in enumerate(points):
+            if np.max(np.abs(p - q)) <= tol:
+                return i
+        points.append(p)
+        return len(points) - 1
+
+    for mb in parsed:
+        mb["ends"] = (point_index(mb["start"]), point_index(mb["end"]))
+    count = len(points)
+    node_at = [None] * count
+    for index, node in enumerate(_list_of(nodes, "nodes")):
+        what = f"node #{index}"
+        _require_keys(node, ("at",), what)
+        at = _frame_point(node["at"], f"'at' of {what}")
+        i = point_index(at)
+        if i >= count:
+            raise ValueError(f"{what} at {tuple(at)} lies at no member end")
+        if node_at[i] is not None:
+            raise ValueError(f"two nodes at {tuple(at)}")
+        support = node.get("support", "free")
+        if support not in _FRAME_SUPPORTS:
+            raise ValueError(f"unknown support {support!r} of {what}; expected one of "
+                             f"{', '.join(map(repr, _FRAME_SUPPORTS))}")
+        hinge = node.get("hinge", False)
+        if not isinstance(hinge, (bool, np.bool_)):
+            raise ValueError(f"'hinge' of {what} must be True or False")
+        node_at[i] = {"support": support, "hinge": bool(hinge),
+                      "M": _nonnegative_float(node.get("M", 0.0) or 0.0, f"M of {what}"),
+                      "J": _nonnegative_float(node.get("J", 0.0) or 0.0, f"J of {what}")}
+    bare = {"support": "free", "hinge": False, "M": 0.0, "J": 0.0}
+    return parsed, np.array(points[:count]), [n or dict(bare) for n in node_at]
+
+
+def _frame_build(members, nodes, elements, refine=1):
+    """Assemble and reduce a frame: ``(K, M, info, energy)``, ``energy`` what
+    :func:`_frame_strain_energy` needs (the elements' maps from the full dofs)."""
+    members, points, node_at = _normalise_frame(members, nodes)
+    elements = _check_positive_int(elements, "elements")
+    refine = _check_positive_int(refine, "refine")
+    n_el = elements * refine
+    total = 0
+
+    def new(k):
+        nonlocal total
+        out = list(range(total, total + k))
+        total += k
+        return out
+
+    # every point: X, Y and (unless a hinge) Theta; a hinge's own Theta only to carry J
+    point_dofs = []
+    for node in node_at:
+        xy = new(2)
+        theta = None if node["hinge"] and node["J"] == 0.0 else new(1)[0]
+        point_dofs.append((xy, theta))
+    constraints = []
+    for (xy, theta), node in zip(point_dofs, node_at):
+        for held in _FRAME_SUPPORTS[node["support"]]:
+            dof = theta if held == 2 else xy[held]
+            if dof is not None:
+                constraints.append({dof: 1.0})
+
+    def end_maps(p, e, n):
+        """A member end at point ``p``: its ``u``, ``w``, ``theta`` as [(dof, coefficient)]."""
+        (X, Y), theta = point_dofs[p]
+        if node_at[p]["hinge"]:
+            theta = new(1)[0]            # the member end turns by itself
+            if 2 in _FRAME_SUPPORTS[node_at[p]["support"]]:
+                constraints.append({theta: 1.0})
+        return ([(X, e[0]), (Y, e[1])], [(X, n[0]), (Y, n[1])], [(theta, 1.0)])
+
+    maps = []           # per member: (index (n_el, 10, 2), coefficient (n_el, 10, 2))
+    for mb in members:
+        e = mb["e"]
+        n = np.array([-e[1], e[0]])
+        inner = [new(3) for _ in range(n_el - 1)]          # (u, w, theta) of inner nodes
+        inextensible = mb["EA"] is None
+        axial = new(1)[0] if inextensible else None
+        if inextensible:
+            constraints += [{d[0]: 1.0} for d in inner]     # their u is the member's a
+        index = np.zeros((n_el, _FRAME_LOCAL, 2), dtype=int)
+        coef = np.zeros((n_el, _FRAME_LOCAL, 2))
+
+        ends = [end_maps(p, e, n) for p in mb["ends"]]
+        if inextensible:
+            for u, _, _ in ends:
+                row = {axial: -1.0}
+                for dof, c in u:
+                    row[dof] = row.get(dof, 0.0) + c
+                constraints.append(row)
+        nodal = [ends[0]] + [([(d[0], 1.0)], [(d[1], 1.0)], [(d[2], 1.0)]) for d in inner] \
+            + [ends[1]]
+        for k in range(n_el):
+            left, right = nodal[k], nodal[k + 1]
+            slots = {0: left[1], 1: left[2], 2: right[1], 3: right[2]}
+            if inextensible:
+                slots |= {4: [(axial, 1.0)], 6: [(axial, 1.0)]}
+            else:
+                a2, a3 = new(2)
+                slots |= {4: left[0], 6: right[0], 8: [(a2, 1.0)], 9: [(a3, 1.0)]}
+            for slot, terms in slots.items():
+                for j, (dof, c) in enumerate(terms):
+                    index[k, slot, j], coef[k, slot, j] = dof, c
+        maps.append((index, coef))
+
+    K = np.zeros((total, total))
+    M = np.zeros((total, total))
+    energy = []
+    for mb, (index, coef) in zip(members, maps):
+        lengths = np.full(n_el, mb["L"] / n_el)
+        bend = {"rod": False, "EI": mb["EI"], "m": mb["m"], "N": 0.0, "kw": 0.0,
+                "rhoI": 0.0, "g": 0.0}
+        bar = {"rod": True, "torsion": False, "EA": mb["EA"] or 0.0, "m": mb["m"],
+               "kw": 0.0, "GJ": 0.0, "rhoIp": 0.0}
+        Kb, Mb = _element_matrices(bend, lengths)
+        Ka, Ma = _element_matrices(bar, lengths)
+        Ke = np.zeros((n_el, _FRAME_LOCAL, _FRAME_LOCAL))
+        Me = np.zeros_like(Ke)
+        Ke[:, :4, :4], Me[:, :4, :4] = Kb, Mb
+        Ke[:, 4:, 4:], Me[:, 4:, 4:] = Ka, Ma
+        # local = G full: G[k, i, 2 i + j] = coef[k, i, j]
+        G = np.zeros((n_el, _FRAME_LOCAL, 2 * _FRAME_LOCAL))
+        rows = np.arange(_FRAME_LOCAL)
+        for j in range(2):
+            G[:, rows, 2 * rows + j] = coef[:, :, j]
+        dofs = index.reshape(n_el, -1)
+        _add_elements(K, dofs, np.einsum("nia,nij,njb->nab", G, Ke, G))
+        _add_elements(M, dofs, np.einsum("nia,nij,njb->nab", G, Me, G))
+        energy.append((bend, bar, lengths, index, coef))
+    for (xy, theta), node in zip(point_dofs, node_at):
+        for dof in xy:
+            M[dof, dof] += node["M"]
+        if theta is not None:
+            M[theta, theta] += node["J"]
+    T, _ = _reduction(constraints, total)
+    K, M = T.T @ K @ T, T.T @ M @ T
+    K, M = (K + K.T) / 2.0, (M + M.T) / 2.0
+    info = {"points": points, "point_dofs": point_dofs, "n_dofs": T.shape[1],
+            "transform": T, "elements": n_el}
+    return K, M, info, {"T": T, "members": energy}
+
+
+def _frame_strain_energy(energy, vectors):
+    """Twice the strain energy of each column of ``vectors`` (reduced dofs), summed element
+    by element from the fields (:func:`_beam_strain_energy`), without ``K``."""
+    full = energy["T"] @ vectors
+    out = np.zeros(vectors.shape[1])
+    for bend, bar, lengths, index, coef in energy["members"]:
+        local = np.einsum("nij,nijm->nim", coef, full[index])
+        out += _beam_strain_energy(bend, lengths, local[:, :4])
+        if bar["EA"]:
+            out += _beam_strain_energy(bar, lengths, local[:, 4:])
+    return out
+
+
+def fe_frame_matrices(members, nodes, elements, refine=1):
+    """Stiffness and mass matrices of the finite-element model of a planar frame.
+
+    Parameters
+    ----------
+    members : list of dict
+        Members ``{"start": (x, y), "end": (x, y), "EI", "EA", "m"}`` (optionally
+        ``"name"``): bending and axial stiffness, mass per unit length; ``EA`` None for an
+        inextensible member (its axial motion one rigid translation, exactly).
+    nodes : list of dict or None
+        Nodes ``{"at": (x, y), "support", "hinge", "M", "J"}`` (all but ``at``
+        optional), each at a member end: ``support`` ``"free"`` (default), ``"pinned"``,
+        ``"clamped"``, ``"roller-x"``, ``"roller-y"``, ``"sliding-x"``, ``"sliding-y"``
+        (as in :data:`symtmm.frame.SUPPORTS`); ``hinge`` True lets every member end there
+        turn by itself (a support holding the rotation then holds each end's); ``M`` a
+        mass on both translations, ``J`` a rotary inertia (at a hinge on a rotation of
+        the node's own, which no member turns: a zero mode). Member
+        ends at one point (within a relative ``1e-9`` of the frame's size) are joined
+        there; a member end at no node is free.
+    elements : int
+        Elements per member (all of the same length on a member).
+    refine : int, optional
+        Multiplies ``elements`` (nested meshes for :func:`fe_frame_converged`).
+
+    Returns
+    -------
+    K, M : numpy.ndarray
+        Dense symmetric matrices on the reduced dofs.
+    info : dict
+        ``"points"`` the joined points (coordinates, in order of first appearance),
+        ``"point_dofs"`` each point's ``([X, Y], Theta)`` rows of the full dofs (Theta
+        None at a hinge without ``J``), ``"transform"`` ``T`` (full = ``T`` reduced),
+        ``"n_dofs"``, ``"elements"`` per member.
+
+    Examples
+    --------
+    A clamped column of two elements: per element 2 axial bubbles; an inner node (3 dofs)
+    and the free top (3):
+
+    >>> from symtmm.fe import fe_frame_matrices
+    >>> col = dict(start=(0, 0), end=(0, 2), EI=1.0, EA=100.0, m=1.0)
+    >>> K, M, info = fe_frame_matrices([col], [dict(at=(0, 0), support="clamped")], 2)
+    >>> info["n_dofs"]
+    10
+    """
+    K, M, info, _ = _frame_build(members, nodes, elements, refine)
+    return K, M, info
+
+
+def fe_frame_frequencies(members, nodes, elements, count=None, refine=1):
+    """Natural circular frequencies of the finite-element model of a planar frame.
+
+    Two-node frame elements in each member's axes, turned to the plane's: cubic Hermite
+    bending (``O(h**4)`` in ``omega``) and cubic hierarchical bars (``O(h**6)``), the
+    elements of :func:`fe_frequencies`, consistent mass; see :func:`fe_frame_matrices`
+    for the input. Conforming: upper bounds. Each ``omega**2`` is the Rayleigh quotient of
+    its eigenvector with the strain energy summed element by element, as in
+    :func:`fe_frequencies`; rigid-body modes read as exact zeros.
+
+    Parameters
+    ----------
+    members, nodes, elements, refine
+        As for :func:`fe_frame_matrices`.
+    count : int, optional
+        Number of lowest frequencies; all by default.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``omega`` (rad/s) ascending, zero modes included as 0.
+
+    Raises
+    ------
+    ValueError
+        On malformed input (a node at no member end, two nodes at one point, an unknown
+        support), or a ``count`` out of range.
+
+    Examples
+    --------
+    Two collinear members clamped at their far ends, rigidly joined: one fixed-fixed rod
+    of length 2 axially (``pi sqrt(EA/m) / 2``), one clamped-clamped beam in bending
+    (``beta L = 4.7300``):
+
+    >>> import numpy as np
+    >>> from symtmm.fe import fe_frame_frequencies
+    >>> a = dict(start=(0, 0), end=(1, 0), EI=1.0, EA=4.0, m=1.0)
+    >>> b = dict(a, start=(1, 0), end=(2, 0))
+    >>> ends = [dict(at=(0, 0), support="clamped"), dict(at=(2, 0), support="clamped")]
+    >>> omega = fe_frame_frequencies([a, b], ends, 8, count=2)
+    >>> print(np.round(omega / [np.pi, 4.730040745 ** 2 / 4], 4))
+    [1. 1.]
+
+    Free in the plane: three rigid-body modes:
+
+    >>> print(np.round(fe_frame_frequencies([a, b], None, 4, count=4), 3))
+    [0.    0.    0.    3.142]
+    """
+    K, M, _, energy = _frame_build(members, nodes, elements, refine)
+    n = K.shape[0]
+    if count is None:
+        subset = None
+    else:
+        if isinstance(count, bool) or not isinstance(count, (int, np.integer)):
+            raise ValueError(f"count must be an integer, got {count!r}")
+        if not 1 <= count <= n:
+            raise ValueError(f"count must be between 1 and the number of modes ({n}), "
+                             f"got {count!r}")
+        subset = (0, int(count) - 1)
+    if n == 0:
+        return np.zeros(0)
+    Kc, Mc, expand = _condensed(K, M)
+    eigenvalues, vectors = scipy.linalg.eigh(Kc, Mc, subset_by_index=subset)
+    rigid = eigenvalues < _zero_threshold(Kc, Mc)
+    vectors = expand(vectors)
+    mass = np.einsum("ij,ij->j", vectors, M @ vectors)
+    quotients = _frame_strain_energy(energy, vectors) / mass
+    return np.sqrt(np.sort(np.where(rigid, 0.0, np.maximum(quotients, 0.0))))
+
+
+def fe_frame_converged(members, nodes, elements, count, rate=4, levels=3):
+    """Frame frequencies extrapolated from nested meshes (Romberg, as :func:`fe_converged`).
+
+    Meshes of ``elements``, ``2 elements``, ... per member (``levels`` of them, at
+    least 3); the error series ``C4 h**4 + C6 h**6 + ...`` loses one term per mesh.
+
+    Returns
+    -------
+    dict
+        ``"omega"``, ``"error"`` (the last correction plus ``1e-12 omega``), ``"rate"``
+        (observed), ``"raw"`` (levels x count), ``"zero"``; as :func:`fe_converged`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from symtmm.fe import fe_frame_converged
+    >>> col = dict(start=(0, 0), end=(0, 1), EI=1.0, EA=1e4, m=1.0)
+    >>> out = fe_frame_converged([col], [dict(at=(0, 0), support="clamped")], 4, count=1)
+    >>> print(np.round(out["omega"] / 1.87510406871196**2, 10))
+    [1.]
+    """
+    levels = _check_positive_int(levels, "levels")
+    if levels < 3:
+        raise ValueError(f"levels must be at least 3, got {levels!r}")
+    raw = np.array([fe_frame_frequencies(members, nodes, elements, count, refine=2**j)
+                    for j in range(levels)])
+    return _romberg(raw, rate)
+
+
+
+def _romberg(raw: np.ndarray, rate: float) -> dict:
+    """Romberg extrapolation of frequencies on meshes refined by 2 (rows of ``raw``),
+    errors falling as ``h**rate`` then ``h**(rate + 2)``, ...: the estimate, its error
+    (the last two columns' difference), the observed rate; zero frequencies stay 0."""
+    levels = len(raw)
     column = raw
     for j in range(levels - 1):
         factor = 2.0 ** (rate + 2 * j)
@@ -1294,3 +1673,5 @@ def fe_converged(beams, springs, elements_per_beam, count, masses=None, bodies=N
     zero = raw[-1] == 0.0
     return {"omega": np.where(zero, 0.0, best), "error": np.where(zero, 0.0, error),
             "rate": observed, "raw": raw, "zero": zero}
+
+__all__ += ["fe_frame_matrices", "fe_frame_frequencies", "fe_frame_converged"]
