@@ -6,12 +6,14 @@ import random
 from fractions import Fraction
 from pathlib import Path
 
+import sympy as sp
+
 from symtmm.model import Attachment, Beam, Layer, Model, RigidBody, Spring, oscillator, rod
 from symtmm.modelfile import load
 
 __all__ = ["EXAMPLES", "example", "clamped_clamped", "chain", "fe_input", "global_input",
            "exact_global_input", "check_ex1_model", "multispan", "layered_chain",
-           "sprung_chain", "rod_chain"]
+           "sprung_chain", "rod_chain", "storey_frame"]
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -202,3 +204,33 @@ def multispan(spans: int = 20) -> Model:
                    for i in range(1, spans))
     return Model(beams, bodies=joints,
                  title=f"uniform beam over {spans} equal pinned spans (joints of span ends)")
+
+
+def storey_frame(levels: int, seed: int = 1) -> Model:
+    """A plane frame of one bay and ``levels`` storeys: two columns per storey, a beam at
+    every floor, rigid joints, clamped bases (members with ``EI`` from ``{1/2, ..., 2}``,
+    ``EA = 1000 EI``, storeys of heights 1/2 to 1, a bay of 1).
+
+    Examples
+    --------
+    >>> m = storey_frame(2)
+    >>> len(m.beams), len(m.bodies)          # 6 members, each a beam and a rod; 4 knees
+    (12, 4)
+    """
+    from symtmm.frame import Member, Node, frame
+
+    rng = random.Random(seed * 7919 + levels)
+    members, y = [], sp.Integer(0)
+
+    def stiffness():
+        return sp.Rational(rng.randint(1, 4), 2)
+    for k in range(1, levels + 1):
+        top = y + sp.Rational(rng.randint(2, 4), 4)
+        for side, x in (("l", 0), ("r", 1)):
+            EI = stiffness()
+            members.append(Member(f"c{side}{k}", (x, y), (x, top), EI=EI, EA=1000 * EI, m=1))
+        EI = stiffness()
+        members.append(Member(f"b{k}", (0, top), (1, top), EI=EI, EA=1000 * EI, m=1))
+        y = top
+    return frame(members, [Node((0, 0), "clamped"), Node((1, 0), "clamped")],
+                 title=f"one-bay frame of {levels} storeys")

@@ -38,7 +38,7 @@ import mpmath
 import numpy as np
 
 from .kernel import internals
-from .models import chain, layered_chain, rod_chain, sprung_chain
+from .models import chain, layered_chain, rod_chain, sprung_chain, storey_frame
 
 __all__ = ["run", "SIZES", "fit_exponent", "model_size", "BATCH", "REPEAT"]
 
@@ -85,10 +85,14 @@ def model_size(model) -> dict:
 
 #: The elements of the paper's literature, the same chains carrying them (reported beside
 #: the target): partial layers between neighbouring levels, a sprung mass on every level,
-#: rods joined by axial springs in place of the beams.
-FAMILIES = {"layers": layered_chain, "sprung masses": sprung_chain, "rods": rod_chain}
-#: Levels of those (full run, quick run).
+#: rods joined by axial springs in place of the beams; and plane frames of one bay whose
+#: storeys stand for the levels.
+FAMILIES = {"layers": layered_chain, "sprung masses": sprung_chain, "rods": rod_chain,
+            "frames": storey_frame}
+#: Levels of those (full run, quick run); a frame's storeys up to 33 (99 members, each two
+#: levels: the budget of symtmm.limits.MAX_BEAMS).
 FAMILY_SIZES = ((1, 2, 5, 10, 20, 50), (1, 2, 5))
+FRAME_SIZES = ((1, 2, 5, 10, 20, 33), (1, 2, 5))
 
 
 def _prepare(levels: int, build=None) -> dict:
@@ -146,7 +150,8 @@ def run(quick: bool = False, progress=print) -> dict:
     families = {}
     for name, build in FAMILIES.items():
         entries = []
-        for n in FAMILY_SIZES[1] if quick else FAMILY_SIZES[0]:
+        sizes = FRAME_SIZES if name == "frames" else FAMILY_SIZES
+        for n in sizes[1] if quick else sizes[0]:
             progress(f"scaling: {name}, {n} levels")
             entries.append(_prepare(n, build))
         for _ in range(REPEAT):
