@@ -86,3 +86,28 @@ def test_solves_with_the_numpy_loop(numpy_loop, examples_dir, name):
         again = solve(model, count=4, digits=15)
     assert [str(e) for e in spec] == [str(e) for e in again]
 
+
+
+def test_a_batch_factorised_in_parts_is_the_batch_factorised_at_once(monkeypatch):
+    """Parts of a few points each (BAND_ENTRIES lowered) give the same pivots, signs,
+    decisions and det U12 bit for bit, and the band at every untrusted point (the paper's
+    example 2 at its triple roots, where pivots break down)."""
+    from symtmm.numeric.evaluator import Evaluator
+
+    model = api.load("examples/paper_ex2_three_pp.toml").require_numeric()
+    ev = Evaluator(model, 60.0)
+    lam = 1j * np.concatenate([np.linspace(1.0, 50.0, 37), [np.pi**2, 4 * np.pi**2]])
+    whole = ev.factors(lam, DOUBLE)
+    plan = whole.plan
+    monkeypatch.setattr(stiffness, "BAND_ENTRIES", 3 * plan.n * plan.width)
+    parts = ev.factors(lam, DOUBLE)
+    assert isinstance(parts.K, stiffness.BandRows)
+    for field in ("pivots", "signs", "decided", "det12"):
+        np.testing.assert_array_equal(getattr(parts, field), getattr(whole, field))
+    bad = np.nonzero(~whole.trusted)[0]
+    assert bad.size, "the triple roots leave some pivots undecided"
+    np.testing.assert_array_equal(parts.K[bad], whole.K[bad])
+    assert np.allclose(np.array(parts.pivoted_delta(bad), dtype=complex),
+                       np.array(whole.pivoted_delta(bad), dtype=complex), rtol=0, atol=0)
+    with pytest.raises(KeyError, match="untrusted points only"):
+        parts.K[[int(np.nonzero(whole.trusted)[0][0])]]
