@@ -20,7 +20,19 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .errors import ModelError
-from .model import GROUND, Attachment, Beam, Link, Model, RigidBody, _exact, rod, short
+from .model import (
+    _IDENTIFIER,
+    GROUND,
+    Attachment,
+    Beam,
+    Link,
+    Model,
+    RigidBody,
+    _check_sign,
+    _exact,
+    rod,
+    short,
+)
 
 __all__ = ["Member", "Node", "frame", "frame_parts", "SUPPORTS", "AXIAL_SUFFIX"]
 
@@ -38,6 +50,11 @@ _END_SUPPORTS = {"free": ("free", "free"), "pinned": ("pinned", "fixed"),
 
 #: The name of a member's axial level: ``name + AXIAL_SUFFIX``.
 AXIAL_SUFFIX = "_axial"
+
+
+def _key(point) -> tuple:
+    """A point in one canonical exact form (where member ends meet is decided by it)."""
+    return tuple(sp.radsimp(sp.expand(v)) for v in point)
 
 
 def _point(value, field_name: str) -> tuple:
@@ -82,9 +99,15 @@ class Member:
         where = f"member '{self.name}'"
         object.__setattr__(self, "start", _point(self.start, f"{where}.from"))
         object.__setattr__(self, "end", _point(self.end, f"{where}.to"))
+        if not isinstance(self.name, str) or not _IDENTIFIER.fullmatch(self.name) \
+                or self.name == GROUND:
+            raise ModelError(f"invalid name {self.name!r} (an identifier other than 'ground')",
+                             field=f"{where}.name")
         for attr in ("EI", "EA", "m"):
             if getattr(self, attr) is not None:
-                object.__setattr__(self, attr, _exact(getattr(self, attr), f"{where}.{attr}"))
+                value = _exact(getattr(self, attr), f"{where}.{attr}")
+                _check_sign(value, f"{where}.{attr}", allow_zero=False)
+                object.__setattr__(self, attr, value)
         if self.L == 0:
             raise ModelError("its two ends are one point", field=f"{where}.to")
 
@@ -97,7 +120,7 @@ class Member:
     def L(self) -> sp.Expr:
         """The length (exact)."""
         d = [b - a for a, b in zip(self.start, self.end)]
-        return sp.sqrt(sp.nsimplify(d[0]**2 + d[1]**2))
+        return sp.sqrt(sp.expand(d[0]**2 + d[1]**2))
 
     @property
     def axis(self) -> tuple:
@@ -177,12 +200,17 @@ def frame_parts(members, nodes=()) -> tuple:
         if mb.name in names:
             raise ModelError(f"duplicate member name '{mb.name}'", field="member.name")
         names.add(mb.name)
+    for mb in members:
+        if mb.name + AXIAL_SUFFIX in names:
+            raise ModelError(f"'{mb.name + AXIAL_SUFFIX}' names the axial part of member "
+                             f"'{mb.name}': give the member another name",
+                             field=f"member '{mb.name + AXIAL_SUFFIX}'.name")
     # the points where member ends lie, in order of first appearance
     points: list = []
     ends_at: dict = {}
     for mb in members:
         for side, p in (("left", mb.start), ("right", mb.end)):
-            key = tuple(sp.nsimplify(v) for v in p)
+            key = _key(p)
             if key not in ends_at:
                 points.append(key)
                 ends_at[key] = []
@@ -191,7 +219,7 @@ def frame_parts(members, nodes=()) -> tuple:
     for node in nodes:
         if not isinstance(node, Node):
             raise ModelError("expected a Node", field="node")
-        key = tuple(sp.nsimplify(v) for v in node.at)
+        key = _key(node.at)
         if key in node_at:
             raise ModelError(f"two nodes at ({short(key[0])}, {short(key[1])})",
                              field="node.at")
@@ -252,7 +280,7 @@ def frame_parts(members, nodes=()) -> tuple:
 def _free_far_end(mb, ends_at, node_at) -> bool:
     """The right end of ``mb`` is alone, free and bare: nothing would hold the member's
     axial motion, so its left end becomes a body of its own (which carries it)."""
-    key = tuple(sp.nsimplify(v) for v in mb.end)
+    key = _key(mb.end)
     node = node_at.get(key)
     return len(ends_at[key]) == 1 and (node is None or (
         node.support == "free" and _exact(node.M, "M") == 0 and _exact(node.J, "J") == 0))

@@ -1141,7 +1141,8 @@ class Model:
                     for attr in ("k", "c"):
                         _check_sign(self.value(getattr(att, attr)), f"{where}.{attr}",
                                     allow_zero=True)
-            if self.value(body.J) != 0 and not self.body_frame(body).rotates:
+            if self.value(body.J) != 0 and not self.body_frame(body).rotates \
+                    and "Theta" not in body.fixed:
                 raise ModelError("nothing it holds turns with it (every attachment hinged, "
                                  "elastic or on a rod, at its centre): J would turn freely; "
                                  "give J = 0, or hold a beam rigidly", field=f"{where}.J")
@@ -1469,8 +1470,8 @@ def _no_twist(resolved: dict, ends, field_name: str, what: str) -> None:
 
 def check_size(beams: int, points: int, parameters: int, source: str | None = None) -> None:
     """The size of a model within the budgets of :mod:`symtmm.limits`."""
-    for count, limit, what, where in ((beams, MAX_BEAMS, "levels (beams and rods; a frame "
-                                       "member is two)", "beam"),
+    levels = "levels (beams and rods; a frame member is two)"
+    for count, limit, what, where in ((beams, MAX_BEAMS, levels, "beam"),
                                       (points, MAX_POINTS_ON_BEAMS,
                                        "springs, masses and rigid-body attachments", "spring"),
                                       (parameters, MAX_PARAMETERS, "parameters", "parameters")):

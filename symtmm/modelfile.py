@@ -398,10 +398,14 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
             known_names |= {s.name for s in value.free_symbols}
 
     geometry: set = set()
-    frame_levels, frame_bodies, links = _frame(members_raw, nodes_raw, params, geometry)
+    frame_fields: dict = {}
+    frame_levels, frame_bodies, links = _frame(members_raw, nodes_raw, params, geometry,
+                                               frame_fields)
     beams += frame_levels
     bodies, body_fields = _bodies(data, {b.name: b for b in beams}, known_names)
     bodies += frame_bodies
+    body_fields.update({b.name: frame_fields[b.name] for b in frame_bodies
+                        if b.name in frame_fields})
     oscillators, oscillator_fields = _oscillators(data, {b.name for b in beams}, known_names,
                                                   {b.name for b in bodies})
     bodies += oscillators
@@ -423,7 +427,8 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
                      tuple(bodies), tuple(layers), links, tuple(geometry))
     except ModelError as exc:
         raise ModelError(exc.message, field=_spring_field(exc.field, springs, beams, masses,
-                                                          body_fields, layers)) from None
+                                                          body_fields, layers,
+                                                          frame_fields)) from None
 
 
 def _pair(raw: dict, where: str, example: str, what: str = "names") -> list:
@@ -469,11 +474,13 @@ def _points_in(table) -> int:
     return count + (1 if "beam" in table else 0)
 
 
-def _frame(members_raw: list, nodes_raw: list, params: dict, used: set) -> tuple:
+def _frame(members_raw: list, nodes_raw: list, params: dict, used: set, fields: dict) -> tuple:
     """The ``[[member]]`` and ``[[node]]`` tables of a planar frame as levels and joints
     (:func:`symtmm.frame.frame_parts`). A frame's geometry takes the parameters' values
-    (it fixes which ends meet), its stiffnesses and masses stay expressions."""
-    from .frame import Member, Node, frame_parts
+    (it fixes which ends meet), its stiffnesses and masses stay expressions. ``used``
+    gathers the parameters the geometry took; ``fields`` maps the model's names of the
+    frame's levels and joints to the file's tables (``member[2] (b)``, ``node[1]``)."""
+    from .frame import AXIAL_SUFFIX, Member, Node, frame_parts
 
     symbols = {parameter_symbol(name): value for name, value in params.items()}
 
@@ -556,10 +563,20 @@ def _frame(members_raw: list, nodes_raw: list, params: dict, used: set) -> tuple
         if nodes:
             raise ModelError("a node belongs to a frame: no [[member]] is given", field="node")
         return [], [], ()
+    for i, member in enumerate(members, 1):
+        fields[member.name] = fields[member.name + AXIAL_SUFFIX] = f"member[{i}] ({member.name})"
     try:
         levels, bodies, links = frame_parts(members, nodes)
     except ModelError as exc:
-        raise ModelError(exc.message, field=exc.field) from None
+        field = exc.field or ""
+        for member in members:
+            if field.startswith(f"member '{member.name}'"):
+                field = fields[member.name] + field[len(f"member '{member.name}'"):]
+        raise ModelError(exc.message, field=field or None) from None
+    for body in bodies:
+        for j, node in enumerate(nodes, 1):
+            if (body.xc, body.yc) == tuple(node.at):
+                fields[body.name] = f"node[{j}]"
     return list(levels), list(bodies), links
 
 
@@ -708,10 +725,15 @@ def _rename(field: str | None, where: str) -> str:
 
 
 def _spring_field(field: str | None, springs, beams, masses=(), bodies=None,
-                  layers=()) -> str | None:
-    """Name fields by their position in the file, as the user wrote them."""
+                  layers=(), members=None) -> str | None:
+    """Name fields by their position in the file, as the user wrote them (``members``:
+    a frame's level names -> its member's table)."""
     if not field:
         return field
+    for name, where in (members or {}).items():
+        for kind in ("beam", "rod"):
+            if field.startswith(f"{kind} '{name}'."):
+                return f"{where}." + field.rsplit(".", 1)[-1]
     for i, la in enumerate(layers, 1):
         # (the model names a layer by its beams in the file's order)
         if field.startswith(f"layer {la.a}-{la.b}"):

@@ -252,7 +252,13 @@ MEMBER_C = '[[member]]\nname = "c"\nfrom = [0, 0]\nEI = 1\nm = 1\n'
     ('[[spring]]\nbetween = ["a", "b"]\nx = 0.5\nk = 1\n', "between", "lies at an angle"),
     ('[[member]]\nname = "a"\nfrom = [0, 0]\nto = [1, 1]\nEI = 1\nEA = 1\nm = 1\n', "member",
      "duplicate member name"),
-    ('[[node]]\nat = [0, 1]\nJ = 1\nhinge = true\n', "J", "nothing it holds turns"),
+    ('[[node]]\nat = [0, 1]\nJ = 1\nhinge = true\n', "node[2].J", "nothing it holds turns"),
+    (MEMBER_C.replace('"c"', '"a_axial"') + 'to = [2, 1]\nEA = 1\n', "member[3] (a_axial).name",
+     "names the axial part of member 'a'"),
+    (MEMBER_C + 'to = [0, "1e-40"]\nEA = 1\n', "member[3] (c).L", "between 1e-30 and 1e+30"),
+    (MEMBER_C + 'to = [0, -1]\nEA = -1\n', "member[3] (c).EA", "must be positive"),
+    (MEMBER_C.replace("EI = 1", "EI = 0") + 'to = [0, -1]\nEA = 1\n', "member[3] (c).EI",
+     "must be positive"),
 ])
 def test_bad_frames_get_one_line_errors(extra, field, message):
     base = ('[[member]]\nname = "a"\nfrom = [0, 0]\nto = [0, 1]\nEI = 1\nEA = 1\nm = 1\n'
@@ -264,6 +270,18 @@ def test_bad_frames_get_one_line_errors(extra, field, message):
     assert field in str(info.value.field or "") + text, text
     assert message in text, text
     assert "\n" not in text
+
+
+def test_a_mass_at_a_clamped_node_is_held_with_it():
+    """M and J at a clamped node of one member: the node is a joint held in every freedom,
+    and the cantilever beside it is the clamped-free beam (closed form)."""
+    text = ('[[member]]\nname = "a"\nfrom = [0, 0]\nto = [0, 1]\nEI = 1\nEA = 1e6\nm = 1\n'
+            '[[node]]\nat = [0, 0]\nsupport = "clamped"\nM = 1\nJ = 1\n')
+    model = loads(text)
+    assert model.body_frame(model.bodies[0]).freedoms == ()
+    first = float(api.solve(model, count=1).eigenvalues[0].omega)
+    ref = float(_roots(lambda x: mpmath.cos(x) * mpmath.cosh(x) + 1, [1.9])[0]) ** 2
+    assert abs(first - ref) < 1e-13 * ref
 
 
 def test_a_body_on_a_member_at_an_angle_moves_it_along_its_normal():
