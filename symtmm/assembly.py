@@ -364,6 +364,10 @@ class Layout:
                 mass = frame.mass(body, label)
                 if mass != 0:
                     yield (e[_EQUATION[label]], u[label], mass * lam2)
+            for label, k, c in body.ground:
+                # a spring and dashpot to the ground on the freedom: (k + c lam) q
+                if k != 0 or c != 0:
+                    yield (e[_EQUATION[label]], u[label], k + c * LAM)
             for i, att in enumerate(body.attachments):
                 if att.elastic:
                     continue                        # (added at its own station)

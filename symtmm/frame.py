@@ -41,7 +41,10 @@ __all__ = ["Member", "Node", "frame", "frame_parts", "SUPPORTS", "AXIAL_SUFFIX"]
 #: a sliding support too and does not turn.
 SUPPORTS = {"free": (), "pinned": ("Y", "X"), "clamped": ("Y", "X", "Theta"),
             "roller-x": ("Y",), "roller-y": ("X",), "sliding-x": ("Y", "Theta"),
-            "sliding-y": ("X", "Theta")}
+            "sliding-y": ("X", "Theta"), "roller": ("Y",), "sliding": ("Y", "Theta")}
+
+#: The supports that move along a node's ``angle``.
+_INCLINED = ("roller", "sliding")
 
 #: The supports a single member end takes as its own end conditions (beam end, rod end):
 #: they hold both translations, whatever the member's direction.
@@ -140,12 +143,20 @@ class Node:
         ``"free"``; ``"pinned"`` holds both translations, ``"clamped"`` the rotation
         too; ``"roller-x"`` moves along the plane's x only (holds y), ``"roller-y"``
         along y only; ``"sliding-x"``, ``"sliding-y"`` likewise without turning
-        (:data:`SUPPORTS`).
+        (:data:`SUPPORTS`); ``"roller"`` and ``"sliding"`` move along ``angle``.
+    angle : number or str, optional
+        The direction an inclined roller or sliding support moves along, in degrees from
+        the plane's x (only with ``"roller"`` and ``"sliding"``; then the node's ``x`` and
+        ``y`` of its springs and mode shapes are along and across that direction).
     hinge : bool
         The member ends there turn freely (a pin joint); else they turn together.
     M, J : number or str
         A mass and rotary inertia at the point.
     name : str, optional
+    springs : dict, optional
+        An elastic support: ``{"X": (k, c), "Y": (k, c), "Theta": (k, c)}``, springs and
+        dashpots from the point's motions along the plane's x and y and its rotation to
+        the ground.
     """
 
     at: tuple
@@ -154,6 +165,8 @@ class Node:
     M: object = 0
     J: object = 0
     name: str | None = None
+    springs: dict | None = None
+    angle: object = None
 
     def __post_init__(self):
         where = f"node '{self.name}'" if self.name else "node"
@@ -163,6 +176,16 @@ class Node:
                              f"{', '.join(SUPPORTS)})", field=f"{where}.support")
         if not isinstance(self.hinge, bool):
             raise ModelError("expected true or false", field=f"{where}.hinge")
+        if (self.angle is None) == (self.support in _INCLINED):
+            raise ModelError(f"a {self.support} support moves along an angle: give angle"
+                             if self.angle is None else
+                             "angle belongs to a roller or sliding support",
+                             field=f"{where}.angle")
+        if self.angle is not None:
+            angle = _exact(self.angle, f"{where}.angle")
+            if not angle.is_number:
+                raise ModelError("must be a number", field=f"{where}.angle")
+            object.__setattr__(self, "angle", angle)
 
 
 def frame_parts(members, nodes=()) -> tuple:
@@ -239,7 +262,8 @@ def frame_parts(members, nodes=()) -> tuple:
         if node.hinge and "Theta" in SUPPORTS[node.support] and len(ends) > 1:
             raise ModelError(f"a {node.support} support holds the rotation of every end "
                              "there: not a hinge", field=f"{where}.support")
-        massive = _exact(node.M, f"{where}.M") != 0 or _exact(node.J, f"{where}.J") != 0
+        massive = (_exact(node.M, f"{where}.M") != 0 or _exact(node.J, f"{where}.J") != 0
+                   or bool(node.springs))
         lonely = [(mb, side) for mb, side in ends if mb.inextensible and node.support == "free"
                   and held[(mb.name, "right" if side == "left" else "left")] is None
                   and side == "left" and _free_far_end(mb, ends_at, node_at)]
@@ -261,8 +285,13 @@ def frame_parts(members, nodes=()) -> tuple:
         fixed = SUPPORTS[node.support]
         if node.hinge:
             fixed = tuple(f for f in fixed if f != "Theta")
+        ground = tuple((label, *kc) for label, kc in (node.springs or {}).items())
+        axes = None
+        if node.angle is not None:
+            a = node.angle * sp.pi / 180
+            axes = (sp.cos(a), sp.sin(a))
         bodies.append(RigidBody(name, tuple(attachments), M=node.M, J=node.J,
-                                xc=key[0], yc=key[1], fixed=fixed))
+                                xc=key[0], yc=key[1], fixed=fixed, ground=ground, axes=axes))
     levels, links = [], []
     for mb in members:
         left, right = bcs[(mb.name, "left")], bcs[(mb.name, "right")]
@@ -283,7 +312,8 @@ def _free_far_end(mb, ends_at, node_at) -> bool:
     key = _key(mb.end)
     node = node_at.get(key)
     return len(ends_at[key]) == 1 and (node is None or (
-        node.support == "free" and _exact(node.M, "M") == 0 and _exact(node.J, "J") == 0))
+        node.support == "free" and _exact(node.M, "M") == 0 and _exact(node.J, "J") == 0
+        and not node.springs))
 
 
 def frame(members, nodes=(), title: str = "") -> Model:

@@ -19,7 +19,7 @@ import math
 import sympy as sp
 
 from .assembly import point_elements
-from .elements import Coupling
+from .elements import Coupling, GroundSpring
 from .elements.layer import joined, member
 from .errors import ComputationError, ModelError
 from .limits import MAX_PIECES
@@ -119,6 +119,11 @@ class Mesh:
             ks = [frame.index(label) for label in frame.freedoms]
             masses = tuple(frame.mass(body, label) for label in frame.freedoms)
             self.body_places.append((tuple(combo(("b", bi, k)) for k in ks), masses))
+            for label, k, c in body.ground:
+                # an elastic support of the body: a grounded spring on its freedom
+                if k != 0 or c != 0:
+                    self.point_places.append(((combo(("b", bi, frame.index(label))),),
+                                              GroundSpring(body.name, k, c)))
             for att, row in zip(body.attachments, frame.rows):
                 if att.elastic:
                     # a spring from the beam's motion to the body's point there, a_i . q:

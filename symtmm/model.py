@@ -648,6 +648,12 @@ class RigidBody:
     fixed : tuple of str, optional
         Freedoms a support holds at zero (``"Y"``, ``"X"``, ``"Theta"``; a node of a
         planar frame pinned or clamped); ``"X"`` makes the body translate in the plane.
+    ground : tuple of (str, number or str, number or str), optional
+        Springs and dashpots ``(freedom, k, c)`` from a freedom of the body to the ground:
+        an elastic support (the force ``-(k + c lam) q`` on it).
+    axes : pair of numbers, optional
+        The direction of the body's ``X`` in the plane (default the plane's x; ``Y`` is
+        ``X`` turned by 90 degrees): an inclined support holds ``Y`` along its normal.
 
     Examples
     --------
@@ -663,9 +669,33 @@ class RigidBody:
     xc: sp.Expr | None = None
     yc: sp.Expr | None = None
     fixed: tuple = ()
+    ground: tuple = ()
+    axes: tuple | None = None
 
     def __post_init__(self):
         where = f"body '{self.name}'"
+        if self.axes is not None:
+            axes = tuple(_exact(v, f"{where}.axes") for v in self.axes)
+            if len(axes) != 2 or not all(v.is_number for v in axes) \
+                    or sp.simplify(axes[0]**2 + axes[1]**2 - 1) != 0:
+                raise ModelError("expected a unit vector (cos a, sin a)", field=f"{where}.axes")
+            object.__setattr__(self, "axes", axes)
+        ground = []
+        for item in self.ground:
+            if not (isinstance(item, (tuple, list)) and len(item) == 3
+                    and item[0] in ("X", "Y", "Theta")):
+                raise ModelError("expected (freedom, k, c) with freedom X, Y or Theta",
+                                 field=f"{where}.ground")
+            label = item[0]
+            values = []
+            for what, v in zip(("k", "c"), item[1:]):
+                value = _exact(v, f"{where}.{what}{label.lower()}")
+                _check_sign(value, f"{where}.{what}{label.lower()}", allow_zero=True)
+                values.append(value)
+            ground.append((label, *values))
+        if len({g[0] for g in ground}) != len(ground):
+            raise ModelError("one spring per freedom", field=f"{where}.ground")
+        object.__setattr__(self, "ground", tuple(ground))
         fixed = tuple(self.fixed)
         if not all(isinstance(f, str) and f in ("X", "Y", "Theta") for f in fixed) \
                 or len(set(fixed)) != len(fixed):
@@ -808,10 +838,11 @@ def body_frame(body: RigidBody, beams: dict, links=()) -> BodyFrame:
     points = [beams[a.beam].point(a.x) for a in atts]
     pulls = [ln.axis for ln in links if body.name in ln.ends]
     d0 = dirs[0]
-    planar = "X" in body.fixed or any(_nonzero(d0[0] * d[1] - d0[1] * d[0])
+    planar = "X" in body.fixed or body.axes is not None or any(_nonzero(d0[0] * d[1] - d0[1] * d[0])
                                       for d in dirs[1:] + pulls)
     if planar:
-        directions = {"Y": (sp.Integer(0), sp.Integer(1)), "X": (sp.Integer(1), sp.Integer(0))}
+        ax = (sp.Integer(1), sp.Integer(0)) if body.axes is None else body.axes
+        directions = {"Y": (-ax[1], ax[0]), "X": ax}
     else:
         directions = {"Y": d0}
     centre = (points[0][0] if body.xc is None else body.xc,
@@ -1141,6 +1172,11 @@ class Model:
                     for attr in ("k", "c"):
                         _check_sign(self.value(getattr(att, attr)), f"{where}.{attr}",
                                     allow_zero=True)
+            for label, _, _ in body.ground:
+                if label not in self.body_frame(body).freedoms:
+                    held = "a support holds it" if label in body.fixed else "it has no such motion"
+                    raise ModelError(f"a spring on its {label}, and {held}",
+                                     field=f"{where}.k{label.lower()}")
             if self.value(body.J) != 0 and not self.body_frame(body).rotates \
                     and "Theta" not in body.fixed:
                 raise ModelError("nothing it holds turns with it (every attachment hinged, "
@@ -1333,7 +1369,9 @@ class Model:
         def value(v):
             return None if v is None else self.value(v)
         return replace(body, M=self.value(body.M), J=self.value(body.J), xc=value(body.xc),
-                       yc=value(body.yc), attachments=tuple(resolved(a) for a in body.attachments))
+                       yc=value(body.yc),
+                       ground=tuple((g, self.value(k), self.value(c)) for g, k, c in body.ground),
+                       attachments=tuple(resolved(a) for a in body.attachments))
 
     def resolved(self) -> Model:
         """The same model with every parameter value substituted into the fields.
@@ -1393,6 +1431,7 @@ class Model:
                 syms |= beam.kGA.free_symbols
         for body in resolved.bodies:
             for expr in (body.M, body.J, *(v for v in (body.xc, body.yc) if v is not None),
+                         *(v for g in body.ground for v in g[1:]),
                          *(a.x for a in body.attachments),
                          *(e for a in body.attachments if a.elastic for e in (a.k, a.c))):
                 syms |= expr.free_symbols
@@ -1417,6 +1456,7 @@ class Model:
     def _dashpots(self):
         yield from (s.c for s in self.springs)
         yield from (a.c for b in self.bodies for a in b.attachments if a.elastic)
+        yield from (c for b in self.bodies for _, _, c in b.ground)
         yield from (la.c for la in self.layers)
 
     def with_dashpots_scaled(self, factor) -> Model:
@@ -1431,7 +1471,8 @@ class Model:
         """
         springs = tuple(replace(s, c=s.c * factor) for s in self.springs)
         bodies = tuple(replace(b, attachments=tuple(
-            replace(a, c=a.c * factor) if a.elastic else a for a in b.attachments))
+            replace(a, c=a.c * factor) if a.elastic else a for a in b.attachments),
+            ground=tuple((g, k, c * factor) for g, k, c in b.ground))
             for b in self.bodies)
         layers = tuple(replace(la, c=la.c * factor) for la in self.layers)
         return replace(self, springs=springs, bodies=bodies, layers=layers)
@@ -1518,6 +1559,9 @@ def iter_fields(model: Model) -> Iterable[tuple[str, sp.Expr]]:
         for attr in ("M", "J", "xc", "yc"):
             if getattr(body, attr) is not None:
                 yield f"body '{body.name}'.{attr}", getattr(body, attr)
+        for label, k, c in body.ground:
+            yield f"body '{body.name}'.k{label.lower()}", k
+            yield f"body '{body.name}'.c{label.lower()}", c
         for att in body.attachments:
             yield f"body '{body.name}'.attach", att.x
             if att.elastic:

@@ -88,7 +88,8 @@ _LAYER_OPTIONAL = ("c", "from", "to")
 _MEMBER_REQUIRED = ("name", "from", "EI", "m")
 _MEMBER_OPTIONAL = ("to", "angle", "L", "EA", "inextensible")
 _NODE_REQUIRED = ("at",)
-_NODE_OPTIONAL = ("name", "support", "hinge", "M", "J")
+_NODE_OPTIONAL = ("name", "support", "hinge", "M", "J", "kx", "ky", "ktheta", "cx", "cy",
+                  "ctheta", "angle")
 _OSCILLATOR_REQUIRED = ("x", "M", "k")
 _OSCILLATOR_OPTIONAL = ("name", "beam", "between", "c")
 
@@ -552,11 +553,19 @@ def _frame(members_raw: list, nodes_raw: list, params: dict, used: set, fields: 
         support = raw.get("support", "free")
         if not isinstance(support, str):
             raise ModelError(f"expected a string, got {_kind(support)}", field=f"{where}.support")
+        springs = {}
+        for label in ("X", "Y", "Theta"):
+            k, c = (f"{kind}{label.lower()}" for kind in ("k", "c"))
+            if k in raw or c in raw:
+                springs[label] = (_number(raw.get(k, 0), f"{where}.{k}"),
+                                  _number(raw.get(c, 0), f"{where}.{c}"))
         try:
             nodes.append(Node(pair(raw["at"], f"{where}.at"), support,
                               raw.get("hinge", False),
                               *(_number(raw.get(k, 0), f"{where}.{k}") for k in ("M", "J")),
-                              name=name))
+                              name=name, springs=springs or None,
+                              angle=geometry(raw["angle"], f"{where}.angle")
+                              if "angle" in raw else None))
         except ModelError as exc:
             raise ModelError(exc.message, field=_rename(exc.field, where)) from None
     if not members:

@@ -246,7 +246,7 @@ MEMBER_C = '[[member]]\nname = "c"\nfrom = [0, 0]\nEI = 1\nm = 1\n'
     (MEMBER_C.replace("[0, 0]", '[0, "q"]') + 'to = [1, 1]\nEA = 1\n[parameters]\nq = "x"\n',
      "member[3] (c).from", "parameters with a value only"),
     ('[[node]]\nat = [5, 5]\n', "node", "no member end lies at (5, 5)"),
-    ('[[node]]\nat = [0, 0]\nsupport = "roller"\n', "node[2].support", "unknown support"),
+    ('[[node]]\nat = [0, 0]\nsupport = "rolling"\n', "node[2].support", "unknown support"),
     ('[[node]]\nat = [0, 0]\nsupport = "pinned"\n', "node", "two nodes at (0, 0)"),
     ('[[node]]\nat = [0, 1]\nsupport = "clamped"\nhinge = true\n', "support", "not a hinge"),
     ('[[spring]]\nbetween = ["a", "b"]\nx = 0.5\nk = 1\n', "between", "lies at an angle"),
@@ -356,3 +356,83 @@ def test_the_drawing_of_a_frame_is_in_its_plane(tmp_path):
     width, height = 6, 4        # the portal's span and height
     assert x0 < 0 and width < x1 and y0 < 0 and height < y1
     assert ax.get_aspect() in (1.0, "equal")
+
+
+NODE_SPRING_BASE = ('[[member]]\nname = "a"\nfrom = [0, 0]\nto = [{x}, {y}]\nEI = 1\nEA = 20\n'
+                    'm = 1\n[[node]]\nat = [0, 0]\nsupport = "clamped"\n')
+
+
+def _lams(text, count=5):
+    return [complex(e.lam) for e in api.solve(loads(text), count=count).eigenvalues]
+
+
+def test_springs_at_a_node_are_the_members_springs_to_the_ground():
+    """A clamped member along x whose far node is on springs (kx axial, ky and a dashpot
+    transverse, ktheta) against [[spring]]s to the ground on its beam and rod levels."""
+    base = NODE_SPRING_BASE.format(x=2, y=0)
+    node = base + '[[node]]\nat = [2, 0]\nky = 3\nkx = 5\ncy = 0.5\nktheta = 2\n'
+    levels = base + ('[[spring]]\nbetween = ["a", "ground"]\nx = 2\nk = 3\nc = 0.5\n'
+                     '[[spring]]\nbetween = ["a_axial", "ground"]\nx = 2\nk = 5\n'
+                     '[[spring]]\nbetween = ["a", "ground"]\nx = 2\nk = 2\nkind = "rotational"\n')
+    np.testing.assert_allclose(_lams(node), _lams(levels), rtol=1e-13)
+
+
+def test_node_springs_act_along_the_planes_axes():
+    """kx on a vertical member is its transverse spring (the horizontal member's ky), and
+    equal springs in x and y (isotropic) leave a member at 30 degrees as it is along x."""
+    along_x = NODE_SPRING_BASE.format(x=2, y=0) + '[[node]]\nat = [2, 0]\nky = 3\ncy = 0.2\n'
+    along_y = NODE_SPRING_BASE.format(x=0, y=2) + '[[node]]\nat = [0, 2]\nkx = 3\ncx = 0.2\n'
+    np.testing.assert_allclose(_lams(along_y), _lams(along_x), rtol=1e-13)
+    iso = '[[node]]\nat = [{x}, {y}]\nkx = 3\nky = 3\n'
+    straight = NODE_SPRING_BASE.format(x=2, y=0) + iso.format(x=2, y=0)
+    turned = (NODE_SPRING_BASE.format(x='"sqrt(3)"', y=1)
+              + iso.format(x='"sqrt(3)"', y=1))
+    np.testing.assert_allclose(_lams(turned), _lams(straight), rtol=1e-12)
+
+
+def test_node_springs_in_the_transfer_walk(tmp_path):
+    """The generated Delta (the transfer walk) vanishes at the damped eigenvalues solve
+    finds with a node on a spring and dashpot at an angle."""
+    text = (NODE_SPRING_BASE.format(x='"sqrt(3)"', y=1)
+            + '[[node]]\nat = ["sqrt(3)", 1]\nkx = 4\ncx = 0.3\nky = 1\n')
+    model = loads(text)
+    path = tmp_path / "node_delta.py"
+    path.write_text(api.codegen(model, "python"))
+    spec = importlib.util.spec_from_file_location("node_delta", path)
+    gen = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gen)
+    for lam in _lams(text, 4):
+        root = complex(mpmath.findroot(lambda z: gen.symtmm_delta(complex(z)), lam, tol=1e-20))
+        assert abs(root - lam) < 1e-9 * abs(lam), (root, lam)
+
+
+def test_a_spring_on_a_held_freedom_is_refused():
+    text = NODE_SPRING_BASE.format(x=2, y=0) + '[[node]]\nat = [2, 0]\nsupport = "pinned"\nkx = 1\n'
+    with pytest.raises(ModelError, match="a support holds it") as info:
+        loads(text)
+    assert "node[2].kx" in str(info.value)
+
+
+INCLINED = ('[[member]]\nname = "a"\nfrom = [0, 0]\nangle = 30\nL = 2\nEI = 1\nEA = 10\nm = 1\n'
+            '[[node]]\nat = [0, 0]\nsupport = "pinned"\n'
+            '[[node]]\nat = ["sqrt(3)", 1]\nsupport = "roller"\nangle = {angle}\n')
+
+
+def test_inclined_rollers_against_closed_forms():
+    """A member at 30 degrees, pinned at one end, on a roller inclined along it (pinned-
+    pinned in bending, fixed-free axially) or across it (pinned-free in bending, with its
+    rigid turn, ``tan x = tanh x``; fixed-fixed axially)."""
+    along = [float(e.omega) for e in api.solve(loads(INCLINED.format(angle=30)),
+                                               omega_max=25).eigenvalues]
+    ref = [(k * np.pi / 2) ** 2 for k in range(1, 4)] + [
+        (2 * k - 1) * np.pi / 4 * np.sqrt(10) for k in range(1, 7)]
+    np.testing.assert_allclose(along, sorted(w for w in ref if w < 25), rtol=1e-13)
+    across = [float(e.omega) for e in api.solve(loads(INCLINED.format(angle=120)),
+                                                omega_max=20).eigenvalues]
+    pinned_free = [float(x) ** 2 / 4 for x in _roots(
+        lambda x: mpmath.sin(x) * mpmath.cosh(x) - mpmath.cos(x) * mpmath.sinh(x), [3.9, 7.07])]
+    ref = [0.0] + pinned_free + [k * np.pi / 2 * np.sqrt(10) for k in range(1, 5)]
+    np.testing.assert_allclose(across, sorted(w for w in ref if w < 20), rtol=1e-13, atol=1e-12)
+    with pytest.raises(ModelError, match="give angle"):
+        loads(INCLINED.format(angle=30).replace("angle = 30\n", "", 2).replace(
+            'from = [0, 0]\n', 'from = [0, 0]\nangle = 30\n', 1))
