@@ -1005,14 +1005,28 @@ def _condensed(K, M):
     return (Kc + Kc.T) / 2.0, M[np.ix_(a, a)], expand
 
 
-def _refined_eigenvalues(K, M, energy_terms, subset):
+def _subset(count, n):
+    """``subset_by_index`` of the lowest ``count`` of ``n`` modes (None: all), checked."""
+    if count is None:
+        return None
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)):
+        raise ValueError(f"count must be an integer, got {count!r}")
+    if not 1 <= count <= n:
+        raise ValueError(f"count must be between 1 and the number of modes ({n}), "
+                         f"got {count!r}")
+    return (0, int(count) - 1)
+
+
+def _refined_eigenvalues(K, M, energy_terms, subset, strain_energy=None):
     """Eigenvalues ``omega**2`` with rigid-body modes exactly zero.
 
     The dense solver's absolute error is about ``eps * largest eigenvalue``,
     which swamps the lowest modes of a fine mesh.  The Rayleigh quotient of
     each computed eigenvector, with the energy evaluated accurately, has only
     second-order error in the eigenvector and restores the lowest modes.
+    ``strain_energy(energy_terms, vectors)``: the beams' (default) or the frames'.
     """
+    strain_energy = strain_energy or _strain_energy
     Kc, Mc, expand = _condensed(K, M)
     try:
         eigenvalues, vectors = scipy.linalg.eigh(Kc, Mc, subset_by_index=subset)
@@ -1026,7 +1040,7 @@ def _refined_eigenvalues(K, M, energy_terms, subset):
     rigid = eigenvalues < threshold
     vectors = expand(vectors)
     mass = np.einsum("ij,ij->j", vectors, M @ vectors)
-    quotients = _strain_energy(energy_terms, vectors) / mass
+    quotients = strain_energy(energy_terms, vectors) / mass
     return np.sort(np.where(rigid, 0.0, np.maximum(quotients, 0.0)))
 
 
@@ -1219,15 +1233,7 @@ def fe_frequencies(beams, springs, elements_per_beam, count=None, masses=None, b
     K, M, _, energy_terms = _build(beams, springs, elements_per_beam, masses, bodies, refine,
                                    layers)
     n = int(np.count_nonzero(np.any(M != 0.0, axis=1)))     # dofs with mass: the modes
-    if count is None:
-        subset = None
-    else:
-        if isinstance(count, bool) or not isinstance(count, (int, np.integer)):
-            raise ValueError(f"count must be an integer, got {count!r}")
-        if not 1 <= count <= n:
-            raise ValueError(f"count must be between 1 and the number of modes ({n}), "
-                             f"got {count!r}")
-        subset = (0, int(count) - 1)
+    subset = _subset(count, n)
     if n == 0:
         return np.zeros(0)
     return np.sqrt(_refined_eigenvalues(K, M, energy_terms, subset))
@@ -1606,24 +1612,10 @@ def fe_frame_frequencies(members, nodes, elements, count=None, refine=1):
     """
     K, M, _, energy = _frame_build(members, nodes, elements, refine)
     n = K.shape[0]
-    if count is None:
-        subset = None
-    else:
-        if isinstance(count, bool) or not isinstance(count, (int, np.integer)):
-            raise ValueError(f"count must be an integer, got {count!r}")
-        if not 1 <= count <= n:
-            raise ValueError(f"count must be between 1 and the number of modes ({n}), "
-                             f"got {count!r}")
-        subset = (0, int(count) - 1)
+    subset = _subset(count, n)
     if n == 0:
         return np.zeros(0)
-    Kc, Mc, expand = _condensed(K, M)
-    eigenvalues, vectors = scipy.linalg.eigh(Kc, Mc, subset_by_index=subset)
-    rigid = eigenvalues < _zero_threshold(Kc, Mc)
-    vectors = expand(vectors)
-    mass = np.einsum("ij,ij->j", vectors, M @ vectors)
-    quotients = _frame_strain_energy(energy, vectors) / mass
-    return np.sqrt(np.sort(np.where(rigid, 0.0, np.maximum(quotients, 0.0))))
+    return np.sqrt(_refined_eigenvalues(K, M, energy, subset, _frame_strain_energy))
 
 
 def fe_frame_converged(members, nodes, elements, count, rate=4, levels=3):

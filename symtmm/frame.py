@@ -264,10 +264,7 @@ def frame_parts(members, nodes=()) -> tuple:
                              "there: not a hinge", field=f"{where}.support")
         massive = (_exact(node.M, f"{where}.M") != 0 or _exact(node.J, f"{where}.J") != 0
                    or bool(node.springs))
-        lonely = [(mb, side) for mb, side in ends if mb.inextensible and node.support == "free"
-                  and held[(mb.name, "right" if side == "left" else "left")] is None
-                  and side == "left" and _free_far_end(mb, ends_at, node_at)]
-        if len(ends) == 1 and not massive and not lonely and node.support in _END_SUPPORTS:
+        if len(ends) == 1 and not massive and node.support in _END_SUPPORTS:
             mb, side = ends[0]
             bcs[(mb.name, side)] = _END_SUPPORTS[node.support]
             if mb.inextensible and node.support != "free":
@@ -292,6 +289,15 @@ def frame_parts(members, nodes=()) -> tuple:
             axes = (sp.cos(a), sp.sin(a))
         bodies.append(RigidBody(name, tuple(attachments), M=node.M, J=node.J,
                                 xc=key[0], yc=key[1], fixed=fixed, ground=ground, axes=axes))
+    for mb in members:
+        if mb.inextensible and held[(mb.name, "left")] is None \
+                and held[(mb.name, "right")] is None:
+            # both ends free and bare: nothing would carry the member's axial motion, so
+            # its left end becomes a joint of its own
+            name = f"{mb.name}_end"
+            bodies.append(RigidBody(name, (Attachment(mb.name, 0),), xc=mb.start[0],
+                                    yc=mb.start[1]))
+            held[(mb.name, "left")] = name
     levels, links = [], []
     for mb in members:
         left, right = bcs[(mb.name, "left")], bcs[(mb.name, "right")]
@@ -304,16 +310,6 @@ def frame_parts(members, nodes=()) -> tuple:
             levels.append(rod(mb.name + AXIAL_SUFFIX, mb.EA, mb.m, mb.L, left=left[1],
                               right=right[1], origin=mb.start, axis=mb.axis))
     return tuple(levels), tuple(bodies), tuple(links)
-
-
-def _free_far_end(mb, ends_at, node_at) -> bool:
-    """The right end of ``mb`` is alone, free and bare: nothing would hold the member's
-    axial motion, so its left end becomes a body of its own (which carries it)."""
-    key = _key(mb.end)
-    node = node_at.get(key)
-    return len(ends_at[key]) == 1 and (node is None or (
-        node.support == "free" and _exact(node.M, "M") == 0 and _exact(node.J, "J") == 0
-        and not node.springs))
 
 
 def frame(members, nodes=(), title: str = "") -> Model:

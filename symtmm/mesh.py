@@ -23,7 +23,7 @@ from .elements import Coupling, GroundSpring
 from .elements.layer import joined, member
 from .errors import ComputationError, ModelError
 from .limits import MAX_PIECES
-from .model import GROUND, Model
+from .model import FREEDOM_INDEX, GROUND, Model
 
 __all__ = ["Mesh", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
 
@@ -145,7 +145,7 @@ class Mesh:
             bi, row = ends[0]
             at = {}
             for label, a in row.items():
-                for i, c in combo(("b", bi, {"Y": 0, "Theta": 1, "X": 2}[label])):
+                for i, c in combo(("b", bi, FREEDOM_INDEX[label])):
                     at[i] = at.get(i, 0) + _canonical(a) * c
             point = tuple(sorted((i, c) for i, c in at.items() if c != 0))
             if point:
@@ -339,7 +339,7 @@ class Mesh:
                 c = {}
                 for body, row in ends:
                     for label, a in row.items():
-                        c[("b", index[body.name], {"Y": 0, "Theta": 1, "X": 2}[label])] = \
+                        c[("b", index[body.name], FREEDOM_INDEX[label])] = \
                             _canonical(a)
                 if c:
                     constraints.append((ends[0][0].name if ends else None, c))

@@ -717,6 +717,10 @@ class RigidBody:
                 object.__setattr__(self, attr, _exact(getattr(self, attr), f"{where}.{attr}"))
 
 
+#: The mesh's number of each freedom of a body (``("b", body, number)``).
+FREEDOM_INDEX = {"Y": 0, "Theta": 1, "X": 2}
+
+
 @dataclass(frozen=True)
 class BodyFrame:
     """How a rigid body moves the points it holds (:meth:`Model.body_frame`).
@@ -760,7 +764,7 @@ class BodyFrame:
 
     def index(self, label: str) -> int:
         """The freedom number of a label in the mesh: Y 0, Theta 1, X 2."""
-        return {"Y": 0, "Theta": 1, "X": 2}[label]
+        return FREEDOM_INDEX[label]
 
     def mass(self, body, label: str):
         """The inertia of a freedom: ``M`` for a translation, ``J`` for the rotation."""

@@ -270,33 +270,22 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
     if data.get("beam") is None and data.get("rod") is None and data.get("member") is None:
         raise ModelError("missing field (at least one [[beam]], [[rod]] or [[member]] table)",
                          field="beam")
-    beams_raw = data.get("beam", [])
-    if not isinstance(beams_raw, list):
-        raise ModelError("expected an array of tables: write [[beam]]", field="beam")
-    rods_raw = data.get("rod", [])
-    if not isinstance(rods_raw, list):
-        raise ModelError("expected an array of tables: write [[rod]]", field="rod")
-    springs_raw = data.get("spring", [])
-    if not isinstance(springs_raw, list):
-        raise ModelError("expected an array of tables: write [[spring]]", field="spring")
+    beams_raw = _array_of_tables(data, "beam")
+    rods_raw = _array_of_tables(data, "rod")
+    springs_raw = _array_of_tables(data, "spring")
     # the budgets first: nothing is parsed for a model that is too large anyway
     tables = [data.get(t, []) for t in ("mass", "rigid", "joint", "oscillator")]
     attachments = sum(_points_in(t) for group in tables[1:] if isinstance(group, list)
                       for t in group)
-    layers_raw = data.get("layer", [])
-    if not isinstance(layers_raw, list):
-        raise ModelError("expected an array of tables: write [[layer]]", field="layer")
+    layers_raw = _array_of_tables(data, "layer")
     attachments += 2 * len(layers_raw)
     raw_params = data.get("parameters", {})
-    members_raw = data.get("member", [])
-    if not isinstance(members_raw, list):
-        raise ModelError("expected an array of tables: write [[member]]", field="member")
-    nodes_raw = data.get("node", [])
-    if not isinstance(nodes_raw, list):
-        raise ModelError("expected an array of tables: write [[node]]", field="node")
+    members_raw = _array_of_tables(data, "member")
+    nodes_raw = _array_of_tables(data, "node")
     attachments += 4 * len(members_raw)
-    check_size(len(beams_raw) + len(rods_raw) + 2 * len(members_raw), len(springs_raw) + (len(tables[0]) if isinstance(tables[0], list)
-                                                   else 0) + attachments,
+    n_masses = len(tables[0]) if isinstance(tables[0], list) else 0
+    check_size(len(beams_raw) + len(rods_raw) + 2 * len(members_raw),
+               len(springs_raw) + n_masses + attachments,
                len(raw_params) if isinstance(raw_params, dict) else 0)
 
     params = _parameters(data.get("parameters", {}), overrides)
@@ -363,9 +352,7 @@ def _build(data: dict, overrides: dict, source: str) -> Model:
         for value in fields.values():
             known_names |= {s.name for s in value.free_symbols}
 
-    masses_raw = data.get("mass", [])
-    if not isinstance(masses_raw, list):
-        raise ModelError("expected an array of tables: write [[mass]]", field="mass")
+    masses_raw = _array_of_tables(data, "mass")
     masses = []
     for i, raw in enumerate(masses_raw, 1):
         where = f"mass[{i}]"
@@ -473,6 +460,14 @@ def _points_in(table) -> int:
         value = table.get(key)
         count += len(value) if isinstance(value, list) else 0
     return count + (1 if "beam" in table else 0)
+
+
+def _array_of_tables(data: dict, name: str) -> list:
+    """The ``[[name]]`` tables of a model file (an empty list where there are none)."""
+    raw = data.get(name, [])
+    if not isinstance(raw, list):
+        raise ModelError(f"expected an array of tables: write [[{name}]]", field=name)
+    return raw
 
 
 def _frame(members_raw: list, nodes_raw: list, params: dict, used: set, fields: dict) -> tuple:
@@ -597,9 +592,7 @@ def _bodies(data: dict, beams: dict, known_names: set) -> tuple:
     out, where_of = [], {}
     for table, required, optional in (("rigid", _RIGID_REQUIRED, _RIGID_OPTIONAL),
                                       ("joint", _JOINT_REQUIRED, _JOINT_OPTIONAL)):
-        raw_list = data.get(table, [])
-        if not isinstance(raw_list, list):
-            raise ModelError(f"expected an array of tables: write [[{table}]]", field=table)
+        raw_list = _array_of_tables(data, table)
         for i, raw in enumerate(raw_list, 1):
             where = f"{table}[{i}]"
             _check_keys(raw, required, optional, where)
@@ -672,9 +665,7 @@ def _oscillators(data: dict, beams: set, known_names: set, taken: set) -> tuple:
     ``beam = "a"`` carries it; ``between = ["a", "b"]`` joins it to two beams, each
     by its own spring and dashpot (``k`` and ``c`` a value for both, or a list of two).
     """
-    raw_list = data.get("oscillator", [])
-    if not isinstance(raw_list, list):
-        raise ModelError("expected an array of tables: write [[oscillator]]", field="oscillator")
+    raw_list = _array_of_tables(data, "oscillator")
     out, where_of = [], {}
     for i, raw in enumerate(raw_list, 1):
         where = f"oscillator[{i}]"
