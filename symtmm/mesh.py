@@ -59,6 +59,8 @@ class Mesh:
 
     Attributes
     ----------
+    node_x : list
+        The exact coordinate of every node (along its beam's axis).
     segments : list
         ``(beam index, segment, left node, right node)``; for a piece of beams joined by
         layers ``(beam indices, CoupledSegment, left nodes, right nodes)`` (tuples).
@@ -171,6 +173,7 @@ class Mesh:
         model = self.model
         points_el = point_elements(model)
         self._nodes = []                 # (x float, beam index) per node
+        self.node_x = []                 # exact x per node
         self._node_length = []           # the longest segment at each node
         self.segments = []
         self._beam_nodes = []            # per beam: exact x -> node
@@ -257,6 +260,7 @@ class Mesh:
                 points += [xa + (xb - xa) * sp.Rational(k, n_sub) for k in range(1, n_sub + 1)]
             ids = list(range(len(self._nodes), len(self._nodes) + len(points)))
             self._nodes += [(float(x), b_idx) for x in points]
+            self.node_x += points
             self._node_length += [0.0] * len(points)
             self._beam_nodes.append(dict(zip(points, ids)))
         for b_idx, beam in enumerate(model.beams):

@@ -412,10 +412,56 @@ def test_tracking_shapes_in_double_agree_with_mpmath(monkeypatch, name):
     from symtmm.modes import shapes
     model = load(str(Path(__file__).resolve().parent.parent / "examples" / name))
     spectrum = list(solve(model, count=6, digits=10))
-    fast = shapes.displacements(model, spectrum, 33, 6)
+    fast = shapes.displacements(model, spectrum, 33, 6, nodal=False)
     monkeypatch.setattr(shapes, "_DOUBLE_DIGITS", -1)          # everything in mpmath
-    slow = shapes.displacements(model, spectrum, 33, 6)
+    slow = shapes.displacements(model, spectrum, 33, 6, nodal=False)
     for a, b in zip(fast, slow):
         for u, v in zip(np.atleast_2d(a), np.atleast_2d(b)):
             mac = abs(np.vdot(u, v)) ** 2 / (np.vdot(u, u).real * np.vdot(v, v).real)
             assert mac > 1 - 1e-10
+
+
+def _subspace_mac(a, b) -> float:
+    """The smallest squared cosine of the principal angles between two shapes' spans."""
+    qa, _ = np.linalg.qr(np.atleast_2d(a).T)
+    qb, _ = np.linalg.qr(np.atleast_2d(b).T)
+    return float(np.linalg.svd(qa.conj().T @ qb, compute_uv=False).min() ** 2)
+
+
+@pytest.mark.parametrize("name", ["paper_ex1_ff_cc.toml", "paper_ex3_three_pp_coupled.toml",
+                                  "paper_ex4_damped.toml", "rayleigh_axial_force.toml",
+                                  "timoshenko_beam.toml", "closed_loop.toml", "hinge_joint.toml",
+                                  "rigid_body_on_beam.toml"])
+def test_tracking_shapes_from_the_stiffness_agree_with_the_mpmath_walk(name):
+    """The stiffness route (null vector of K in double, then each short piece) against the
+    transfer walk in mpmath, a second formulation: the same shapes (MAC 1 to 1e-10) for the
+    first 10 modes, multiple ones and high ones included (ex3's triple root (4 pi)**2)."""
+    from symtmm.modes import shapes
+    from symtmm.modes.nodal import nodal_displacements
+    model = load(str(Path(__file__).resolve().parent.parent / "examples" / name))
+    spectrum = list(solve(model, count=10, digits=10))
+    fast = nodal_displacements(model, spectrum, 33)
+    slow = shapes.displacements(model, spectrum, 33, 6, nodal=False)
+    served = 0
+    for e, a, b in zip(spectrum, fast, slow):
+        if a is None:
+            # only an undamped mode of a damped model is left to the walk
+            assert model.damped and e.lam.real == 0
+            continue
+        served += 1
+        assert a.shape == np.atleast_2d(b).shape
+        assert _subspace_mac(a, b) > 1 - 1e-10
+    assert served >= 6
+
+
+@pytest.mark.parametrize("name", ["double_beam_layer.toml", "kukla_rods.toml",
+                                  "portal_frame.toml"])
+def test_tracking_shapes_of_layers_rods_and_frames_are_walked(name):
+    """Beams joined by layers and rods are not served by the stiffness route: every shape
+    comes from the walk, and the sweeps' displacements still give them all."""
+    from symtmm.modes import shapes
+    from symtmm.modes.nodal import nodal_displacements
+    model = load(str(Path(__file__).resolve().parent.parent / "examples" / name))
+    spectrum = list(solve(model, count=3, digits=10))
+    assert all(Y is None for Y in nodal_displacements(model, spectrum, 9))
+    assert all(Y is not None for Y in shapes.displacements(model, spectrum, 9, 6))

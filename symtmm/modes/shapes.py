@@ -34,6 +34,7 @@ from ..numeric.linalg import null_space
 from ..results import Eigenvalue, Spectrum
 from .localise import localising_rotation
 from .modeset import BeamShape, ModeSet, ModeShape
+from .nodal import nodal_displacements
 from .normalise import Energy, Inertia, complex_scaler, mass_orthonormaliser
 
 __all__ = ["ShapePlan", "displacements", "evaluate_mode", "mode_shapes", "shapes_at",
@@ -194,27 +195,34 @@ _DOUBLE_DIGITS = 13
 
 
 def displacements(model: Model, eigenvalues, points: int, digits: int,
-                  plan: ShapePlan | None = None) -> list:
+                  plan: ShapePlan | None = None, nodal: bool = True) -> list:
     """``Y`` along every beam for many eigenvalues at once, unnormalised (sweeps' tracking).
 
-    The eigenvalues of one kind (undamped or not, one multiplicity) share one walk:
-    their null spaces at the largest precision any of them needs, then the states at
-    the samples of :meth:`ShapePlan.grid` in one batch. Returns, per eigenvalue,
-    ``(multiplicity, beams * points)`` floats (complex for damped models) in the
-    shapes' own scale: what a modal assurance criterion needs, no normalisation.
+    First from the dynamic stiffness (:func:`~symtmm.modes.nodal.nodal_displacements`:
+    double precision at any mode) where that serves (``nodal``); the others by the
+    transfer walk, the eigenvalues of one kind (undamped or not, one multiplicity)
+    sharing one: their null spaces at the largest precision any of them needs, then the
+    states at the samples of :meth:`ShapePlan.grid` in one batch. Returns, per
+    eigenvalue, ``(multiplicity, beams * points)`` floats (complex for damped models) in
+    the shapes' own scale: what a modal assurance criterion needs, no normalisation.
     """
     model = model.require_numeric()
+    # the stiffness kernel's short pieces: double precision at any mode, where it serves
+    out = nodal_displacements(model, eigenvalues, points) if nodal else [None] * len(eigenvalues)
+    if all(Y is not None for Y in out):
+        return out
     shape_plan = plan or ShapePlan(model)
     tp = shape_plan.plan
     grid, _ = shape_plan.grid(points)
     groups: dict = {}
     for i, e in enumerate(eigenvalues):
+        if out[i] is not None:
+            continue
         real = not model.damped and e.lam.real == 0
         # double precision where the walk's cancellation leaves the digits asked for
         # (low modes), mpmath beyond
         in_double = digits + transfer.digits_lost(tp, complex(e.lam)) <= _DOUBLE_DIGITS
         groups.setdefault((real, e.multiplicity, in_double), []).append(i)
-    out: list = [None] * len(eigenvalues)
     for (real, mult, in_double), idx in groups.items():
         if in_double:
             ar = DOUBLE

@@ -43,7 +43,7 @@ from .arith import Arithmetic
 
 __all__ = ["eb_constants", "eb_matrices", "theory_constants", "theory_matrices", "rod_constants",
            "rod_matrices", "f_functions", "kind_inertia",
-           "coupled_constants", "coupled_matrices", "transfer_matrices", "family_matrices",
+           "coupled_constants", "coupled_matrices", "transfer_matrices", "family_matrices", "cut_tables",
            "stack_matrix", "kind", "kind_order", "kind_size", "kind_tables", "segment_matrix"]
 
 
@@ -573,6 +573,30 @@ def kind_tables(ar: Arithmetic, kinds) -> list:
     for n in sizes:
         out.append(("coupled", coupled_constants(ar, [c for f, c in kinds
                                                       if f == "coupled" and c[0] == n])))
+    return out
+
+
+def cut_tables(ar: Arithmetic, kinds, tables, k: int, lengths) -> dict:
+    """The constants of 4-state kind ``k`` of ``kinds`` cut to each of ``lengths`` (an
+    array of numbers of ``ar``): one segment per length, for :func:`family_matrices`.
+
+    ``tables`` are the kinds' own (:func:`kind_tables`); only the length and what
+    scales with it change.
+    """
+    family = kinds[k][0]
+    j = sum(f == family for f, _ in kinds[:k])          # its place in its family
+    one = {name: column[j] for name, column in dict(tables)[family].items()}
+    out = {name: ar.array([value] * len(lengths)) for name, value in one.items()}
+    out["l"] = lengths
+    r = lengths / one["l"]
+    if family == "eb":
+        # A = m l**4 / EI and F = kw l**4 / EI scale with the fourth power of the length
+        r4 = (r * r) * (r * r)
+        out["A"], out["F"] = r4 * one["A"], r4 * one["F"]
+    elif family == "rod":
+        # A, F, R (the arguments' factors) scale with its square
+        for name in ("A", "F", "R"):
+            out[name] = (r * r) * one[name]
     return out
 
 

@@ -51,7 +51,7 @@ from ..assembly import Interval, Layout, state_rows
 from ..elements.base import LAM
 from .arith import DOUBLE, Arithmetic, Batch, memo
 from .linalg import det
-from .segments import family_matrices, kind_order, kind_tables
+from .segments import cut_tables, family_matrices, kind_order, kind_tables
 from .segments import kind as segment_kind
 
 __all__ = ["TransferPlan", "propagate", "boundary", "delta", "log_delta", "NU_STEP",
@@ -179,24 +179,9 @@ class TransferPlan:
         """Kind ``k`` cut to each of ``lengths`` (an array of numbers of ``ar``): the tables
         of :func:`~symtmm.numeric.segments.transfer_matrices`, one segment per length."""
         family = self.kinds[k][0]
-        n = len(lengths)
         if family == "coupled":
             return [("coupled", self._coupled_piece_tables(ar, k, lengths))]
-        tables = dict(self.kind_tables(ar))
-        j = sum(f == family for f, _ in self.kinds[:k])      # its place in its family
-        one = {name: column[j] for name, column in tables[family].items()}
-        out = {name: ar.array([value] * n) for name, value in one.items()}
-        out["l"] = lengths
-        r = lengths / one["l"]
-        if family == "eb":
-            # A = m l**4 / EI and F = kw l**4 / EI scale with the fourth power of the length
-            r4 = (r * r) * (r * r)
-            out["A"], out["F"] = r4 * one["A"], r4 * one["F"]
-        elif family == "rod":
-            # A, F, R (the arguments' factors) scale with its square
-            for name in ("A", "F", "R"):
-                out[name] = (r * r) * one[name]
-        return [(family, out)]
+        return [(family, cut_tables(ar, self.kinds, self.kind_tables(ar), k, lengths))]
 
     def _coupled_piece_tables(self, ar: Arithmetic, k: int, lengths) -> dict:
         """The constants of coupled kind ``k`` cut to each of ``lengths``."""

@@ -1,0 +1,206 @@
+"""Deflections along the beams from the dynamic stiffness: double precision at any mode.
+
+The transfer walk of :mod:`symtmm.modes.shapes` carries a state along whole
+beams, whose entries grow like ``exp(|s| L)``: high modes lose more digits than
+double precision has and are walked in mpmath. The stiffness kernel's pieces are
+short (``|s| l <= NU_MAX``, :mod:`symtmm.numeric.plan`), so nothing grows there:
+
+1. a null vector of the scaled ``K(lam)`` (dense singular value decomposition:
+   the right singular vectors of the ``m`` smallest singular values, ``m`` the
+   multiplicity) gives the deflection and rotation of every node;
+2. each piece's end forces follow from its ends, ``f0 = U12**-1 (d1 - U11 d0)``
+   (``U12`` of a short piece is the static flexibility's near relative, far from
+   singular), and a sample at ``xi`` inside it is the first row of ``U(xi) [d0;
+   f0]``.
+
+Every step is backward stable in double precision, whatever the mode. This serves
+the sweeps' branch tracking (:func:`symtmm.modes.shapes.displacements`), which
+needs the shapes' directions to a few digits; printed mode shapes keep the
+mpmath walk, whose digits are counted.
+
+What it covers: models whose segments are single beams in a bending theory
+(families ``"eb"`` and ``"theory"``; rods and beams joined by layers walk) and
+whose stiffness has at most :data:`DENSE_LIMIT` freedoms; elsewhere, and at an
+eigenvalue whose null space the singular values do not separate, it returns
+``None`` and the walk does the work.
+"""
+
+from __future__ import annotations
+
+import bisect
+
+import numpy as np
+import sympy as sp
+
+from ..numeric.arith import DOUBLE
+from ..numeric.plan import StiffnessPlan
+from ..numeric.segments import cut_tables, family_matrices, kind, kind_order, kind_tables
+from ..numeric.stiffness import assemble, dense
+
+__all__ = ["DENSE_LIMIT", "nodal_displacements"]
+
+#: Most freedoms of ``K`` whose null vectors are found by a dense decomposition
+#: (``O(n**3)``: 300 freedoms cost a few milliseconds per eigenvalue).
+DENSE_LIMIT = 300
+#: The ``m`` smallest singular values must lie below this fraction of the largest
+#: (the eigenvalue is known to the tracking's digits or better) ...
+_SINGULAR = 1e-7
+#: ... and the next one this many times above them: the null space is separated.
+_GAP = 1e3
+
+
+def _samples(model, mesh, points: int):
+    """Per beam, per sample ``(segment index, exact offset in it)``; ``None`` where a
+    sample lies in a piece this module does not handle."""
+    by_beam: dict = {}
+    for s, (b, seg, ia, _) in enumerate(mesh.segments):
+        if isinstance(b, tuple) or kind(seg)[0] not in ("eb", "theory"):
+            return None
+        by_beam.setdefault(b, []).append((float(mesh.node_x[ia]), s))
+    out = []
+    for b, beam in enumerate(model.beams):
+        starts = sorted(by_beam.get(b, []))
+        xs = [x for x, _ in starts]
+        row = []
+        for i in range(points):
+            x = beam.x0 + beam.L * sp.Rational(i, points - 1)
+            j = max(0, bisect.bisect_right(xs, float(x)) - 1)
+            s = starts[j][1]
+            offset = x - mesh.node_x[mesh.segments[s][2]]
+            row.append((s, offset if offset > 0 else sp.Integer(0)))
+        out.append(row)
+    return out
+
+
+def _null_vectors(K, mult: int):
+    """The ``(n, mult)`` null space of each dense ``K`` ``(B, n, n)``, or ``None`` per
+    point where the singular values do not separate it."""
+    out = []
+    for A in K:
+        n = A.shape[0]
+        if mult > n:
+            out.append(None)
+            continue
+        _, s, Vh = np.linalg.svd(A)
+        if not (s[n - mult] <= _SINGULAR * s[0]
+                and (mult == n or s[n - mult - 1] >= _GAP * s[n - mult])):
+            out.append(None)
+            continue
+        out.append(Vh[n - mult:].conj().T)
+    return out
+
+
+def nodal_displacements(model, eigenvalues, points: int) -> list:
+    """``Y`` at ``points`` equally spaced points along every beam, per eigenvalue.
+
+    Parameters
+    ----------
+    model : Model
+        Numeric.
+    eigenvalues : sequence of Eigenvalue
+        Their ``lam`` and ``multiplicity``.
+    points : int
+        Samples per beam, both ends included.
+
+    Returns
+    -------
+    list
+        Per eigenvalue ``(multiplicity, beams * points)`` (floats for an undamped model,
+        complex otherwise) in the shapes' own scale, or ``None`` where this route does
+        not serve (see the module's notes, and an undamped mode of a damped model,
+        whose shape the walk gives real).
+
+    Examples
+    --------
+    The first mode of a pinned-pinned beam is ``sin(pi x / L)``:
+
+    >>> import mpmath
+    >>> from symtmm.model import Beam, Model
+    >>> from symtmm.results import Eigenvalue
+    >>> pp = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),))
+    >>> [Y] = nodal_displacements(pp, [Eigenvalue(mpmath.mpc(0, mpmath.pi**2))], 5)
+    >>> np.round(Y[0] / Y[0][2], 6) + 0.0
+    array([0.      , 0.707107, 1.      , 0.707107, 0.      ])
+    """
+    model = model.require_numeric()
+    out: list = [None] * len(eigenvalues)
+    if not eigenvalues:
+        return out
+    top = max(abs(complex(e.lam)) for e in eigenvalues)
+    plan = StiffnessPlan(model, (1.01 * top) ** 2 + 1e-300)
+    if plan.n == 0 or plan.n > DENSE_LIMIT:
+        return out
+    mesh = plan.mesh
+    samples = _samples(model, mesh, points)
+    if samples is None:
+        return out
+    real = not model.damped
+
+    # per distinct kind of the pieces holding samples: its full length, then every
+    # sample's offset in a piece of that kind (a sample on a piece's start is its d0)
+    used = sorted({s for row in samples for s, _ in row})
+    piece_kind = {s: kind(mesh.segments[s][1]) for s in used}
+    kinds = sorted(set(piece_kind.values()), key=kind_order)
+    lengths = {k: [] for k in kinds}
+    for s in used:
+        if not lengths[piece_kind[s]]:
+            lengths[piece_kind[s]].append(float(mesh.segments[s][1].l))
+    at = {}                 # (beam, sample) -> (kind, index into its lengths)
+    for r, row in enumerate(samples):
+        for i, (s, xi) in enumerate(row):
+            if xi != 0:
+                k = piece_kind[s]
+                at[(r, i)] = (k, len(lengths[k]))
+                lengths[k].append(float(xi))
+
+    lam = np.array([complex(e.lam) for e in eigenvalues])
+    lam2 = lam * lam
+    if real:
+        lam2 = lam2.real
+    with DOUBLE:
+        tables = kind_tables(DOUBLE, kinds)
+        U = {k: family_matrices(DOUBLE, [(k[0], cut_tables(DOUBLE, kinds, tables, j,
+                                                           np.array(lengths[k])))], lam2)[0]
+             for j, k in enumerate(kinds)}                       # (B, lengths, 4, 4)
+        K, _ = assemble(plan, DOUBLE, lam2, None if real else lam)
+    if real:
+        U, K = {k: u.real for k, u in U.items()}, K.real
+    Kd = dense(plan, K)
+
+    # the pieces' end freedoms (Y0, Theta0, Y1, Theta1) from the free ones (mesh numbering)
+    gather = np.zeros((len(used), 4, mesh.size))
+    for j, s in enumerate(used):
+        for a, combo in enumerate(mesh.segment_places[s]):
+            for g, c in combo:
+                gather[j, a, g] += float(c)
+    full = np.stack([U[piece_kind[s]][:, 0] for s in used], axis=1)   # (B, pieces, 4, 4)
+    # each sample: its piece, and the first row of U over its offset (e_0 on a piece start)
+    flat = [(r, i) for r in range(len(samples)) for i in range(points)]
+    owner = np.array([used.index(samples[r][i][0]) for r, i in flat])
+    rows = np.zeros((len(eigenvalues), len(flat), 4), dtype=full.dtype)
+    rows[:, :, 0] = 1.0
+    for t, key in enumerate(flat):
+        if key in at:
+            k, q = at[key]
+            rows[:, t] = U[k][:, q, 0]
+    scale = np.array([2.0 ** e for e in plan.exponent])
+    position = np.array(plan.position)
+    for p, e in enumerate(eigenvalues):
+        if not real and e.lam.real == 0:
+            continue        # (an undamped mode of a damped model: its real shape, walked)
+        mult = int(e.multiplicity)
+        if not (np.isfinite(Kd[p]).all() and np.isfinite(full[p]).all()):
+            continue
+        try:
+            [basis] = _null_vectors(Kd[p:p + 1], mult)
+            if basis is None:
+                continue
+            x = (scale[:, None] * basis)[position]               # (mesh freedoms, mult)
+            d = gather @ x                                       # (pieces, 4, mult)
+            Ul = full[p]
+            f0 = np.linalg.solve(Ul[:, :2, 2:], d[:, 2:] - Ul[:, :2, :2] @ d[:, :2])
+        except np.linalg.LinAlgError:       # (no null space found: the walk decides)
+            continue
+        z0 = np.concatenate([d[:, :2], f0], axis=1)              # (pieces, 4, mult)
+        out[p] = np.einsum("sj,sjm->ms", rows[p], z0[owner])
+    return out
