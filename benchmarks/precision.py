@@ -35,12 +35,14 @@ LIMIT = 2.0
 
 def measure(model, repeat: int = REPEAT) -> dict:
     """Best seconds per precision over ``repeat`` rounds, evaluations and profiles."""
+    from symtmm.numeric.plan import clear_plans
     from symtmm.solve import solve
 
     best = {d: np.inf for d in DIGITS}
     evaluations = {}
     for _ in range(repeat):
         for d in DIGITS:
+            clear_plans()       # each solve from scratch, as a user's first one
             start = time.perf_counter()
             spectrum = solve(model, count=COUNT, digits=d)
             best[d] = min(best[d], time.perf_counter() - start)

@@ -97,8 +97,10 @@ def profile_call(fn) -> tuple:
     points and share of each routine that ran), ``other_seconds``, and
     ``evaluations`` when the result has them.
     """
-    from .kernel import internals
+    from symtmm.numeric.plan import clear_plans
 
+    from .kernel import internals
+    clear_plans()               # from scratch: no plan kept from an earlier run
     with timed_calls(internals().profiled) as stats:
         start = time.perf_counter()
         result = fn()

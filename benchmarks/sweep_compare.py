@@ -96,6 +96,7 @@ def _mesh(inputs, refs) -> tuple:
 
 
 def run(quick: bool = False, progress=print) -> dict:
+    from symtmm.numeric.plan import clear_plans
     from symtmm.sweep import sweep, value_string
 
     steps = 11 if quick else STEPS
@@ -114,6 +115,7 @@ def run(quick: bool = False, progress=print) -> dict:
                                                  count=COUNT, jobs=1))
     seconds = profile["seconds"]
     if not quick:
+        clear_plans()           # from scratch, as the first run
         start = time.perf_counter()
         sweep(model, PARAMETER, START, STOP, steps, count=COUNT, jobs=1)
         seconds = min(seconds, time.perf_counter() - start)

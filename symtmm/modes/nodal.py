@@ -33,7 +33,7 @@ import numpy as np
 import sympy as sp
 
 from ..numeric.arith import DOUBLE
-from ..numeric.plan import StiffnessPlan
+from ..numeric.plan import plan_for
 from ..numeric.segments import cut_tables, family_matrices, kind, kind_order, kind_tables
 from ..numeric.stiffness import assemble, dense
 
@@ -127,7 +127,7 @@ def nodal_displacements(model, eigenvalues, points: int) -> list:
     if not eigenvalues:
         return out
     top = max(abs(complex(e.lam)) for e in eigenvalues)
-    plan = StiffnessPlan(model, (1.01 * top) ** 2 + 1e-300)
+    plan = plan_for(model, top)          # (the solve's own, where it made one)
     if plan.n == 0 or plan.n > DENSE_LIMIT:
         return out
     mesh = plan.mesh

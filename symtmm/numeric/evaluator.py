@@ -38,7 +38,7 @@ import mpmath
 import numpy as np
 
 from .arith import DOUBLE, Arithmetic, Ball
-from .plan import StiffnessPlan
+from .plan import StiffnessPlan, design_range, plan_for
 from .stiffness import Factors, factor
 
 __all__ = ["Evaluator", "exact_mpf", "exact_mpc"]
@@ -88,23 +88,12 @@ class Evaluator:
         self._extra_bits: dict = {}
 
     def plan(self, size: float) -> StiffnessPlan:
-        """A plan valid for ``|lam| <= size``.
-
-        The plans are cut for the ranges ``size0 * 2**k``; one already built for a larger
-        range serves a smaller one while its pieces are at most twice as many as needed
-        (``4 x`` the range: Euler–Bernoulli pieces shorten like ``range**(-1/2)``), since
-        building a plan costs tens of evaluations.
-        """
-        size = float(size)
-        design = self.size
-        while design < size * (1 + 1e-12):
-            design *= 2.0
+        """A plan valid for ``|lam| <= size`` (:func:`~symtmm.numeric.plan.plan_for`: shared
+        with other searches of the same model; kept here by range for the batches)."""
+        design = design_range(size)
         plan = self._plans.get(design)
         if plan is None:
-            larger = [d for d in self._plans if design < d <= 4 * design]
-            if larger:
-                return self._plans[min(larger)]
-            plan = self._plans[design] = StiffnessPlan(self.model, design * design)
+            plan = self._plans[design] = plan_for(self.model, size)
         return plan
 
     # -- batches ---------------------------------------------------------------------------

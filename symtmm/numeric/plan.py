@@ -34,7 +34,8 @@ of the two beams it touches, so a chain of ``N`` levels has ``b`` independent of
 from __future__ import annotations
 
 import math
-from collections import deque
+import threading
+from collections import OrderedDict, deque
 
 import numpy as np
 import sympy as sp
@@ -44,7 +45,8 @@ from ..elements.base import LAM
 from .arith import DOUBLE, Arithmetic
 from .segments import kind, kind_order, kind_size, kind_tables
 
-__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "rcm_order", "wave_number_bound"]
+__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "rcm_order", "wave_number_bound",
+           "plan_for", "design_range", "clear_plans", "PLAN_MODELS"]
 
 #: Largest ``|s| l`` of a piece (``beta l`` for Euler–Bernoulli) anywhere in the plan's range:
 #: below the first clamped-clamped root ``beta l = 4.730``, so no piece has a
@@ -313,3 +315,56 @@ class StiffnessPlan:
             if targets.size else np.zeros(0, dtype=int)
         return {"kinds": kind_tables(ar, self.kinds), "source": source, "coef": coef,
                 "targets": targets[starts] if targets.size else targets, "starts": starts}
+
+
+#: Models whose plans are kept for the next search of the same model (``solve``, then
+#: ``modes``, ``certify`` or a sweep's tracking shapes ask for the same ones).
+PLAN_MODELS = 4
+_PLANS: OrderedDict = OrderedDict()        # model -> {design: plan}, least recent first
+_PLANS_LOCK = threading.Lock()
+
+
+def clear_plans():
+    """Forget the plans kept for the next search (a timing of a search from scratch)."""
+    with _PLANS_LOCK:
+        _PLANS.clear()
+
+
+def design_range(size: float) -> float:
+    """The range ``2**(k/4) >= size`` a plan for ``|lam| <= size`` is cut for."""
+    return 2.0 ** (math.ceil(4 * math.log2(max(float(size), 1e-300)) - 1e-9) / 4)
+
+
+def plan_for(model, size: float) -> StiffnessPlan:
+    """A plan of ``model`` (numeric) valid for ``|lam| <= size``, shared between searches.
+
+    Plans are cut for the ranges ``2**(k/4)`` (at most 19 % above ``size``: pieces at
+    most 9 % more than needed); one already built for a larger range serves while its
+    pieces are at most twice as many as needed (``4 x`` the range: Euler–Bernoulli
+    pieces shorten like ``range**(-1/2)``), since building a plan costs tens of
+    evaluations. The plans of the last :data:`PLAN_MODELS` models are kept.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> m = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),))
+    >>> plan_for(m, 100.0) is plan_for(m, 90.0), plan_for(m, 100.0) is plan_for(m, 1e4)
+    (True, False)
+    """
+    design = design_range(size)
+    with _PLANS_LOCK:
+        plans = _PLANS.pop(model, None) or {}
+        _PLANS[model] = plans
+        while len(_PLANS) > PLAN_MODELS:
+            _PLANS.popitem(last=False)
+        plan = plans.get(design)
+        if plan is None:
+            larger = [d for d in plans if design < d <= 4 * design]
+            if larger:
+                return plans[min(larger)]
+    if plan is None:
+        # (built outside the lock: another thread may build the same one meanwhile)
+        plan = StiffnessPlan(model, design * design)
+        with _PLANS_LOCK:
+            plan = _PLANS.setdefault(model, {}).setdefault(design, plan)
+    return plan

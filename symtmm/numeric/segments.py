@@ -34,6 +34,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -94,18 +95,25 @@ def _factorial_series(ar: Arithmetic, x, p: int) -> list:
         acc = 0 * x + inv[p * (K - 1) + j]
         for k in range(K - 2, -1, -1):
             acc = acc * x + inv[p * k + j]
-        # the tail beyond K terms, and (for jets) the tails of its derivatives in x: the
-        # terms k x**(k-1)/(pk+j)!, k(k-1) x**(k-2)/(pk+j)! and k(k-1)(k-2) x**(k-3)/(pk+j)!
-        # shrink 2x as well, so their sums are below 2K/(pK+j)!, 2K(K-1)/(pK+j)! and
-        # 2K(K-1)(K-2)/(pK+j)!
-        f = math.factorial(p * K + j)
-        # (the k-th derivative's terms vanish below k = 2, 3: their sums start there)
-        K2, K3 = max(K, 2), max(K, 3)
-        out.append(ar.widen(acc, sp.Rational(2, f), wrt=x, slope=sp.Rational(2 * K, f),
-                            curve=sp.Rational(2 * K2 * (K2 - 1), math.factorial(p * K2 + j)),
-                            third=sp.Rational(2 * K3 * (K3 - 1) * (K3 - 2),
-                                              math.factorial(p * K3 + j))))
+        radius, slope, curve, third = _series_tail(p, K, j)
+        out.append(ar.widen(acc, radius, wrt=x, slope=slope, curve=curve, third=third))
     return out
+
+
+@functools.lru_cache(maxsize=256)
+def _series_tail(p: int, K: int, j: int) -> tuple:
+    """Bounds on the tail of ``sum_k x**k / (p k + j)!`` beyond ``K`` terms for ``|x| <= 1``
+    and on the tails of its first three derivatives in ``x`` (exact rationals; once per
+    ``(p, K, j)``: a hot path's doubles need none of them, only the same call)."""
+    # the terms k x**(k-1)/(pk+j)!, k(k-1) x**(k-2)/(pk+j)! and k(k-1)(k-2) x**(k-3)/(pk+j)!
+    # shrink 2x as well, so their sums are below 2K/(pK+j)!, 2K(K-1)/(pK+j)! and
+    # 2K(K-1)(K-2)/(pK+j)!
+    f = math.factorial(p * K + j)
+    # (the k-th derivative's terms vanish below k = 2, 3: their sums start there)
+    K2, K3 = max(K, 2), max(K, 3)
+    return (sp.Rational(2, f), sp.Rational(2 * K, f),
+            sp.Rational(2 * K2 * (K2 - 1), math.factorial(p * K2 + j)),
+            sp.Rational(2 * K3 * (K3 - 1) * (K3 - 2), math.factorial(p * K3 + j)))
 
 
 def _c_closed(ar: Arithmetic, x):
