@@ -13,6 +13,7 @@ Nothing here is numeric: coordinates and coefficients stay exact.
 
 from __future__ import annotations
 
+import bisect
 import itertools
 import math
 
@@ -267,9 +268,10 @@ class Mesh:
             xs = xs_of[b_idx]
             nodes = self._beam_nodes[b_idx]
             points = sorted(nodes, key=float)
+            starts = [float(x) for x in xs[:-1]]
             for xa_node, xb_node in itertools.pairwise(points):
                 # the stretch between required points this piece lies in
-                k = max(t for t in range(len(xs) - 1) if float(xs[t]) <= float(xa_node))
+                k = bisect.bisect_right(starts, float(xa_node)) - 1
                 members, used = groups.get((b_idx, xs[k]), ([b_idx], []))
                 if members[0] != b_idx:
                     continue                # the group's first beam makes the coupled piece

@@ -33,6 +33,7 @@ of the two beams it touches, so a chain of ``N`` levels has ``b`` independent of
 
 from __future__ import annotations
 
+import functools
 import math
 import threading
 from collections import OrderedDict, deque
@@ -150,6 +151,17 @@ def _bandwidth(pairs, position) -> int:
     return max((abs(position[a] - position[b]) for a, b in pairs), default=0)
 
 
+@functools.lru_cache(maxsize=1024)
+def _lam_coefficients(S) -> list:
+    """Per entry of a point element's ``S(lam)`` its coefficients of ``lam**0, lam**1, ...``
+    (once per element: the plans of every range and every search share them)."""
+    polys = [[sp.Poly(sp.expand(S[i, j]), LAM).all_coeffs()[::-1]
+              for j in range(S.cols)] for i in range(S.rows)]
+    if any(len(p) > 3 for row in polys for p in row):
+        raise ValueError("a point element of degree > 2 in lam")
+    return polys
+
+
 class StiffnessPlan:
     """The dynamic stiffness of a numeric model, compiled for ``|lam|**2 <= radius``.
 
@@ -247,10 +259,7 @@ class StiffnessPlan:
         for places, masses in mesh.body_places:
             S_points.append((places, sp.diag(*[mass * LAM**2 for mass in masses])))
         for places, S in S_points:
-            polys = [[sp.Poly(sp.expand(S[i, j]), LAM).all_coeffs()[::-1]
-                      for j in range(S.cols)] for i in range(S.rows)]
-            if any(len(p) > 3 for row in polys for p in row):
-                raise ValueError("a point element of degree > 2 in lam")
+            polys = _lam_coefficients(sp.ImmutableMatrix(S))
             scatter(places, lambda i, j, polys=polys: [(("lam", p), cf) for p, cf in
                                                          enumerate(polys[i][j]) if cf != 0])
         # scaling by powers of two: a static diagonal near 1 (units of any size)
