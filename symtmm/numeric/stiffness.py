@@ -7,10 +7,14 @@ over a leading axis of points:
   matrix, split into displacement and force blocks ``z = [d; f]``, ``d = (Y,
   Theta)``, ``f = (M, Q)``: ``f0 = U12^-1 (d1 - U11 d0)``, ``f1 = U21 d0 + U22 f0``,
   the end actions ``(Q0, -M0, -Q1, M1)`` conjugate to ``(Y0, Theta0, Y1, Theta1)``;
+* :func:`eb_stiffness`: the same of Euler–Bernoulli segments straight from the
+  functions ``c_j`` (no ``U``: a third of the operations);
 * :func:`assemble`: the upper band of the scaled global ``K(lam)`` from a
   :class:`~symtmm.numeric.plan.StiffnessPlan`;
 * :func:`factor`: ``LDL^T`` without pivoting on the band, keeping every pivot
-  with its sign and whether that sign can be trusted.
+  with its sign and whether that sign can be trusted; numbers that are Python
+  objects (balls, mpmath) update the envelope's entries only
+  (:func:`envelope_maps`: exact zeros skipped).
 
 The sign test follows the backward error of ``LDL^T`` (Higham, *Accuracy and
 Stability of Numerical Algorithms*, 2nd ed., chapter 10 for Cholesky; the same
@@ -41,8 +45,8 @@ import numpy as np
 from .arith import DOUBLE, Arithmetic
 from .segments import _matmul, family_matrices, stack_matrix
 
-__all__ = ["segment_stiffness", "coupled_stiffness", "stiffness_values", "assemble", "factor",
-           "Factors", "dense"]
+__all__ = ["segment_stiffness", "coupled_stiffness", "eb_stiffness", "stiffness_values",
+           "assemble", "factor", "envelope_maps", "Factors", "dense"]
 
 try:        # the elimination loop in C (setup.py); without a compiler, numpy runs it
     from . import _band
@@ -168,18 +172,62 @@ def eb_closed_stiffness(ar: Arithmetic, consts: dict, lam2):
     return D, det
 
 
+def eb_stiffness(ar: Arithmetic, consts: dict, lam2):
+    """``(D, det U12)`` of Euler–Bernoulli segments from the entire functions ``c_j(x)``
+    (:func:`~symtmm.numeric.segments.c_functions`, each in its best form) without ``U``:
+    with ``dc = c2**2 - c1 c3`` (``det U12 = l**4 dc / EI**2``) and ``s = EI / (l**3 dc)``,
+    ``k11 = s (c0 c1 - x c2 c3)``, ``k12 = s l (c1**2 - c0 c2)``, ``k13 = s c1``,
+    ``k14 = s l c2``, ``k22 = s l**2 (c1 c2 - c0 c3)``, ``k24 = s l**2 c3`` in the pattern of
+    :func:`eb_closed_stiffness` (the inverse of ``U12`` and the products of
+    :func:`segment_stiffness` worked out; the other entries agree through ``c1**2 + x c3**2
+    = 2 c0 c2``). A third of the operations of the ``U`` path: it is what a ball or an
+    mpmath number pays one Python call each for.
+
+    Examples
+    --------
+    >>> from symtmm.elements import EulerBernoulliSegment
+    >>> from symtmm.numeric.segments import kind, kind_tables, segment_matrix
+    >>> lam2 = np.array([-30.0])
+    >>> [(_, consts)] = kind_tables(DOUBLE, [kind(EulerBernoulliSegment(2, 3, "1/2"))])
+    >>> D, det = eb_stiffness(DOUBLE, consts, lam2)
+    >>> U = segment_matrix(DOUBLE, EulerBernoulliSegment(2, 3, "1/2"), lam2)
+    >>> D0, det0 = segment_stiffness(U)
+    >>> bool(np.allclose(D[:, 0], D0, rtol=1e-13)), bool(np.allclose(det[:, 0], det0))
+    (True, True)
+    """
+    from .segments import c_functions
+    lam2 = np.asarray(lam2)[:, None]
+    EI, l = consts["EI"], consts["l"]
+    x = -(lam2 * consts["A"] + consts["F"])
+    c0, c1, c2, c3 = c_functions(ar, x)
+    dc = c2 * c2 - c1 * c3
+    s = EI / (l * l * l * dc)
+    sl = s * l
+    sl2 = sl * l
+    k11 = s * (c0 * c1 - x * c2 * c3)
+    k12 = sl * (c1 * c1 - c0 * c2)
+    k13, k14 = s * c1, sl * c2
+    k22 = sl2 * (c1 * c2 - c0 * c3)
+    k24 = sl2 * c3
+    D = stack_matrix([[k11, k12, -k13, k14], [k12, k22, -k14, k24],
+                      [-k13, -k14, k11, -k12], [k14, k24, -k12, k22]])
+    l2 = l * l
+    return D, l2 * l2 * dc / (EI * EI)
+
+
 def stiffness_values(ar: Arithmetic, kinds, lam2, lam=None):
     """``(D, det U12)``: every segment kind's stiffness flattened and concatenated ``(B, *)``
     (kind after kind, row-major), and ``det U12`` per kind ``(B, kinds)``."""
     B = np.asarray(lam2).shape[0]
     Ds, dets = [], []
-    for (family, consts), U in zip(kinds, family_matrices(ar, kinds, lam2, lam)):
-        if family == "coupled":
-            D, det = coupled_stiffness(U, consts["N"])
-        elif family == "eb" and getattr(ar, "closed_stiffness", False):
-            D, det = eb_closed_stiffness(ar, consts, lam2)
+    for family, consts in kinds:
+        if family == "eb":
+            D, det = (eb_closed_stiffness if getattr(ar, "closed_stiffness", False)
+                      else eb_stiffness)(ar, consts, lam2)
         else:
-            D, det = segment_stiffness(U)
+            [U] = family_matrices(ar, [(family, consts)], lam2, lam)
+            D, det = (coupled_stiffness(U, consts["N"]) if family == "coupled"
+                      else segment_stiffness(U))
         Ds.append(D.reshape(B, -1))
         dets.append(det)
     if len(Ds) == 1:
@@ -392,7 +440,7 @@ def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Facto
         K, det12 = assemble(plan, ar, lam2, lam)
         if reverse:
             K = reversed_band(K)
-        return _ldl(plan, ar, K, det12)
+        return _ldl(plan, ar, K, det12, reverse)
 
 
 def reversed_band(K) -> np.ndarray:
@@ -433,27 +481,72 @@ class BandRows:
         return BandRows(rows)
 
 
-def _ldl(plan, ar: Arithmetic, K, det12) -> Factors:
+def envelope_maps(plan, reverse: bool = False) -> list:
+    """Per pivot ``k`` of the band elimination, the update restricted to the envelope:
+    ``(J, rows, cols, fi, fj)`` with ``J`` the offsets ``j >= 1`` of the entries of row
+    ``k`` that can be nonzero when ``k`` is eliminated, and the update maps of
+    :func:`_update_maps` over the pairs of ``J``.
+
+    ``K[k, k + j]`` is zero before pivot ``k`` unless column ``k + j`` has an entry in a
+    row ``<= k`` (fill stays inside the envelope: the first entry of each column never
+    moves up), so an update skips exact zeros only. A chain's band holds mostly such
+    zeros (10 levels: a fifth of the band's pairs are updated); the arithmetics whose
+    every operation is a Python call (balls, mpmath) pay for the pairs only.
+    """
+    cache = plan.__dict__.setdefault("_envelopes", {})
+    if reverse in cache:
+        return cache[reverse]
+    n, w = plan.n, plan.width
+    mask = np.zeros((1, n, w), dtype=bool)
+    for target, _, _ in plan._triples:
+        mask[0, target // w, target % w] = True
+    if reverse:
+        mask = reversed_band(mask)
+    first = np.full(n, n)
+    for r, j in zip(*np.nonzero(mask[0])):
+        first[r + j] = min(first[r + j], r)
+    out = []
+    for k in range(n):
+        J = np.array([j for j in range(1, w) if k + j < n and first[k + j] <= k], dtype=int)
+        pairs = [(a, b) for a in range(J.size) for b in range(a, J.size)]
+        out.append((J, np.array([J[a] for a, _ in pairs], dtype=int),
+                    np.array([J[b] - J[a] for a, b in pairs], dtype=int),
+                    np.array([a for a, _ in pairs], dtype=int),
+                    np.array([b for _, b in pairs], dtype=int)))
+    cache[reverse] = out
+    return out
+
+
+def _ldl(plan, ar: Arithmetic, K, det12, reverse: bool = False) -> Factors:
     B, n, w = K.shape
     if n == 0:
         return Factors(plan, ar, ar.zeros((B, 0), like=K), np.zeros((B, 0), dtype=np.int8),
                        np.ones((B, 0), dtype=bool), det12)
     # in place on a copy padded with zero rows: afterwards row k holds d_k and d_k L[k+j, k]
     Kb = np.concatenate([K, ar.zeros((B, w, w), like=K)], axis=1)
-    rows, cols, fi, fj = _update_maps(w)
     exact_zero_possible = Kb.dtype == object and not ar.rigorous
     compiled = COMPILED and Kb.dtype in (np.float64, np.complex128)
     with np.errstate(all="ignore"):
         if compiled:
             _band.eliminate(Kb, B, n + w, w, n, Kb.dtype == np.complex128)
-        else:
-            for k in range(n):
+        elif Kb.dtype == object:
+            # numbers of Python objects: the envelope's pairs only (exact zeros skipped)
+            for k, (J, rows, cols, fi, fj) in enumerate(envelope_maps(plan, reverse)):
                 piv = Kb[:, k, 0]
                 if exact_zero_possible:
                     zero = np.array([v == 0 for v in piv], dtype=bool)
                     if zero.any():              # (mpmath refuses to divide by an exact 0)
                         piv = piv.copy()
                         piv[zero] = ar.exact(1)
+                if J.size:
+                    row = Kb[:, k, J]
+                    f = row / piv[:, None]
+                    Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
+        else:
+            # the numpy twin of the C loop (the same operations, the same factors)
+            rows, cols, fi, fj = _update_maps(w)
+            for k in range(n):
+                piv = Kb[:, k, 0]
                 if w > 1:
                     row = Kb[:, k, 1:]
                     f = row / piv[:, None]
