@@ -522,11 +522,13 @@ class _Search:
             stack.append((a, ca, mid, cm))
         return out
 
-    def _delta(self, w, dps: int):
-        """``Delta(i w)`` at ``dps`` digits (mpmath), as a global mpmath number."""
-        ar = MP.from_digits(dps)
-        values, _ = self.counter.delta([w], ar)
-        return mpmath.re(ar.to_mpmath(values[0]))
+    def _deltas(self, ws, dps: int) -> list:
+        """``Delta(i w)`` at each of ``ws`` at ``dps`` digits, as global mpmath numbers (the
+        midpoints of balls where python-flint is installed: a ball costs a seventh of an
+        mpmath number in the elimination, and these values only guide)."""
+        ar = proof_arithmetic(dps, self.certified)
+        values, _ = self.counter.delta(list(ws), ar)
+        return [mpmath.re(ar.to_mpmath(v)) for v in values]
 
     def _zoom(self, a, b, k, resolution):
         """A guess for an exact ``k``-fold root in ``(a, b)``, or None.
@@ -547,18 +549,18 @@ class _Search:
         half = ctx.mpf(10) ** (-resolution) / 2
         power = ctx.mpf(1) / k
 
-        def v(w):      # the V: |Delta|**(1/k)
-            return abs(ctx.mpf(self._delta(w, dps))) ** power
+        def v(*ws):      # the V: |Delta|**(1/k)
+            return [abs(ctx.mpf(d)) ** power for d in self._deltas(ws, dps)]
 
         a, b = ctx.mpf(a), ctx.mpf(b)
         lo, hi = a, b
-        f_lo, f_hi = v(lo), v(hi)
+        f_lo, f_hi = v(lo, hi)
         for _ in range(8):
             if not f_lo + f_hi > 0:
                 return None
             slope = (f_lo + f_hi) / (hi - lo)
             guess = (lo * f_hi + hi * f_lo) / (f_lo + f_hi)
-            f_guess = v(guess)
+            [f_guess] = v(guess)
             # |omega0 - guess| ~ f(guess) / slope: a bracket twice that wide
             reach = 2 * f_guess / slope
             if reach <= half * guess / 4:
@@ -566,7 +568,7 @@ class _Search:
             lo, hi = guess - reach, guess + reach
             if not a <= lo < hi <= b:
                 return None
-            f_lo, f_hi = v(lo), v(hi)
+            f_lo, f_hi = v(lo, hi)
         return None
 
     def prove_cluster(self, lo, hi, ca, m) -> Eigenvalue:
