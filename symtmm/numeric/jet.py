@@ -37,7 +37,7 @@ import math
 
 import numpy as np
 
-from .arith import Ball, _filled, _ufunc
+from .arith import Arithmetic, Ball, _filled, _ufunc
 
 __all__ = ["Jet", "BallJet"]
 
@@ -139,6 +139,9 @@ class BallJet(Ball):
     #: Euler–Bernoulli segments by their closed-form dynamic stiffness (far narrower
     #: enclosures over a box: :func:`symtmm.numeric.stiffness.eb_closed_stiffness`)
     closed_stiffness = True
+
+    #: jets are not Arb numbers: the series by Horner's rule in their own operations
+    polynomial = Arithmetic.polynomial
 
     def __init__(self, prec: int, order: int = 1):
         super().__init__(prec)

@@ -91,10 +91,7 @@ def _factorial_series(ar: Arithmetic, x, p: int) -> list:
     inv = _inverse_factorials(ar, p * K + p)
     out = []
     for j in range(p):
-        # the array on the left: an mpmath number would first try (and fail) to convert it
-        acc = 0 * x + inv[p * (K - 1) + j]
-        for k in range(K - 2, -1, -1):
-            acc = acc * x + inv[p * k + j]
+        acc = ar.polynomial([inv[p * k + j] for k in range(K)], x)
         radius, slope, curve, third = _series_tail(p, K, j)
         out.append(ar.widen(acc, radius, wrt=x, slope=slope, curve=curve, third=third))
     return out
