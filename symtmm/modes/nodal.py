@@ -30,7 +30,6 @@ from __future__ import annotations
 import bisect
 
 import numpy as np
-import sympy as sp
 
 from ..numeric.arith import DOUBLE
 from ..numeric.plan import plan_for
@@ -50,8 +49,9 @@ _GAP = 1e3
 
 
 def _samples(model, mesh, points: int):
-    """Per beam, per sample ``(segment index, exact offset in it)``; ``None`` where a
-    sample lies in a piece this module does not handle."""
+    """Per beam, per sample ``(segment index, offset in it)`` (floats: a shape's samples
+    need no exact coordinates); ``None`` where a sample lies in a piece this module does
+    not handle."""
     by_beam: dict = {}
     for s, (b, seg, ia, _) in enumerate(mesh.segments):
         if isinstance(b, tuple) or kind(seg)[0] not in ("eb", "theory"):
@@ -61,13 +61,14 @@ def _samples(model, mesh, points: int):
     for b, beam in enumerate(model.beams):
         starts = sorted(by_beam.get(b, []))
         xs = [x for x, _ in starts]
+        x0, L = float(beam.x0), float(beam.L)
         row = []
         for i in range(points):
-            x = beam.x0 + beam.L * sp.Rational(i, points - 1)
-            j = max(0, bisect.bisect_right(xs, float(x)) - 1)
-            s = starts[j][1]
-            offset = x - mesh.node_x[mesh.segments[s][2]]
-            row.append((s, offset if offset > 0 else sp.Integer(0)))
+            x = x0 + L * i / (points - 1)
+            j = max(0, bisect.bisect_right(xs, x) - 1)
+            offset = x - xs[j]
+            # (a sample on a node, to rounding: the piece's start)
+            row.append((starts[j][1], offset if offset > 1e-12 * L else 0.0))
         out.append(row)
     return out
 

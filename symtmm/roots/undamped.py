@@ -230,11 +230,13 @@ class _Search:
         raises it by half. The plan is then cut for a range close to the one needed.
         """
         target = count + len(self.model.beams)
-        waves = [(b.segment(b.L), float(b.L)) for b in self.model.beams]
+        segments = [b.segment(b.L) for b in self.model.beams]
+        # (the constants as floats once: the bisection below asks for them 40 times)
+        waves = [(seg, seg.constants(), float(b.L)) for seg, b in zip(segments, self.model.beams)]
 
         def weyl(w):
-            return sum(float(np.max(seg.wave_number(np.array(-w * w)))) * L
-                       for seg, L in waves) / math.pi
+            return sum(float(np.max(seg.wave_number(np.array(-w * w), consts))) * L
+                       for seg, consts, L in waves) / math.pi
 
         lo = hi = max(_first_guess(self.model), 1e-300)
         while weyl(hi) < target and hi < 1e150:
