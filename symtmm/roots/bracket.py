@@ -92,7 +92,9 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100):
         A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
         with np.errstate(all="ignore"):
             c = B - FB * (B - A) / (FB - FA)
-        bad = ~np.isfinite(c) | (c <= A) | (c >= B) | bisect[idx] | (FA * FB > 0)
+        # (a step that rounds onto an end is not bad: the root is next to it, and the
+        # guard below puts the point just inside, which closes the bracket)
+        bad = ~np.isfinite(c) | (c < A) | (c > B) | bisect[idx] | (FA * FB > 0)
         c = np.where(bad, 0.5 * (A + B), c)
         guard = np.minimum(0.25 * width * np.maximum(np.abs(A), np.abs(B)), (B - A) / 4)
         c = np.clip(c, A + guard, B - guard)
@@ -101,7 +103,9 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100):
         for j, i in enumerate(idx):
             if not abs(fc[j]) >= best_f[i]:        # (also f = 0: at the root)
                 best[i], best_f[i] = c[j], abs(fc[j])
-            if side[j] == 0 or not np.isfinite(fc[j]):
+            if side[j] == 0 or not np.isfinite(fc[j]) or fc[j] == 0:
+                # (f = 0: the point is the root as far as f can tell; bisecting toward it
+                # from the other end would cost a step per bit)
                 active[i] = False
                 continue
             # the end that stays is scaled only when it stayed the step before too: after

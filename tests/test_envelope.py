@@ -1,0 +1,199 @@
+"""The kernel's shortcuts against the long way round.
+
+* The envelope elimination of balls and mpmath numbers (``stiffness.envelope_maps``)
+  against a dense ``LDL^T`` of the same matrix in mpmath, on random sparse bands and
+  on the plans of real models, in both orders of the freedoms.
+* The Euler–Bernoulli stiffness from the ``c_j`` (``stiffness.eb_stiffness``) against
+  the transfer-matrix route (``U`` of the segment, ``U12`` inverted), at 60 digits.
+* Plans shared between searches (``plan.plan_for``) and forgotten (``clear_plans``).
+* The bracket refinement's step count on a nearly linear function.
+"""
+
+from __future__ import annotations
+
+import mpmath
+import numpy as np
+import pytest
+
+from benchmarks.models import chain
+from symtmm.elements import EulerBernoulliSegment
+from symtmm.numeric import plan as plan_module
+from symtmm.numeric import stiffness
+from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
+from symtmm.numeric.segments import family_matrices, kind, kind_tables
+from symtmm.roots.bracket import shrink
+
+
+class _Pattern:
+    """The attributes of a plan the envelope reads: order, band width and entries."""
+
+    def __init__(self, n: int, w: int, mask):
+        self.n, self.width = n, w
+        self._triples = [(r * w + j, None, None) for r, j in zip(*np.nonzero(mask))]
+
+
+def _sparse_band(rng, n: int, w: int):
+    """A symmetric band with a random pattern (the diagonal always there), diagonally
+    dominant and indefinite: no breakdown without pivoting."""
+    mask = rng.random((n, w)) < 0.35
+    mask[:, 0] = True
+    for j in range(1, w):
+        mask[n - j:, j] = False
+    K = np.where(mask, rng.normal(size=(n, w)), 0.0)
+    K[:, 0] = np.where(rng.random(n) < 0.3, -1, 1) * 3 * w
+    return K, mask
+
+
+def _dense_pivots(K, reverse: bool):
+    """The pivots of ``LDL^T`` of the dense symmetric matrix (mpmath, 50 digits)."""
+    n, w = K.shape
+    with mpmath.workdps(50):
+        A = mpmath.zeros(n, n)
+        for r in range(n):
+            for j in range(min(w, n - r)):
+                A[r, r + j] = A[r + j, r] = mpmath.mpf(float(K[r, j]))
+        if reverse:
+            A = mpmath.matrix([[A[n - 1 - i, n - 1 - j] for j in range(n)] for i in range(n)])
+        pivots = []
+        for k in range(n):
+            d = A[k, k]
+            pivots.append(d)
+            for i in range(k + 1, n):
+                f = A[i, k] / d
+                for j in range(k + 1, n):
+                    A[i, j] -= f * A[k, j]
+        return [float(p) for p in pivots]
+
+
+def _arithmetics():
+    out = [MP(120)]
+    if ball_available():
+        out.append(Ball(120))
+    return out
+
+
+@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("reverse", [False, True])
+def test_envelope_elimination_gives_the_dense_pivots(seed, reverse):
+    rng = np.random.default_rng(seed)
+    n, w = 23, 6
+    K, mask = _sparse_band(rng, n, w)
+    pattern = _Pattern(n, w, mask)
+    expected = _dense_pivots(K, reverse)
+    band = K[None] if not reverse else stiffness.reversed_band(K[None])
+    for ar in _arithmetics():
+        with ar:
+            Kb = ar.array([ar.number(float(v)) for v in band.reshape(-1)], band.shape)
+            f = stiffness._ldl(pattern, ar, Kb, ar.zeros((1, 0)), reverse)
+            got = [float(ar.to_mpmath(p)) for p in f.pivots[0]]
+        np.testing.assert_allclose(got, expected, rtol=1e-12, atol=0)
+
+
+def test_envelope_skips_pairs_on_a_chain():
+    """A chain's band is mostly zeros the elimination never fills: the envelope updates
+    far fewer pairs than the band holds (the point of it), and only pairs inside it."""
+    p = plan_module.StiffnessPlan(chain(10, 2).require_numeric(), 300.0**2)
+    maps = stiffness.envelope_maps(p)
+    pairs = sum(rows.size for _, rows, _, _, _ in maps)
+    band = sum(len(stiffness._update_maps(min(p.width, p.n - k))[0]) for k in range(p.n))
+    assert pairs < 0.5 * band
+    for k, (J, rows, cols, _, _) in enumerate(maps):
+        assert np.all(J >= 1) and np.all(J < p.width) and np.all(k + J < p.n)
+        assert np.all(rows + cols < p.width)
+
+
+@pytest.mark.parametrize("reverse", [False, True])
+def test_object_arithmetics_agree_with_doubles_on_a_chain(reverse):
+    """The envelope elimination (mpmath, balls) against the full-band double loop on a
+    real plan: the same pivots to double precision."""
+    p = plan_module.StiffnessPlan(chain(5, 2).require_numeric(), 200.0**2)
+    omegas = [3.0, 41.0, 170.0]
+    lam2 = -np.array(omegas) ** 2
+    doubles = stiffness.factor(p, DOUBLE, lam2, reverse=reverse).pivots.real
+    for ar in _arithmetics():
+        with ar:
+            exact = ar.array([ar.number(mpmath.mpf(-w * w)) for w in omegas])
+            f = stiffness.factor(p, ar, exact, reverse=reverse)
+            got = np.array([[float(ar.to_mpmath(v).real) for v in row] for row in f.pivots])
+        np.testing.assert_allclose(got, doubles, rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("EI, m, l, kw", [(1, 1, 1, 0), (2, 3, "1/2", 0), ("7/3", 1, 2, 40),
+                                          (1, 5, "3/2", 2000)])
+def test_eb_stiffness_from_c_functions_is_the_transfer_route(EI, m, l, kw):
+    """Real and complex lam, below and above |x| = 1, a foundation stiffer than the
+    inertia (x <= -1): the closed products of the c_j equal D from U and U12^-1."""
+    seg = EulerBernoulliSegment(EI, m, l, kw)
+    ar = MP(200)
+    points = [mpmath.mpc(0, 0.3), mpmath.mpc(0, 4), mpmath.mpc(-1.5, 9), mpmath.mpc(0, 30)]
+    with ar:
+        [(family, consts)] = kind_tables(ar, [kind(seg)])
+        lam = ar.array([ar.number(z) for z in points])
+        lam2 = lam * lam
+        D, det = stiffness.eb_stiffness(ar, consts, lam2)
+        [U] = family_matrices(ar, [(family, consts)], lam2)
+        D0, det0 = stiffness.segment_stiffness(U)
+        for a, b in zip(np.ravel(D), np.ravel(D0)):
+            assert abs(a - b) <= mpmath.mpf(10) ** -50 * (1 + abs(b))
+        for a, b in zip(np.ravel(det), np.ravel(det0)):
+            assert abs(a - b) <= mpmath.mpf(10) ** -50 * abs(b)
+
+
+def test_plans_are_shared_between_searches_and_forgotten_on_request(monkeypatch):
+    from symtmm.model import Beam, Model, Spring
+    from symtmm.solve import solve
+    model = Model((Beam("a", 1, 1, 1, left="clamped"), Beam("b", 1, 1, 1, left="pinned",
+                                                           right="pinned")),
+                  (Spring("a", "b", "1/2", 10),))
+    built = []
+    original = plan_module.StiffnessPlan.__init__
+
+    def counting(self, *args, **kwargs):
+        built.append(args[1] if len(args) > 1 else kwargs.get("radius"))
+        original(self, *args, **kwargs)
+    monkeypatch.setattr(plan_module.StiffnessPlan, "__init__", counting)
+    plan_module.clear_plans()
+    first = solve(model, count=4, digits=12)
+    after_first = len(built)
+    second = solve(model, count=4, digits=12)
+    assert after_first >= 1 and len(built) == after_first          # all reused
+    assert [str(e.lam) for e in first] == [str(e.lam) for e in second]
+    plan_module.clear_plans()
+    solve(model, count=4, digits=12)
+    assert len(built) == 2 * after_first                            # built again
+
+
+def test_plans_of_at_most_four_models_are_kept():
+    from symtmm.model import Beam, Model
+    plan_module.clear_plans()
+    models = [Model((Beam("b", 1, 1, str(k + 1), left="pinned", right="pinned"),))
+              for k in range(6)]
+    for m in models:
+        plan_module.plan_for(m, 10.0)
+    assert len(plan_module._PLANS) == plan_module.PLAN_MODELS
+    assert models[0] not in plan_module._PLANS and models[-1] in plan_module._PLANS
+
+
+@pytest.mark.parametrize("curvature", [0.0, 3.0, -20.0, 20.0])
+@pytest.mark.parametrize("noise", [0.0, 1e-17])
+def test_bracket_refinement_closes_in_few_steps(curvature, noise):
+    """A simple root with some curvature and rounding-sized noise, as ``Delta`` near an
+    eigenvalue: every bracket closes to 1e-11 in a few steps. (Scaling the end that
+    stays at every step, bisecting after two steps that had not halved the bracket and
+    bisecting where a secant step rounded onto an end took 14 to 34 steps here.)"""
+    roots = np.array([9.5986542925, 199.859448127, 1.0])
+    steps = np.zeros(3, dtype=int)
+
+    def f(x, idx):
+        d = (x - roots[idx]) / roots[idx]
+        return -0.31 * d * (1 + curvature * d) + noise * np.sin(1e9 * x)
+
+    def probe(c, idx):
+        steps[idx] += 1
+        v = f(c, idx)
+        return v, np.where(v < 0, 1, -1)
+    a, b = roots * 0.97, roots * 1.04
+    idx = np.arange(3)
+    out = shrink(a, b, f(a, idx), f(b, idx), probe, 1e-11)
+    np.testing.assert_allclose(out, roots, rtol=1e-11)
+    assert steps.max() <= 10, steps
