@@ -201,6 +201,7 @@ class _Search:
         self.rigid = rigid
         self.certified = certified
         self.counter = Counter(model, omega_hi)
+        self._proved: dict = {}         # (point, digits) -> count proved in balls
         self._set_precision(digits_for(digits))
 
     def _set_precision(self, work_digits: int):
@@ -219,6 +220,22 @@ class _Search:
 
     def count_off(self, omega, toward, digits=None):
         return self.counter.count_off(omega, toward, digits)
+
+    def counts_off(self, omegas, towards, digits: int) -> list:
+        """:meth:`count_off` at several points in one batch of the proof arithmetic at
+        ``digits``; a point the batch leaves undecided goes through :meth:`count_off`
+        alone. Counts proved in balls are remembered for :meth:`prove_cluster`."""
+        ar = proof_arithmetic(digits, self.certified)
+        counts = self.counter.counts(list(omegas), ar)
+        out = []
+        for w, t, c in zip(omegas, towards, counts):
+            if c >= 0:
+                if ar.rigorous:
+                    self._proved[(_key(w), digits)] = int(c)
+                out.append((w, int(c)))
+            else:
+                out.append(self.count_off(w, t, digits))
+        return out
 
     # -- the range ------------------------------------------------------------------------
     def top_for(self, count: int):
@@ -491,13 +508,12 @@ class _Search:
         # (rounding can flip the signs of pivots through zero and pass the trust test):
         # an end that holds a root the wrong side of it moves out until it does not
         target = ca
-        a, ca = self.count_off(a, b, digits)
+        (a, ca), (b, cb) = self.counts_off([a, b], [b, 2 * b - a], digits)
         step = (b - a) / 16
         while ca > target and a - step > 0:
             a, ca = self.count_off(a - step, a - 2 * step, digits)
             step *= 4
         cb_want = ca + k
-        b, cb = self.count_off(b, 2 * b - a, digits)
         step = (b - a) / 16
         while cb < cb_want:
             b, cb = self.count_off(b + step, b + 2 * step, digits)
@@ -507,8 +523,8 @@ class _Search:
         zoomed = self._zoom(a, b, k, resolution)
         if zoomed is not None:
             lo, hi = zoomed
-            if (done(lo, hi) and self.count_off(lo, a, digits) == (lo, ca)
-                    and self.count_off(hi, b, digits) == (hi, cb)):
+            if done(lo, hi) and self.counts_off([lo, hi], [a, b], digits) == [(lo, ca),
+                                                                              (hi, cb)]:
                 return [(lo, hi, ca, k)]
         out, stack = [], [(a, ca, b, cb)]
         while stack:
@@ -578,7 +594,9 @@ class _Search:
         ends, in the proof arithmetic (and, without balls, at a second precision)."""
         digits = self.digits + 2 + SEPARATION_DIGITS + 15
         ar = proof_arithmetic(digits, self.certified)
-        counts = self.counter.counts([lo, hi], ar)
+        known = [self._proved.get((_key(w), digits)) for w in (lo, hi)]
+        # (counts the cluster's split proved in balls at these digits stand)
+        counts = known if ar.rigorous and None not in known else self.counter.counts([lo, hi], ar)
         if list(counts) != [ca, ca + m] or not (
                 ar.rigorous or list(self.counter.counts([lo, hi], MP(ar.prec + 64)))
                 == [ca, ca + m]):
@@ -589,6 +607,11 @@ class _Search:
         proof = PROOFS["ball" if ar.rigorous else "mp"]
         return Eigenvalue(_exact_mpc_imag(mid), m, self.digits,
                           (_exact_mpf(lo), _exact_mpf(hi)), proof)
+
+
+def _key(w):
+    """A point as a dictionary key, exactly (mpmath numbers by their ``_mpf_``)."""
+    return w._mpf_ if hasattr(w, "_mpf_") else float(w)
 
 
 class _MorePrecision(Exception):
