@@ -1,8 +1,9 @@
 """A numeric model evaluated in batches, in any arithmetic: the searches' one entry point.
 
 :class:`Evaluator` keeps the :class:`~symtmm.numeric.plan.StiffnessPlan` of a
-model for each range of ``|lam|`` it is asked about (one per doubling: a plan
-cut for a range serves every point inside it), factorises ``K(lam)`` at a batch
+model for each range of ``|lam|`` it is asked about (on a quarter-octave grid,
+shared with other searches of the model: :func:`~symtmm.numeric.plan.plan_for`;
+a plan cut for a range serves every point inside it), factorises ``K(lam)`` at a batch
 of points (:func:`~symtmm.numeric.stiffness.factor`) and counts the points it
 evaluates. What a factorisation gives, per point:
 
