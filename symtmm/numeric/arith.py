@@ -171,7 +171,13 @@ class Arithmetic:
 
     def polynomial(self, coefficients, x):
         """``sum_k coefficients[k] x**k`` elementwise (Horner), ``coefficients`` numbers of
-        the arithmetic, lowest degree first."""
+        the arithmetic, lowest degree first.
+
+        Examples
+        --------
+        >>> DOUBLE.polynomial([1.0, 2.0, 3.0], np.array([0.0, 1.0, 2.0]))
+        array([ 1.,  6., 17.])
+        """
         # the array on the left: an mpmath number would first try (and fail) to convert it
         acc = 0 * x + coefficients[-1]
         for c in coefficients[-2::-1]:

@@ -492,6 +492,19 @@ def envelope_maps(plan, reverse: bool = False) -> list:
     moves up), so an update skips exact zeros only. A chain's band holds mostly such
     zeros (10 levels: a fifth of the band's pairs are updated); the arithmetics whose
     every operation is a Python call (balls, mpmath) pay for the pairs only.
+
+    Examples
+    --------
+    Two beams joined by a spring (half-bandwidth 3): only the pivots next to the spring
+    reach across the whole band.
+
+    >>> from symtmm.model import Beam, Model, Spring
+    >>> from symtmm.numeric.plan import StiffnessPlan
+    >>> m = Model((Beam("a", 1, 1, 1, left="clamped"), Beam("b", 1, 1, 1, left="pinned",
+    ...            right="pinned")), (Spring("a", "b", "1/2", 10),))
+    >>> plan = StiffnessPlan(m, 100.0)
+    >>> plan.band, [J.tolist() for J, *_ in envelope_maps(plan)]
+    (3, [[1, 2, 3], [1, 2], [1], [1], [1, 2, 3], [1, 2], [1], []])
     """
     cache = plan.__dict__.setdefault("_envelopes", {})
     if reverse in cache:
