@@ -33,7 +33,7 @@ import numpy as np
 
 from ..numeric.arith import DOUBLE
 from ..numeric.plan import plan_for
-from ..numeric.segments import cut_tables, family_matrices, kind, kind_order, kind_tables
+from ..numeric.segments import cut_tables, family_matrices, kind_order, kind_tables
 from ..numeric.stiffness import assemble, dense
 
 __all__ = ["DENSE_LIMIT", "nodal_displacements"]
@@ -48,13 +48,14 @@ _SINGULAR = 1e-7
 _GAP = 1e3
 
 
-def _samples(model, mesh, points: int):
+def _samples(model, plan, points: int):
     """Per beam, per sample ``(segment index, offset in it)`` (floats: a shape's samples
     need no exact coordinates); ``None`` where a sample lies in a piece this module does
     not handle."""
+    mesh = plan.mesh
     by_beam: dict = {}
-    for s, (b, seg, ia, _) in enumerate(mesh.segments):
-        if isinstance(b, tuple) or kind(seg)[0] not in ("eb", "theory"):
+    for s, (b, _, ia, _) in enumerate(mesh.segments):
+        if isinstance(b, tuple) or plan.segment_kinds[s][0] not in ("eb", "theory"):
             return None
         by_beam.setdefault(b, []).append((float(mesh.node_x[ia]), s))
     out = []
@@ -75,7 +76,10 @@ def _samples(model, mesh, points: int):
 
 def _null_vectors(K, mult: int):
     """The ``(n, mult)`` null space of each dense ``K`` ``(B, n, n)``, or ``None`` per
-    point where the singular values do not separate it."""
+    point where the singular values do not separate it. (Not
+    :func:`~symtmm.numeric.linalg.null_space`: its inverse iteration runs in Python in
+    any arithmetic, and it does not say whether the null space is separated, which
+    decides here whether the walk takes over.)"""
     out = []
     for A in K:
         n = A.shape[0]
@@ -132,7 +136,7 @@ def nodal_displacements(model, eigenvalues, points: int) -> list:
     if plan.n == 0 or plan.n > DENSE_LIMIT:
         return out
     mesh = plan.mesh
-    samples = _samples(model, mesh, points)
+    samples = _samples(model, plan, points)
     if samples is None:
         return out
     real = not model.damped
@@ -140,7 +144,7 @@ def nodal_displacements(model, eigenvalues, points: int) -> list:
     # per distinct kind of the pieces holding samples: its full length, then every
     # sample's offset in a piece of that kind (a sample on a piece's start is its d0)
     used = sorted({s for row in samples for s, _ in row})
-    piece_kind = {s: kind(mesh.segments[s][1]) for s in used}
+    piece_kind = {s: plan.segment_kinds[s] for s in used}
     kinds = sorted(set(piece_kind.values()), key=kind_order)
     lengths = {k: [] for k in kinds}
     for s in used:
@@ -177,7 +181,8 @@ def nodal_displacements(model, eigenvalues, points: int) -> list:
     full = np.stack([U[piece_kind[s]][:, 0] for s in used], axis=1)   # (B, pieces, 4, 4)
     # each sample: its piece, and the first row of U over its offset (e_0 on a piece start)
     flat = [(r, i) for r in range(len(samples)) for i in range(points)]
-    owner = np.array([used.index(samples[r][i][0]) for r, i in flat])
+    place = {s: j for j, s in enumerate(used)}
+    owner = np.array([place[samples[r][i][0]] for r, i in flat])
     rows = np.zeros((len(eigenvalues), len(flat), 4), dtype=full.dtype)
     rows[:, :, 0] = 1.0
     for t, key in enumerate(flat):

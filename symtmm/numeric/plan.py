@@ -181,6 +181,8 @@ class StiffnessPlan:
     mesh : symtmm.mesh.Mesh
     kinds : list
         ``(family, exact constants)`` of the distinct segments, ``"eb"`` ones first.
+    segment_kinds : list
+        The kind of every segment of the mesh, in the mesh's order.
     multiplicity : numpy.ndarray
         How many segments of the mesh share each kind.
     log_constant : float
@@ -233,6 +235,7 @@ class StiffnessPlan:
         offsets = np.cumsum([0] + [kind_size(k) ** 2 for k in ordered]).tolist()
         self._stiffness_length = offsets[-1]
         self.kinds = ordered
+        self.segment_kinds = member_kind        # per segment of the mesh, in its order
         self.multiplicity = np.bincount([index[k] for k in member_kind], minlength=len(ordered))
 
         triples: list = []          # (target, source, coefficient); source: see tables()

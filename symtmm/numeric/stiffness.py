@@ -124,9 +124,16 @@ def coupled_stiffness(U, n: int):
     return stack_matrix(rows), det
 
 
+def _eb_pattern(k11, k12, k13, k14, k22, k24) -> list:
+    """The 4x4 stiffness of a uniform Euler–Bernoulli segment from its six distinct
+    entries (rows ``(Q0, -M0, -Q1, M1)``, columns ``(Y0, Theta0, Y1, Theta1)``)."""
+    return [[k11, k12, -k13, k14], [k12, k22, -k14, k24],
+            [-k13, -k14, k11, -k12], [k14, k24, -k12, k22]]
+
+
 def eb_closed_stiffness(ar: Arithmetic, consts: dict, lam2):
     """``(D, det U12)`` of Euler–Bernoulli segments by the closed forms in ``nu = x**(1/4)``
-    where ``|x| >= 1`` (the U path of :func:`segment_stiffness` elsewhere): with ``Phi = 1 -
+    where ``|x| >= 1`` (:func:`eb_stiffness`, from the series of the ``c_j``, elsewhere): with ``Phi = 1 -
     cosh nu cos nu``, ``k11 = EI b**3 (cos sinh + sin cosh)/Phi``, ``k12 = EI b**2 sin sinh /
     Phi``, ``k13 = EI b**3 (sinh + sin)/Phi``, ``k14 = EI b**2 (cosh - cos)/Phi``, ``k22 = EI b
     (cosh sin - cos sinh)/Phi``, ``k24 = EI b (sinh - sin)/Phi`` (``b = nu / l``) and ``det U12
@@ -136,13 +143,12 @@ def eb_closed_stiffness(ar: Arithmetic, consts: dict, lam2):
     box of ``lam`` (jets, :mod:`symtmm.numeric.jet`) the enclosures stay narrow where the
     U path's inversion of ``U12`` multiplies their widths a hundredfold.
     """
-    from .segments import eb_matrices
     lam2 = np.asarray(lam2)
     EI, l, A, F = consts["EI"], consts["l"], consts["A"], consts["F"]
     x = -(lam2[:, None] * A + F)
     big = ar.upper(x.reshape(-1)).reshape(x.shape) >= 1.0
     if not big.all():
-        D, det = segment_stiffness(eb_matrices(ar, consts, lam2))
+        D, det = eb_stiffness(ar, consts, lam2)
         if not big.any():
             return D, det
     else:
@@ -160,8 +166,7 @@ def eb_closed_stiffness(ar: Arithmetic, consts: dict, lam2):
     k14 = EIb * b * b * (ch - co) / Phi
     k22 = EIb * b * (ch * si - co * sh) / Phi
     k24 = EIb * b * (sh - si) / Phi
-    rows = [[k11, k12, -k13, k14], [k12, k22, -k14, k24],
-            [-k13, -k14, k11, -k12], [k14, k24, -k12, k22]]
+    rows = _eb_pattern(k11, k12, k13, k14, k22, k24)
     D = D.copy()
     det = det.copy()
     for i in range(4):
@@ -209,8 +214,7 @@ def eb_stiffness(ar: Arithmetic, consts: dict, lam2):
     k13, k14 = s * c1, sl * c2
     k22 = sl2 * (c1 * c2 - c0 * c3)
     k24 = sl2 * c3
-    D = stack_matrix([[k11, k12, -k13, k14], [k12, k22, -k14, k24],
-                      [-k13, -k14, k11, -k12], [k14, k24, -k12, k22]])
+    D = stack_matrix(_eb_pattern(k11, k12, k13, k14, k22, k24))
     l2 = l * l
     return D, l2 * l2 * dc / (EI * EI)
 
