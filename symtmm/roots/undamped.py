@@ -403,12 +403,15 @@ class _Search:
         about its current estimate ``c``: its counts ``J_i`` and ``J_i + 1`` prove
         the root between them, and its two values of ``Delta`` give the next
         estimate by a secant step, whose error is about the square of the last one.
-        The first pair (``h = 1e-11``, the double estimate's accuracy) gives an
-        estimate good to about 22 digits, the next pairs (``h = 10**-(D+3)``) prove
-        it: two rounds for 15 digits, three for 30. A secant step that leaves the
+        Before the pairs, one point per root and a Newton step (:meth:`_newton_start`)
+        take the double estimate to about 20 digits, and the first pairs, as wide as
+        that step's error, prove 15 digits: two rounds of proof evaluations, one of them
+        a single point per root. Without an estimate the first pair (``h = 1e-11``, the
+        double estimate's accuracy) gives an estimate good to about 22 digits, the next
+        pairs (``h = 10**-(D+3)``) prove it. A secant step that leaves the
         bracket the counts have proved is replaced by an Anderson–Björck step on it.
-        The midpoint of a proving pair prints correctly rounded once both ends round
-        alike (else the next pair is taken narrower).
+        A pair whose counts prove the root between its ends proves the digits once both
+        ends round alike (else the next pair is taken narrower); its midpoint prints.
         """
         D = self.digits
         ctx = MP(self.book_prec).ctx            # bookkeeping: more bits than the evaluations
@@ -424,6 +427,7 @@ class _Search:
         target = ctx.mpf(10) ** (-(D + 3))
         done: list = [None] * R
         by_balls = [self.hp.rigorous] * R       # the last pair of each root proved in balls
+        self._newton_start(items, a, b, c, fa, fb, h, ca, target, ctx)
         for _ in range(60):
             tests, owner = [], []
             for i in range(R):
@@ -439,16 +443,12 @@ class _Search:
                                                 counts[2 * j:2 * j + 2])
                 by_balls[i] = bool(proved[2 * j] and proved[2 * j + 1])
                 for t, f, k in ((t1, f1, k1), (t2, f2, k2)):
-                    if k == ca[i] and t > a[i]:
-                        a[i], fa[i] = t, f
-                    elif k == ca[i] + 1 and t < b[i]:
-                        b[i], fb[i] = t, f
-                    elif k >= 0 and k not in (ca[i], ca[i] + 1):
-                        raise ComputationError(f"inconsistent counts near {float(t):.17g} rad/s")
+                    _tighten(i, t, f, k, ca, a, b, fa, fb)
+                if (k1, k2) == (ca[i], ca[i] + 1) and \
+                        decimal_string(t1, D) == decimal_string(t2, D):
+                    done[i] = (t1, t2)          # (whatever h: both ends print alike)
+                    continue
                 if (k1, k2) == (ca[i], ca[i] + 1) and h[i] <= target:
-                    if decimal_string(t1, D) == decimal_string(t2, D):
-                        done[i] = (t1, t2)
-                        continue
                     h[i] /= 100         # near a rounding boundary: a finer pair
                 elif (k1 < 0 or k2 < 0) and h[i] <= target:
                     raise _MorePrecision()          # a proving pair must be decided
@@ -479,6 +479,62 @@ class _Search:
             proof = self.proof if balls else PROOFS["mp"]
             out.append(Eigenvalue(_exact_mpc_imag(mid), 1, D, bracket, proof))
         return out
+
+    def _newton_start(self, items, a, b, c, fa, fb, h, ca, target, ctx):
+        """One point per root, not a pair, before the proving pairs (in place).
+
+        The slope of ``Delta`` at each double estimate ``c`` comes from a central
+        difference in double precision over ``c (1 -+ delta)``, where the values are far
+        from zero; ``Delta(c)`` itself, which double rounding hides within about 1e-13 of
+        the root, comes from the proof arithmetic. One Newton step then lands within
+        ``|step| eps`` of the root, ``eps`` the slope's relative error, which the double
+        value at ``c`` bounds: its distance from the exact one is the rounding error of
+        ``Delta`` there, and about the same at ``c (1 -+ delta)``. The next pair of each
+        root is taken that wide (never narrower than ``10**-(D+3)``): it brackets the
+        root and, where both ends print alike, proves it -- one proof evaluation per
+        root fewer than a first pair at ``1e-11``. Roots without an estimate, with an
+        undecided value or a step out of their bracket keep the pair at ``1e-11``;
+        nothing here is concluded, the pairs prove.
+        """
+        first = [i for i, x in enumerate(items) if x[0] is not None]
+        if not first:
+            return
+        # delta: inside the bracket (no other root between the points), yet wide enough
+        # that the double rounding of Delta barely moves the slope; the differences over
+        # delta and delta/2 give the slope by Richardson's rule and, by how far apart they
+        # are, the size of the error the rule removes
+        mids = np.array([float(c[i]) for i in first])
+        d = np.array([min(1e-5, 0.25 * float(min(c[i] - a[i], b[i] - c[i]) / c[i]))
+                      for i in first])
+        n = len(first)
+        logs, signs, _ = self.counter.signed_log_delta(np.concatenate(
+            [mids * (1 - d), mids * (1 + d), mids * (1 - d / 2), mids * (1 + d / 2), mids]))
+        balls, counts = self.counter.delta([c[i] for i in first], self.hp)
+        values = [mpmath.re(self.hp.to_mpmath(v)) if k >= 0 else None
+                  for v, k in zip(balls, counts)]
+
+        def double(k):
+            return signs[k] * ctx.exp(logs[k]) if np.isfinite(logs[k]) else None
+        for j, i in enumerate(first):
+            t, f, k = c[i], values[j], counts[j]
+            _tighten(i, t, f, k, ca, a, b, fa, fb)
+            near = [double(j + q * n) for q in range(4)]
+            if f is None or d[j] <= 0 or any(v is None for v in near):
+                continue
+            at = double(j + 4 * n) or 0        # (no finite value at c: a zero pivot)
+            run = ctx.mpf(float(d[j])) * t
+            wide, narrow = (near[1] - near[0]) / (2 * run), (near[3] - near[2]) / run
+            slope = (4 * narrow - wide) / 3
+            if slope == 0:
+                continue
+            step = t - f / slope
+            if a[i] < step < b[i]:
+                # the slope's error: what Richardson's rule removed, and the rounding error
+                # of Delta (its distance from the exact value at c) over the difference
+                # (not the ball's radius: on large models the elimination widens it far
+                # beyond the midpoint's error, and a pair that misses costs one more pair)
+                eps = (abs(wide - narrow) + 2 * abs(at - f) / run) / abs(slope)
+                c[i], h[i] = step, max(target, min(h[i], 4 * eps * abs(step - t) / step))
 
     # -- clusters ------------------------------------------------------------------------------
     def split_cluster(self, a, ca, b, k):
@@ -607,6 +663,18 @@ class _Search:
         proof = PROOFS["ball" if ar.rigorous else "mp"]
         return Eigenvalue(_exact_mpc_imag(mid), m, self.digits,
                           (_exact_mpf(lo), _exact_mpf(hi)), proof)
+
+
+def _tighten(i, t, f, k, ca, a, b, fa, fb):
+    """Root ``i``'s bracket ``(a[i], b[i])`` (values ``fa[i], fb[i]``) narrowed to the point
+    ``t`` (value ``f``) by its count ``k`` (in place): ``J(t) = J(a)`` puts the root above
+    ``t``, one more below it; ``-1`` (undecided) leaves the bracket as it was."""
+    if k == ca[i] and t > a[i]:
+        a[i], fa[i] = t, f
+    elif k == ca[i] + 1 and t < b[i]:
+        b[i], fb[i] = t, f
+    elif k >= 0 and k not in (ca[i], ca[i] + 1):
+        raise ComputationError(f"inconsistent counts near {float(t):.17g} rad/s")
 
 
 def _key(w):
