@@ -291,7 +291,9 @@ class _Search:
                 if (k == 1 and not at_rigid_zero) or (b - a) <= _DOUBLE_WIDTH * b:
                     done.append((a, ca, b, cb))
                     continue
-                parts = min(k, _SPLIT_POINTS) + 1
+                # two cut points per root: most brackets hold one root after a round,
+                # and a batch costs little more for twice the points
+                parts = min(2 * k, _SPLIT_POINTS) + 1
                 for j in range(1, parts):
                     points.append(a + (b - a) * j / parts)
                     owners.append(len(split))
