@@ -260,3 +260,30 @@ def test_a_crawling_bracket_shrinks_by_spread_points(growth, most):
     out = shrink(a, b, f(a, idx), f(b, idx), probe, 1e-11)
     np.testing.assert_allclose(out, roots, rtol=1e-11)
     assert steps.max() <= most, steps
+
+
+def test_a_string_like_beam_in_tension_builds_few_plans(monkeypatch):
+    """A pinned-pinned beam in strong tension has modes like a string's (omega ~ n), so a
+    first guess from the beam's largest wave number is low. Each count on the way up needs
+    a plan cut for its range: the climb jumps to where the count would be reached instead
+    of steps of 1.5 (7 plans here). Reference: omega_n**2 = (n pi)**4 EI / m +
+    (n pi)**2 N / m (L = 1)."""
+    import mpmath
+
+    from symtmm.model import Beam, Model
+    from symtmm.solve import solve
+    built = []
+    original = plan_module.StiffnessPlan.__init__
+
+    def counting(self, *args, **kwargs):
+        built.append(args[1] if len(args) > 1 else kwargs.get("radius"))
+        original(self, *args, **kwargs)
+    monkeypatch.setattr(plan_module.StiffnessPlan, "__init__", counting)
+    plan_module.clear_plans()
+    EI, N = mpmath.mpf("0.01"), 100
+    model = Model((Beam("s", "1/100", 1, 1, left="pinned", right="pinned", N=N),))
+    spectrum = solve(model, count=10, digits=15)
+    for n, e in enumerate(spectrum, start=1):
+        a = n * mpmath.pi
+        assert mpmath.almosteq(e.omega, mpmath.sqrt(a**4 * EI + a**2 * N), rel_eps=1e-15)
+    assert len(built) <= 3, built
