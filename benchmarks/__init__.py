@@ -12,6 +12,9 @@ machine-readable object). The sections, one per target of issue 11:
 * :mod:`benchmarks.sweep_compare` -- the paper's figure 10 as a sweep;
 * :mod:`benchmarks.evaluator` -- the batched Delta against its transcendental
   functions, the naive product and the generated C;
+* :mod:`benchmarks.ordinary` -- beside the targets: the ordinary models of the
+  reliability issue (axial force, Rayleigh and Timoshenko beams, dashpots) against
+  a sparse finite-element model, by the first target's measure;
 * :mod:`benchmarks.report` -- the markdown report, whose verdicts and
   explanations are generated from the run's numbers, with the profiles of
   :mod:`benchmarks.profiling`.

@@ -162,7 +162,17 @@ def _targets(r) -> list:
     rows = [[i, TARGETS[name], f"failed: {r[name]['error']}" if "error" in r[name]
              else _measured(name, r[name]), _met(r[name]["target"]["met"])]
             for i, name in enumerate(TARGETS, 1) if name in r]
-    return ["## Targets", ""] + _table(["#", "target", "measured", "verdict"], rows)
+    out = ["## Targets", ""] + (_table(["#", "target", "measured", "verdict"], rows) if rows
+                                else ["No target was measured in this run.", ""])
+    if "ordinary" in r:
+        o = r["ordinary"]
+        out += [("Reported beside them (section 7, not a numbered target): the ordinary models "
+                 "of the reliability issue against target 1's measure, "
+                 + (f"failed: {o['error']}" if "error" in o else
+                    "symtmm / FE: " + ", ".join(f"{k} {_g(v) if v is not None else 'failed'}"
+                                                for k, v in o["ratios"].items())
+                    + f" ({'all within' if o['within'] else 'not all within'} 1)") + "."), ""]
+    return out
 
 
 # -- why -----------------------------------------------------------------------------------------
@@ -305,6 +315,8 @@ _WHY = {"fe": _why_fe, "scaling": _why_scaling, "precision": _why_precision,
 
 
 def _findings(r) -> list:
+    if not any(name in r for name in TARGETS):
+        return []
     out = ["## Met or missed, and why", "",
            ("Generated from this run's numbers: its timings and the profiles it gathered "
             "(own time of the library's routines in one more, profiled run)."), ""]
@@ -519,13 +531,100 @@ def _evaluator(ev) -> list:
     return out
 
 
+def _ordinary_row(c) -> list:
+    if "error" in c:
+        return [c["name"], f"failed: {c['error']}"] + ["–"] * 10
+    s, f = c["symtmm"], c["fe"]
+    request = ", ".join(f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}"
+                        for k, v in c["request"].items())
+    symtmm = [f"failed: {s['error']}", "–", "–"] if "error" in s else \
+        [_g(s["seconds"]), s["evaluations"], _g(s["max_rel_error"], 2)]
+    return ([c["name"], request, f["elements_per_beam"], f["dofs"],
+             _g(f["max_rel_error"], 2) + ("" if f["within_tolerance"] else " (!)"),
+             _g(f["seconds"]), _g(f["solver_seconds"])] + symtmm
+            + [_g(c["reference"]["max_rel_error"], 2),
+               "–" if c["ratio"] is None else f"**{_g(c['ratio'])}**"])
+
+
+def _ordinary_notes(c, tolerance) -> list:
+    """What the table leaves out: the model, its reference, the FE's mesh search and
+    ``k``, symtmm's failure or where its time went."""
+    if "error" in c:
+        return [f"{c['name']} ({c['title']}): the case stopped with {c['error']}."]
+    s, f, ref = c["symtmm"], c["fe"], c["reference"]
+    out = [(f"{c['name']}: {c['title']}. Reference: {ref['method']} "
+            f"({_g(ref['seconds'])} s), estimated relative error "
+            f"{_g(ref['max_rel_error'], 2)}.")]
+    if "fe_check" in ref:
+        chk = ref["fe_check"]
+        out[-1] += (f" The FE reference of the same kind ({chk['method']}) differs from the "
+                    f"published values by at most {_g(chk['max_rel_error'], 2)} "
+                    f"({chk['missed']} missed, {chk['spurious']} spurious).")
+    if not f["within_tolerance"]:
+        out.append(f"{c['name']}: the FE never comes within {tolerance:g}: {f['note']}; it is "
+                   f"timed on the mesh of its smallest error ({f['elements_per_beam']} "
+                   "elements per beam), coarser than one at the tolerance would be: this "
+                   "favours the FE.")
+    if c["damped"]:
+        out.append(f"{c['name']}: region 0 <= Im lam <= {_g(c['region']['omega_max'])}, "
+                   f"{_g(-c['region']['sigma_max'])} <= Re lam <= 0: {len(ref['values'])} "
+                   f"eigenvalues with Im lam >= 0; FE `eigs` with k = {f['k']} "
+                   f"({f['found']} found in the region, {f['missed']} missed, "
+                   f"{f['spurious']} spurious); with k = {f['covering_k']}, whose disk "
+                   "around the shift reaches the region's far corner (what a user needs to "
+                   f"be sure of the region), {_g(f['covering_seconds'])} s.")
+    if "error" in s:
+        out.append(f"{c['name']}: symtmm failed: {s['error']} (after {_g(s['seconds'])} s).")
+    elif "profile" in s and c["ratio"] > 1:
+        out.append(f"{c['name']}: over 1; profiled solve, " + _profile_sentence(s["profile"])
+                   + ".")
+    return out
+
+
+def _ordinary(o) -> list:
+    out = ["## 7. Ordinary models (reported beside the targets)", "",
+           ("The ordinary models of the reliability issue, which it asks to solve within "
+            "target 1's measure (symtmm / sparse FE at "
+            f"{o['tolerance']:g}, at most 1). symtmm: `solve(model, count={o['count']}, "
+            f"digits={o['digits']})` undamped, `solve(model, omega_max=W, "
+            f"digits={o['damped_digits']})` damped (the region 0 <= Im lam <= W, -S <= Re "
+            f"lam <= 0, S = 2 W), the best of {o['repeat']} runs, each after `clear_plans()` (no "
+            f"plan reused); a solve stops as failed after {_g(o['time_limit'])} s. FE "
+            "(benchmarks/ordinary.py): symtmm/fe.py's matrices (it shares no code with the "
+            "solver; Euler-Bernoulli, Rayleigh and shear-flexible elements, axial force) on "
+            "the coarsest uniform mesh within the tolerance, dashpots added as a matrix C; "
+            "converted to scipy.sparse CSC and solved by `eigsh(K, k=10, M=M, sigma=0, "
+            "which='LM')` undamped, by `eigs(A, k, M=B, sigma=-W/100, which='LM')` on the "
+            "state-space pencil A = [[0, I], [-K, -C]], B = [[I, 0], [0, M]] damped, with "
+            f"k = the region's eigenvalues (conjugates counted) + {o['k_margin']}. FE s: the "
+            "conversion and the eigensolver, the best of as many runs; the assembly is not "
+            "timed, which favours the FE, so the ratio is conservative. Errors: the largest "
+            "|value - reference| / |reference| over the wanted eigenvalues (symtmm: its "
+            "printed values); a reference 0 (a rigid-body mode) counts relative to the "
+            "largest |reference|."), ""]
+    out += _table(["model", "asked", "FE elements/beam", "FE dofs", "FE error", "FE s",
+                   "FE eigensolver s", "symtmm s", "evaluations", "symtmm error",
+                   "reference error (est.)", "symtmm / FE"],
+                  [_ordinary_row(c) for c in o["cases"]])
+    out += [f"* {line}" for c in o["cases"] for line in _ordinary_notes(c, o["tolerance"])]
+    out += ["", ("(!): not within the tolerance (see the notes). Meshes tried (elements per "
+                 "beam: FE error):"), ""]
+    out += [f"* {c['name']}: " + ", ".join(f"{t['elements_per_beam']}: "
+                                           f"{_g(t['max_rel_error'], 2)}"
+                                           for t in c["fe"]["tried"])
+            for c in o["cases"] if "error" not in c]
+    return out + [""]
+
+
 def render(r: dict) -> str:
     out = ["# Benchmarks", "",
            "The targets of issue 11 (\"Fast and certified by default\"), measured side by side "
            "in one run: symtmm's verified solve against the sparse finite-element model a "
            "competent user would write, its cost against model size and precision, the damped "
            "search against the paper's fMin2D, a parameter sweep, and the batched Delta against "
-           "the transcendental functions it evaluates. Generated by `benchmarks/run.py`"
+           "the transcendental functions it evaluates; beside them, the ordinary models of the "
+           "reliability issue against the first target's measure. Generated by "
+           "`benchmarks/run.py`"
            + (" (quick run: small sizes only, not the targets' full measure)"
               if r.get("quick") else "") + ".", "",
            "## How to run", "", "```",
@@ -533,16 +632,23 @@ def render(r: dict) -> str:
            "python benchmarks/run.py --from-json docs/benchmarks.json -o docs/benchmarks.md",
            "python benchmarks/run.py --quick                          # small sizes, <1 minute",
            "python benchmarks/run.py --sections fe sweep              # some sections",
+           "python benchmarks/run.py --sections ordinary              # the ordinary models",
            "```", "",
            ("cxroots is optional (`pip install cxroots`, or the `bench` extra); without it its "
             "row reads \"not installed\". The generated C needs gcc. References are computed "
-            "in the run, none by symtmm (benchmarks/references.py)."), ""]
+            "in the run, none by symtmm (benchmarks/references.py; section 7: symtmm/fe.py, "
+            "which shares no code with the solver, and the issue's published values)."), ""]
     out += _machine(r)
     out += _targets(r)
     out += _findings(r)
     sections = {"fe": _fe, "scaling": _scaling, "precision": _precision,
-                "root_search": _root_search, "sweep": _sweep, "evaluator": _evaluator}
+                "root_search": _root_search, "sweep": _sweep, "evaluator": _evaluator,
+                "ordinary": _ordinary}
     for name, fn in sections.items():
         if name in r and "error" not in r[name]:
             out += fn(r[name])
+    if "ordinary" in r and "error" in r["ordinary"]:
+        out += ["## 7. Ordinary models (reported beside the targets)", "",
+                f"The section stopped with {r['ordinary']['error']}:", "", "```",
+                *r["ordinary"]["trace"], "```", ""]
     return "\n".join(out)

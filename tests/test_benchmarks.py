@@ -34,8 +34,8 @@ from benchmarks import baselines, compare, fe_compare, models, references, spars
 from benchmarks.kernel import internals
 
 MODULES = ["baselines", "cbench", "compare", "evaluator", "fe_compare", "kernel", "models",
-           "precision", "profiling", "references", "report", "root_search", "scaling",
-           "sparse_fe", "sweep_compare"]
+           "ordinary", "precision", "profiling", "references", "report", "root_search",
+           "scaling", "sparse_fe", "sweep_compare"]
 
 
 @pytest.mark.parametrize("name", MODULES)
@@ -268,6 +268,46 @@ def test_coarsest_mesh_is_the_coarsest():
     assert errors[n] <= 1e-4 < errors[n - 1]
 
 
+def test_ordinary_state_space_fe_gives_the_published_dashpot_values():
+    # the sparse state-space pencil and eigs (the FE the ordinary section times) on a fine
+    # mesh: the published eigenvalues of the pinned-free beam with one dashpot,
+    # the rigid-body 0 among them, and nothing else in the region
+    from benchmarks import ordinary
+
+    fe = ordinary.fe_input(ordinary.model("pure_dashpot"))
+    K, M, C = ordinary.fe_system(fe, 48)
+    W, S = ordinary.CASES["pure_dashpot"].region
+    lam = ordinary.damped_eigenvalues(K, M, C, 12, ordinary.DAMPED_SHIFT * W)
+    m = ordinary.match_errors(ordinary.in_region(lam, W, S, slack=1e-9), ordinary.PUBLISHED)
+    assert (m["missed"], m["spurious"]) == (0, 0)
+    assert m["max_rel_error"] < 1e-5
+
+
+def test_ordinary_shear_interpolation_agrees_with_the_direct_fe():
+    # a Timoshenko cantilever whose shear stiffness the FE still resolves: the interpolation
+    # in EI/kGA through the rigid-in-shear beam and 1000, 2000 times its flexibility gives the
+    # FE's own extrapolated frequencies
+    from benchmarks import ordinary
+
+    beam = dict(name="t", EI=1.0, m=1.0, L=1.0, x0=0.0, left="clamped", right="free",
+                rhoI=0.01, kGA=3e7)
+    direct, _ = ordinary._converged([beam], [], 8, 3)
+    interpolated, error = ordinary.shear_extrapolated([beam], [], 8, 3)
+    assert np.allclose(interpolated, direct, rtol=1e-9, atol=0)
+    assert np.all((error > 0) & np.isfinite(error))
+
+
+def test_ordinary_mesh_search_reports_an_error_floor():
+    # an FE error that stops falling above the tolerance: the mesh of the smallest error,
+    # and why
+    from benchmarks import ordinary
+
+    n, tried, note = ordinary._coarsest(lambda n: max(1.0 / n**4, 1e-5 * (1 + n / 100)))
+    assert n == min(tried, key=tried.get) and "stops falling" in note
+    n, _, note = ordinary._coarsest(lambda n: 1.0 / n**4)
+    assert (n, note) == (32, None)
+
+
 def test_kernel_adapter_counts_and_delta():
     k = internals().kernel(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 100.0)
     w = np.array([1.0, 10.0, 40.0, 90.0])
@@ -348,8 +388,15 @@ def test_quick_run_all_sections(tmp_path):
         assert case["symtmm"]["max_rel_error"] < 1e-14
         assert case["fe"]["max_rel_error"] <= 1e-6
     assert result["sweep"]["symtmm"]["max_rel_difference_from_reference"] < 1e-6
+    for case in result["ordinary"]["cases"]:        # reported beside the targets
+        assert "error" not in case and "error" not in case["symtmm"], case["name"]
+        assert case["symtmm"]["max_rel_error"] < 1e-7, case["name"]
+        assert case["fe"]["max_rel_error"] <= 1e-6 or not case["fe"]["within_tolerance"]
+        if case["damped"]:
+            assert case["symtmm"]["missed"] == case["fe"]["missed"] == 0, case["name"]
     markdown = _run("--from-json", str(saved))
     assert markdown.startswith("# Benchmarks")
     for heading in ("## 1. Verified solve", "## 2. Cost per evaluation", "## 3. The cost of",
-                    "## 4. Root search", "## 5. A sweep", "## 6. The batched"):
+                    "## 4. Root search", "## 5. A sweep", "## 6. The batched",
+                    "## 7. Ordinary models"):
         assert heading in markdown
