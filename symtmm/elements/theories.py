@@ -190,11 +190,13 @@ class BeamSegment(FieldElement):
         The entries of ``U`` grow like ``exp(|s| l)``.
         """
         EI, m, _, kw, N, rhoI, kGA = consts if consts is not None else self.constants()
-        lam2 = np.asarray(lam2, dtype=complex)
+        # (a number stays a Python complex: the contours ask for one at a time, thousands
+        # of times, where numpy's scalars cost a microsecond an operation)
+        lam2 = complex(lam2) if np.ndim(lam2) == 0 else np.asarray(lam2, dtype=complex)
         a, b, c, mu = _coefficients(lam2, m, kw, N, rhoI, kGA, np)
         t = c / EI - b * mu
         d = mu * (a * a - b * c) / EI
-        return np.sqrt(np.abs(t) / 2 + np.sqrt(np.abs(t) ** 2 / 4 + np.abs(d)))
+        return (abs(t) / 2 + (abs(t) ** 2 / 4 + abs(d)) ** 0.5) ** 0.5
 
     def clamped_frequency_bound(self, length: float) -> float:
         """A lower bound on ``omega**2`` of the clamped-clamped modes of a piece ``length`` long.
