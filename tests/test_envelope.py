@@ -287,3 +287,35 @@ def test_a_string_like_beam_in_tension_builds_few_plans(monkeypatch):
         a = n * mpmath.pi
         assert mpmath.almosteq(e.omega, mpmath.sqrt(a**4 * EI + a**2 * N), rel_eps=1e-15)
     assert len(built) <= 3, built
+
+
+def _plan_builds(monkeypatch) -> list:
+    built = []
+    original = plan_module.StiffnessPlan.__init__
+
+    def counting(self, *args, **kwargs):
+        built.append(args[1] if len(args) > 1 else kwargs.get("radius"))
+        original(self, *args, **kwargs)
+    monkeypatch.setattr(plan_module.StiffnessPlan, "__init__", counting)
+    plan_module.clear_plans()
+    return built
+
+
+def test_small_batches_use_a_plan_for_a_larger_range(monkeypatch, examples_dir):
+    """Example 1 with its springs at the ends: the isolation's batches below a quarter of
+    the top frequency took plans of their own (three plans); a small batch evaluates on
+    the plan it has. Both give the same frequencies to every printed digit (other pieces,
+    the same K's eigenvalues)."""
+    from symtmm.modelfile import load
+    from symtmm.solve import solve
+    model = load(examples_dir / "paper_ex1_ff_cc.toml").with_parameters(x1="0")
+    built = _plan_builds(monkeypatch)
+    shared = solve(model, count=10, digits=15)
+    assert len(built) == 1, built
+    import symtmm.numeric.evaluator as evaluator
+    monkeypatch.setattr(evaluator, "SMALL_BATCH", 0)
+    monkeypatch.setattr(evaluator, "SMALL_PROOF_BATCH", 0)
+    plan_module.clear_plans()
+    own = solve(model, count=10, digits=15)
+    assert len(built) > 2
+    assert [str(e.lam) for e in shared] == [str(e.lam) for e in own]

@@ -93,7 +93,7 @@ class Counter(Evaluator):
         if ar is DOUBLE:
             w = np.asarray(omegas, dtype=float)
             self.evaluations += w.size
-            return factor(self.plan(float(np.max(w, initial=0.0))), ar,
+            return factor(self.plan(float(np.max(w, initial=0.0)), w.size), ar,
                           w * w if positive else -(w * w))
         points = [exact_mpf(v) for v in omegas]
         self.evaluations += len(points)
@@ -102,7 +102,8 @@ class Counter(Evaluator):
             chosen = points if idx is None else [points[i] for i in idx]
             pts = [work.number(v) for v in chosen]
             return work.array([p * p if positive else -(p * p) for p in pts]), None
-        return self._factor(self.plan(max((float(v) for v in points), default=0.0)), ar, build)
+        return self._factor(self.plan(max((float(v) for v in points), default=0.0),
+                                      len(points), ar), ar, build)
 
     def matrix(self, omega: float) -> np.ndarray:
         """The dense ``K(omega)`` in double precision (scaled by powers of two: its inertia,
