@@ -319,3 +319,29 @@ def test_small_batches_use_a_plan_for_a_larger_range(monkeypatch, examples_dir):
     own = solve(model, count=10, digits=15)
     assert len(built) > 2
     assert [str(e.lam) for e in shared] == [str(e.lam) for e in own]
+
+
+def test_undecided_cut_points_are_counted_in_batches(monkeypatch, examples_dir):
+    """Example 1 with its springs at mid-span: the free beam turns about them (omega = 0)
+    and both beams' antisymmetric modes, with a node there, leave the springs idle: double
+    roots at beta**2 with cos(beta) cosh(beta) = 1 (beta = 7.853..., 14.137...). Cut points
+    near them that double precision leaves undecided were counted in balls one call each
+    (81 calls); now one batch per isolation round."""
+    from symtmm.modelfile import load
+    from symtmm.numeric.evaluator import Evaluator
+    from symtmm.solve import solve
+    model = load(examples_dir / "paper_ex1_ff_cc.toml").with_parameters(x1="1/2")
+    calls = []
+    original = Evaluator._ball
+
+    def counted(self, *args):
+        calls.append(1)
+        return original(self, *args)
+    monkeypatch.setattr(Evaluator, "_ball", counted)
+    spectrum = solve(model, count=10, digits=12)
+    doubles = [e for e in spectrum if e.multiplicity == 2]
+    for e, guess in zip(doubles, (7.85, 14.14)):
+        beta = mpmath.findroot(lambda b: mpmath.cos(b) * mpmath.cosh(b) - 1, guess)
+        assert mpmath.almosteq(e.omega, beta**2, rel_eps=1e-12)
+    assert len(doubles) == 2 and spectrum.eigenvalues[0].omega == 0
+    assert len(calls) <= 40, len(calls)      # (28 here; 81 one point a call)

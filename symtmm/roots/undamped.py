@@ -306,17 +306,29 @@ class _Search:
             if not points:
                 break
             counts = self.counter.counts(np.array(points))
-            for j in np.nonzero(counts < 0)[0]:
-                points[j], counts[j] = self.count_off(points[j], split[owners[j]][2])
+            # points double precision leaves undecided (a pivot too small to trust), in one
+            # batch of the proof arithmetic (one call each cost 67 calls at a step of a
+            # sweep where a rigid-body mode meets double roots)
+            bad = np.nonzero(counts < 0)[0]
+            for j, (p, c) in zip(bad, self.counts_off([points[j] for j in bad],
+                                                      [split[owners[j]][2] for j in bad], 30)):
+                points[j], counts[j] = p, c
             inside: dict = {}
             for p, c, o in zip(points, counts, owners):
                 inside.setdefault(o, []).append((p, int(c)))
             work = []
+            falling = [o for o, (a, ca, b, cb) in enumerate(split)
+                       if any(c2 < c1 for (_, c1), (_, c2) in
+                              itertools.pairwise([(a, ca)] + inside[o] + [(b, cb)]))]
+            if falling:
+                # counts must not fall: decide those cut points again in the proof arithmetic
+                again = iter(self.counts_off([p for o in falling for p, _ in inside[o]],
+                                             [split[o][2] for o in falling for _ in inside[o]],
+                                             30))
+                for o in falling:
+                    inside[o] = [next(again) for _ in inside[o]]
             for o, (a, ca, b, cb) in enumerate(split):
                 seq = [(a, ca)] + inside[o] + [(b, cb)]
-                if any(c2 < c1 for (_, c1), (_, c2) in itertools.pairwise(seq)):
-                    # counts must not fall: decide the cut points again in mpmath
-                    seq = [(a, ca)] + [self.count_off(p, b, 30) for p, _ in inside[o]] + [(b, cb)]
                 work += [(p, cp, q, cq) for (p, cp), (q, cq) in itertools.pairwise(seq)]
         return sorted(done)
 
