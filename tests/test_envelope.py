@@ -238,12 +238,12 @@ def test_bracket_refinement_closes_in_few_steps(curvature, noise):
     assert steps.max() <= 10, steps
 
 
-@pytest.mark.parametrize("growth, most", [(0.3, 9), (1.0, 12), (3.0, 16)])
+@pytest.mark.parametrize("growth, most", [(0.3, 9), (1.0, 13), (3.0, 17)])
 def test_a_crawling_bracket_shrinks_by_spread_points(growth, most):
     """A root near the left end of a wide bracket under a value growing exponentially to
     the right (as ``Delta`` under a neighbouring root): the secant crawls from the right.
     The points spread over a slow bracket shrink it fourfold a step (a bisection instead
-    took 10, 14 and 21 steps here)."""
+    took 10, 14 and 21 steps here; these take 8, 12 and 15)."""
     roots = np.array([29.57, 199.86, 1.0])
     steps = np.zeros(3, dtype=int)
 
