@@ -176,14 +176,21 @@ class ArgumentPrinciple:
             line = self._lines[key] = _Line(horizontal, float(c))
         return line
 
-    def _evaluate(self, line: _Line, ts) -> None:
-        ts = [t for t in ts if t not in line.values]
-        if not ts:
+    def _evaluate(self, requests) -> None:
+        """``f`` at the new positions of every ``(line, ts)`` of ``requests``, in one call
+        (a call costs far more than a point)."""
+        todo, seen = [], set()
+        for line, ts in requests:
+            for t in ts:
+                if t not in line.values and (id(line), t) not in seen:
+                    seen.add((id(line), t))
+                    todo.append((line, t))
+        if not todo:
             return
-        z = np.array([line.point(t) for t in ts])
+        z = np.array([line.point(t) for line, t in todo])
         logabs, phase, ok = self.f(z)
-        for t, la, ph, good in zip(ts, np.atleast_1d(logabs), np.atleast_1d(phase),
-                                   np.atleast_1d(ok)):
+        for (line, t), la, ph, good in zip(todo, np.atleast_1d(logabs), np.atleast_1d(phase),
+                                           np.atleast_1d(ok)):
             line.values[t] = (float(la), float(ph)) if good and np.isfinite(la) else None
             bisect.insort(line.t, t)
 
@@ -208,52 +215,77 @@ class ArgumentPrinciple:
         Returns ``(d_arg, moment)``: the change of ``arg f`` and the sum of
         ``z_mid * (change of log f)`` over the steps (for the centre of zeros).
         """
-        line = self._line(horizontal, c)
-        a, b = (t0, t1) if t0 <= t1 else (t1, t0)
-        self._evaluate(line, self._initial_grid(line, a, b))
+        return self._sides([(horizontal, c, t0, t1)], strictness)[0]
+
+    def _sides(self, sides, strictness: int) -> list:
+        """:meth:`side` of every ``(horizontal, c, t0, t1)`` of ``sides``, refined together:
+        each round's new points of all of them in one call of ``f``."""
         max_phase = MAX_PHASE_STEP / 2 ** strictness
         max_log = MAX_LOG_STEP / 2 ** strictness
-        while True:
-            ts = line.between(a, b)
-            vals = [line.values[t] for t in ts]
-            for t, v in zip(ts, vals):
-                if v is None:
-                    raise NearZero(line.point(t))
-            la = np.array([v[0] for v in vals])
-            ph = np.array([v[1] for v in vals])
-            dph = np.angle(np.exp(1j * np.diff(ph)))
-            dla = np.diff(la)
-            passed = (np.abs(dph) <= max_phase) & (np.abs(dla) <= max_log)
-            mids = []
-            for k in range(len(ts) - 1):
-                lo, hi = ts[k], ts[k + 1]
-                if passed[k] and (lo, hi) in line.verified:
-                    continue
-                mid = 0.5 * (lo + hi)
-                if not passed[k] and (hi - lo < self.min_step(line.point(mid))
-                                      or not lo < mid < hi):
-                    raise NearZero(line.point(mid))
-                if passed[k]:
-                    # a step that passes is accepted only once its halves pass too: a
-                    # cluster of m zeros seen under an angle 2 pi/m would otherwise hide
-                    line.verified.add((lo, mid))
-                    line.verified.add((mid, hi))
-                mids.append(mid)
-            if not mids:
-                break
-            self._evaluate(line, mids)
+        work = []
+        for horizontal, c, t0, t1 in sides:
+            line = self._line(horizontal, c)
+            a, b = (t0, t1) if t0 <= t1 else (t1, t0)
+            work.append((line, a, b))
+        self._evaluate([(line, self._initial_grid(line, a, b)) for line, a, b in work])
+        out: list = [None] * len(sides)
+        pending = list(range(len(sides)))
+        while pending:
+            requests, still = [], []
+            for i in pending:
+                line, a, b = work[i]
+                mids, result = self._refine(line, a, b, max_phase, max_log)
+                if mids:
+                    requests.append((line, mids))
+                    still.append(i)
+                else:
+                    d_arg, moment = result
+                    out[i] = (-d_arg, -moment) if sides[i][2] > sides[i][3] else result
+            self._evaluate(requests)
+            pending = still
+        return out
+
+    def _refine(self, line: _Line, a: float, b: float, max_phase: float,
+                max_log: float) -> tuple:
+        """``(mids, None)``: the points a side ``[a, b]`` of ``line`` needs next; or
+        ``(None, (d_arg, moment))`` from ``a`` to ``b`` once every step passes."""
+        ts = line.between(a, b)
+        vals = [line.values[t] for t in ts]
+        for t, v in zip(ts, vals):
+            if v is None:
+                raise NearZero(line.point(t))
+        la = np.array([v[0] for v in vals])
+        ph = np.array([v[1] for v in vals])
+        dph = np.angle(np.exp(1j * np.diff(ph)))
+        dla = np.diff(la)
+        passed = (np.abs(dph) <= max_phase) & (np.abs(dla) <= max_log)
+        mids = []
+        for k in range(len(ts) - 1):
+            lo, hi = ts[k], ts[k + 1]
+            if passed[k] and (lo, hi) in line.verified:
+                continue
+            mid = 0.5 * (lo + hi)
+            if not passed[k] and (hi - lo < self.min_step(line.point(mid))
+                                  or not lo < mid < hi):
+                raise NearZero(line.point(mid))
+            if passed[k]:
+                # a step that passes is accepted only once its halves pass too: a
+                # cluster of m zeros seen under an angle 2 pi/m would otherwise hide
+                line.verified.add((lo, mid))
+                line.verified.add((mid, hi))
+            mids.append(mid)
+        if mids:
+            return mids, None
         tz = np.array(ts)
         zmid = np.array([line.point(t) for t in 0.5 * (tz[1:] + tz[:-1])])
         dlog = dla + 1j * dph
-        d_arg = float(np.sum(dph))
-        moment = complex(np.sum(zmid * dlog))
-        if t0 > t1:
-            return -d_arg, -moment
-        return d_arg, moment
+        return None, (float(np.sum(dph)), complex(np.sum(zmid * dlog)))
 
     # -- counting ---------------------------------------------------------------------
-    def winding(self, rect: Rectangle, strictness: int = 0) -> tuple:
-        """``(change of arg f, moment)`` around ``rect`` (upper half if symmetric)."""
+    @staticmethod
+    def _sides_of(rect: Rectangle) -> list:
+        """``(horizontal, c, t0, t1)`` of each side, counter-clockwise (the upper half's
+        if symmetric)."""
         sides = []
         if not rect.symmetric:
             sides.append((True, rect.y0, rect.x0, rect.x1))      # bottom, left to right
@@ -261,12 +293,26 @@ class ArgumentPrinciple:
         sides += [(False, rect.x1, y_low, rect.y1),               # right, upwards
                   (True, rect.y1, rect.x1, rect.x0),              # top, right to left
                   (False, rect.x0, rect.y1, y_low)]               # left, downwards
-        d_arg, moment = 0.0, 0j
-        for horizontal, c, t0, t1 in sides:
-            d, mom = self.side(horizontal, c, t0, t1, strictness)
-            d_arg += d
-            moment += mom
-        return d_arg, moment
+        return sides
+
+    def windings(self, rects, strictness: int = 0) -> list:
+        """``(change of arg f, moment)`` around each of ``rects`` (upper half if
+        symmetric), all their sides refined together."""
+        sides = [self._sides_of(r) for r in rects]
+        changes = iter(self._sides([s for group in sides for s in group], strictness))
+        out = []
+        for group in sides:
+            d_arg, moment = 0.0, 0j
+            for _ in group:
+                d, mom = next(changes)
+                d_arg += d
+                moment += mom
+            out.append((d_arg, moment))
+        return out
+
+    def winding(self, rect: Rectangle, strictness: int = 0) -> tuple:
+        """``(change of arg f, moment)`` around ``rect`` (upper half if symmetric)."""
+        return self.windings([rect], strictness)[0]
 
     def count(self, rect: Rectangle, strictness: int = 0) -> int:
         """Number of zeros inside ``rect`` with multiplicity."""
@@ -274,14 +320,21 @@ class ArgumentPrinciple:
 
     def count_and_center(self, rect: Rectangle, strictness: int = 0) -> tuple:
         """``(count, mean of the zeros)``; the mean is a rough estimate (None if none)."""
-        d_arg, moment = self.winding(rect, strictness)
-        turns = d_arg / (math.pi if rect.symmetric else 2 * math.pi)
-        n = round(turns)
-        if abs(turns - n) > 0.05 or n < 0:
-            raise CountError(f"winding number {turns:.3f} around {rect} is not a count")
-        if n == 0 or rect.symmetric:
-            return n, (None if n == 0 else rect.center)
-        return n, moment / (2j * math.pi) / n
+        return self.counts_and_centers([rect], strictness)[0]
+
+    def counts_and_centers(self, rects, strictness: int = 0) -> list:
+        """:meth:`count_and_center` of each of ``rects``, their contours sampled together."""
+        out = []
+        for rect, (d_arg, moment) in zip(rects, self.windings(rects, strictness)):
+            turns = d_arg / (math.pi if rect.symmetric else 2 * math.pi)
+            n = round(turns)
+            if abs(turns - n) > 0.05 or n < 0:
+                raise CountError(f"winding number {turns:.3f} around {rect} is not a count")
+            if n == 0 or rect.symmetric:
+                out.append((n, None if n == 0 else rect.center))
+            else:
+                out.append((n, moment / (2j * math.pi) / n))
+        return out
 
     @property
     def lines(self) -> int:

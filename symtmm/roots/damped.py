@@ -333,10 +333,9 @@ class _Search:
             for s in _SPLITS:
                 try:
                     kids = self._children(rect, s)
-                    counted = []
-                    for kid, weight in kids:
-                        n, center = self.ap.count_and_center(kid, strictness)
-                        counted.append((kid, n, center, weight))
+                    found = self.ap.counts_and_centers([kid for kid, _ in kids], strictness)
+                    counted = [(kid, n, center, weight)
+                               for (kid, weight), (n, center) in zip(kids, found)]
                 except NearZero as exc:
                     last_error = exc
                     continue
