@@ -380,26 +380,47 @@ class _Search:
         work = list(cells)
         guard = 0
         while work:
-            rect, n, center = work.pop()
-            guard += 1
-            if guard > 20000:
-                raise ComputationError("too many rectangles: the zeros could not be isolated")
-            at_zero = self._holds_zero(rect)
-            others = n - (self.zero_order if at_zero else 0)
-            if others < 0:
-                raise ComputationError(f"{n} zeros counted in {rect}, fewer than the "
-                                       f"{self.zero_order} at lam = 0")
-            if others == 0:
-                continue
-            if others == 1 and not at_zero:
-                singles.append((rect, center))
-                continue
-            if not at_zero and rect.size < tiny * self._scale(rect.center):
-                clusters.append((rect, n, center))
-                continue
-            for kid, k, c, _ in self._split(rect, n):
-                work.append((kid, k, c))
+            # a generation at a time: the contours of all its splits sampled together
+            split = []
+            for rect, n, center in work:
+                guard += 1
+                if guard > 20000:
+                    raise ComputationError("too many rectangles: the zeros could not be "
+                                           "isolated")
+                at_zero = self._holds_zero(rect)
+                others = n - (self.zero_order if at_zero else 0)
+                if others < 0:
+                    raise ComputationError(f"{n} zeros counted in {rect}, fewer than the "
+                                           f"{self.zero_order} at lam = 0")
+                if others == 0:
+                    continue
+                if others == 1 and not at_zero:
+                    singles.append((rect, center))
+                    continue
+                if not at_zero and rect.size < tiny * self._scale(rect.center):
+                    clusters.append((rect, n, center))
+                    continue
+                split.append((rect, n))
+            work = [(kid, k, c) for kids in self._split_all(split) for kid, k, c, _ in kids]
         return singles, clusters
+
+    def _split_all(self, items) -> list:
+        """:meth:`_split` of every ``(rect, count)``: the first split of all of them counted
+        in one sampling of their contours; where that fails (a sample near a zero, counts
+        that do not add up), each alone with :meth:`_split`'s other splits."""
+        if not items:
+            return []
+        first = [self._children(rect, _SPLITS[0]) for rect, _ in items]
+        try:
+            found = iter(self.ap.counts_and_centers([kid for kids in first for kid, _ in kids]))
+        except (NearZero, CountError):
+            return [self._split(rect, n) for rect, n in items]
+        out = []
+        for (rect, n), kids in zip(items, first):
+            counted = [(kid, *next(found), weight) for kid, weight in kids]
+            ok = sum(k * weight for _, k, _, weight in counted) == n
+            out.append(counted if ok else self._split(rect, n))
+        return out
 
     # -- refinement: complex zeros, all at once -----------------------------------------------
     def _double_secant(self, starts):
