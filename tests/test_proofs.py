@@ -82,3 +82,28 @@ def test_proof_stage_takes_one_point_and_one_pair_per_root(monkeypatch, certifie
     # (a pair that misses costs one more: allowed once, whatever the last bits of this
     # machine's sines; the old first pair at 1e-11 took 32 points)
     assert sum(calls) <= 3 * 8 + 2 and len(calls) <= 3, calls
+
+
+@pytest.mark.skipif(not ball_available(), reason="needs python-flint")
+def test_high_digits_take_few_proof_rounds(monkeypatch):
+    """At high digits the secant steps are carried in the bookkeeping precision (values of
+    the ambient mpmath context rounded them to 15 digits, a round lost each time) and
+    corrected by a parabola through an earlier point: at 100 digits 5 batches of the
+    proof arithmetic here, where 8 were taken (one more allowed: the start is the double
+    estimate, whose last bits may differ on another CPU). Reference: the pinned-pinned
+    beam's (n pi)**2."""
+    import mpmath
+
+    from symtmm.roots.count import Counter
+    calls = []
+    original = Counter.delta
+
+    def counted(self, points, ar):
+        calls.append(len(points))
+        return original(self, points, ar)
+    monkeypatch.setattr(Counter, "delta", counted)
+    spec = solve_undamped(PINNED, count=6, digits=100)
+    with mpmath.workdps(110):
+        for n, e in enumerate(spec, start=1):
+            assert mpmath.almosteq(e.omega, (n * mpmath.pi) ** 2, rel_eps=mpmath.mpf(10)**-100)
+    assert len(calls) <= 6, calls

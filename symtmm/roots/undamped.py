@@ -425,7 +425,9 @@ class _Search:
         Before the pairs, one point per root and a Newton step (:meth:`_newton_start`)
         take the double estimate to about 20 digits, and the first pairs, as wide as
         that step's error, prove 15 digits: two rounds of proof evaluations, one of them
-        a single point per root. Without an estimate the first pair (``h = 1e-11``, the
+        a single point per root. Past a pair about the root, that earlier point corrects
+        the secant step by a parabola (:func:`_quadratic`): three rounds for 30 and for 50
+        digits. Without an estimate the first pair (``h = 1e-11``, the
         double estimate's accuracy) gives an estimate good to about 22 digits, the next
         pairs (``h = 10**-(D+3)``) prove it. A secant step that leaves the
         bracket the counts have proved is replaced by an Anderson–Björck step on it.
@@ -446,7 +448,8 @@ class _Search:
         target = ctx.mpf(10) ** (-(D + 3))
         done: list = [None] * R
         by_balls = [self.hp.rigorous] * R       # the last pair of each root proved in balls
-        self._newton_start(items, a, b, c, fa, fb, h, ca, target, ctx)
+        older: list = [None] * R                # per root a third point (t, Delta) near it
+        self._newton_start(items, a, b, c, fa, fb, h, ca, target, ctx, older)
         for _ in range(60):
             tests, owner = [], []
             for i in range(R):
@@ -457,6 +460,9 @@ class _Search:
             if not owner:
                 break
             values, counts, proved = self._evaluate(tests)
+            # (into the bookkeeping context: a global mpmath number would round every
+            # secant step to the ambient precision, 15 digits)
+            values = [None if v is None else ctx.mpf(v) for v in values]
             for j, i in enumerate(owner):
                 (t1, t2), (f1, f2), (k1, k2) = (tests[2 * j:2 * j + 2], values[2 * j:2 * j + 2],
                                                 counts[2 * j:2 * j + 2])
@@ -483,8 +489,13 @@ class _Search:
                     if step is None or not a[i] < step < b[i]:
                         step = (a[i] + b[i]) / 2
                     h[i] = min(h[i], width / (8 * step))
+                elif (k1, k2) == (ca[i], ca[i] + 1) and older[i] is not None:
+                    step, h[i] = _quadratic(older[i], (t1, f1), (t2, f2), step, a[i], b[i],
+                                            h[i], target)
                 else:
                     h[i] = min(h[i], target)
+                if f1 is not None and f2 is not None:
+                    older[i] = min(((t1, f1), (t2, f2)), key=lambda p: abs(p[1]))
                 c[i] = step
         if any(d is None for d in done):
             raise ComputationError(f"the refinement to {D} digits did not converge")
@@ -499,7 +510,7 @@ class _Search:
             out.append(Eigenvalue(_exact_mpc_imag(mid), 1, D, bracket, proof))
         return out
 
-    def _newton_start(self, items, a, b, c, fa, fb, h, ca, target, ctx):
+    def _newton_start(self, items, a, b, c, fa, fb, h, ca, target, ctx, older):
         """One point per root, not a pair, before the proving pairs (in place).
 
         The slope of ``Delta`` at each double estimate ``c`` comes from a central
@@ -529,7 +540,7 @@ class _Search:
         logs, signs, _ = self.counter.signed_log_delta(np.concatenate(
             [mids * (1 - d), mids * (1 + d), mids * (1 - d / 2), mids * (1 + d / 2), mids]))
         balls, counts = self.counter.delta([c[i] for i in first], self.hp)
-        values = [mpmath.re(self.hp.to_mpmath(v)) if k >= 0 else None
+        values = [ctx.mpf(mpmath.re(self.hp.to_mpmath(v))) if k >= 0 else None
                   for v, k in zip(balls, counts)]
 
         def double(k):
@@ -537,6 +548,8 @@ class _Search:
         for j, i in enumerate(first):
             t, f, k = c[i], values[j], counts[j]
             _tighten(i, t, f, k, ca, a, b, fa, fb)
+            if f is not None:
+                older[i] = (t, f)
             near = [double(j + q * n) for q in range(4)]
             if f is None or d[j] <= 0 or any(v is None for v in near):
                 continue
@@ -694,6 +707,31 @@ def _tighten(i, t, f, k, ca, a, b, fa, fb):
         b[i], fb[i] = t, f
     elif k >= 0 and k not in (ca[i], ca[i] + 1):
         raise ComputationError(f"inconsistent counts near {float(t):.17g} rad/s")
+
+
+def _quadratic(p0, p1, p2, secant, a, b, h, target):
+    """``(estimate, h)``: the secant step through the pair ``p1, p2`` about a root, corrected
+    by the parabola through them and a third point ``p0`` near it (points ``(t, Delta)``),
+    and the half-width (relative) of the next pair.
+
+    The secant step errs by ``|f''/(2 f')| |t1 - r| |t2 - r|``; the parabola's correction
+    removes that term and leaves one about ``|f''/f'| |t0 - r|`` times smaller. From the
+    Newton start ``1e-13`` away and a first pair ``1e-21`` wide, about ``1e-55``: the next
+    pair, as wide as the estimated error with room (never narrower than the target),
+    proves 50 digits where the secant's ``1e-41`` took two more rounds. Falls back on the
+    secant step and a pair at the target where the correction leaves the bracket.
+    """
+    (t0, f0), (t1, f1), (t2, f2) = p0, p1, p2
+    if t0 in (t1, t2) or f1 is None or f2 is None or f1 == f2:
+        return secant, min(h, target)
+    d12 = (f2 - f1) / (t2 - t1)
+    d012 = ((f2 - f1) / (t2 - t1) - (f1 - f0) / (t1 - t0)) / (t2 - t0)
+    correction = d012 * (secant - t2) * (secant - t1) / d12
+    estimate = secant - correction
+    if not a < estimate < b:
+        return secant, min(h, target)
+    error = abs(correction * d012 / d12 * (t0 - estimate))
+    return estimate, max(target, min(h, 16 * error / estimate))
 
 
 def _key(w):
