@@ -312,7 +312,7 @@ def test_small_batches_use_a_plan_for_a_larger_range(monkeypatch, examples_dir):
     built = _plan_builds(monkeypatch)
     shared = solve(model, count=10, digits=15)
     assert len(built) == 1, built
-    import symtmm.numeric.evaluator as evaluator
+    from symtmm.numeric import evaluator
     monkeypatch.setattr(evaluator, "SMALL_BATCH", 0)
     monkeypatch.setattr(evaluator, "SMALL_PROOF_BATCH", 0)
     plan_module.clear_plans()
@@ -345,3 +345,26 @@ def test_undecided_cut_points_are_counted_in_batches(monkeypatch, examples_dir):
         assert mpmath.almosteq(e.omega, beta**2, rel_eps=1e-12)
     assert len(doubles) == 2 and spectrum.eigenvalues[0].omega == 0
     assert len(calls) <= 40, len(calls)      # (28 here; 81 one point a call)
+
+
+@pytest.mark.skipif(not ball_available(), reason="needs python-flint")
+def test_paired_functions_in_balls_enclose_mpmath_values():
+    """cosh/sinh and cos/sin from one Arb call each, real and complex balls: both enclose
+    mpmath's values at 90 digits; the jets keep their own chain rule (the pair of
+    separate functions)."""
+    import flint
+
+    from symtmm.numeric.jet import BallJet
+    ar = Ball(200)
+    with ar, mpmath.workdps(90):
+        for z in (mpmath.mpf("1.3"), mpmath.mpc("0.7", "-2.1"), mpmath.mpf("-40.25")):
+            x = np.array([ar.number(z)], dtype=object)
+            (ch, sh), (co, si) = ar.cosh_sinh(x), ar.cos_sin(x)
+            for ball, exact in ((ch, mpmath.cosh(z)), (sh, mpmath.sinh(z)),
+                                (co, mpmath.cos(z)), (si, mpmath.sin(z))):
+                b = ball[0]
+                mid = complex(b.mid()) if isinstance(b, flint.acb) else float(b.mid())
+                assert abs(mid - complex(exact)) <= 1e-14 * max(1.0, abs(complex(exact)))
+                assert b.overlaps(flint.acb(str(exact.real), str(exact.imag))
+                                  if isinstance(b, flint.acb) else flint.arb(str(exact)))
+    assert BallJet.cosh_sinh is not Ball.cosh_sinh and BallJet.cos_sin is not Ball.cos_sin

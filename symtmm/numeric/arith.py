@@ -169,6 +169,14 @@ class Arithmetic:
         derivatives bound those of the matrix ``X`` (nested lists of arrays) in norm, for
         :meth:`widen`; None otherwise."""
 
+    def cosh_sinh(self, x):
+        """``(cosh x, sinh x)`` elementwise (balls: one Arb call gives both)."""
+        return self.cosh(x), self.sinh(x)
+
+    def cos_sin(self, x):
+        """``(cos x, sin x)`` elementwise (balls: one Arb call gives both)."""
+        return self.cos(x), self.sin(x)
+
     def polynomial(self, coefficients, x):
         """``sum_k coefficients[k] x**k`` elementwise (Horner), ``coefficients`` numbers of
         the arithmetic, lowest degree first.
@@ -427,6 +435,15 @@ class Ball(Arithmetic):
         self.sinh = _ufunc(lambda v: v.sinh())
         self.real = _ufunc(lambda v: v.real if isinstance(v, flint.acb) else v)
         self._upper = np.frompyfunc(lambda v: float(v.abs_upper()), 1, 1)
+        # both functions of a pair from one evaluation (half the time of two calls)
+        self._cosh_sinh = np.frompyfunc(lambda v: v.sinh_cosh()[::-1], 1, 2)
+        self._cos_sin = np.frompyfunc(lambda v: v.sin_cos()[::-1], 1, 2)
+
+    def cosh_sinh(self, x):
+        return tuple(np.asarray(v, dtype=object) for v in self._cosh_sinh(x))
+
+    def cos_sin(self, x):
+        return tuple(np.asarray(v, dtype=object) for v in self._cos_sin(x))
 
     def polynomial(self, coefficients, x):
         """As :meth:`Arithmetic.polynomial`, by Arb's own evaluation of an ``arb_poly``: one

@@ -140,8 +140,11 @@ class BallJet(Ball):
     #: enclosures over a box: :func:`symtmm.numeric.stiffness.eb_closed_stiffness`)
     closed_stiffness = True
 
-    #: jets are not Arb numbers: the series by Horner's rule in their own operations
+    #: jets are not Arb numbers: the series by Horner's rule in their own operations, and
+    #: each function by its own chain rule
     polynomial = Arithmetic.polynomial
+    cosh_sinh = Arithmetic.cosh_sinh
+    cos_sin = Arithmetic.cos_sin
 
     def __init__(self, prec: int, order: int = 1):
         super().__init__(prec)

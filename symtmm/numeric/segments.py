@@ -116,7 +116,7 @@ def _series_tail(p: int, K: int, j: int) -> tuple:
 def _c_closed(ar: Arithmetic, x):
     """``c_0..c_3`` by their closed forms in ``nu = x**(1/4)`` (``x`` flat, ``|x| >= 1``)."""
     nu = ar.root4(x)
-    ch, co, sh, si = ar.cosh(nu), ar.cos(nu), ar.sinh(nu), ar.sin(nu)
+    (ch, sh), (co, si) = ar.cosh_sinh(nu), ar.cos_sin(nu)
     nu2 = nu * nu
     return [(ch + co) / 2, (sh + si) / (2 * nu), (ch - co) / (2 * nu2), (sh - si) / (2 * nu2 * nu)]
 
@@ -125,7 +125,7 @@ def _c_negative(ar: Arithmetic, x):
     """``c_0..c_3`` of a real ``x <= -1`` in real functions: ``x = -4 s**4``, ``nu = s (1 + i)``."""
     s = ar.root4(-x / 4)
     s = ar.real(s)
-    ch, co, sh, si = ar.cosh(s), ar.cos(s), ar.sinh(s), ar.sin(s)
+    (ch, sh), (co, si) = ar.cosh_sinh(s), ar.cos_sin(s)
     s2 = s * s
     return [ch * co, (ch * si + sh * co) / (2 * s), sh * si / (2 * s2),
             (ch * si - sh * co) / (4 * s2 * s)]
@@ -320,10 +320,12 @@ def _f_big(ar: Arithmetic, zb) -> list:
             continue
         if wave:
             t = ar.sqrt(-zb[mask])
-            values = [ar.cos(t), ar.sin(t) / t]
+            co, si = ar.cos_sin(t)
+            values = [co, si / t]
         else:
             t = ar.sqrt(zb[mask])
-            values = [ar.cosh(t), ar.sinh(t) / t]
+            ch, sh = ar.cosh_sinh(t)
+            values = [ch, sh / t]
         if not ar.is_complex(zb):
             values = [ar.real(v) for v in values]
         parts.append((mask, values))

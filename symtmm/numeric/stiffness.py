@@ -156,7 +156,7 @@ def eb_closed_stiffness(ar: Arithmetic, consts: dict, lam2):
     idx = np.nonzero(big)
     xb = x[idx]
     nu = ar.root4(xb)
-    ch, co, sh, si = ar.cosh(nu), ar.cos(nu), ar.sinh(nu), ar.sin(nu)
+    (ch, sh), (co, si) = ar.cosh_sinh(nu), ar.cos_sin(nu)
     Phi = 1 - ch * co
     EIb, lb = EI[idx[1]], l[idx[1]]
     b = nu / lb
