@@ -178,12 +178,8 @@ def test_eb_stiffness_from_c_functions_is_the_transfer_route(EI, m, l, kw):
             assert abs(a - b) <= mpmath.mpf(10) ** -50 * abs(b)
 
 
-def test_plans_are_shared_between_searches_and_forgotten_on_request(monkeypatch):
-    from symtmm.model import Beam, Model, Spring
-    from symtmm.solve import solve
-    model = Model((Beam("a", 1, 1, 1, left="clamped"), Beam("b", 1, 1, 1, left="pinned",
-                                                           right="pinned")),
-                  (Spring("a", "b", "1/2", 10),))
+def _plan_builds(monkeypatch) -> list:
+    """The ranges of the plans built from here on (none kept from before)."""
     built = []
     original = plan_module.StiffnessPlan.__init__
 
@@ -192,6 +188,16 @@ def test_plans_are_shared_between_searches_and_forgotten_on_request(monkeypatch)
         original(self, *args, **kwargs)
     monkeypatch.setattr(plan_module.StiffnessPlan, "__init__", counting)
     plan_module.clear_plans()
+    return built
+
+
+def test_plans_are_shared_between_searches_and_forgotten_on_request(monkeypatch):
+    from symtmm.model import Beam, Model, Spring
+    from symtmm.solve import solve
+    model = Model((Beam("a", 1, 1, 1, left="clamped"), Beam("b", 1, 1, 1, left="pinned",
+                                                           right="pinned")),
+                  (Spring("a", "b", "1/2", 10),))
+    built = _plan_builds(monkeypatch)
     first = solve(model, count=4, digits=12)
     after_first = len(built)
     second = solve(model, count=4, digits=12)
@@ -272,14 +278,7 @@ def test_a_string_like_beam_in_tension_builds_few_plans(monkeypatch):
 
     from symtmm.model import Beam, Model
     from symtmm.solve import solve
-    built = []
-    original = plan_module.StiffnessPlan.__init__
-
-    def counting(self, *args, **kwargs):
-        built.append(args[1] if len(args) > 1 else kwargs.get("radius"))
-        original(self, *args, **kwargs)
-    monkeypatch.setattr(plan_module.StiffnessPlan, "__init__", counting)
-    plan_module.clear_plans()
+    built = _plan_builds(monkeypatch)
     EI, N = mpmath.mpf("0.01"), 100
     model = Model((Beam("s", "1/100", 1, 1, left="pinned", right="pinned", N=N),))
     spectrum = solve(model, count=10, digits=15)
@@ -287,18 +286,6 @@ def test_a_string_like_beam_in_tension_builds_few_plans(monkeypatch):
         a = n * mpmath.pi
         assert mpmath.almosteq(e.omega, mpmath.sqrt(a**4 * EI + a**2 * N), rel_eps=1e-15)
     assert len(built) <= 3, built
-
-
-def _plan_builds(monkeypatch) -> list:
-    built = []
-    original = plan_module.StiffnessPlan.__init__
-
-    def counting(self, *args, **kwargs):
-        built.append(args[1] if len(args) > 1 else kwargs.get("radius"))
-        original(self, *args, **kwargs)
-    monkeypatch.setattr(plan_module.StiffnessPlan, "__init__", counting)
-    plan_module.clear_plans()
-    return built
 
 
 def test_small_batches_use_a_plan_for_a_larger_range(monkeypatch, examples_dir):

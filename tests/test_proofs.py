@@ -58,6 +58,19 @@ def test_thirty_triple_roots_of_three_identical_beams():
     assert [e.to_dict()["imag"] for e in spec] == expected
 
 
+def _proof_batches(monkeypatch) -> list:
+    """The sizes of the batches the proof arithmetic evaluates, as they come."""
+    from symtmm.roots.count import Counter
+    calls = []
+    original = Counter.delta
+
+    def counted(self, points, ar):
+        calls.append(len(points))
+        return original(self, points, ar)
+    monkeypatch.setattr(Counter, "delta", counted)
+    return calls
+
+
 @pytest.mark.parametrize("certified", [True, False])
 def test_proof_stage_takes_one_point_and_one_pair_per_root(monkeypatch, certified):
     """The proof arithmetic evaluates one point per root (a Newton step from the double
@@ -68,14 +81,7 @@ def test_proof_stage_takes_one_point_and_one_pair_per_root(monkeypatch, certifie
         pytest.skip("needs python-flint")
     import mpmath
 
-    from symtmm.roots.count import Counter
-    calls = []
-    original = Counter.delta
-
-    def counted(self, points, ar):
-        calls.append(len(points))
-        return original(self, points, ar)
-    monkeypatch.setattr(Counter, "delta", counted)
+    calls = _proof_batches(monkeypatch)
     spec = solve_undamped(PINNED, count=8, digits=15, certified=certified)
     for n, e in enumerate(spec, start=1):
         assert mpmath.almosteq(e.omega, (n * mpmath.pi) ** 2, rel_eps=1e-15)
@@ -94,14 +100,7 @@ def test_high_digits_take_few_proof_rounds(monkeypatch):
     beam's (n pi)**2."""
     import mpmath
 
-    from symtmm.roots.count import Counter
-    calls = []
-    original = Counter.delta
-
-    def counted(self, points, ar):
-        calls.append(len(points))
-        return original(self, points, ar)
-    monkeypatch.setattr(Counter, "delta", counted)
+    calls = _proof_batches(monkeypatch)
     spec = solve_undamped(PINNED, count=6, digits=100)
     with mpmath.workdps(110):
         for n, e in enumerate(spec, start=1):
