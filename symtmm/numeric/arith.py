@@ -110,8 +110,14 @@ class Arithmetic:
     # -- numbers ---------------------------------------------------------------------
     def exact(self, value):
         """An exact real SymPy value as a number of this arithmetic (converted once)."""
-        value = sp.sympify(value)
-        return self.cached(("exact", value), lambda: self._convert(value))
+        if isinstance(value, sp.Rational):
+            # (keyed by its integers: hashing a SymPy number, and sympify, cost more than
+            # the lookup; a plan's tables convert thousands of them)
+            key = ("q", value.p, value.q)
+        else:
+            value = sp.sympify(value)
+            key = ("exact", value)
+        return self.cached(key, lambda: self._convert(value))
 
     def _convert(self, value):
         raise NotImplementedError
