@@ -49,6 +49,9 @@ from .segments import kind, kind_order, kind_size, kind_tables
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "rcm_order", "wave_number_bound",
            "plan_for", "design_range", "clear_plans", "PLAN_MODELS"]
 
+#: SymPy's one (a singleton): most coefficients of the scatter are it.
+ONE = sp.S.One
+
 #: Largest ``|s| l`` of a piece (``beta l`` for Euler–Bernoulli) anywhere in the plan's range:
 #: below the first clamped-clamped root ``beta l = 4.730``, so no piece has a
 #: clamped-clamped eigenvalue in the range (``J0 = 0``, ``det U12 != 0``), and no
@@ -249,8 +252,11 @@ class StiffnessPlan:
                             r, c = position[gi], position[gj]
                             if r > c:
                                 continue            # the upper band only (K is symmetric)
+                            # (most coefficients are 1: SymPy's products cost microseconds)
+                            both = ai if aj is ONE else aj if ai is ONE else ai * aj
                             for source, coef in local(i, j):
-                                triples.append((r * w + c - r, source, ai * aj * coef))
+                                triples.append((r * w + c - r, source,
+                                                coef if both is ONE else both * coef))
 
         for k, places in zip(member_kind, mesh.segment_places):
             base, size = offsets[index[k]], kind_size(k)
@@ -278,7 +284,8 @@ class StiffnessPlan:
             k = e[r] + e[c]
             if k not in powers:
                 powers[k] = sp.Integer(2) ** k
-            self._triples.append((target, source, sp.sympify(coef) * powers[k]))
+            coef = sp.sympify(coef)
+            self._triples.append((target, source, coef if k == 0 else coef * powers[k]))
         self._triples.sort(key=lambda t: t[0])
         self.log_constant = (math.log(float(mesh.pivot_product))
                              - 2.0 * math.log(2.0) * sum(e))
