@@ -270,10 +270,10 @@ def test_a_crawling_bracket_shrinks_by_spread_points(growth, most):
 
 def test_a_string_like_beam_in_tension_builds_few_plans(monkeypatch):
     """A pinned-pinned beam in strong tension has modes like a string's (omega ~ n), so a
-    first guess from the beam's largest wave number is low. Each count on the way up needs
-    a plan cut for its range: the climb jumps to where the count would be reached instead
-    of steps of 1.5 (7 plans here). Reference: omega_n**2 = (n pi)**4 EI / m +
-    (n pi)**2 N / m (L = 1)."""
+    first guess from the beam's largest (evanescent) wave number is low, and each count on
+    the way up needs a plan cut for its range (7 plans here with steps of 1.5). The guess
+    now counts the travelling waves, and a miss jumps to where the count would be
+    reached. Reference: omega_n**2 = (n pi)**4 EI / m + (n pi)**2 N / m (L = 1)."""
     import mpmath
 
     from symtmm.model import Beam, Model

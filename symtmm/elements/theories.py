@@ -198,6 +198,30 @@ class BeamSegment(FieldElement):
         d = mu * (a * a - b * c) / EI
         return (abs(t) / 2 + (abs(t) ** 2 / 4 + abs(d)) ** 0.5) ** 0.5
 
+    def propagating_wave_number(self, omega: float) -> float:
+        """The wave number of the waves that travel at ``omega`` (floats): ``sqrt(-r)`` for
+        the negative eigenvalue ``r`` of ``G`` (``r**2 - t r + d = 0``), 0 if none.
+
+        The modes of a beam come about one per ``pi`` of this times its length (Weyl), where
+        :meth:`wave_number` bounds the largest, evanescent one: under a tension ``N`` the
+        two differ (a taut string's ``omega sqrt(m / N)`` against ``sqrt(N / EI)``).
+
+        Examples
+        --------
+        >>> seg = BeamSegment(1, 1, 1, N=0)                  # Euler-Bernoulli: beta
+        >>> round(seg.propagating_wave_number(9.0), 12)
+        3.0
+        >>> taut = BeamSegment("1/10000", 1, 1, N=100)       # nearly a string: omega / 10
+        >>> round(taut.propagating_wave_number(50.0), 3)
+        5.0
+        """
+        EI, m, _, kw, N, rhoI, kGA = self.constants()
+        a, b, c, mu = _coefficients(-float(omega) ** 2, m, kw, N, rhoI, kGA, np)
+        t = c / EI - b * mu
+        d = mu * (a * a - b * c) / EI
+        low = (t - math.sqrt(max(t * t - 4 * d, 0.0))) / 2
+        return math.sqrt(-low) if low < 0 else 0.0
+
     def clamped_frequency_bound(self, length: float) -> float:
         """A lower bound on ``omega**2`` of the clamped-clamped modes of a piece ``length`` long.
 

@@ -252,9 +252,14 @@ class _Search:
         # (the constants as floats once: the bisection below asks for them 40 times)
         waves = [(seg, seg.constants(), float(b.L)) for seg, b in zip(segments, self.model.beams)]
 
+        def wave(seg, consts, w):
+            # the travelling waves count the modes (a beam in tension: not the largest)
+            if hasattr(seg, "propagating_wave_number"):
+                return seg.propagating_wave_number(w)
+            return float(np.max(seg.wave_number(np.array(-w * w), consts)))
+
         def weyl(w):
-            return sum(float(np.max(seg.wave_number(np.array(-w * w), consts))) * L
-                       for seg, consts, L in waves) / math.pi
+            return sum(wave(seg, consts, w) * L for seg, consts, L in waves) / math.pi
 
         lo = hi = max(_first_guess(self.model), 1e-300)
         while weyl(hi) < target and hi < 1e150:
