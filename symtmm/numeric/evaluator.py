@@ -110,12 +110,11 @@ class Evaluator:
         """
         design = design_range(size)
         plan = self._plans.get(design)
-        small = SMALL_BATCH if ar is DOUBLE else SMALL_PROOF_BATCH
-        if plan is None and points is not None and points <= small:
-            larger = [d for d in self._plans if d > design]
-            if larger:
-                return self._plans[min(larger)]
         if plan is None:
+            small = SMALL_BATCH if ar is DOUBLE else SMALL_PROOF_BATCH
+            if points is not None and points <= small:
+                # (not kept for this range: a larger batch here gets a plan cut for it)
+                return plan_for(self.model, size, slack=math.inf)
             plan = self._plans[design] = plan_for(self.model, size)
         return plan
 

@@ -354,14 +354,14 @@ def design_range(size: float) -> float:
     return 2.0 ** (math.ceil(4 * math.log2(max(float(size), 1e-300)) - 1e-9) / 4)
 
 
-def plan_for(model, size: float) -> StiffnessPlan:
+def plan_for(model, size: float, slack: float = 4.0) -> StiffnessPlan:
     """A plan of ``model`` (numeric) valid for ``|lam| <= size``, shared between searches.
 
     Plans are cut for the ranges ``2**(k/4)`` (at most 19 % above ``size``: pieces at
     most 9 % more than needed); one already built for a larger range serves while its
-    pieces are at most twice as many as needed (``4 x`` the range: Euler–Bernoulli
-    pieces shorten like ``range**(-1/2)``), since building a plan costs tens of
-    evaluations. The plans of the last :data:`PLAN_MODELS` models are kept.
+    pieces are at most twice as many as needed (``slack``, by default ``4 x`` the range:
+    Euler–Bernoulli pieces shorten like ``range**(-1/2)``), since building a plan costs
+    tens of evaluations. The plans of the last :data:`PLAN_MODELS` models are kept.
 
     Examples
     --------
@@ -378,7 +378,7 @@ def plan_for(model, size: float) -> StiffnessPlan:
             _PLANS.popitem(last=False)
         plan = plans.get(design)
         if plan is None:
-            larger = [d for d in plans if design < d <= 4 * design]
+            larger = [d for d in plans if design < d <= slack * design]
             if larger:
                 return plans[min(larger)]
     if plan is None:
