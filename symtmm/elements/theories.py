@@ -198,7 +198,7 @@ class BeamSegment(FieldElement):
         d = mu * (a * a - b * c) / EI
         return (abs(t) / 2 + (abs(t) ** 2 / 4 + abs(d)) ** 0.5) ** 0.5
 
-    def propagating_wave_number(self, omega: float) -> float:
+    def propagating_wave_number(self, omega: float, consts=None) -> float:
         """The wave number of the waves that travel at ``omega`` (floats): ``sqrt(-r)`` for
         the negative eigenvalue ``r`` of ``G`` (``r**2 - t r + d = 0``), 0 if none.
 
@@ -215,7 +215,7 @@ class BeamSegment(FieldElement):
         >>> round(taut.propagating_wave_number(50.0), 3)
         5.0
         """
-        EI, m, _, kw, N, rhoI, kGA = self.constants()
+        EI, m, _, kw, N, rhoI, kGA = consts if consts is not None else self.constants()
         a, b, c, mu = _coefficients(-float(omega) ** 2, m, kw, N, rhoI, kGA, np)
         t = c / EI - b * mu
         d = mu * (a * a - b * c) / EI

@@ -252,14 +252,11 @@ class _Search:
         # (the constants as floats once: the bisection below asks for them 40 times)
         waves = [(seg, seg.constants(), float(b.L)) for seg, b in zip(segments, self.model.beams)]
 
-        def wave(seg, consts, w):
-            # the travelling waves count the modes (a beam in tension: not the largest)
-            if hasattr(seg, "propagating_wave_number"):
-                return seg.propagating_wave_number(w)
-            return float(np.max(seg.wave_number(np.array(-w * w), consts)))
-
         def weyl(w):
-            return sum(wave(seg, consts, w) * L for seg, consts, L in waves) / math.pi
+            # the travelling waves count the modes (under a tension or on a foundation
+            # not the largest wave number)
+            return sum(seg.propagating_wave_number(w, consts) * L
+                       for seg, consts, L in waves) / math.pi
 
         lo = hi = max(_first_guess(self.model), 1e-300)
         while weyl(hi) < target and hi < 1e150:
@@ -372,18 +369,24 @@ class _Search:
         return shrink(a, b, fa, fb, probe, _DOUBLE_REFINED)
 
     # -- the digits, proved, all roots at once -------------------------------------------------
-    def _evaluate(self, points):
-        """``(Delta(i w) as global mpmath numbers, J(w), proved)`` at mpmath points.
-
-        In the proof arithmetic; a point whose ball count stays undecided (at high modes
-        the ball elimination can widen its radii beyond any precision while the
-        factorisation itself is sound) is counted again in mpmath at two precisions,
-        and if both agree that count is used, not proved (``proved`` False there).
-        """
+    def _values(self, points, ctx):
+        """``(Delta(i w), J(w))`` at mpmath points in the proof arithmetic, the values as
+        numbers of ``ctx`` (the refinement's bookkeeping context: a global mpmath number
+        would round every secant step through it to the ambient 15 digits); None where
+        the count is undecided (its ball may have no finite midpoint)."""
         values, counts = self.counter.delta(points, self.hp)
-        # (an undecided count may come with a ball of no finite midpoint: no value there)
-        out = [mpmath.re(self.hp.to_mpmath(v)) if c >= 0 else None
-               for v, c in zip(values, counts)]
+        return [ctx.mpf(mpmath.re(self.hp.to_mpmath(v))) if c >= 0 else None
+                for v, c in zip(values, counts)], counts
+
+    def _evaluate(self, points, ctx):
+        """``(Delta(i w) in ctx, J(w), proved)`` at mpmath points (:meth:`_values`).
+
+        A point whose ball count stays undecided (at high modes the ball elimination can
+        widen its radii beyond any precision while the factorisation itself is sound) is
+        counted again in mpmath at two precisions, and if both agree that count is used,
+        not proved (``proved`` False there).
+        """
+        out, counts = self._values(points, ctx)
         proved = np.full(len(points), self.hp.rigorous)
         bad = [j for j, c in enumerate(counts) if c < 0]
         if bad and self.hp.rigorous:
@@ -393,7 +396,7 @@ class _Search:
             counts = np.array(counts)
             for j, v, k1, k2 in zip(bad, first, c1, c2):
                 if k1 >= 0 and k1 == k2:
-                    counts[j], out[j], proved[j] = k1, mpmath.re(ar.to_mpmath(v)), False
+                    counts[j], out[j], proved[j] = k1, ctx.mpf(mpmath.re(ar.to_mpmath(v))), False
         return out, counts, proved
 
     def _checked(self, points, counts) -> bool:
@@ -464,10 +467,7 @@ class _Search:
                     owner.append(i)
             if not owner:
                 break
-            values, counts, proved = self._evaluate(tests)
-            # (into the bookkeeping context: a global mpmath number would round every
-            # secant step to the ambient precision, 15 digits)
-            values = [None if v is None else ctx.mpf(v) for v in values]
+            values, counts, proved = self._evaluate(tests, ctx)
             for j, i in enumerate(owner):
                 (t1, t2), (f1, f2), (k1, k2) = (tests[2 * j:2 * j + 2], values[2 * j:2 * j + 2],
                                                 counts[2 * j:2 * j + 2])
@@ -544,9 +544,7 @@ class _Search:
         n = len(first)
         logs, signs, _ = self.counter.signed_log_delta(np.concatenate(
             [mids * (1 - d), mids * (1 + d), mids * (1 - d / 2), mids * (1 + d / 2), mids]))
-        balls, counts = self.counter.delta([c[i] for i in first], self.hp)
-        values = [ctx.mpf(mpmath.re(self.hp.to_mpmath(v))) if k >= 0 else None
-                  for v, k in zip(balls, counts)]
+        values, counts = self._values([c[i] for i in first], ctx)
 
         def double(k):
             return signs[k] * ctx.exp(logs[k]) if np.isfinite(logs[k]) else None
