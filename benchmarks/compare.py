@@ -36,12 +36,13 @@ class Match:
                     max_rel_error=self.max_rel_error)
 
 
-def match(found, reference, tol: float = MATCH_TOL) -> Match:
+def match(found, reference, tol: float = MATCH_TOL, zero_scale=None) -> Match:
     """Pair found values with reference values one to one, nearest first.
 
     Both are sequences of complex numbers (mpmath or Python); a value of
     multiplicity ``k`` appears ``k`` times. A pair counts if the two are
-    within ``tol`` relative to the reference value.
+    within ``tol`` relative to the reference value; a reference 0 (a rigid-body
+    mode) counts relative to ``zero_scale`` (None: the largest ``|reference|``).
 
     Examples
     --------
@@ -54,8 +55,10 @@ def match(found, reference, tol: float = MATCH_TOL) -> Match:
     with mpmath.workdps(50):
         ref = [mpmath.mpmathify(r) for r in reference]
         got = [mpmath.mpmathify(f) for f in found]
+        if zero_scale is None:
+            zero_scale = max((abs(r) for r in ref), default=1)
         for i, r in enumerate(ref):
-            scale = max(abs(r), mpmath.mpf(1e-300))
+            scale = abs(r) or max(mpmath.mpmathify(zero_scale), mpmath.mpf(1e-300))
             for j, f in enumerate(got):
                 d = float(abs(f - r) / scale)
                 if d <= tol:

@@ -27,9 +27,10 @@ FE
     reaches the region's far corner (what a user needs to be sure of the region,
     :func:`covering_k`) is timed too and reported. The time is the conversion of the
     matrices to ``scipy.sparse`` CSC and the eigensolver, the best of :data:`REPEAT`
-    runs (the eigensolver's alone is reported too); the assembly (dense in
-    :mod:`symtmm.fe`) is not timed, which also favours the FE: the ratio is
-    conservative.
+    runs, with the default BLAS threads and with one (a child process, as section 1
+    times its FE), the faster counting (the eigensolver's alone is reported too); the
+    assembly (dense in :mod:`symtmm.fe`) is not timed, unlike section 1's, which also
+    favours the FE: the ratio is conservative.
 Mesh
     The coarsest uniform elements per beam whose wanted eigenvalues are all within
     :data:`TOLERANCE` relative of the reference, found as section 1 finds it
@@ -55,8 +56,10 @@ References, none computed by symtmm's solver:
 
 from __future__ import annotations
 
+import json
 import math
 import signal
+import sys
 import threading
 import time
 from dataclasses import dataclass, field
@@ -65,7 +68,8 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
 
-from .fe_compare import coarsest, rel_error
+from .compare import match
+from .fe_compare import best_seconds, coarsest, one_thread, rel_error
 
 __all__ = ["run", "measure", "CASES", "PUBLISHED", "model", "fe_input", "fe_system",
            "undamped_omegas", "state_space", "damped_eigenvalues", "in_region", "match_errors",
@@ -93,6 +97,8 @@ STIFF_SHEAR = 1e-6
 SHEAR_SCALES = (1000.0, 2000.0)
 #: Relative error of the published values (15 significant digits).
 PUBLISHED_ERROR = 5e-15
+#: A found and a reference eigenvalue further apart than this (relative) are no pair.
+MATCH = 1e-2
 #: An FE eigenvalue within this fraction of the largest one returned is a rigid-body 0.
 ZERO = 1e-9
 
@@ -210,25 +216,13 @@ def fe_input(model) -> tuple:
 
 
 def fe_system(fe, elements: int, refine: int = 1) -> tuple:
-    """Dense ``(K, M, C)`` of the mesh (:func:`symtmm.fe.fe_matrices`, ``C`` the dashpots')."""
-    from symtmm.fe import fe_matrices
+    """Dense ``(K, M, C)`` of the mesh (:func:`symtmm.fe.fe_matrices`, ``C`` the dashpots',
+    :func:`symtmm.fe.fe_dashpots`)."""
+    from symtmm.fe import fe_dashpots, fe_matrices
 
     beams, springs, dashpots = fe
     K, M, info = fe_matrices(beams, springs, elements, refine=refine)
-    C = np.zeros_like(K)
-
-    def dof(beam, x):
-        if beam == "ground":
-            return -1
-        nodes = np.asarray(info["nodes"][beam])
-        return int(info["dofs"][beam][int(np.argmin(np.abs(nodes - x)))][0])
-
-    for a, b, x, c in dashpots:
-        i, j = dof(a, x), dof(b, x)
-        for p, q, s in ((i, i, c), (j, j, c), (i, j, -c), (j, i, -c)):
-            if p >= 0 and q >= 0:
-                C[p, q] += s
-    return K, M, C
+    return K, M, fe_dashpots(info, dashpots)
 
 
 def undamped_omegas(K, M, count: int = COUNT) -> np.ndarray:
@@ -288,20 +282,8 @@ def match_errors(found, reference) -> dict:
     >>> round(m["max_rel_error"], 12), m["missed"], m["spurious"]
     (1e-07, 1, 1)
     """
-    found = [complex(f) for f in found]
-    reference = [complex(r) for r in reference]
-    top = max((abs(r) for r in reference), default=1.0)
-    pairs = sorted((abs(f - r) / (abs(r) or top), i, j) for i, r in enumerate(reference)
-                   for j, f in enumerate(found))
-    used_r, used_f, worst = set(), set(), 0.0
-    for d, i, j in pairs:
-        if i in used_r or j in used_f or d > 1e-2:
-            continue
-        used_r.add(i)
-        used_f.add(j)
-        worst = max(worst, d)
-    return dict(max_rel_error=worst if used_r else None, missed=len(reference) - len(used_r),
-                spurious=len(found) - len(used_f))
+    m = match(found, reference, tol=MATCH)
+    return dict(max_rel_error=m.max_rel_error, missed=m.missed, spurious=m.spurious)
 
 
 def _wanted(reference) -> int:
@@ -557,15 +539,6 @@ def _symtmm(name: str, ref: dict, repeat: int) -> dict:
     return out
 
 
-def _best(fn, repeat: int) -> float:
-    best = np.inf
-    for _ in range(repeat):
-        start = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - start)
-    return best
-
-
 def _coarsest(error) -> tuple:
     """``(n, tried, note)``: :func:`benchmarks.fe_compare.coarsest` within :data:`TOLERANCE`,
     or, where the FE error stops falling above it, the mesh of the smallest error and why."""
@@ -619,6 +592,7 @@ def _fe(name: str, fe, ref: dict, repeat: int) -> dict:
         n, tried, note = _undamped_mesh(fe, ref)
     K, M, C = fe_system(fe, n)
     out = dict(elements_per_beam=n, dofs=K.shape[0], k=k, within_tolerance=note is None,
+               seconds_default_threads=fe_seconds(name, K, M, C, k, repeat),
                note=note,
                tried=[dict(elements_per_beam=t, max_rel_error=None if e == np.inf else e)
                       for t, e in sorted(tried.items())])
@@ -626,21 +600,36 @@ def _fe(name: str, fe, ref: dict, repeat: int) -> dict:
         shift = DAMPED_SHIFT * case.region[0]
         found = _damped_fe(fe, n, case, k)
         out.update(match_errors(found, ref["values"]), found=len(found))
-        out["seconds"] = _best(lambda: damped_eigenvalues(K, M, C, k, shift), repeat)
         A, B = state_space(K, M, C)
-        out["solver_seconds"] = _best(lambda: scipy.sparse.linalg.eigs(
+        out["solver_seconds"] = best_seconds(lambda: scipy.sparse.linalg.eigs(
             A, k=k, M=B, sigma=shift, which="LM", return_eigenvectors=False), repeat)
         cover = covering_k(K, M, C, case, k)
         out["covering_k"] = cover
-        out["covering_seconds"] = _best(lambda: damped_eigenvalues(K, M, C, cover, shift),
+        out["covering_seconds"] = best_seconds(lambda: damped_eigenvalues(K, M, C, cover, shift),
                                         repeat)
     else:
         out["max_rel_error"] = rel_error(undamped_omegas(K, M), ref["values"])
-        out["seconds"] = _best(lambda: undamped_omegas(K, M), repeat)
         Ks, Ms = scipy.sparse.csc_matrix(K), scipy.sparse.csc_matrix(M)
-        out["solver_seconds"] = _best(lambda: scipy.sparse.linalg.eigsh(
+        out["solver_seconds"] = best_seconds(lambda: scipy.sparse.linalg.eigsh(
             Ks, k=COUNT, M=Ms, sigma=SHIFT, which="LM", return_eigenvectors=False), repeat)
     return out
+
+
+def fe_seconds(name: str, K, M, C, k: int, repeat: int = REPEAT) -> float:
+    """The FE's time on its mesh: conversion to CSC and the eigensolver, the best of
+    ``repeat`` runs."""
+    case = CASES[name]
+    if case.damped:
+        shift = DAMPED_SHIFT * case.region[0]
+        return best_seconds(lambda: damped_eigenvalues(K, M, C, k, shift), repeat)
+    return best_seconds(lambda: undamped_omegas(K, M), repeat)
+
+
+def _one_thread(cases: list, repeat: int):
+    """:func:`fe_seconds` of the measured cases with one BLAS thread (a child process, as
+    section 1 times its FE); None if it fails."""
+    jobs = [[c["name"], c["fe"]["elements_per_beam"], c["fe"]["k"], repeat] for c in cases]
+    return one_thread("benchmarks.ordinary", json.dumps(jobs)) if jobs else []
 
 
 def _jsonable(values) -> list:
@@ -665,8 +654,7 @@ def measure(name: str, quick: bool = False, progress=print) -> dict:
     out = dict(name=name, title=case.title, damped=case.damped, beams=len(fe[0]),
                request={k: v for k, v in _solve_kw(case).items() if v is not None},
                reference=dict(ref, values=_jsonable(ref["values"]), seconds=ref_seconds),
-               fe=fe_row, symtmm=sym,
-               ratio=None if "error" in sym else sym["seconds"] / fe_row["seconds"])
+               fe=fe_row, symtmm=sym, ratio=None)      # the ratio once the FE is timed in full
     if case.damped:
         out["region"] = dict(zip(("omega_max", "sigma_max"), case.region))
         if "fe_check" in ref:
@@ -683,8 +671,26 @@ def run(quick: bool = False, progress=print) -> dict:
             progress(f"ordinary: {name}: failed: {type(exc).__name__}: {exc}")
             cases.append(dict(name=name, title=case.title,
                               error=f"{type(exc).__name__}: {exc}"[:300]))
+    progress("ordinary: FE timings with one BLAS thread (child process)")
+    measured = [c for c in cases if "error" not in c]
+    single = _one_thread(measured, QUICK_REPEAT if quick else REPEAT)
+    for i, c in enumerate(measured):
+        f = c["fe"]
+        f["seconds_one_thread"] = single[i] if single else None
+        f["seconds"] = min(f["seconds_default_threads"],
+                           f["seconds_one_thread"] if single else np.inf)
+        if "error" not in c["symtmm"]:
+            c["ratio"] = c["symtmm"]["seconds"] / f["seconds"]
     ratios = {c["name"]: c.get("ratio") for c in cases}
     return dict(count=COUNT, digits=DIGITS, damped_digits=DAMPED_DIGITS, tolerance=TOLERANCE,
+                shift=SHIFT, damped_shift=DAMPED_SHIFT, one_thread_ok=single is not None,
                 repeat=QUICK_REPEAT if quick else REPEAT, time_limit=TIME_LIMIT,
                 k_margin=K_MARGIN, cases=cases, ratios=ratios,
                 within=all(r is not None and r <= 1 for r in ratios.values()))
+
+
+if __name__ == "__main__" and len(sys.argv) == 3 and sys.argv[1] == "one-thread":
+    # worker: python -m benchmarks.ordinary one-thread '[["tension", 40, 10, 5], ...]' (BLAS
+    # threads set by the environment)
+    print(json.dumps([fe_seconds(name, *fe_system(fe_input(model(name)), n), k, repeat)
+                      for name, n, k, repeat in json.loads(sys.argv[2])]))

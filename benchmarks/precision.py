@@ -24,8 +24,8 @@ __all__ = ["run", "DIGITS", "MODELS"]
 DIGITS = (15, 30, 50)
 COUNT = 10
 #: Rounds; each precision keeps its best. A ratio of two times takes more rounds than one
-#: time to settle on a shared machine: with 3, the same run's 15-digit solve of the
-#: 10-level chain was 13 % slower here than in section 1 (0.0995 against 0.0879 s).
+#: time to settle on a shared machine: with 3, a 15-digit solve here could come out
+#: noticeably slower than the same solve timed in section 1 of the same run.
 REPEAT = 7
 #: name: model builder
 MODELS = {"ex1": lambda: example("paper_ex1_ff_cc"),

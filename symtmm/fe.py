@@ -112,7 +112,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import scipy.linalg
 
-__all__ = ["fe_frequencies", "fe_matrices", "fe_converged"]
+__all__ = ["fe_frequencies", "fe_matrices", "fe_dashpots", "fe_converged"]
 
 GROUND = "ground"
 
@@ -1151,6 +1151,50 @@ def fe_matrices(beams, springs, elements_per_beam, masses=None, bodies=None, ref
     """
     K, M, info, _ = _build(beams, springs, elements_per_beam, masses, bodies, refine, layers)
     return K, M, info
+
+
+def fe_dashpots(info, dashpots):
+    """The damping matrix ``C`` of translational dashpots on a mesh of :func:`fe_matrices`.
+
+    Parameters
+    ----------
+    info : dict
+        The ``dof_info`` of :func:`fe_matrices`.
+    dashpots : iterable of (str, str, float, float)
+        ``(beam, other beam or "ground", x, c)``: a dashpot ``c`` between the
+        deflections of the two beams at ``x`` (each at its node nearest ``x``;
+        put a node there, as :func:`fe_matrices` does at every spring).
+
+    Returns
+    -------
+    numpy.ndarray
+        Dense symmetric ``C``, shape ``(n, n)``, ``n = info["n_dofs"]``; a dof removed by
+        a boundary condition takes no part.
+
+    Examples
+    --------
+    >>> beam = dict(name="a", EI=1.0, m=1.0, L=1.0, x0=0.0, left="pinned", right="free")
+    >>> K, M, info = fe_matrices([beam], [{"between": ["a", "ground"], "x": 0.5, "k": 0.0}], 2)
+    >>> C = fe_dashpots(info, [("a", "ground", 0.5, 3.0)])
+    >>> row = info["dofs"]["a"][1][0]
+    >>> float(C[row, row]), float(C.sum())
+    (3.0, 3.0)
+    """
+    n = info["n_dofs"]
+    C = np.zeros((n, n))
+
+    def dof(beam, x):
+        if beam == "ground":
+            return -1
+        node = _nearest_node(np.asarray(info["nodes"][beam]), x)
+        return int(info["dofs"][beam][node][0])
+
+    for a, b, x, c in dashpots:
+        i, j = dof(a, x), dof(b, x)
+        for p, q, s in ((i, i, c), (j, j, c), (i, j, -c), (j, i, -c)):
+            if p >= 0 and q >= 0:
+                C[p, q] += s
+    return C
 
 
 def fe_frequencies(beams, springs, elements_per_beam, count=None, masses=None, bodies=None,

@@ -294,7 +294,8 @@ def test_ordinary_shear_interpolation_agrees_with_the_direct_fe():
     direct, _ = ordinary._converged([beam], [], 8, 3)
     interpolated, error = ordinary.shear_extrapolated([beam], [], 8, 3)
     assert np.allclose(interpolated, direct, rtol=1e-9, atol=0)
-    assert np.all((error > 0) & np.isfinite(error))
+    # the estimate covers the difference from the direct route
+    assert np.all(np.abs(interpolated - direct) <= error * direct)
 
 
 def test_ordinary_mesh_search_reports_an_error_floor():
@@ -305,7 +306,7 @@ def test_ordinary_mesh_search_reports_an_error_floor():
     n, tried, note = ordinary._coarsest(lambda n: max(1.0 / n**4, 1e-5 * (1 + n / 100)))
     assert n == min(tried, key=tried.get) and "stops falling" in note
     n, _, note = ordinary._coarsest(lambda n: 1.0 / n**4)
-    assert (n, note) == (32, None)
+    assert (n, note) == (32, None)      # the smallest n with n**-4 <= 1e-6 (31.6...)
 
 
 def test_kernel_adapter_counts_and_delta():
@@ -391,9 +392,12 @@ def test_quick_run_all_sections(tmp_path):
     for case in result["ordinary"]["cases"]:        # reported beside the targets
         assert "error" not in case and "error" not in case["symtmm"], case["name"]
         assert case["symtmm"]["max_rel_error"] < 1e-7, case["name"]
-        assert case["fe"]["max_rel_error"] <= 1e-6 or not case["fe"]["within_tolerance"]
+        # the FE reaches 1e-6 on every case but the SI-unit Timoshenko beam, whose shear
+        # stiffness costs it its digits (the report says so)
+        assert case["fe"]["within_tolerance"] == (case["name"] != "timoshenko_si"), case["name"]
         if case["damped"]:
             assert case["symtmm"]["missed"] == case["fe"]["missed"] == 0, case["name"]
+            assert case["symtmm"]["spurious"] == 0, case["name"]
     markdown = _run("--from-json", str(saved))
     assert markdown.startswith("# Benchmarks")
     for heading in ("## 1. Verified solve", "## 2. Cost per evaluation", "## 3. The cost of",

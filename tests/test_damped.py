@@ -40,7 +40,7 @@ from hypothesis import strategies as st
 
 from symtmm.cli import main
 from symtmm.compile import Evaluator
-from symtmm.fe import fe_matrices
+from symtmm.fe import fe_dashpots, fe_matrices
 from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load
 from symtmm.numeric.arith import ball_available
@@ -198,10 +198,7 @@ def _fe_damped(elements, x, c):
     beam = {"name": "a", "EI": 1.0, "m": 1.0, "L": 1.0, "x0": 0.0, "left": "pinned", "right": "pinned"}
     K, M, info = fe_matrices([beam], [{"between": ["a", "ground"], "x": x, "k": 0.0}], elements)
     n = K.shape[0]
-    node = int(np.argmin(np.abs(np.asarray(info["nodes"]["a"]) - x)))
-    C = np.zeros_like(K)
-    dof = info["dofs"]["a"][node][0]
-    C[dof, dof] = c
+    C = fe_dashpots(info, [("a", "ground", x, c)])
     # lam^2 M + lam C + K = 0 as a 2n linear pencil
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -C]])
     B = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), M]])

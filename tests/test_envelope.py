@@ -298,13 +298,13 @@ def test_small_batches_use_a_plan_for_a_larger_range(monkeypatch, examples_dir):
     model = load(examples_dir / "paper_ex1_ff_cc.toml").with_parameters(x1="0")
     built = _plan_builds(monkeypatch)
     shared = solve(model, count=10, digits=15)
-    assert len(built) == 1, built
+    assert len(built) == 1, built           # the top range's plan serves every batch
     from symtmm.numeric import evaluator
     monkeypatch.setattr(evaluator, "SMALL_BATCH", 0)
     monkeypatch.setattr(evaluator, "SMALL_PROOF_BATCH", 0)
     plan_module.clear_plans()
     own = solve(model, count=10, digits=15)
-    assert len(built) > 2
+    assert len(built) >= 3, built
     assert [str(e.lam) for e in shared] == [str(e.lam) for e in own]
 
 
