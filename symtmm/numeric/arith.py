@@ -146,6 +146,12 @@ class Arithmetic:
     def is_complex(self, x) -> bool:
         raise NotImplementedError
 
+    def positive(self, x) -> np.ndarray:
+        """Where the real numbers ``x`` are above 0 (a boolean array; a ball that holds 0
+        counts as not positive)."""
+        return np.array([v > 0 for v in np.asarray(x).reshape(-1)],
+                        dtype=bool).reshape(np.shape(x))
+
     # -- trust -----------------------------------------------------------------------
     def decide(self, pivot, scale, n: int):
         """``(sign, decided)`` of pivots: the sign (+1/-1) and whether it can be trusted.
@@ -268,10 +274,18 @@ class Batch(Arithmetic):
     real = staticmethod(np.real)
 
     def root4(self, x):
+        x = np.asarray(x)
+        if not np.iscomplexobj(x) and not (x < 0).any():
+            # the real root of real x >= 0: the functions of it then stay real (the complex
+            # ones cost four real transcendentals each and a complex power)
+            return np.sqrt(np.sqrt(x))
         return np.asarray(x, dtype=complex) ** 0.25
 
     def upper(self, x):
         return np.abs(x)
+
+    def positive(self, x):
+        return np.asarray(x) > 0
 
     def is_complex(self, x):
         return np.iscomplexobj(x)

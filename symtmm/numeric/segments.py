@@ -49,8 +49,19 @@ __all__ = ["eb_constants", "eb_matrices", "theory_constants", "theory_matrices",
 
 
 def stack_matrix(rows) -> np.ndarray:
-    """A nested list of equally shaped arrays as one array with two trailing axes."""
-    return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
+    """A nested list of equally shaped arrays as one array with two trailing axes.
+
+    Written entry by entry into one array: nested ``np.stack`` calls copy every entry
+    twice, which cost half of a double-precision batch's stiffness tables.
+    """
+    first = np.asarray(rows[0][0])
+    dtype = first.dtype if first.dtype == object else \
+        np.result_type(*(np.asarray(v).dtype for r in rows for v in r))
+    out = np.empty(first.shape + (len(rows), len(rows[0])), dtype=dtype)
+    for i, r in enumerate(rows):
+        for j, v in enumerate(r):
+            out[..., i, j] = v
+    return out
 
 
 def _log2_inverse_factorial(n: int) -> float:
@@ -155,7 +166,7 @@ def _c_big(ar: Arithmetic, xb) -> list:
     """``c_0..c_3`` where ``|x| >= 1``: the closed forms, in real functions for real ``x``."""
     if ar.is_complex(xb):
         return [(np.ones(xb.shape, dtype=bool), _c_closed(ar, xb))]
-    positive = np.array([v > 0 for v in xb], dtype=bool)
+    positive = ar.positive(xb)
     parts = []
     if positive.any():
         parts.append((positive, [ar.real(c) for c in _c_closed(ar, xb[positive])]))
