@@ -1,4 +1,4 @@
-"""The banded LDL^T elimination in C (symtmm/numeric/_band.c) against the numpy loop.
+"""The band's loops in C (symtmm/numeric/_band.c: scatter, LDL^T, bounds) against numpy.
 
 The C loop is an optional build; where it is missing these tests are skipped and the
 numpy loop runs everywhere (every other test exercises it then). Where it is present,
@@ -52,6 +52,7 @@ def test_c_and_numpy_give_the_same_factors(monkeypatch, dtype, n, w):
     rtol = 0 if dtype is float else 1e-13
     np.testing.assert_allclose(c.pivots, p.pivots, rtol=rtol, atol=0)
     assert np.array_equal(c.counts(), p.counts())
+    assert np.array_equal(c.decided, p.decided)         # (the bounds of |L||D||L^T| too)
     # against numpy's dense eigenvalues: the inertia
     if dtype is float:
         dense = stiffness.dense(None, K)
@@ -73,6 +74,43 @@ def test_a_zero_pivot_gives_the_same_non_finite_values(monkeypatch):
 def test_the_c_loop_refuses_a_buffer_of_the_wrong_size():
     with pytest.raises(ValueError, match="wrong size"):
         stiffness._band.eliminate(np.zeros((2, 5, 3)), 2, 5, 3, 4, False)
+    with pytest.raises(ValueError, match="wrong size"):
+        stiffness._band.bounds(np.zeros((2, 7, 3)), np.zeros((2, 4, 3)), np.zeros((2, 3)),
+                               2, 7, 3, 4, False)
+
+
+@compiled_only
+def test_the_scatter_refuses_an_index_outside_its_arrays():
+    V, K = np.ones((2, 4)), np.zeros((2, 6))
+    ints = lambda *v: np.array(v, dtype=np.int64)
+    stiffness._band.scatter(V, K, ints(0, 3), np.ones(2), ints(5), ints(0), 2, False)
+    assert K[:, 5].tolist() == [2.0, 2.0]
+    for source, targets, starts in [(ints(0, 4), ints(5), ints(0)),    # V has 4 columns
+                                    (ints(0, 1), ints(6), ints(0)),    # K has 6
+                                    (ints(0, 1), ints(1, 2), ints(0, 2))]:  # an empty run
+        with pytest.raises(ValueError, match="do not fit"):
+            stiffness._band.scatter(V, K, source, np.ones(2), targets, starts, 2, False)
+
+
+@compiled_only
+@pytest.mark.parametrize("name, damped", [("paper_ex3_three_pp_coupled.toml", False),
+                                          ("tuned_mass_damper.toml", True)])
+def test_c_and_numpy_assemble_the_same_band(monkeypatch, examples_dir, name, damped):
+    """Each entry sums its terms in the plan's order in both: the same bits, real or
+    complex (dashpots)."""
+    from symtmm.numeric.evaluator import Evaluator
+
+    model = api.load(examples_dir / name).require_numeric()
+    plan = Evaluator(model, 100.0).plan(100.0)
+    lam = np.linspace(0.5, 95.0, 9) * (1j if not damped else (-0.05 + 1j))
+    lam2 = lam * lam if damped else (lam * lam).real
+    bands = []
+    for compiled in (True, False):
+        monkeypatch.setattr(stiffness, "COMPILED", compiled)
+        bands.append(stiffness.assemble(plan, DOUBLE, lam2, lam if damped else None)[0])
+    assert bands[0].dtype == (complex if damped else float)
+    np.testing.assert_array_equal(bands[0], bands[1])
+    assert np.count_nonzero(bands[0]) > plan.n           # (not an empty band)
 
 
 @pytest.mark.parametrize("name", ["paper_ex1_ff_cc.toml", "tuned_mass_damper.toml"])

@@ -1,6 +1,8 @@
 /*
- * The elimination loop of symtmm.numeric.stiffness._ldl in C, for double and complex
- * double bands: LDL^T without pivoting of B banded matrices at once.
+ * The loops of symtmm.numeric.stiffness in C, for double and complex double batches:
+ * the scatter of the element values into the band (assemble), LDL^T without pivoting
+ * of B banded matrices at once (_ldl), and the diagonal of |L||D||L^T| that decides
+ * which pivot signs are trusted.
  *
  * The band is stored as in stiffness.py: K[p, r, j] = K_p[r, r + j], rows padded with w
  * zero rows, shape (B, rows, w). Pivot k updates, for 1 <= i <= j < w,
@@ -12,7 +14,12 @@
  * the same factors. Build with -ffp-contract=off: a fused multiply-add would round
  * differently.
  *
- * No numpy headers: the band comes as a writable buffer.
+ * The scatter sums each entry's terms in the order of the plan, as the numpy loop
+ * does (one pass per term); the bounds add, for j = 1 .. w - 1 in turn, |L D| of the
+ * j-th row above, squared, over that pivot's |d| (hypot for complex magnitudes, as
+ * numpy's abs).
+ *
+ * No numpy headers: arrays come as buffers.
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
@@ -106,14 +113,149 @@ static PyObject *eliminate(PyObject *self, PyObject *args)
     Py_RETURN_NONE;
 }
 
+static void scatter_real(const double *V, double *K, Py_ssize_t B, Py_ssize_t nv,
+                         Py_ssize_t nk, const long long *source, const double *coef,
+                         const long long *targets, const long long *starts, Py_ssize_t T,
+                         Py_ssize_t S)
+{
+    for (Py_ssize_t p = 0; p < B; p++) {
+        const double *Vp = V + p * nv;
+        double *Kp = K + p * nk;
+        for (Py_ssize_t t = 0; t < T; t++) {
+            const Py_ssize_t end = t + 1 < T ? starts[t + 1] : S;
+            double sum = Vp[source[starts[t]]] * coef[starts[t]];
+            for (Py_ssize_t s = starts[t] + 1; s < end; s++) {
+                const double term = Vp[source[s]] * coef[s];
+                sum = sum + term;
+            }
+            Kp[targets[t]] = sum;
+        }
+    }
+}
+
+static void scatter_complex(const double *V, double *K, Py_ssize_t B, Py_ssize_t nv,
+                            Py_ssize_t nk, const long long *source, const double *coef,
+                            const long long *targets, const long long *starts, Py_ssize_t T,
+                            Py_ssize_t S)
+{
+    for (Py_ssize_t p = 0; p < B; p++) {
+        const double *Vp = V + 2 * p * nv;
+        double *Kp = K + 2 * p * nk;
+        for (Py_ssize_t t = 0; t < T; t++) {
+            const Py_ssize_t end = t + 1 < T ? starts[t + 1] : S;
+            double re = 0, im = 0;
+            for (Py_ssize_t s = starts[t]; s < end; s++) {
+                /* numpy multiplies by the coefficient as by the complex c + 0i */
+                const double a = Vp[2 * source[s]], b = Vp[2 * source[s] + 1], c = coef[s];
+                const double tr = a * c - b * 0.0, ti = a * 0.0 + b * c;
+                if (s == starts[t]) {
+                    re = tr;
+                    im = ti;
+                } else {
+                    re = re + tr;
+                    im = im + ti;
+                }
+            }
+            Kp[2 * targets[t]] = re;
+            Kp[2 * targets[t] + 1] = im;
+        }
+    }
+}
+
+static PyObject *scatter(PyObject *self, PyObject *args)
+{
+    Py_buffer v, k, src, cf, tg, st;
+    Py_ssize_t B;
+    int is_complex;
+    if (!PyArg_ParseTuple(args, "y*w*y*y*y*y*np", &v, &k, &src, &cf, &tg, &st, &B,
+                          &is_complex))
+        return NULL;
+    const Py_ssize_t item = is_complex ? 16 : 8;
+    const Py_ssize_t S = src.len / 8, T = tg.len / 8;
+    const Py_ssize_t nv = B ? v.len / item / B : 0, nk = B ? k.len / item / B : 0;
+    int ok = B >= 0 && cf.len == src.len && st.len == tg.len && (B == 0 || (
+        v.len == B * nv * item && k.len == B * nk * item));
+    /* every index inside its array (a plan's tables are trusted, the buffers checked) */
+    for (Py_ssize_t s = 0; ok && s < S; s++)
+        ok = ((const long long *)src.buf)[s] >= 0 && ((const long long *)src.buf)[s] < nv;
+    for (Py_ssize_t t = 0; ok && t < T; t++) {
+        const long long a = ((const long long *)st.buf)[t];
+        const long long b = t + 1 < T ? ((const long long *)st.buf)[t + 1] : S;
+        const long long g = ((const long long *)tg.buf)[t];
+        ok = a >= 0 && a < b && b <= S && g >= 0 && g < nk;
+    }
+    if (!ok) {
+        PyBuffer_Release(&v); PyBuffer_Release(&k); PyBuffer_Release(&src);
+        PyBuffer_Release(&cf); PyBuffer_Release(&tg); PyBuffer_Release(&st);
+        PyErr_SetString(PyExc_ValueError, "scatter tables and buffers do not fit");
+        return NULL;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    if (is_complex)
+        scatter_complex(v.buf, k.buf, B, nv, nk, src.buf, cf.buf, tg.buf, st.buf, T, S);
+    else
+        scatter_real(v.buf, k.buf, B, nv, nk, src.buf, cf.buf, tg.buf, st.buf, T, S);
+    Py_END_ALLOW_THREADS
+    PyBuffer_Release(&v); PyBuffer_Release(&k); PyBuffer_Release(&src);
+    PyBuffer_Release(&cf); PyBuffer_Release(&tg); PyBuffer_Release(&st);
+    Py_RETURN_NONE;
+}
+
+static double magnitude(const double *x, int is_complex)
+{
+    return is_complex ? hypot(x[0], x[1]) : fabs(x[0]);
+}
+
+static PyObject *bounds(PyObject *self, PyObject *args)
+{
+    Py_buffer kb, k0, out;
+    Py_ssize_t B, rows, w, n;
+    int is_complex;
+    if (!PyArg_ParseTuple(args, "y*y*w*nnnnp", &kb, &k0, &out, &B, &rows, &w, &n,
+                          &is_complex))
+        return NULL;
+    const Py_ssize_t item = is_complex ? 16 : 8, c = is_complex ? 2 : 1;
+    if (B < 0 || w < 1 || n < 0 || rows < n + w || kb.len != B * rows * w * item
+            || k0.len != B * n * w * item || out.len != B * n * 8) {
+        PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&out);
+        PyErr_SetString(PyExc_ValueError, "bounds buffers of the wrong size");
+        return NULL;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    for (Py_ssize_t p = 0; p < B; p++) {
+        const double *F = (const double *)kb.buf + c * p * rows * w;
+        const double *K = (const double *)k0.buf + c * p * n * w;
+        double *scale = (double *)out.buf + p * n;
+        for (Py_ssize_t m = 0; m < n; m++)
+            scale[m] = magnitude(K + c * m * w, is_complex);
+        for (Py_ssize_t j = 1; j < w && j < n; j++) {
+            for (Py_ssize_t m = j; m < n; m++) {
+                const double r = magnitude(F + c * ((m - j) * w + j), is_complex);
+                const double d = magnitude(F + c * (m - j) * w, is_complex);
+                const double q = r * r / (d > 1e-300 ? d : 1e-300);
+                scale[m] = scale[m] + q;
+            }
+        }
+    }
+    Py_END_ALLOW_THREADS
+    PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&out);
+    Py_RETURN_NONE;
+}
+
 static PyMethodDef methods[] = {
     {"eliminate", eliminate, METH_VARARGS,
      "eliminate(band, B, rows, w, n, is_complex): LDL^T without pivoting, in place."},
+    {"scatter", scatter, METH_VARARGS,
+     "scatter(V, K, source, coef, targets, starts, B, is_complex): K[p, targets[t]] = "
+     "sum of V[p, source[s]] * coef[s] over the t-th run of terms."},
+    {"bounds", bounds, METH_VARARGS,
+     "bounds(factored, band, out, B, rows, w, n, is_complex): the diagonal of "
+     "|L||D||L^T| per freedom."},
     {NULL, NULL, 0, NULL}
 };
 
 static struct PyModuleDef module = {
-    PyModuleDef_HEAD_INIT, "_band", "Banded LDL^T elimination in C.", -1, methods
+    PyModuleDef_HEAD_INIT, "_band", "The band's scatter, LDL^T and bounds in C.", -1, methods
 };
 
 PyMODINIT_FUNC PyInit__band(void)

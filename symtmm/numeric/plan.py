@@ -318,7 +318,8 @@ class StiffnessPlan:
         ``kinds`` (constants per family for :func:`~symtmm.numeric.segments.transfer_matrices`),
         ``source`` (into the concatenation of the segments' flattened stiffnesses and
         the point elements' ``lam**0, lam**1, lam**2`` columns), ``coef``,
-        ``starts`` and ``targets`` (of the segmented sum).
+        ``starts`` and ``targets`` (of the segmented sum), and the same as ``layers``:
+        per ``q``, ``(targets, source, coef)`` of every entry's ``q``-th term.
         """
         from .arith import memo
         return memo(self, ar, "tables", lambda: self._tables(ar))
@@ -327,13 +328,22 @@ class StiffnessPlan:
         nd = self._stiffness_length
         col = {("lam", 0): nd, ("lam", 1): nd + 1, ("lam", 2): nd + 2}
         source = np.array([s[1] if s[0] == "D" else col[s] for _, s, _ in self._triples],
-                          dtype=int)
+                          dtype=np.int64)
         coef = ar.array([ar.exact(c) for _, _, c in self._triples])
-        targets = np.array([t for t, _, _ in self._triples], dtype=int)
-        starts = np.concatenate([[0], np.nonzero(np.diff(targets))[0] + 1]).astype(int) \
-            if targets.size else np.zeros(0, dtype=int)
+        targets = np.array([t for t, _, _ in self._triples], dtype=np.int64)
+        starts = np.concatenate([[0], np.nonzero(np.diff(targets))[0] + 1]).astype(np.int64) \
+            if targets.size else np.zeros(0, dtype=np.int64)
+        # the same sums a term at a time: layer q holds the q-th term of every entry that
+        # has one (at most a few per entry), so each entry adds its terms in plan order
+        ends = np.append(starts[1:], targets.size)
+        layers = []
+        for q in range(int(np.max(ends - starts, initial=0))):
+            has = np.nonzero(ends - starts > q)[0]
+            terms = starts[has] + q
+            layers.append((targets[terms], source[terms], coef[terms]))
         return {"kinds": kind_tables(ar, self.kinds), "source": source, "coef": coef,
-                "targets": targets[starts] if targets.size else targets, "starts": starts}
+                "targets": targets[starts] if targets.size else targets, "starts": starts,
+                "layers": layers}
 
 
 #: Models whose plans are kept for the next search of the same model (``solve``, then

@@ -263,9 +263,14 @@ def assemble(plan, ar: Arithmetic, lam2, lam=None):
                         lam_col, lam2[:, None]], axis=1)
     n, w = plan.n, plan.width
     K = ar.zeros((B, n * w), like=V)
-    if t["source"].size:
-        vals = V[:, t["source"]] * t["coef"]
-        K[:, t["targets"]] = np.add.reduceat(vals, t["starts"], axis=1)
+    if COMPILED and V.dtype in (np.float64, np.complex128) and t["coef"].dtype == np.float64:
+        _band.scatter(np.ascontiguousarray(V), K, t["source"], t["coef"], t["targets"],
+                      t["starts"], B, V.dtype == np.complex128)
+    else:
+        # the C loop's sums in numpy: each entry adds its terms in plan order
+        for q, (targets, source, coef) in enumerate(t["layers"]):
+            terms = V[:, source] * coef
+            K[:, targets] = terms if q == 0 else K[:, targets] + terms
     return K.reshape(B, n, w), det12
 
 
@@ -570,7 +575,11 @@ def _ldl(plan, ar: Arithmetic, K, det12, reverse: bool = False) -> Factors:
                     Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
         pivots = Kb[:, :n, 0]
         scale = None
-        if ar.needs_scale:
+        if ar.needs_scale and compiled:
+            scale = np.empty((B, n))
+            _band.bounds(Kb, np.ascontiguousarray(K), scale, B, n + w, w, n,
+                         Kb.dtype == np.complex128)
+        elif ar.needs_scale:
             # the diagonal of |L||D||L^T| bounds what rounding can do to each pivot (balls
             # carry their own bound: a float per entry of the band would cost more than
             # their whole elimination's bookkeeping)
