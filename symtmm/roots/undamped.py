@@ -796,13 +796,16 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     if rigid:
         eigen.append(Eigenvalue(mpmath.mpc(0, 0), rigid, digits, (0.0, 0.0), PROOFS["exact"]))
     wanted = None if count is None else count - rigid
+    counted = None
     if omega_max is None and wanted > 0:
-        hi, _ = search.top_for(count)
+        counted = search.top_for(count)
+        hi = counted[0]
     if hi > 0 and (wanted is None or wanted > 0):
         with progress.stages("solve", ["isolating", "refining", "multiple roots",
                                        "proving the digits"]) as next_stage:
-            # include a root sitting exactly on omega_max
-            top, c_top = search.count_off(hi * (1 + 4e-16), 2 * hi)
+            # include a root sitting exactly on omega_max (a top the search chose is
+            # counted already: no root there matters)
+            top, c_top = counted or search.count_off(hi * (1 + 4e-16), 2 * hi)
             brackets = search.isolate(top, c_top, wanted)
             simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
             clusters = [(a, ca, b, cb - ca) for a, ca, b, cb in brackets if cb - ca > 1]
