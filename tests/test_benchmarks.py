@@ -392,9 +392,12 @@ def test_quick_run_all_sections(tmp_path):
     for case in result["ordinary"]["cases"]:        # reported beside the targets
         assert "error" not in case and "error" not in case["symtmm"], case["name"]
         assert case["symtmm"]["max_rel_error"] < 1e-7, case["name"]
-        # the FE reaches 1e-6 on every case but the SI-unit Timoshenko beam, whose shear
-        # stiffness costs it its digits (the report says so)
-        assert case["fe"]["within_tolerance"] == (case["name"] != "timoshenko_si"), case["name"]
+        # the FE reaches 1e-6 on every case but perhaps the SI-unit Timoshenko beam, whose
+        # shear stiffness costs it digits (its error stalls near 2e-6 here; other rounding
+        # may take it below): where it does not, the report says why
+        fe = case["fe"]
+        assert fe["within_tolerance"] or case["name"] == "timoshenko_si", case["name"]
+        assert fe["within_tolerance"] == (fe["note"] is None), case["name"]
         if case["damped"]:
             assert case["symtmm"]["missed"] == case["fe"]["missed"] == 0, case["name"]
             assert case["symtmm"]["spurious"] == 0, case["name"]
