@@ -303,7 +303,12 @@ class Batch(Arithmetic):
         return np.asarray(x, dtype=complex)
 
     def log_abs_arg(self, x):
+        x = np.asarray(x)
         with np.errstate(divide="ignore"):
+            if not np.iscomplexobj(x):
+                # (the argument of a real number without an arctangent per pivot; a zero
+                # pivot has no value whatever its argument)
+                return np.log(np.abs(x)), np.where(x < 0, np.pi, 0.0)
             return np.log(np.abs(x)), np.angle(x)
 
 
