@@ -199,6 +199,27 @@ def test_fourth_root_of_a_ball_holds_the_roots_of_its_points():
     assert float(root.real.rad()) < 3 * math.sqrt(2) * r / (4 * abs(m) ** 0.75)
 
 
+def test_fourth_root_of_a_positive_real_ball_is_a_real_ball_holding_its_points_roots():
+    """Real balls above 0 (an undamped model's ``x``) keep a real root, as tight as the
+    derivative allows: the closed forms of the ``c_j`` then run in real balls."""
+    ar = Ball(64)
+    rng = np.random.default_rng(5)
+    for _ in range(40):
+        m = 10 ** rng.uniform(-2, 3)
+        r = m * 10 ** rng.uniform(-12, -0.3)
+        with ar:
+            root = ar.root4(np.array([flint.arb(m, r)], dtype=object))[0]
+        assert isinstance(root, flint.arb)
+        for t in (m - 0.999 * r, m - r / 3, m, m + r / 2, m + 0.999 * r):     # (inside)
+            with Ball(256):         # the root of the point, in far more bits than the ball's
+                ref = flint.arb(t).root(4)
+            assert root.contains(ref), (m, r, t)
+        # the mean value bound r / (4 (m - r)**(3/4)), within (m / (m - r))**(1/4): the
+        # derivative's bound at the ball's lower end uses the midpoint's root
+        bound = r / (4 * (m - r) ** 0.75) * (m / (m - r)) ** 0.25
+        assert float(root.rad()) <= 1.01 * bound + 2.0**-60 * m ** 0.25, (m, r)
+
+
 def test_layer_count_proved_against_the_identical_pair():
     """Two identical pinned-pinned beams on a viscoelastic layer (k, c per unit length):
     in phase the layer does not act (``lam = +-i (n pi)**2``), out of phase ``lam**2 + 2 c

@@ -522,12 +522,26 @@ class Ball(Arithmetic):
             low = abs(mid).lower() - rad
             if not low > 0:
                 return v.root(4)
-            width = flint.arb(rad) / (4 * low ** flint.arb(0.75))
+            # (1 / (4 low**(3/4)) <= |mid|**(1/4) / (4 low): no power of a ball, which costs
+            # what the rest of the root does several times over)
+            r = mid.root(4)
+            width = flint.arb(rad) * abs(r) / (4 * low)
             ball = flint.arb(0, width.upper())
-            return mid.root(4) + flint.acb(ball, ball)
+            return r + flint.acb(ball, ball)
+
+        def real_root(v):
+            # as principal, on the real line: a real ball above 0 keeps a real root, and
+            # the functions of it stay real (in complex balls they cost several times more)
+            if v.rad() == 0:
+                return v.root(4)
+            mid, rad = flint.arb(v.mid()), flint.arb(v.rad())
+            r = mid.root(4)
+            return r + flint.arb(0, (rad * r / (4 * (mid - rad))).upper())
 
         def root(v):
             nonlocal half
+            if isinstance(v, flint.arb) and v > 0:
+                return real_root(v)
             v = flint.acb(v)
             # a branch whose cut (the negative axis) is away from the ball: the c_j that
             # use the root are even functions of it, so any fourth root serves
