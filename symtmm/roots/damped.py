@@ -334,18 +334,23 @@ class _Search:
                 try:
                     kids = self._children(rect, s)
                     found = self.ap.counts_and_centers([kid for kid, _ in kids], strictness)
-                    counted = [(kid, n, center, weight)
-                               for (kid, weight), (n, center) in zip(kids, found)]
                 except NearZero as exc:
                     last_error = exc
                     continue
-                total = sum(n * w for _, n, _, w in counted)
-                if total == count:
+                counted = self._tally(kids, found, count)
+                if counted is not None:
                     return counted
-                last_error = CountError(f"counts {[n for _, n, _, _ in counted]} of the parts "
+                last_error = CountError(f"counts {[n for n, _ in found]} of the parts "
                                         f"of {rect} do not add up to {count}")
                 break   # same split, stricter sampling
         raise ComputationError(f"cannot split the search rectangle {rect}: {last_error}")
+
+    @staticmethod
+    def _tally(kids, found, count: int):
+        """``[(rect, count, center, weight)]`` of the children ``kids`` with what was
+        ``found`` in them, or None where their counts do not add up to ``count``."""
+        counted = [(kid, n, center, weight) for (kid, weight), (n, center) in zip(kids, found)]
+        return counted if sum(n * w for _, n, _, w in counted) == count else None
 
     @staticmethod
     def _children(rect: Rectangle, s: float) -> list:
@@ -417,9 +422,8 @@ class _Search:
             return [self._split(rect, n) for rect, n in items]
         out = []
         for (rect, n), kids in zip(items, first):
-            counted = [(kid, *next(found), weight) for kid, weight in kids]
-            ok = sum(k * weight for _, k, _, weight in counted) == n
-            out.append(counted if ok else self._split(rect, n))
+            counted = self._tally(kids, [next(found) for _ in kids], n)
+            out.append(counted if counted is not None else self._split(rect, n))
         return out
 
     # -- refinement: complex zeros, all at once -----------------------------------------------
