@@ -74,25 +74,19 @@ def _samples(model, plan, points: int):
     return out
 
 
-def _null_vectors(K, mult: int):
-    """The ``(n, mult)`` null space of each dense ``K`` ``(B, n, n)``, or ``None`` per
-    point where the singular values do not separate it. (Not
-    :func:`~symtmm.numeric.linalg.null_space`: its inverse iteration runs in Python in
-    any arithmetic, and it does not say whether the null space is separated, which
-    decides here whether the walk takes over.)"""
-    out = []
-    for A in K:
-        n = A.shape[0]
-        if mult > n:
-            out.append(None)
-            continue
-        _, s, Vh = np.linalg.svd(A)
-        if not (s[n - mult] <= _SINGULAR * s[0]
-                and (mult == n or s[n - mult - 1] >= _GAP * s[n - mult])):
-            out.append(None)
-            continue
-        out.append(Vh[n - mult:].conj().T)
-    return out
+def _null_vectors(A, mult: int):
+    """The ``(n, mult)`` null space of the dense ``A`` ``(n, n)``, or ``None`` where the
+    singular values do not separate it. (Not :func:`~symtmm.numeric.linalg.null_space`:
+    its inverse iteration runs in Python in any arithmetic, and it does not say whether
+    the null space is separated, which decides here whether the walk takes over.)"""
+    n = A.shape[0]
+    if mult > n:
+        return None
+    _, s, Vh = np.linalg.svd(A)
+    if not (s[n - mult] <= _SINGULAR * s[0]
+            and (mult == n or s[n - mult - 1] >= _GAP * s[n - mult])):
+        return None
+    return Vh[n - mult:].conj().T
 
 
 def nodal_displacements(model, eigenvalues, points: int) -> list:
@@ -198,7 +192,7 @@ def nodal_displacements(model, eigenvalues, points: int) -> list:
         if not (np.isfinite(Kd[p]).all() and np.isfinite(full[p]).all()):
             continue
         try:
-            [basis] = _null_vectors(Kd[p:p + 1], mult)
+            basis = _null_vectors(Kd[p], mult)
             if basis is None:
                 continue
             x = (scale[:, None] * basis)[position]               # (mesh freedoms, mult)
