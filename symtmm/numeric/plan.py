@@ -165,6 +165,24 @@ def _lam_coefficients(S) -> list:
     return polys
 
 
+#: :func:`_point_coefficients` by element class and parameters.
+_POINT_POLYS: dict = {}
+
+
+def _point_coefficients(element) -> list:
+    """:func:`_lam_coefficients` of a point element's ``S(lam)``, kept by its class and
+    parameters, which are all ``S`` depends on: building ``S`` and hashing the matrix cost
+    what the rest of a spring's share of a plan does several times over (a 50-level chain's
+    100 springs: 10 ms of every plan)."""
+    key = (type(element), tuple(sorted(element.parameters.items())))
+    polys = _POINT_POLYS.get(key)
+    if polys is None:
+        if len(_POINT_POLYS) >= 4096:
+            _POINT_POLYS.clear()
+        polys = _POINT_POLYS[key] = _lam_coefficients(sp.ImmutableMatrix(element.stiffness(LAM)))
+    return polys
+
+
 class StiffnessPlan:
     """The dynamic stiffness of a numeric model, compiled for ``|lam|**2 <= radius``.
 
@@ -261,14 +279,11 @@ class StiffnessPlan:
         for k, places in zip(member_kind, mesh.segment_places):
             base, size = offsets[index[k]], kind_size(k)
             scatter(places, lambda i, j, base=base, size=size: [(("D", base + size * i + j), 1)])
-        S_points = []
-        for places, element in mesh.point_places:
-            S = element.stiffness(LAM)
-            S_points.append((places, S))
-        for places, masses in mesh.body_places:
-            S_points.append((places, sp.diag(*[mass * LAM**2 for mass in masses])))
-        for places, S in S_points:
-            polys = _lam_coefficients(sp.ImmutableMatrix(S))
+        points = [(places, _point_coefficients(element))
+                  for places, element in mesh.point_places]
+        points += [(places, _lam_coefficients(sp.ImmutableMatrix(
+            sp.diag(*[mass * LAM**2 for mass in masses])))) for places, masses in mesh.body_places]
+        for places, polys in points:
             scatter(places, lambda i, j, polys=polys: [(("lam", p), cf) for p, cf in
                                                          enumerate(polys[i][j]) if cf != 0])
         # scaling by powers of two: a static diagonal near 1 (units of any size)
