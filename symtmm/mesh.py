@@ -21,6 +21,7 @@ import sympy as sp
 
 from .assembly import point_elements
 from .elements import Coupling, GroundSpring
+from .elements.base import stiffness_coefficients
 from .elements.layer import joined, member
 from .errors import ComputationError, ModelError
 from .limits import MAX_PIECES
@@ -496,8 +497,7 @@ def _static_null_space(model: Model):
         else:
             add(places, _segment_null_rows(model.beams[b_idx], seg.l))
     for places, element in mesh.point_places:
-        S = element.stiffness(sp.Integer(0))
-        add(places, [[S[i, j] for j in range(S.cols)] for i in range(S.rows)])
+        add(places, [[c[0] for c in row] for row in stiffness_coefficients(element)])
     n = mesh.size
     if not rows:
         return mesh, [[sp.Integer(int(i == j)) for i in range(n)] for j in range(n)]

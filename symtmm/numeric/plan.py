@@ -33,7 +33,6 @@ of the two beams it touches, so a chain of ``N`` levels has ``b`` independent of
 
 from __future__ import annotations
 
-import functools
 import math
 import threading
 from collections import OrderedDict, deque
@@ -42,7 +41,7 @@ import numpy as np
 import sympy as sp
 
 from ..elements import EulerBernoulliSegment
-from ..elements.base import LAM
+from ..elements.base import LAM, lam_coefficients, stiffness_coefficients
 from .arith import DOUBLE, Arithmetic
 from .segments import kind, kind_order, kind_size, kind_tables
 
@@ -154,35 +153,6 @@ def _bandwidth(pairs, position) -> int:
     return max((abs(position[a] - position[b]) for a, b in pairs), default=0)
 
 
-@functools.lru_cache(maxsize=1024)
-def _lam_coefficients(S) -> list:
-    """Per entry of a point element's ``S(lam)`` its coefficients of ``lam**0, lam**1, ...``
-    (once per element: the plans of every range and every search share them)."""
-    polys = [[sp.Poly(sp.expand(S[i, j]), LAM).all_coeffs()[::-1]
-              for j in range(S.cols)] for i in range(S.rows)]
-    if any(len(p) > 3 for row in polys for p in row):
-        raise ValueError("a point element of degree > 2 in lam")
-    return polys
-
-
-#: :func:`_point_coefficients` by element class and parameters.
-_POINT_POLYS: dict = {}
-
-
-def _point_coefficients(element) -> list:
-    """:func:`_lam_coefficients` of a point element's ``S(lam)``, kept by its class and
-    parameters, which are all ``S`` depends on: building ``S`` and hashing the matrix cost
-    what the rest of a spring's share of a plan does several times over (a 50-level chain's
-    100 springs: 10 ms of every plan)."""
-    key = (type(element), tuple(sorted(element.parameters.items())))
-    polys = _POINT_POLYS.get(key)
-    if polys is None:
-        if len(_POINT_POLYS) >= 4096:
-            _POINT_POLYS.clear()
-        polys = _POINT_POLYS[key] = _lam_coefficients(sp.ImmutableMatrix(element.stiffness(LAM)))
-    return polys
-
-
 class StiffnessPlan:
     """The dynamic stiffness of a numeric model, compiled for ``|lam|**2 <= radius``.
 
@@ -279,9 +249,9 @@ class StiffnessPlan:
         for k, places in zip(member_kind, mesh.segment_places):
             base, size = offsets[index[k]], kind_size(k)
             scatter(places, lambda i, j, base=base, size=size: [(("D", base + size * i + j), 1)])
-        points = [(places, _point_coefficients(element))
+        points = [(places, stiffness_coefficients(element))
                   for places, element in mesh.point_places]
-        points += [(places, _lam_coefficients(sp.ImmutableMatrix(
+        points += [(places, lam_coefficients(sp.ImmutableMatrix(
             sp.diag(*[mass * LAM**2 for mass in masses])))) for places, masses in mesh.body_places]
         for places, polys in points:
             scatter(places, lambda i, j, polys=polys: [(("lam", p), cf) for p, cf in
