@@ -90,6 +90,28 @@ def test_proof_stage_takes_one_point_and_one_pair_per_root(monkeypatch, certifie
     assert sum(calls) <= 3 * 8 + 2 and len(calls) <= 3, calls
 
 
+@pytest.mark.parametrize("certified", [True, False])
+def test_twelve_digits_take_one_point_beyond_the_newton_start(monkeypatch, certified):
+    """At 12 digits the Newton start's point, a proved end of its root's bracket about
+    1e-13 from the root, prints alike with the point as far again beyond the root: one
+    evaluation there proves the root, not a pair (2 points per root, not 3, where no
+    rounding boundary lies between). The digits and the proof stay those of the pair's:
+    the pinned-pinned beam's (n pi)**2 to 12 digits, every root proved by its counts."""
+    if certified and not ball_available():
+        pytest.skip("needs python-flint")
+    import mpmath
+
+    calls = _proof_batches(monkeypatch)
+    spec = solve_undamped(PINNED, count=8, digits=12, certified=certified)
+    for n, e in enumerate(spec, start=1):
+        exact = (n * mpmath.pi) ** 2
+        assert e.bracket[0] <= exact <= e.bracket[1]          # the proved bracket holds it
+        assert mpmath.almosteq(e.omega, exact, rel_eps=1e-12)
+        assert e.proof == PROOFS["ball" if certified else "mp"]
+    # one point per root and one more for most: a pair where a boundary intervenes
+    assert sum(calls) < 3 * 8 and len(calls) <= 3, calls
+
+
 @pytest.mark.skipif(not ball_available(), reason="needs python-flint")
 def test_high_digits_take_few_proof_rounds(monkeypatch):
     """At high digits the secant steps are carried in the bookkeeping precision (values of
