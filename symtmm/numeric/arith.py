@@ -572,12 +572,8 @@ class Ball(Arithmetic):
         flint = self.flint
         with self:
             r = flint.arb(0, self.exact(radius))       # a ball about 0 holding the bound
-
-        def add(v):
-            if isinstance(v, flint.acb):
-                return v + flint.acb(r, r)
-            return v + r
-        return _ufunc(add)(x)
+            # (arrays hold one kind of number: one sum over the array, no call per element)
+            return np.asarray(x, dtype=object) + (flint.acb(r, r) if self.is_complex(x) else r)
 
     def to_mpmath(self, x):
         flint = self.flint
