@@ -462,7 +462,8 @@ class _Search:
         best: list = [None] * R                 # the value of each root once done
         by_balls = [self.hp.rigorous] * R       # the last pair of each root proved in balls
         older: list = [None] * R                # per root a third point (t, Delta) near it
-        self._newton_start(items, a, b, c, fa, fb, h, ca, target, ctx, older)
+        older_count: list = [None] * R          # ... and its count
+        self._newton_start(items, a, b, c, fa, fb, h, ca, target, ctx, older, older_count)
         # whether each older point's count was proved in balls (the Newton start's are,
         # wherever the proof arithmetic is balls: it counts there)
         older_ball = [o is not None and self.hp.rigorous for o in older]
@@ -470,8 +471,8 @@ class _Search:
             tests, owner = [], []               # owner: (root, its proved end or None)
             for i in range(R):
                 if done[i] is None:
-                    end = self._near_end(i, a, b, c, older, D) if older_ball[i] or \
-                        not self.hp.rigorous else None
+                    end = self._near_end(i, a, b, c, older, older_count, ca, D) \
+                        if older_ball[i] or not self.hp.rigorous else None
                     if end is not None:         # one point beyond the root suffices
                         tests.append(c[i] + 2 * (c[i] - end))
                     else:
@@ -489,14 +490,16 @@ class _Search:
                                                     counts[at:at + 2])
                     by_balls[i] = bool(proved[at] and proved[at + 1])
                     ball = {t1: bool(proved[at]), t2: bool(proved[at + 1])}
+                    count = {t1: k1, t2: k2}
                     at += 2
                 else:
                     # the proved end and the new point, in order (the end's count: the side
                     # of the root it lies on)
-                    near = (end, older[i][1], ca[i] if end == a[i] else ca[i] + 1)
+                    near = (end, older[i][1], older_count[i])
                     far = (tests[at], values[at], counts[at])
                     (t1, f1, k1), (t2, f2, k2) = sorted((near, far), key=lambda q: q[0])
                     ball = {end: older_ball[i], tests[at]: bool(proved[at])}
+                    count = {end: older_count[i], tests[at]: counts[at]}
                     by_balls[i] = ball[end] and ball[tests[at]]
                     at += 1
                 for t, f, k in ((t1, f1, k1), (t2, f2, k2)):
@@ -532,7 +535,7 @@ class _Search:
                     h[i] = min(h[i], target)
                 if f1 is not None and f2 is not None:
                     older[i] = min(((t1, f1), (t2, f2)), key=lambda p: abs(p[1]))
-                    older_ball[i] = ball[older[i][0]]
+                    older_ball[i], older_count[i] = ball[older[i][0]], count[older[i][0]]
                 c[i] = step
         if any(d is None for d in done):
             raise ComputationError(f"the refinement to {D} digits did not converge")
@@ -547,28 +550,28 @@ class _Search:
         return out
 
     @staticmethod
-    def _near_end(i, a, b, c, older, D):
-        """The end of root ``i``'s proved bracket at its last point ``older[i]`` where that
-        point is so near the estimate ``c[i]`` that it and the point as far again beyond
-        the root print alike at ``D`` digits: one evaluation there then proves the digits
-        (a pair costs two). None otherwise.
+    def _near_end(i, a, b, c, older, older_count, ca, D):
+        """Root ``i``'s last point ``older[i]`` where its count (``older_count[i]``) puts it
+        on one side of the root and it is so near the estimate ``c[i]`` that it and the
+        point as far again beyond the root print alike at ``D`` digits: one evaluation
+        there then proves the digits (a pair costs two). None otherwise.
 
         After the Newton start the estimate errs by far less than its distance from the
         start (the step's relative error times the step), so the point ``c + 2 (c - t)``
         lies beyond the root from ``t``. At 12 digits a double estimate ``1e-13`` away
         qualifies for most roots; at 15 digits rarely (a pair proves there, as before).
         """
-        if older[i] is None or older[i][1] is None:
-            return None
+        if older[i] is None or older[i][1] is None or older_count[i] not in (ca[i], ca[i] + 1):
+            return None                 # (its count was not decided: no side)
         t = older[i][0]
-        if t != a[i] and t != b[i]:
-            return None                 # (its count was not decided: no proved end)
+        if (t < c[i]) != (older_count[i] == ca[i]):
+            return None                 # (the estimate is on the far side of the root)
         far = c[i] + 2 * (c[i] - t)
         if not (a[i] < far < b[i]) or t == c[i]:
             return None
         return t if decimal_string(t, D) == decimal_string(far, D) else None
 
-    def _newton_start(self, items, a, b, c, fa, fb, h, ca, target, ctx, older):
+    def _newton_start(self, items, a, b, c, fa, fb, h, ca, target, ctx, older, older_count):
         """One point per root, not a pair, before the proving pairs (in place).
 
         The slope of ``Delta`` at each double estimate ``c`` comes from a central
@@ -582,7 +585,7 @@ class _Search:
         root and, where both ends print alike, proves it -- one proof evaluation per
         root fewer than a first pair at ``1e-11``. Roots without an estimate, with an
         undecided value or a step out of their bracket keep the pair at ``1e-11``;
-        nothing here is concluded, the pairs prove.
+        nothing here is concluded, the pairs (or one point beyond the root) prove.
         """
         first = [i for i, x in enumerate(items) if x[0] is not None]
         if not first:
@@ -605,7 +608,7 @@ class _Search:
             t, f, k = c[i], values[j], counts[j]
             _tighten(i, t, f, k, ca, a, b, fa, fb)
             if f is not None:
-                older[i] = (t, f)
+                older[i], older_count[i] = (t, f), k
             near = [double(j + q * n) for q in range(4)]
             if f is None or d[j] <= 0 or any(v is None for v in near):
                 continue
