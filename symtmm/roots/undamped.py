@@ -603,7 +603,13 @@ class _Search:
         values, counts = self._values([c[i] for i in first], ctx)
 
         def double(k):
-            return signs[k] * ctx.exp(logs[k]) if np.isfinite(logs[k]) else None
+            if not np.isfinite(logs[k]):
+                return None
+            # (a double value: its exponential in double where it fits, whose rounding is
+            # below the logarithm's own)
+            if abs(logs[k]) < 700:
+                return ctx.mpf(float(signs[k]) * math.exp(logs[k]))
+            return signs[k] * ctx.exp(logs[k])
         for j, i in enumerate(first):
             t, f, k = c[i], values[j], counts[j]
             _tighten(i, t, f, k, ca, a, b, fa, fb)
