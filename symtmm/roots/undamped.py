@@ -569,6 +569,9 @@ class _Search:
         far = c[i] + 2 * (c[i] - t)
         if not (a[i] < far < b[i]) or t == c[i]:
             return None
+        # (wider than a unit of the last digit: they cannot print alike, no strings needed)
+        if abs(float(far - t)) > 10.0 ** (math.floor(math.log10(float(t))) - D + 1):
+            return None
         return t if decimal_string(t, D) == decimal_string(far, D) else None
 
     def _newton_start(self, items, a, b, c, fa, fb, h, ca, target, ctx, older, older_count):
