@@ -112,6 +112,28 @@ def test_twelve_digits_take_one_point_beyond_the_newton_start(monkeypatch, certi
     assert sum(calls) < 3 * 8 and len(calls) <= 3, calls
 
 
+@pytest.mark.parametrize("x1", ["0", "3/20", "1/2"])
+def test_low_digits_agree_with_thirty_digit_proofs(examples_dir, x1):
+    """The one-point proofs at 8 and 12 digits against the pairs of a 30-digit solve
+    (another path through the proof stage, at another precision): every bracket holds
+    the 30-digit one, and the printed digits are the 30-digit value's rounding. Example 1
+    with its springs at the ends, between, and at mid-span (double roots there)."""
+    import mpmath
+
+    from symtmm.modelfile import load
+    from symtmm.results import decimal_string
+    from symtmm.solve import solve
+    model = load(examples_dir / "paper_ex1_ff_cc.toml").with_parameters(x1=x1)
+    ref = solve(model, count=10, digits=30)
+    for digits in (8, 12):
+        got = solve(model, count=10, digits=digits)
+        assert [e.multiplicity for e in got] == [e.multiplicity for e in ref]
+        for e, r in zip(got, ref):
+            assert e.bracket[0] <= r.bracket[0] and r.bracket[1] <= e.bracket[1], (e, r)
+            with mpmath.workdps(40):
+                assert decimal_string(r.omega, digits) == decimal_string(e.omega, digits)
+
+
 @pytest.mark.skipif(not ball_available(), reason="needs python-flint")
 def test_high_digits_take_few_proof_rounds(monkeypatch):
     """At high digits the secant steps are carried in the bookkeeping precision (values of
