@@ -67,6 +67,7 @@ def test_a_zero_pivot_gives_the_same_non_finite_values(monkeypatch):
     K[0, 0, 1] = 1.0
     c, p = _factors(monkeypatch, K, True), _factors(monkeypatch, K, False)
     np.testing.assert_array_equal(c.pivots, p.pivots)
+    np.testing.assert_array_equal(c.decided, p.decided)
     assert c.counts()[0] == p.counts()[0] == -1
 
 

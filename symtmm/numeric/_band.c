@@ -232,7 +232,8 @@ static PyObject *bounds(PyObject *self, PyObject *args)
             for (Py_ssize_t m = j; m < n; m++) {
                 const double r = magnitude(F + c * ((m - j) * w + j), is_complex);
                 const double d = magnitude(F + c * (m - j) * w, is_complex);
-                const double q = r * r / (d > 1e-300 ? d : 1e-300);
+                /* np.maximum(d, 1e-300): a NaN stays NaN */
+                const double q = r * r / ((d != d || d > 1e-300) ? d : 1e-300);
                 scale[m] = scale[m] + q;
             }
         }
