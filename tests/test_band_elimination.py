@@ -84,13 +84,16 @@ def test_the_c_loop_refuses_a_buffer_of_the_wrong_size():
 def test_the_scatter_refuses_an_index_outside_its_arrays():
     V, K = np.ones((2, 4)), np.zeros((2, 6))
     ints = lambda *v: np.array(v, dtype=np.int64)
-    stiffness._band.scatter(V, K, ints(0, 3), np.ones(2), ints(5), ints(0), 2, False)
+    # two layers onto entry 5: its first term, then its second added
+    stiffness._band.scatter(V, K, ints(5), ints(0), np.ones(1), 2, False, False)
+    stiffness._band.scatter(V, K, ints(5), ints(3), np.ones(1), 2, True, False)
     assert K[:, 5].tolist() == [2.0, 2.0]
-    for source, targets, starts in [(ints(0, 4), ints(5), ints(0)),    # V has 4 columns
-                                    (ints(0, 1), ints(6), ints(0)),    # K has 6
-                                    (ints(0, 1), ints(1, 2), ints(0, 2))]:  # an empty run
+    for targets, source in [(ints(5, 1), ints(0, 4)),      # V has 4 columns
+                            (ints(6, 1), ints(0, 1)),      # K has 6
+                            (ints(5), ints(0, 1))]:        # a term without a target
         with pytest.raises(ValueError, match="do not fit"):
-            stiffness._band.scatter(V, K, source, np.ones(2), targets, starts, 2, False)
+            stiffness._band.scatter(V, K, targets, source, np.ones(source.size), 2, True,
+                                    False)
 
 
 @compiled_only

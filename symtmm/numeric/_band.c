@@ -14,8 +14,8 @@
  * the same factors. Build with -ffp-contract=off: a fused multiply-add would round
  * differently.
  *
- * The scatter sums each entry's terms in the order of the plan, as the numpy loop
- * does (one pass per term); the bounds add, for j = 1 .. w - 1 in turn, |L D| of the
+ * The scatter sums each entry's terms in the order of the plan a layer at a time, as
+ * the numpy loop does; the bounds add, for j = 1 .. w - 1 in turn, |L D| of the
  * j-th row above, squared, over that pivot's |d| (hypot for complex magnitudes, as
  * numpy's abs).
  *
@@ -113,91 +113,64 @@ static PyObject *eliminate(PyObject *self, PyObject *args)
     Py_RETURN_NONE;
 }
 
-static void scatter_real(const double *V, double *K, Py_ssize_t B, Py_ssize_t nv,
-                         Py_ssize_t nk, const long long *source, const double *coef,
-                         const long long *targets, const long long *starts, Py_ssize_t T,
-                         Py_ssize_t S)
+/* K[p, targets[i]] (+)= V[p, source[i]] * coef[i]: one layer of the band's sums (each
+ * target once in a layer); add = 0 writes the first term, add = 1 adds the next ones. */
+static void scatter_layer(const double *V, double *K, Py_ssize_t B, Py_ssize_t nv,
+                          Py_ssize_t nk, const long long *targets, const long long *source,
+                          const double *coef, Py_ssize_t terms, int add, int is_complex)
 {
     for (Py_ssize_t p = 0; p < B; p++) {
-        const double *Vp = V + p * nv;
-        double *Kp = K + p * nk;
-        for (Py_ssize_t t = 0; t < T; t++) {
-            const Py_ssize_t end = t + 1 < T ? starts[t + 1] : S;
-            double sum = Vp[source[starts[t]]] * coef[starts[t]];
-            for (Py_ssize_t s = starts[t] + 1; s < end; s++) {
-                const double term = Vp[source[s]] * coef[s];
-                sum = sum + term;
+        if (!is_complex) {
+            const double *Vp = V + p * nv;
+            double *Kp = K + p * nk;
+            for (Py_ssize_t i = 0; i < terms; i++) {
+                const double term = Vp[source[i]] * coef[i];
+                Kp[targets[i]] = add ? Kp[targets[i]] + term : term;
             }
-            Kp[targets[t]] = sum;
-        }
-    }
-}
-
-static void scatter_complex(const double *V, double *K, Py_ssize_t B, Py_ssize_t nv,
-                            Py_ssize_t nk, const long long *source, const double *coef,
-                            const long long *targets, const long long *starts, Py_ssize_t T,
-                            Py_ssize_t S)
-{
-    for (Py_ssize_t p = 0; p < B; p++) {
-        const double *Vp = V + 2 * p * nv;
-        double *Kp = K + 2 * p * nk;
-        for (Py_ssize_t t = 0; t < T; t++) {
-            const Py_ssize_t end = t + 1 < T ? starts[t + 1] : S;
-            double re = 0, im = 0;
-            for (Py_ssize_t s = starts[t]; s < end; s++) {
+        } else {
+            const double *Vp = V + 2 * p * nv;
+            double *Kp = K + 2 * p * nk;
+            for (Py_ssize_t i = 0; i < terms; i++) {
                 /* numpy multiplies by the coefficient as by the complex c + 0i */
-                const double a = Vp[2 * source[s]], b = Vp[2 * source[s] + 1], c = coef[s];
+                const double a = Vp[2 * source[i]], b = Vp[2 * source[i] + 1], c = coef[i];
                 const double tr = a * c - b * 0.0, ti = a * 0.0 + b * c;
-                if (s == starts[t]) {
-                    re = tr;
-                    im = ti;
-                } else {
-                    re = re + tr;
-                    im = im + ti;
-                }
+                double *k = Kp + 2 * targets[i];
+                k[0] = add ? k[0] + tr : tr;
+                k[1] = add ? k[1] + ti : ti;
             }
-            Kp[2 * targets[t]] = re;
-            Kp[2 * targets[t] + 1] = im;
         }
     }
 }
 
 static PyObject *scatter(PyObject *self, PyObject *args)
 {
-    Py_buffer v, k, src, cf, tg, st;
+    Py_buffer v, k, tg, src, cf;
     Py_ssize_t B;
-    int is_complex;
-    if (!PyArg_ParseTuple(args, "y*w*y*y*y*y*np", &v, &k, &src, &cf, &tg, &st, &B,
+    int add, is_complex;
+    if (!PyArg_ParseTuple(args, "y*w*y*y*y*npp", &v, &k, &tg, &src, &cf, &B, &add,
                           &is_complex))
         return NULL;
-    const Py_ssize_t item = is_complex ? 16 : 8;
-    const Py_ssize_t S = src.len / 8, T = tg.len / 8;
+    const Py_ssize_t item = is_complex ? 16 : 8, terms = tg.len / 8;
     const Py_ssize_t nv = B ? v.len / item / B : 0, nk = B ? k.len / item / B : 0;
-    int ok = B >= 0 && cf.len == src.len && st.len == tg.len && (B == 0 || (
+    int ok = B >= 0 && src.len == tg.len && cf.len == tg.len && (B == 0 || (
         v.len == B * nv * item && k.len == B * nk * item));
     /* every index inside its array (a plan's tables are trusted, the buffers checked) */
-    for (Py_ssize_t s = 0; ok && s < S; s++)
-        ok = ((const long long *)src.buf)[s] >= 0 && ((const long long *)src.buf)[s] < nv;
-    for (Py_ssize_t t = 0; ok && t < T; t++) {
-        const long long a = ((const long long *)st.buf)[t];
-        const long long b = t + 1 < T ? ((const long long *)st.buf)[t + 1] : S;
-        const long long g = ((const long long *)tg.buf)[t];
-        ok = a >= 0 && a < b && b <= S && g >= 0 && g < nk;
+    for (Py_ssize_t i = 0; ok && i < terms; i++) {
+        const long long s = ((const long long *)src.buf)[i], t = ((const long long *)tg.buf)[i];
+        ok = s >= 0 && s < nv && t >= 0 && t < nk;
     }
+    if (ok) {
+        Py_BEGIN_ALLOW_THREADS
+        scatter_layer(v.buf, k.buf, B, nv, nk, tg.buf, src.buf, cf.buf, terms, add,
+                      is_complex);
+        Py_END_ALLOW_THREADS
+    }
+    PyBuffer_Release(&v); PyBuffer_Release(&k); PyBuffer_Release(&tg);
+    PyBuffer_Release(&src); PyBuffer_Release(&cf);
     if (!ok) {
-        PyBuffer_Release(&v); PyBuffer_Release(&k); PyBuffer_Release(&src);
-        PyBuffer_Release(&cf); PyBuffer_Release(&tg); PyBuffer_Release(&st);
         PyErr_SetString(PyExc_ValueError, "scatter tables and buffers do not fit");
         return NULL;
     }
-    Py_BEGIN_ALLOW_THREADS
-    if (is_complex)
-        scatter_complex(v.buf, k.buf, B, nv, nk, src.buf, cf.buf, tg.buf, st.buf, T, S);
-    else
-        scatter_real(v.buf, k.buf, B, nv, nk, src.buf, cf.buf, tg.buf, st.buf, T, S);
-    Py_END_ALLOW_THREADS
-    PyBuffer_Release(&v); PyBuffer_Release(&k); PyBuffer_Release(&src);
-    PyBuffer_Release(&cf); PyBuffer_Release(&tg); PyBuffer_Release(&st);
     Py_RETURN_NONE;
 }
 
@@ -247,8 +220,8 @@ static PyMethodDef methods[] = {
     {"eliminate", eliminate, METH_VARARGS,
      "eliminate(band, B, rows, w, n, is_complex): LDL^T without pivoting, in place."},
     {"scatter", scatter, METH_VARARGS,
-     "scatter(V, K, source, coef, targets, starts, B, is_complex): K[p, targets[t]] = "
-     "sum of V[p, source[s]] * coef[s] over the t-th run of terms."},
+     "scatter(V, K, targets, source, coef, B, add, is_complex): K[p, targets[i]] = "
+     "(K[p, targets[i]] if add else 0) + V[p, source[i]] * coef[i]."},
     {"bounds", bounds, METH_VARARGS,
      "bounds(factored, band, out, B, rows, w, n, is_complex): the diagonal of "
      "|L||D||L^T| per freedom."},

@@ -300,11 +300,10 @@ class StiffnessPlan:
     def tables(self, ar: Arithmetic) -> dict:
         """The plan's numbers in ``ar`` (converted once per arithmetic and precision).
 
-        ``kinds`` (constants per family for :func:`~symtmm.numeric.segments.transfer_matrices`),
-        ``source`` (into the concatenation of the segments' flattened stiffnesses and
-        the point elements' ``lam**0, lam**1, lam**2`` columns), ``coef``,
-        ``starts`` and ``targets`` (of the segmented sum), and the same as ``layers``:
-        per ``q``, ``(targets, source, coef)`` of every entry's ``q``-th term.
+        ``kinds`` (constants per family for :func:`~symtmm.numeric.segments.transfer_matrices`)
+        and ``layers``: per ``q``, ``(targets, source, coef)`` of every band entry's
+        ``q``-th term, ``source`` into the concatenation of the segments' flattened
+        stiffnesses and the point elements' ``lam**0, lam**1, lam**2`` columns.
         """
         from .arith import memo
         return memo(self, ar, "tables", lambda: self._tables(ar))
@@ -316,19 +315,15 @@ class StiffnessPlan:
                           dtype=np.int64)
         coef = ar.array([ar.exact(c) for _, _, c in self._triples])
         targets = np.array([t for t, _, _ in self._triples], dtype=np.int64)
-        starts = np.concatenate([[0], np.nonzero(np.diff(targets))[0] + 1]).astype(np.int64) \
-            if targets.size else np.zeros(0, dtype=np.int64)
-        # the same sums a term at a time: layer q holds the q-th term of every entry that
-        # has one (at most a few per entry), so each entry adds its terms in plan order
+        # the sums a term at a time: layer q holds the q-th term of every entry that has
+        # one (at most a few per entry; the triples are sorted by entry, in plan order)
+        starts = np.flatnonzero(np.diff(targets, prepend=-1)) if targets.size else targets
         ends = np.append(starts[1:], targets.size)
         layers = []
         for q in range(int(np.max(ends - starts, initial=0))):
-            has = np.nonzero(ends - starts > q)[0]
-            terms = starts[has] + q
+            terms = starts[ends - starts > q] + q
             layers.append((targets[terms], source[terms], coef[terms]))
-        return {"kinds": kind_tables(ar, self.kinds), "source": source, "coef": coef,
-                "targets": targets[starts] if targets.size else targets, "starts": starts,
-                "layers": layers}
+        return {"kinds": kind_tables(ar, self.kinds), "layers": layers}
 
 
 #: Models whose plans are kept for the next search of the same model (``solve``, then

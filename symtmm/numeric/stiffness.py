@@ -263,12 +263,15 @@ def assemble(plan, ar: Arithmetic, lam2, lam=None):
                         lam_col, lam2[:, None]], axis=1)
     n, w = plan.n, plan.width
     K = ar.zeros((B, n * w), like=V)
-    if COMPILED and V.dtype in (np.float64, np.complex128) and t["coef"].dtype == np.float64:
-        _band.scatter(np.ascontiguousarray(V), K, t["source"], t["coef"], t["targets"],
-                      t["starts"], B, V.dtype == np.complex128)
-    else:
-        # the C loop's sums in numpy: each entry adds its terms in plan order
-        for q, (targets, source, coef) in enumerate(t["layers"]):
+    # each entry adds its terms in plan order, a layer of terms at a time (in C or numpy:
+    # the same sums, the same bits)
+    compiled = COMPILED and V.dtype in (np.float64, np.complex128)
+    if compiled:
+        V = np.ascontiguousarray(V)
+    for q, (targets, source, coef) in enumerate(t["layers"]):
+        if compiled and coef.dtype == np.float64:
+            _band.scatter(V, K, targets, source, coef, B, q > 0, V.dtype == np.complex128)
+        else:
             terms = V[:, source] * coef
             K[:, targets] = terms if q == 0 else K[:, targets] + terms
     return K.reshape(B, n, w), det12
