@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 
@@ -12,7 +13,8 @@ from .display import html_table, latex_array, latex_text, text_lines
 from .jsonout import dumps, header
 from .tables import Tabular
 
-__all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string", "enclosed_string"]
+__all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string", "prints_alike",
+           "enclosed_string"]
 
 
 def decimal_string(value, digits: int) -> str:
@@ -32,6 +34,29 @@ def decimal_string(value, digits: int) -> str:
     ctx = _context(digits + 10)
     return ctx.nstr(ctx.mpf(value), digits, strip_zeros=False, min_fixed=-ctx.inf,
                     max_fixed=ctx.inf)
+
+
+def prints_alike(a, b, digits: int) -> bool:
+    """Whether ``a`` and ``b`` print alike with ``digits`` significant digits
+    (:func:`decimal_string`): the ends of a proved bracket that prove its digits.
+
+    Two numbers that print alike lie within a unit of the printed last digit, whose
+    decade is at most one above the larger's: farther apart, no strings are made (the
+    proof stages ask this of every bracket they try).
+
+    Examples
+    --------
+    >>> prints_alike(mpmath.mpf("9.99996"), mpmath.mpf("10.0004"), 5)     # both 10.000
+    True
+    >>> prints_alike(mpmath.mpf("1.23444"), mpmath.mpf("1.23456"), 5)     # 1.2344, 1.2346
+    False
+    """
+    if a != 0 and b != 0:
+        top = max(abs(float(a)), abs(float(b)))
+        if 0 < top < math.inf and \
+                abs(float(b - a)) > 10.0 ** (math.floor(math.log10(top)) - digits + 2):
+            return False
+    return decimal_string(a, digits) == decimal_string(b, digits)
 
 
 def first(eigenvalues, count: int) -> list:

@@ -221,3 +221,22 @@ def test_mirrored_beams_give_exact_double_roots():
     with mpmath.workdps(40):
         assert [e.to_dict()["imag"] for e in spectrum][1:] == [_rounded(nu**2, 15)
                                                               for nu in expected]
+
+
+def test_prints_alike_is_the_comparison_of_the_printed_strings():
+    """The shortcut that refuses pairs too far apart never refuses a pair that prints
+    alike: near decade boundaries (9.99.. rounding up to 10.0..), at every width."""
+    import random
+
+    import mpmath
+
+    from symtmm.results import decimal_string, prints_alike
+    rng = random.Random(7)
+    with mpmath.workdps(40):
+        for _ in range(3000):
+            digits = rng.randint(2, 20)
+            base = mpmath.mpf(10) ** rng.randint(-30, 30)
+            a = base * (rng.choice([1, 9.99999999, 9.5]) + mpmath.mpf(rng.random()) * 10**-rng.randint(0, 25))
+            b = a + base * mpmath.mpf(rng.uniform(-1, 1)) * 10 ** -rng.randint(0, digits + 3)
+            expected = decimal_string(a, digits) == decimal_string(b, digits)
+            assert prints_alike(a, b, digits) == expected, (a, b, digits)

@@ -73,7 +73,7 @@ from ..model import Model
 from ..numeric.arith import MP, Ball, ball_available
 from ..numeric.evaluator import Evaluator
 from ..numeric.evaluator import exact_mpc as _global
-from ..results import Eigenvalue, Spectrum, decimal_string, first
+from ..results import Eigenvalue, Spectrum, first, prints_alike
 from .bracket import SEPARATION_DIGITS, scaled, scaled_ends, shrink
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
 from .undamped import PROOFS, _first_guess, check_stable, omega_scale
@@ -146,7 +146,7 @@ def _box(z, r) -> tuple:
 def _prints_alike(ends, digits) -> bool:
     """The ends ``(lo, hi)`` of an interval print alike with ``digits`` digits."""
     lo, hi = ends
-    return decimal_string(_global(lo).real, digits) == decimal_string(_global(hi).real, digits)
+    return prints_alike(_global(lo).real, _global(hi).real, digits)
 
 
 # Tolerances and box sizes: 64 bits are plenty for them, and building them in this
@@ -882,8 +882,7 @@ class _Search:
                             b[i] = t
                     proved = s1 is not None and s2 is not None and (s1 > 0) != (s2 > 0)
                     if proved and h[i] <= target:
-                        if decimal_string(_global(t1).real, D) == \
-                                decimal_string(_global(t2).real, D):
+                        if _prints_alike((t1, t2), D):
                             done[i] = (t1, t2)
                             continue
                         h[i] /= 100

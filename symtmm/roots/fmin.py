@@ -46,7 +46,7 @@ from ..model import Model
 from ..numeric import transfer
 from ..numeric.arith import MP
 from ..numeric.evaluator import Evaluator
-from ..results import Eigenvalue, Spectrum, decimal_string, first
+from ..results import Eigenvalue, Spectrum, first, prints_alike
 from .damped import default_sigma_max
 from .undamped import omega_scale, rigid_body_modes
 
@@ -94,7 +94,7 @@ def _backed_digits(lo: float, hi: float, digits: int) -> int:
         return 0
     d = 0
     lo, hi = _mpf(lo), _mpf(hi)
-    while d < digits and decimal_string(lo, d + 1) == decimal_string(hi, d + 1):
+    while d < digits and prints_alike(lo, hi, d + 1):
         d += 1
     return d
 

@@ -53,7 +53,7 @@ from ..mesh import static_nullity
 from ..model import Model
 from ..numeric.arith import MP
 from ..numeric.evaluator import exact_mpf as _exact_mpf
-from ..results import Eigenvalue, Spectrum, decimal_string, first
+from ..results import Eigenvalue, Spectrum, first, prints_alike
 from .bracket import SEPARATION_DIGITS, scaled, scaled_ends, shrink
 from .count import Counter, digits_for, proof_arithmetic
 
@@ -504,8 +504,7 @@ class _Search:
                     at += 1
                 for t, f, k in ((t1, f1, k1), (t2, f2, k2)):
                     _tighten(i, t, f, k, ca, a, b, fa, fb)
-                if (k1, k2) == (ca[i], ca[i] + 1) and \
-                        decimal_string(t1, D) == decimal_string(t2, D):
+                if (k1, k2) == (ca[i], ca[i] + 1) and prints_alike(t1, t2, D):
                     done[i] = (t1, t2)          # (whatever h: both ends print alike)
                     # the value: the estimate the points were placed about, which prints
                     # as they do and carries the digits beyond (a bracket of one point and
@@ -569,10 +568,7 @@ class _Search:
         far = c[i] + 2 * (c[i] - t)
         if not (a[i] < far < b[i]) or t == c[i]:
             return None
-        # (wider than a unit of the last digit: they cannot print alike, no strings needed)
-        if abs(float(far - t)) > 10.0 ** (math.floor(math.log10(float(t))) - D + 1):
-            return None
-        return t if decimal_string(t, D) == decimal_string(far, D) else None
+        return t if prints_alike(t, far, D) else None
 
     def _newton_start(self, items, a, b, c, fa, fb, h, ca, target, ctx, older, older_count):
         """One point per root, not a pair, before the proving pairs (in place).
@@ -656,8 +652,7 @@ class _Search:
         def done(lo, hi):
             width = (hi - lo) / lo
             return width <= limit or (width <= ctx.mpf(10) ** (-(D + 2)) and
-                                      decimal_string(_exact_mpf(lo), D)
-                                      == decimal_string(_exact_mpf(hi), D))
+                                      prints_alike(_exact_mpf(lo), _exact_mpf(hi), D))
 
         a, b = ctx.mpf(a), ctx.mpf(b)
         # the double-precision counts at the ends, this close to a cluster, are checked here
