@@ -41,6 +41,7 @@ from __future__ import annotations
 import itertools
 import math
 import time
+from typing import NamedTuple
 
 import mpmath
 import numpy as np
@@ -443,7 +444,7 @@ class _Search:
         ends round alike (else the next pair is taken narrower); its midpoint prints.
         Where a root's last point is a proved end of its bracket so near the estimate that
         it and the point as far again beyond the root print alike, that one point is
-        evaluated instead of a pair (:meth:`_near_end`; at 12 digits most roots, after the
+        evaluated instead of a pair (:meth:`_beyond`; at 12 digits most roots, after the
         Newton start: 2 evaluations per root where a pair took 3).
         """
         D = self.digits
@@ -461,47 +462,33 @@ class _Search:
         done: list = [None] * R
         best: list = [None] * R                 # the value of each root once done
         by_balls = [self.hp.rigorous] * R       # the last pair of each root proved in balls
-        older: list = [None] * R                # per root a third point (t, Delta) near it
-        older_count: list = [None] * R          # ... and its count
-        self._newton_start(items, a, b, c, fa, fb, h, ca, target, ctx, older, older_count)
-        # whether each older point's count was proved in balls (the Newton start's are,
-        # wherever the proof arithmetic is balls: it counts there)
-        older_ball = [o is not None and self.hp.rigorous for o in older]
+        older: list = [None] * R                # per root a third point (_Point) near it
+        self._newton_start(items, a, b, c, fa, fb, h, ca, target, ctx, older)
         for _ in range(60):
-            tests, owner = [], []               # owner: (root, its proved end or None)
+            tests, owner = [], []               # owner: (root, points it evaluates)
             for i in range(R):
                 if done[i] is None:
-                    end = self._near_end(i, a, b, c, older, older_count, ca, D) \
-                        if older_ball[i] or not self.hp.rigorous else None
-                    if end is not None:         # one point beyond the root suffices
-                        tests.append(c[i] + 2 * (c[i] - end))
+                    far = self._beyond(older[i], a[i], b[i], c[i], ca[i], D)
+                    if far is not None:         # one point beyond the root suffices
+                        tests.append(far)
+                        owner.append((i, 1))
                     else:
                         e = h[i] * c[i]
                         tests += [max(c[i] - e, (a[i] + c[i]) / 2),
                                   min(c[i] + e, (c[i] + b[i]) / 2)]
-                    owner.append((i, end))
+                        owner.append((i, 2))
             if not owner:
                 break
             values, counts, proved = self._evaluate(tests, ctx)
             at = 0
-            for i, end in owner:
-                if end is None:
-                    (t1, t2), (f1, f2), (k1, k2) = (tests[at:at + 2], values[at:at + 2],
-                                                    counts[at:at + 2])
-                    by_balls[i] = bool(proved[at] and proved[at + 1])
-                    ball = {t1: bool(proved[at]), t2: bool(proved[at + 1])}
-                    count = {t1: k1, t2: k2}
-                    at += 2
-                else:
-                    # the proved end and the new point, in order (the end's count: the side
-                    # of the root it lies on)
-                    near = (end, older[i][1], older_count[i])
-                    far = (tests[at], values[at], counts[at])
-                    (t1, f1, k1), (t2, f2, k2) = sorted((near, far), key=lambda q: q[0])
-                    ball = {end: older_ball[i], tests[at]: bool(proved[at])}
-                    count = {end: older_count[i], tests[at]: counts[at]}
-                    by_balls[i] = ball[end] and ball[tests[at]]
-                    at += 1
+            for i, n in owner:
+                new = [_Point(tests[j], values[j], counts[j], bool(proved[j]))
+                       for j in range(at, at + n)]
+                at += n
+                # a pair, or the kept point and the one beyond the root, in order
+                p1, p2 = sorted(new if n == 2 else new + [older[i]], key=lambda q: q.t)
+                (t1, f1, k1, _), (t2, f2, k2, _) = p1, p2
+                by_balls[i] = p1.ball and p2.ball
                 for t, f, k in ((t1, f1, k1), (t2, f2, k2)):
                     _tighten(i, t, f, k, ca, a, b, fa, fb)
                 if (k1, k2) == (ca[i], ca[i] + 1) and prints_alike(t1, t2, D):
@@ -528,13 +515,12 @@ class _Search:
                         step = (a[i] + b[i]) / 2
                     h[i] = min(h[i], width / (8 * step))
                 elif (k1, k2) == (ca[i], ca[i] + 1) and older[i] is not None:
-                    step, h[i] = _quadratic(older[i], (t1, f1), (t2, f2), step, a[i], b[i],
-                                            h[i], target)
+                    step, h[i] = _quadratic(older[i][:2], (t1, f1), (t2, f2), step, a[i],
+                                            b[i], h[i], target)
                 else:
                     h[i] = min(h[i], target)
                 if f1 is not None and f2 is not None:
-                    older[i] = min(((t1, f1), (t2, f2)), key=lambda p: abs(p[1]))
-                    older_ball[i], older_count[i] = ball[older[i][0]], count[older[i][0]]
+                    older[i] = min((p1, p2), key=lambda q: abs(q.f))
                 c[i] = step
         if any(d is None for d in done):
             raise ComputationError(f"the refinement to {D} digits did not converge")
@@ -548,29 +534,27 @@ class _Search:
             out.append(Eigenvalue(_exact_mpc_imag(value), 1, D, bracket, proof))
         return out
 
-    @staticmethod
-    def _near_end(i, a, b, c, older, older_count, ca, D):
-        """Root ``i``'s last point ``older[i]`` where its count (``older_count[i]``) puts it
-        on one side of the root and it is so near the estimate ``c[i]`` that it and the
-        point as far again beyond the root print alike at ``D`` digits: one evaluation
-        there then proves the digits (a pair costs two). None otherwise.
+    def _beyond(self, kept, a, b, c, ca: int, D: int):
+        """The point beyond the root from ``kept`` (a root's last :class:`_Point`) as far
+        again as ``kept`` is from the estimate ``c``, where its count puts ``kept`` on one
+        side of the root and the two print alike at ``D`` digits: one evaluation there then
+        proves the digits (a pair costs two). None otherwise.
 
         After the Newton start the estimate errs by far less than its distance from the
-        start (the step's relative error times the step), so the point ``c + 2 (c - t)``
-        lies beyond the root from ``t``. At 12 digits a double estimate ``1e-13`` away
-        qualifies for most roots; at 15 digits rarely (a pair proves there, as before).
+        start (the step's relative error times the step), so ``c + 2 (c - t)`` lies beyond
+        the root from ``t``. At 12 digits a double estimate ``1e-13`` away qualifies for
+        most roots; at 15 digits rarely (a pair proves there, as before). Where the proof
+        arithmetic is balls, ``kept`` must be proved in balls too.
         """
-        if older[i] is None or older[i][1] is None or older_count[i] not in (ca[i], ca[i] + 1):
-            return None                 # (its count was not decided: no side)
-        t = older[i][0]
-        if (t < c[i]) != (older_count[i] == ca[i]):
+        if kept is None or kept.f is None or kept.k not in (ca, ca + 1) or \
+                (self.hp.rigorous and not kept.ball) or kept.t == c:
+            return None                 # (no side, or no proof of it)
+        if (kept.t < c) != (kept.k == ca):
             return None                 # (the estimate is on the far side of the root)
-        far = c[i] + 2 * (c[i] - t)
-        if not (a[i] < far < b[i]) or t == c[i]:
-            return None
-        return t if prints_alike(t, far, D) else None
+        far = c + 2 * (c - kept.t)
+        return far if a < far < b and prints_alike(kept.t, far, D) else None
 
-    def _newton_start(self, items, a, b, c, fa, fb, h, ca, target, ctx, older, older_count):
+    def _newton_start(self, items, a, b, c, fa, fb, h, ca, target, ctx, older):
         """One point per root, not a pair, before the proving pairs (in place).
 
         The slope of ``Delta`` at each double estimate ``c`` comes from a central
@@ -613,7 +597,7 @@ class _Search:
             t, f, k = c[i], values[j], counts[j]
             _tighten(i, t, f, k, ca, a, b, fa, fb)
             if f is not None:
-                older[i], older_count[i] = (t, f), k
+                older[i] = _Point(t, f, k, self.hp.rigorous)      # (counted in hp)
             near = [double(j + q * n) for q in range(4)]
             if f is None or d[j] <= 0 or any(v is None for v in near):
                 continue
@@ -758,6 +742,16 @@ class _Search:
         proof = PROOFS["ball" if ar.rigorous else "mp"]
         return Eigenvalue(_exact_mpc_imag(mid), m, self.digits,
                           (_exact_mpf(lo), _exact_mpf(hi)), proof)
+
+
+class _Point(NamedTuple):
+    """A point of the proof stage: where (``t``), ``Delta`` there (``f``, None where the
+    count is undecided), its count ``k`` and whether balls proved it."""
+
+    t: object
+    f: object
+    k: int
+    ball: bool
 
 
 def _tighten(i, t, f, k, ca, a, b, fa, fb):
