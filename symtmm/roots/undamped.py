@@ -19,8 +19,10 @@ frequencies; the search pays for its points in batches:
    where python-flint is installed, else mpmath): a secant step from the double
    bracket gives the root to about twice the digits; the counts at the two ends of
    a bracket of relative width ``2 10**-(D+3)`` around it, ``J = i - 1`` and ``J =
-   i``, prove the ``i``-th eigenvalue inside, and its midpoint prints correctly
-   rounded once both ends round alike (else the bracket is narrowed). Counts
+   i``, prove the ``i``-th eigenvalue inside, and the estimate inside it prints
+   correctly rounded once both ends round alike (else the bracket is narrowed; at
+   low digits the point the Newton step started from can be one end, and a single
+   evaluation beyond the root the other). Counts
    ``J(b_i) = J(a_(i+1))`` leave no eigenvalue between brackets, a count at the
    top none above the last one in range. Without python-flint every such count is
    repeated at a second, higher precision and must agree (not a proof).
@@ -441,7 +443,8 @@ class _Search:
         pairs (``h = 10**-(D+3)``) prove it. A secant step that leaves the
         bracket the counts have proved is replaced by an Anderson–Björck step on it.
         A pair whose counts prove the root between its ends proves the digits once both
-        ends round alike (else the next pair is taken narrower); its midpoint prints.
+        ends round alike (else the next pair is taken narrower); the estimate the pair was
+        placed about, inside it, prints.
         Where a root's last point is a proved end of its bracket so near the estimate that
         it and the point as far again beyond the root print alike, that one point is
         evaluated instead of a pair (:meth:`_beyond`; at 12 digits most roots, after the
