@@ -509,12 +509,19 @@ class Ball(Arithmetic):
         flint = self.flint
         half = None
 
+        def widened(r, rad, low):
+            # the midpoint's root r widened by the ball's radius times the largest
+            # |d x**(1/4) / dx| = 1 / (4 |x|**(3/4)) on the ball (mean value), bounded by
+            # |r| / (4 low) with low the ball's least |x| (no power of a ball, which costs
+            # what the rest of the root does several times over)
+            width = flint.arb(0, (flint.arb(rad) * abs(r) / (4 * low)).upper())
+            return r + (flint.acb(width, width) if isinstance(r, flint.acb) else width)
+
         def principal(v):
             # Arb's root of a wide ball is loose (twenty times its width at a relative
-            # width of 1e-3): the root of the midpoint, widened by the width times the
-            # largest |d x**(1/4) / dx| = 1 / (4 |x|**(3/4)) on the ball (mean value), which
-            # the ball keeps away from 0 and from the cut (the midpoint's real part is not
-            # negative: the cut's nearest point is 0)
+            # width of 1e-3): the root of the midpoint, widened; the ball keeps away from
+            # 0 and from the cut (the midpoint's real part is not negative: the cut's
+            # nearest point is 0)
             if v.real.rad() == 0 and v.imag.rad() == 0:
                 return v.root(4)
             rad = (flint.arb(v.real.rad()) ** 2 + flint.arb(v.imag.rad()) ** 2).sqrt().upper()
@@ -522,21 +529,15 @@ class Ball(Arithmetic):
             low = abs(mid).lower() - rad
             if not low > 0:
                 return v.root(4)
-            # (1 / (4 low**(3/4)) <= |mid|**(1/4) / (4 low): no power of a ball, which costs
-            # what the rest of the root does several times over)
-            r = mid.root(4)
-            width = flint.arb(rad) * abs(r) / (4 * low)
-            ball = flint.arb(0, width.upper())
-            return r + flint.acb(ball, ball)
+            return widened(mid.root(4), rad, low)
 
         def real_root(v):
             # as principal, on the real line: a real ball above 0 keeps a real root, and
             # the functions of it stay real (in complex balls they cost several times more)
             if v.rad() == 0:
                 return v.root(4)
-            mid, rad = flint.arb(v.mid()), flint.arb(v.rad())
-            r = mid.root(4)
-            return r + flint.arb(0, (rad * r / (4 * (mid - rad))).upper())
+            mid, rad = flint.arb(v.mid()), v.rad()
+            return widened(mid.root(4), rad, mid - rad)
 
         def root(v):
             nonlocal half
