@@ -134,6 +134,32 @@ def test_low_digits_agree_with_thirty_digit_proofs(examples_dir, x1):
                 assert decimal_string(r.omega, digits) == decimal_string(e.omega, digits)
 
 
+@pytest.mark.parametrize("x1", ["3/20", "3/10"])
+def test_low_digit_proofs_hold_the_global_matrix_roots(examples_dir, x1):
+    """The one-point proofs at 8 and 12 digits against an independent reference: example
+    1's global coefficient matrix (no transfer matrices, no symtmm), its roots polished
+    at 40 digits (benchmarks/references.py). Every bracket holds its root and the printed
+    digits are its rounding."""
+    from fractions import Fraction
+
+    import mpmath
+
+    from benchmarks.references import EX1_BEAMS, global_matrix_omegas
+    from symtmm.modelfile import load
+    from symtmm.results import decimal_string
+    from symtmm.solve import solve
+    springs = ((0, 1, x1, 100), (0, 1, str(1 - Fraction(x1)), 100))     # at x1 and L - x1
+    ref = global_matrix_omegas(EX1_BEAMS, springs, 10, dps=40)
+    model = load(examples_dir / "paper_ex1_ff_cc.toml").with_parameters(x1=x1)
+    for digits in (8, 12):
+        got = solve(model, count=10, digits=digits)
+        assert [e.multiplicity for e in got] == [1] * 10
+        with mpmath.workdps(40):
+            for e, r in zip(got, ref):
+                assert e.bracket[0] <= r <= e.bracket[1], (digits, e, r)
+                assert decimal_string(r, digits) == decimal_string(e.omega, digits)
+
+
 @pytest.mark.skipif(not ball_available(), reason="needs python-flint")
 def test_high_digits_take_few_proof_rounds(monkeypatch):
     """At high digits the secant steps are carried in the bookkeeping precision (values of
