@@ -176,3 +176,56 @@ def test_high_digits_take_few_proof_rounds(monkeypatch):
         for n, e in enumerate(spec, start=1):
             assert mpmath.almosteq(e.omega, (n * mpmath.pi) ** 2, rel_eps=mpmath.mpf(10)**-100)
     assert len(calls) <= 6, calls
+
+
+def test_search_range_of_a_chain_costs_one_miss_at_most(monkeypatch):
+    """Springs lift a chain's eigenvalues above Weyl's estimate: the first guess counts
+    8, 6 and 1 of 10 on chains of 10, 20 and 50 levels. The next count is taken where
+    Weyl's estimate has grown by the missing ones and one more, which holds the 10th
+    eigenvalue and few beyond: one more count and plan, where a jump by ``(10 / k)**2``
+    (capped at 4) reached 16, 29 and 61 eigenvalues and a plan with up to twice the
+    pieces. The count at the top is checked against the roots below it."""
+    from benchmarks.models import chain
+    from symtmm.roots import undamped
+
+    counted = []
+    original = undamped._Search.count_off
+
+    def count_off(self, omega, toward, digits=None):
+        counted.append(original(self, omega, toward, digits))
+        return counted[-1]
+    monkeypatch.setattr(undamped._Search, "count_off", count_off)
+    for levels in (10, 20, 50):
+        model = chain(levels, 2)
+        counted.clear()
+        search = undamped._Search(model, 15, undamped._first_guess(model))
+        top, k = search.top_for(10)
+        assert len(counted) <= 2 and 10 <= k <= 14, (levels, counted)
+        # the count is that of the roots below: the 10th of them lies under the top
+        tenth = solve_undamped(model, count=10, digits=6)[-1]
+        assert float(tenth.omega) < top
+
+
+@pytest.mark.skipif(not ball_available(), reason="needs python-flint")
+def test_fifty_level_chain_decides_its_ball_batches_at_once(monkeypatch):
+    """Ball ``LDL^T`` without pivoting widens the radii along the band: at 15 digits
+    (144 bits) a 50-level chain (450 freedoms) decided half of its first batch and the
+    rest of the search's batches were redone with about 300 bits. Its plan now starts
+    with a quarter of a bit per freedom more, and every ball batch is decided at once
+    (46 bits to spare at the narrowest pivot here). Reference: none needed, the
+    proofs' own counts decide (an undecided pivot is what is counted)."""
+    from benchmarks.models import chain
+    from symtmm.numeric import evaluator
+
+    batches = []
+    original = evaluator.factor
+
+    def factor(plan, ar, lam2, lam=None, reverse=False):
+        fa = original(plan, ar, lam2, lam, reverse)
+        if ar.rigorous:
+            batches.append((ar.prec, reverse, int((~fa.trusted).sum())))
+        return fa
+    monkeypatch.setattr(evaluator, "factor", factor)
+    solve_undamped(chain(50, 2), count=10, digits=15)
+    assert batches and all(not rev and bad == 0 for _, rev, bad in batches), batches
+    assert len({prec for prec, _, _ in batches}) == 1, batches
