@@ -14,10 +14,12 @@ Nothing here is numeric: coordinates and coefficients stay exact.
 from __future__ import annotations
 
 import bisect
+import functools
 import itertools
 import math
 
 import sympy as sp
+from sympy.polys.domains import QQ
 
 from .assembly import point_elements
 from .elements import Coupling, GroundSpring
@@ -490,51 +492,95 @@ def _coupled_damping(seg) -> sp.Matrix:
     return C
 
 
-def _static_null_space(model: Model):
+def _static_null_space(model: Model, mesh: Mesh | None = None):
     """``(mesh, basis)``: the exact null space of the static ``K(0)``, one basis vector
-    (a list over the free freedoms) per rigid-body mode (see :func:`static_nullity`)."""
+    (a list over the free freedoms) per rigid-body mode (see :func:`static_nullity`);
+    on ``mesh`` where given (a mesh of ``model`` cut any finer, as a plan's is: cutting a
+    piece in two adds a node, not a null motion), else on one cut at the required points
+    only."""
     from sympy.polys.constructor import construct_domain
     from sympy.polys.matrices import DomainMatrix
 
-    model = model.require_numeric().resolved()
-    mesh = Mesh(model, lambda beam, seg: _float(seg.l))
-    rows: list = []
+    def coarse():
+        return Mesh(model.require_numeric().resolved(), lambda beam, seg: _float(seg.l))
 
-    def add(places, local_rows):
-        for local in local_rows:
-            row: dict = {}
-            for coef, combo in zip(local, places):
-                if coef == 0:
-                    continue
-                for index, c in combo:
-                    row[index] = row.get(index, 0) + coef * c
-            row = {i: c for i, c in row.items() if c != 0}
-            if row:
-                rows.append(row)
-
-    for (b_idx, seg, _, _), places in zip(mesh.segments, mesh.segment_places):
-        if isinstance(b_idx, tuple):
-            add(places, _coupled_null_rows(model, b_idx, seg))
-        else:
-            add(places, _segment_null_rows(model.beams[b_idx], seg.l))
-    for places, element in mesh.point_places:
-        add(places, [[c[0] for c in row] for row in stiffness_coefficients(element)])
+    if mesh is None:
+        mesh = coarse()
+    try:
+        # rational models (most): the rows in QQ's numbers, each SymPy number converted
+        # once (SymPy's arithmetic was two thirds of a 10-level chain's null space)
+        rows, domain = _null_rows(_local_null_rows(mesh), _to_qq), QQ
+    except _NotRational:
+        # an algebraic field's rank grows steeply with the size (a frame with an inclined
+        # member: 0.25 s on its own mesh, 12 s on a plan's of 87 freedoms): the coarse mesh
+        mesh = coarse()
+        rows, domain = _null_rows(_local_null_rows(mesh), lambda c: c), None
     n = mesh.size
     if not rows:
         return mesh, [[sp.Integer(int(i == j)) for i in range(n)] for j in range(n)]
     # each row scaled by its first entry: springs of irrational stiffness give rational rows
     rows = [{i: c / row[min(row)] for i, c in row.items()} for row in rows]
-    domain, values = construct_domain([c for row in rows for c in row.values()])
-    it = iter(values)
-    sdm = {r: {i: next(it) for i in row} for r, row in enumerate(rows)}
-    dm = DomainMatrix(sdm, (len(rows), n), domain)
+    if domain is None:
+        domain, values = construct_domain([c for row in rows for c in row.values()])
+        it = iter(values)
+        rows = [{i: next(it) for i in row} for row in rows]
+    dm = DomainMatrix(dict(enumerate(rows)), (len(rows), n), domain)
     if dm.rank() == n:
         return mesh, []
     basis = dm.to_dense().nullspace().to_Matrix()
     return mesh, [list(basis.row(k)) for k in range(basis.rows)]
 
 
-def static_nullity(model: Model) -> int:
+def _local_null_rows(mesh: Mesh) -> list:
+    """``(places, rows)`` per element of ``mesh``: the conditions of its static null space
+    on its local freedoms."""
+    model = mesh.model
+    out = []
+    for (b_idx, seg, _, _), places in zip(mesh.segments, mesh.segment_places):
+        if isinstance(b_idx, tuple):
+            out.append((places, _coupled_null_rows(model, b_idx, seg)))
+        else:
+            out.append((places, _segment_null_rows(model.beams[b_idx], seg.l)))
+    for places, element in mesh.point_places:
+        out.append((places, [[c[0] for c in row] for row in stiffness_coefficients(element)]))
+    return out
+
+
+class _NotRational(Exception):
+    """A coefficient of the null-space rows is not a rational number."""
+
+
+@functools.lru_cache(maxsize=4096)
+def _to_qq(c):
+    if not isinstance(c, (int, sp.Rational)):
+        c = sp.sympify(c)
+        if not c.is_Rational:
+            raise _NotRational
+    return QQ(int(c.p), int(c.q)) if isinstance(c, sp.Rational) else QQ(c)
+
+
+def _null_rows(local_rows, number) -> list:
+    """The rows of the null space conditions on the free freedoms (``{index: coefficient}``,
+    zeros dropped) from ``(places, rows over the places)``, in the numbers ``number`` makes
+    of SymPy's."""
+    rows = []
+    for places, local in local_rows:
+        combos = [[(i, number(c)) for i, c in combo] for combo in places]
+        for coefs in local:
+            row: dict = {}
+            for coef, combo in zip(coefs, combos):
+                if coef == 0:
+                    continue
+                coef = number(coef)
+                for index, c in combo:
+                    row[index] = row.get(index, 0) + coef * c
+            row = {i: c for i, c in row.items() if c != 0}
+            if row:
+                rows.append(row)
+    return rows
+
+
+def static_nullity(model: Model, mesh: Mesh | None = None) -> int:
     """The number of rigid-body (zero-frequency) modes: the nullity of the static ``K(0)``.
 
     ``K(0)`` is the sum of the elements' static stiffnesses, each positive
@@ -551,6 +597,11 @@ def static_nullity(model: Model) -> int:
     compression is critical (which the buckling check, counting at ``omega**2 < 0``,
     reports).
 
+    ``mesh``: a mesh of ``model`` to work on (a plan's, already built for the search:
+    the 20-span beam's null space costs half as much on it as with a mesh of its own);
+    a model with irrational coefficients (an inclined member, a spring of stiffness
+    ``sqrt(2)``) is taken on its own coarse mesh.
+
     Examples
     --------
     >>> from symtmm.model import Beam, Model, Spring
@@ -563,7 +614,7 @@ def static_nullity(model: Model) -> int:
     ...                      (Spring("a", "b", "1/2", 10),)))         # joined at one point
     3
     """
-    return len(_static_null_space(model)[1])
+    return len(_static_null_space(model, mesh)[1])
 
 
 def zero_order(model: Model) -> tuple:

@@ -123,6 +123,15 @@ class Evaluator:
             plan = self._plans[design] = plan_for(self.model, size)
         return plan
 
+    def coarsest_plan(self, size: float) -> StiffnessPlan:
+        """The plan with the fewest freedoms this search has built, else one for ``size``
+        (for work on the model's mesh that any cut serves, such as the static null space:
+        no plan is built for it alone)."""
+        built = list(self._plans.values()) + list(self._borrowed.values())
+        if built:
+            return min(built, key=lambda plan: plan.n)
+        return self.plan(size, 1)
+
     # -- batches ---------------------------------------------------------------------------
     def factors(self, lam, ar: Arithmetic = DOUBLE, retry: bool = True) -> Factors:
         """``LDL^T`` of ``K`` at the points ``lam`` (complex for double; mpmath numbers,

@@ -79,11 +79,12 @@ PROOFS = {"exact": "exact (static null space)",
           "mp": "count (two precisions)"}
 
 
-def rigid_body_modes(model: Model) -> int:
+def rigid_body_modes(model: Model, mesh=None) -> int:
     """Number of rigid-body (zero-frequency) modes: the nullity of the static stiffness.
 
     Exact, from the structure of each element's static null space
-    (:func:`symtmm.mesh.static_nullity`), with or without axial force and foundation.
+    (:func:`symtmm.mesh.static_nullity`, on ``mesh`` where given), with or without axial
+    force and foundation.
 
     Examples
     --------
@@ -98,7 +99,7 @@ def rigid_body_modes(model: Model) -> int:
     >>> rigid_body_modes(Model((Beam("b", 1, 1, 1, left="pinned", right="free", N=3),)))
     0
     """
-    return static_nullity(model)
+    return static_nullity(model, mesh)
 
 
 def check_stable(model: Model, rigid: int, counter: Counter | None = None) -> int:
@@ -861,24 +862,26 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     if model.damped:
         raise ValueError("model is damped: use the damped solver")
     start = time.perf_counter()
-    rigid = rigid_body_modes(model)
     if omega_max is not None:
         hi = float(omega_max)
         if hi < 0:
             raise ValueError("omega_max must not be negative")
-        search = _Search(model, digits, max(hi, 1e-300), rigid, certified)
+        search = _Search(model, digits, max(hi, 1e-300), 0, certified)
     else:
         hi = _first_guess(model)
-        search = _Search(model, digits, hi, rigid, certified)
+        search = _Search(model, digits, hi, 0, certified)
+    counted = None
+    if omega_max is None and count > 0:
+        # (the count at the top includes the rigid-body modes; the plans it builds serve
+        # the static null space below, which needs no mesh of its own)
+        counted = search.top_for(count)
+        hi = counted[0]
+    rigid = search.rigid = rigid_body_modes(model, search.counter.coarsest_plan(hi).mesh)
     check_stable(model, rigid, search.counter)
     eigen = []
     if rigid:
         eigen.append(Eigenvalue(mpmath.mpc(0, 0), rigid, digits, (0.0, 0.0), PROOFS["exact"]))
     wanted = None if count is None else count - rigid
-    counted = None
-    if omega_max is None and wanted > 0:
-        counted = search.top_for(count)
-        hi = counted[0]
     if hi > 0 and (wanted is None or wanted > 0):
         with progress.stages("solve", ["isolating", "refining", "multiple roots",
                                        "proving the digits"]) as next_stage:

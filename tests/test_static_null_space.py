@@ -1,0 +1,55 @@
+"""The rigid-body modes: the exact static null space on any mesh of the model.
+
+A solve counts them on the coarsest mesh its search has already cut (a plan's, cut
+finer than the model's required points), not on a mesh of its own: cutting a piece in
+two adds a node, never a motion without strain energy. The references are the rigid
+motions counted by hand.
+"""
+
+import pytest
+
+from symtmm.frame import Member, Node, frame
+from symtmm.mesh import static_nullity
+from symtmm.model import Beam, Model, Spring, rod
+from symtmm.numeric.plan import StiffnessPlan
+
+FF = dict(left="free", right="free")
+
+CASES = [
+    # (model, rigid motions counted by hand)
+    (Model((Beam("b", 1, 1, 1, **FF),)), 2),                      # translation, rotation
+    (Model((Beam("b", 1, 1, 1, left="pinned", right="free"),)), 1),   # rotation about the pin
+    (Model((Beam("b", 1, 1, 1, N=3, **FF),)), 1),                  # tension resists turning
+    (Model((Beam("b", 1, 1, 1, kw=5, **FF),)), 0),                 # a foundation holds it
+    (Model((Beam("a", 1, 1, 1, **FF), Beam("b", 1, 1, 1, **FF)),   # joined at one point:
+           (Spring("a", "b", "1/3", 10),)), 3),                    # 2 + 2 - 1
+    (Model((Beam("a", 1, 1, 1, **FF), Beam("b", 1, 1, 1, **FF)),   # at two points: 2 + 2 - 2
+           (Spring("a", "b", "1/3", 10), Spring("a", "b", "4/5", 7))), 2),
+    (Model((Beam("a", 1, 1, 1, **FF), Beam("b", 1, 1, 1, **FF)),   # an irrational spring
+           (Spring("a", "b", "1/3", "sqrt(2)"),)), 3),             # (its own coarse mesh)
+    (Model((rod("r", 1, 1, 1, left="free", right="free"),)), 1),  # axial translation
+    (frame([Member("a", (0, 0), (0, 1), EI=1, EA=10, m=1),          # a free plane frame,
+            Member("b", (0, 1), ("1 + sqrt(3)/2", "3/2"), EI=2, EA=10, m=1)]), 3),  # inclined
+    (frame([Member("a", (0, 0), (1, 0), EI=1, EA=10, m=1),          # and with a hinge: its
+            Member("b", (1, 0), (1, 1), EI=1, EA=10, m=1)],         # relative rotation too
+           [Node((1, 0), hinge=True)]), 4),
+]
+
+
+@pytest.mark.parametrize("model,rigid", CASES)
+def test_the_null_space_of_a_plan_mesh_is_the_model_s(model, rigid):
+    model = model.require_numeric()
+    assert static_nullity(model) == rigid
+    for radius in (10.0**2, 300.0**2):          # plans cut into few and into many pieces
+        plan = StiffnessPlan(model, radius)
+        assert static_nullity(model, plan.mesh) == rigid, radius
+
+
+def test_a_solve_reports_the_rigid_modes_it_counts_on_its_plans():
+    from symtmm.roots.undamped import PROOFS, solve_undamped
+
+    model, rigid = CASES[4]         # two beams joined at one point
+    spec = solve_undamped(model, count=rigid + 2, digits=12)
+    assert spec.eigenvalues[0].multiplicity == rigid
+    assert spec.eigenvalues[0].proof == PROOFS["exact"]
+    assert float(spec.eigenvalues[1].omega) > 0.1
