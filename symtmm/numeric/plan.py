@@ -269,8 +269,12 @@ class StiffnessPlan:
             k = e[r] + e[c]
             if k not in powers:
                 powers[k] = sp.Integer(2) ** k
-            coef = sp.sympify(coef)
-            self._triples.append((target, source, coef if k == 0 else coef * powers[k]))
+            if type(coef) is int and coef == 1:
+                coef = powers[k]        # (most entries: a segment's own, SymPy's product costs)
+            else:
+                coef = sp.sympify(coef)
+                coef = coef if k == 0 else coef * powers[k]
+            self._triples.append((target, source, coef))
         self._triples.sort(key=lambda t: t[0])
         self.log_constant = (math.log(float(mesh.pivot_product))
                              - 2.0 * math.log(2.0) * sum(e))
@@ -283,7 +287,7 @@ class StiffnessPlan:
         if not kinds:
             D = np.zeros((1, 0))
         else:
-            D, _ = stiffness_values(DOUBLE, kind_tables(DOUBLE, kinds), np.zeros(1),
+            D, _ = stiffness_values(DOUBLE, self._kind_tables(DOUBLE), np.zeros(1),
                                     np.zeros(1))
         flat = np.real(D).reshape(-1)
         diag = [0.0] * n
@@ -323,7 +327,13 @@ class StiffnessPlan:
         for q in range(int(np.max(ends - starts, initial=0))):
             terms = starts[ends - starts > q] + q
             layers.append((targets[terms], source[terms], coef[terms]))
-        return {"kinds": kind_tables(ar, self.kinds), "layers": layers}
+        return {"kinds": self._kind_tables(ar), "layers": layers}
+
+    def _kind_tables(self, ar: Arithmetic) -> list:
+        """The kinds' constants in ``ar`` (converted once: the static diagonal asks for
+        them in double precision before the tables are made)."""
+        from .arith import memo
+        return memo(self, ar, "kind_tables", lambda: kind_tables(ar, self.kinds))
 
 
 #: Models whose plans are kept for the next search of the same model (``solve``, then
