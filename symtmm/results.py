@@ -13,7 +13,7 @@ from .display import html_table, latex_array, latex_text, text_lines
 from .jsonout import dumps, header
 from .tables import Tabular
 
-__all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string", "prints_alike",
+__all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string", "prints_alike", "print_apart",
            "enclosed_string"]
 
 
@@ -51,12 +51,27 @@ def prints_alike(a, b, digits: int) -> bool:
     >>> prints_alike(mpmath.mpf("1.23444"), mpmath.mpf("1.23456"), 5)     # 1.2344, 1.2346
     False
     """
-    if a != 0 and b != 0:
-        top = max(abs(float(a)), abs(float(b)))
-        if 0 < top < math.inf and \
-                abs(float(b - a)) > 10.0 ** (math.floor(math.log10(top)) - digits + 2):
-            return False
+    if print_apart(a, b, digits):
+        return False
     return decimal_string(a, digits) == decimal_string(b, digits)
+
+
+def print_apart(a, b, digits: int) -> bool:
+    """Whether ``a`` and ``b`` surely print apart with ``digits`` significant digits, told
+    from their floats: farther apart than ten units of the last digit of the larger's
+    decade (a unit of the decade above; False: they may print alike, which
+    :func:`prints_alike` decides).
+
+    Examples
+    --------
+    >>> print_apart(1.2344, 1.2399, 5), print_apart(1.23444, 1.23456, 5)
+    (True, False)
+    """
+    if a == 0 or b == 0:
+        return False
+    top = max(abs(float(a)), abs(float(b)))
+    return 0 < top < math.inf and \
+        abs(float(b - a)) > 10.0 ** (math.floor(math.log10(top)) - digits + 2)
 
 
 def first(eigenvalues, count: int) -> list:
