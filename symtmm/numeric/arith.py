@@ -204,6 +204,17 @@ class Arithmetic:
             acc = acc * x + c
         return acc
 
+    def polynomials(self, rows, x) -> list:
+        """:meth:`polynomial` of each coefficient list of ``rows`` (equal lengths) at the
+        same ``x``.
+
+        Examples
+        --------
+        >>> [v.tolist() for v in DOUBLE.polynomials([[1.0, 2.0], [0.0, 1.0]], np.array([3.0]))]
+        [[7.0], [3.0]]
+        """
+        return [self.polynomial(row, x) for row in rows]
+
     def series_terms(self, log2_bound) -> int:
         """The smallest ``K >= 2`` with ``log2_bound(K)`` below ``-(prec + 4)``: terms of a
         series whose tail beyond ``K`` terms is below the working precision."""
@@ -272,6 +283,16 @@ class Batch(Arithmetic):
     sin = staticmethod(np.sin)
     sinh = staticmethod(np.sinh)
     real = staticmethod(np.real)
+
+    def polynomials(self, rows, x) -> list:
+        """As :meth:`Arithmetic.polynomials`, all rows in one Horner loop over a stacked array:
+        the same operations per element, a quarter of numpy's calls (a batch of a few
+        points pays a microsecond a call: a fifth of example 1's small batches)."""
+        C = np.array(rows)                      # (rows, terms)
+        acc = 0 * x[None, :] + C[:, -1:]
+        for k in range(C.shape[1] - 2, -1, -1):
+            acc = acc * x[None, :] + C[:, k:k + 1]
+        return list(acc)
 
     def root4(self, x):
         x = np.asarray(x)

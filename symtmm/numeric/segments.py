@@ -101,8 +101,8 @@ def _factorial_series(ar: Arithmetic, x, p: int) -> list:
     K = ar.series_terms(lambda k: _log2_inverse_factorial(p * k))
     inv = _inverse_factorials(ar, p * K + p)
     out = []
-    for j in range(p):
-        acc = ar.polynomial([inv[p * k + j] for k in range(K)], x)
+    sums = ar.polynomials([[inv[p * k + j] for k in range(K)] for j in range(p)], x)
+    for j, acc in enumerate(sums):
         radius, slope, curve, third = _series_tail(p, K, j)
         out.append(ar.widen(acc, radius, wrt=x, slope=slope, curve=curve, third=third))
     return out
