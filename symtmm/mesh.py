@@ -26,6 +26,7 @@ from .elements import Coupling, GroundSpring
 from .elements.base import stiffness_coefficients
 from .elements.layer import joined, member
 from .errors import ComputationError, ModelError
+from .expr import exact_float as _float
 from .limits import MAX_PIECES
 from .model import FREEDOM_INDEX, GROUND, Model
 
@@ -33,18 +34,6 @@ __all__ = ["Mesh", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
 
 #: The node freedoms (0 = Y, 1 = Theta) each boundary condition fixes.
 BC_FREEDOMS_FIXED = {"free": (), "clamped": (0, 1), "pinned": (0,), "sliding": (1,)}
-
-
-def _float(x) -> float:
-    """An exact coordinate as a float: ``p / q`` for a rational (Python divides integers
-    correctly rounded; SymPy's ``float`` goes through mpmath, twenty times slower and
-    called hundreds of times per mesh)."""
-    if isinstance(x, sp.Rational):
-        try:
-            return x.p / x.q
-        except OverflowError:
-            pass
-    return float(x)
 
 
 def _canonical(x) -> sp.Expr:

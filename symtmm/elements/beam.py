@@ -24,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from ..expr import exact_float
 from .base import LAM, FieldElement
 
 __all__ = ["EulerBernoulliSegment", "stv_matrix"]
@@ -110,7 +111,8 @@ class EulerBernoulliSegment(FieldElement):
 
     def constants(self) -> tuple:
         """``(EI, m, l, kw)`` as floats (wave-number bounds and piece lengths)."""
-        return (float(self.EI), float(self.m), float(self.l), float(self.kw))
+        return (exact_float(self.EI), exact_float(self.m), exact_float(self.l),
+                exact_float(self.kw))
 
     def wave_number(self, lam2, consts=None):
         """``|beta| = |(m lam**2 + kw)/EI|**(1/4)`` (numpy arrays or floats)."""

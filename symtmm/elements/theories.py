@@ -51,6 +51,7 @@ import mpmath
 import numpy as np
 import sympy as sp
 
+from ..expr import exact_float
 from .base import LAM, FieldElement
 
 __all__ = ["BeamSegment", "THEORIES"]
@@ -181,8 +182,9 @@ class BeamSegment(FieldElement):
     # -- numbers ----------------------------------------------------------------------------
     def constants(self) -> tuple:
         """``(EI, m, l, kw, N, rhoI, kGA)`` as floats (``kGA`` infinite when rigid in shear)."""
-        return (float(self.EI), float(self.m), float(self.l), float(self.kw), float(self.N),
-                float(self.rhoI), math.inf if self.kGA is None else float(self.kGA))
+        return (exact_float(self.EI), exact_float(self.m), exact_float(self.l),
+                exact_float(self.kw), exact_float(self.N), exact_float(self.rhoI),
+                math.inf if self.kGA is None else exact_float(self.kGA))
 
     def wave_number(self, lam2, consts=None):
         """A bound on the largest wave number ``|s|`` at ``lam**2`` (numpy arrays or floats).
