@@ -42,6 +42,7 @@ import sympy as sp
 from mpmath import libmp
 
 from ..errors import ComputationError
+from ..expr import exact_float
 
 __all__ = ["Arithmetic", "Batch", "MP", "Ball", "ball_available", "memo", "DOUBLE"]
 
@@ -264,7 +265,7 @@ class Batch(Arithmetic):
     growth_limit = 1e4
 
     def _convert(self, value):
-        return float(value)
+        return exact_float(value)
 
     def number(self, z):
         return complex(z)

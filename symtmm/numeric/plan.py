@@ -42,6 +42,7 @@ import sympy as sp
 
 from ..elements import EulerBernoulliSegment
 from ..elements.base import LAM, lam_coefficients, stiffness_coefficients
+from ..expr import exact_float
 from .arith import DOUBLE, Arithmetic
 from .segments import kind, kind_order, kind_size, kind_tables
 
@@ -296,9 +297,9 @@ class StiffnessPlan:
                 continue
             kind, idx = source
             if kind == "D":
-                diag[target // w] += float(coef) * float(flat[idx])
+                diag[target // w] += exact_float(coef) * float(flat[idx])
             elif idx == 0:
-                diag[target // w] += float(coef)
+                diag[target // w] += exact_float(coef)
         return [abs(d) for d in diag]
 
     def tables(self, ar: Arithmetic) -> dict:
