@@ -14,7 +14,8 @@ for one solve on that mesh, numbers to frequencies (mesh, assembly, ``eigsh``),
 the best of :data:`REPEAT` runs, measured twice: in this process with the BLAS
 threads numpy and scipy start by default, and in a child process with one BLAS
 thread (``OPENBLAS_NUM_THREADS=1`` and its kin); the faster counts. symtmm's
-time is the best of :data:`REPEAT` solves; one more, profiled
+time is the best of :data:`REPEAT` solves, each of a new model object with no plan kept
+(:func:`benchmarks.models.from_scratch`); one more, profiled
 (:mod:`benchmarks.profiling`), says where its time goes.
 
 References, none computed by symtmm (:mod:`benchmarks.references`):
@@ -42,7 +43,7 @@ import mpmath
 import numpy as np
 
 from . import references, sparse_fe
-from .models import chain, check_ex1_model, example, global_input, multispan
+from .models import chain, check_ex1_model, example, from_scratch, global_input, multispan
 from .profiling import solve_profile
 
 __all__ = ["run", "CASES", "reference", "coarsest_mesh", "fe_seconds"]
@@ -219,14 +220,13 @@ def _one_thread(jobs):
 def _symtmm(model, ref) -> dict:
     """Best time of :data:`REPEAT` verified solves, the error of the printed values,
     and a profiled solve."""
-    from symtmm.numeric.plan import clear_plans
     from symtmm.solve import solve
 
     best = np.inf
     for _ in range(REPEAT if len(model.beams) < 40 else 2):
-        clear_plans()           # each solve from scratch, as a user's first one
+        fresh = from_scratch(model)     # each solve as a user's first one
         start = time.perf_counter()
-        spectrum = solve(model, count=COUNT, digits=DIGITS)
+        spectrum = solve(fresh, count=COUNT, digits=DIGITS)
         best = min(best, time.perf_counter() - start)
     printed = [e.to_dict()["imag"] for e in spectrum for _ in range(e.multiplicity)][:COUNT]
     profile, _ = solve_profile(model, count=COUNT, digits=DIGITS)

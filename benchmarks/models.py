@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import random
 from fractions import Fraction
 from pathlib import Path
@@ -11,11 +12,31 @@ import sympy as sp
 from symtmm.model import Attachment, Beam, Layer, Model, RigidBody, Spring, oscillator, rod
 from symtmm.modelfile import load
 
-__all__ = ["EXAMPLES", "example", "clamped_clamped", "chain", "fe_input", "global_input",
+__all__ = ["EXAMPLES", "from_scratch", "example", "clamped_clamped", "chain", "fe_input", "global_input",
            "exact_global_input", "check_ex1_model", "multispan", "layered_chain",
            "sprung_chain", "rod_chain", "storey_frame"]
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def from_scratch(model: Model) -> Model:
+    """``model`` as a new, equal object with nothing cached on it, and no plan kept
+    (``clear_plans``): what a user's first solve of it starts from. (What the process keeps
+    by value stays, as it would for a user: constants converted to an arithmetic, the
+    point elements' coefficients.)
+
+    Examples
+    --------
+    >>> m = example("paper_ex1_ff_cc")
+    >>> m.free_symbols
+    ()
+    >>> fresh = from_scratch(m)
+    >>> fresh == m, fresh is m, "free_symbols" in vars(fresh)
+    (True, False, False)
+    """
+    from symtmm.numeric.plan import clear_plans
+    clear_plans()
+    return dataclasses.replace(model)
 
 
 def example(name: str) -> Model:

@@ -10,7 +10,7 @@ symtmm
     ``solve(model, count=10, digits=15)`` (undamped) or ``solve(model,
     omega_max=W, digits=12)`` (damped: the eigenvalues in ``0 <= Im lam <= W``,
     ``-2 W <= Re lam <= 0``), the best of :data:`REPEAT` solves, each after
-    ``clear_plans()`` so that no plan is reused; one more solve is profiled
+    ``benchmarks.models.from_scratch`` (a new model object, no plan reused); one more solve is profiled
     (:mod:`benchmarks.profiling`). A solve that stops with an error or runs past
     :data:`TIME_LIMIT` seconds is recorded with its message, and the run goes on.
 FE
@@ -510,18 +510,18 @@ def _symtmm(name: str, ref: dict, repeat: int) -> dict:
     """Best time of ``repeat`` solves (no plan reused), evaluations, the printed values and
     their errors, and one more solve profiled (:mod:`benchmarks.profiling`); on a failure or
     a solve past :data:`TIME_LIMIT` s, the message."""
-    from symtmm.numeric.plan import clear_plans
     from symtmm.solve import solve
 
+    from .models import from_scratch
     from .profiling import solve_profile
 
     case, m, kw = CASES[name], model(name), _solve_kw(CASES[name])
     best, spectrum = np.inf, None
     for _ in range(repeat):
-        clear_plans()               # each solve from scratch, as a user's first one
+        fresh = from_scratch(m)         # each solve as a user's first one
         start = time.perf_counter()
         try:
-            spectrum = _limited(lambda: solve(m, **kw), TIME_LIMIT)
+            spectrum = _limited(lambda m=fresh: solve(m, **kw), TIME_LIMIT)
         except (Exception, _Overtime) as exc:  # noqa: BLE001 - reported, the run goes on
             return dict(error=_failure(exc), seconds=time.perf_counter() - start)
         best = min(best, time.perf_counter() - start)

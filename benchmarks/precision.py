@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-from .models import chain, example
+from .models import chain, example, from_scratch
 from .profiling import solve_profile
 
 __all__ = ["run", "DIGITS", "MODELS"]
@@ -38,16 +38,15 @@ LIMIT = 2.0
 
 def measure(model, repeat: int = REPEAT) -> dict:
     """Best seconds per precision over ``repeat`` rounds, evaluations and profiles."""
-    from symtmm.numeric.plan import clear_plans
     from symtmm.solve import solve
 
     best = {d: np.inf for d in DIGITS}
     evaluations = {}
     for _ in range(repeat):
         for d in DIGITS:
-            clear_plans()       # each solve from scratch, as a user's first one
+            fresh = from_scratch(model)     # each solve as a user's first one
             start = time.perf_counter()
-            spectrum = solve(model, count=COUNT, digits=d)
+            spectrum = solve(fresh, count=COUNT, digits=d)
             best[d] = min(best[d], time.perf_counter() - start)
             evaluations[d] = spectrum.evaluations
     profiles = {d: solve_profile(model, count=COUNT, digits=d)[0] for d in DIGITS}

@@ -116,9 +116,13 @@ def profile_call(fn) -> tuple:
 
 def solve_profile(model, **solve_kw) -> tuple:
     """``(profile, spectrum)`` of one :func:`symtmm.solve.solve` (see :func:`profile_call`);
-    the profile also holds ``roots`` (with multiplicity)."""
+    the profile also holds ``roots`` (with multiplicity). The model is taken as a new object
+    (:func:`benchmarks.models.from_scratch`), as the timed solves take it."""
     from symtmm.solve import solve
 
-    profile, spectrum = profile_call(lambda: solve(model, **solve_kw))
+    from .models import from_scratch
+
+    fresh = from_scratch(model)
+    profile, spectrum = profile_call(lambda: solve(fresh, **solve_kw))
     profile["roots"] = sum(e.multiplicity for e in spectrum)
     return profile, spectrum

@@ -1430,9 +1430,10 @@ class Model:
             params[name] = value
         return replace(self, parameters=params)
 
-    @property
+    @cached_property
     def free_symbols(self) -> tuple:
-        """Names of the symbols left in the resolved fields, sorted."""
+        """Names of the symbols left in the resolved fields, sorted (once per model: a solve
+        asks eight times, each a walk over every field)."""
         syms = set()
         resolved = self.resolved()
         for beam in resolved.beams:
