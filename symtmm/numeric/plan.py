@@ -179,6 +179,10 @@ class StiffnessPlan:
         How many segments of the mesh share each kind.
     log_constant : float
         ``log`` of the determinant identity's constant (powers of two and ``P``).
+    valid_radius : float
+        The largest ``|lam|**2`` its pieces are cut short enough for (:meth:`_valid_radius`),
+        at least ``radius``: where the supports and springs cut the beams finer than the
+        range needs, far more.
 
     Examples
     --------
@@ -200,6 +204,7 @@ class StiffnessPlan:
         piece.radius = self.radius          # (the mesh bounds a layer's k + c lam with it)
         mesh = self.mesh = Mesh(model, piece)
         n = self.n = mesh.size
+        self.valid_radius = self._valid_radius(nu_max)
         cliques = ([[g for c in places for g, _ in c] for places in mesh.segment_places]
                    + [[g for c in places for g, _ in c] for places, _ in mesh.point_places]
                    + [[g for c in places for g, _ in c] for places, _ in mesh.body_places])
@@ -281,6 +286,23 @@ class StiffnessPlan:
                              - 2.0 * math.log(2.0) * sum(e))
         self.pivot_product = mesh.pivot_product
 
+    def _valid_radius(self, nu_max: float) -> float:
+        """The largest ``|lam|**2`` at which every piece keeps ``|s| l <= nu_max``: for an
+        Euler–Bernoulli piece ``(EI (nu_max / l)**4 - kw) / m`` (:func:`wave_number_bound`);
+        the pieces of other theories and of layers count as cut for :attr:`radius` alone
+        (their rules hold more than the wave number). A chain's pieces are mostly the
+        stretches between its springs, whatever the range: its plan for twice the range
+        has 2 % more freedoms, and the plan of the first guess serves the top above it.
+        """
+        valid = math.inf
+        for _, seg, _, _ in self.mesh.segments:
+            if not isinstance(seg, EulerBernoulliSegment):
+                return self.radius
+            EI, m, l, kw = seg.constants()
+            valid = min(valid, (EI * (nu_max / l) ** 4 - kw) / m if m > 0 else math.inf)
+        # (the cut rounds a stretch's pieces within 1e-9 of the rule: never below radius)
+        return max(self.radius, valid * (1 - 1e-9))
+
     def _static_diagonal(self, triples, kinds) -> list:
         """The diagonal of the unscaled ``K`` at ``lam = 0`` (floats)."""
         from .stiffness import stiffness_values
@@ -359,10 +381,13 @@ def plan_for(model, size: float, slack: float = 4.0) -> StiffnessPlan:
     """A plan of ``model`` (numeric) valid for ``|lam| <= size``, shared between searches.
 
     Plans are cut for the ranges ``2**(k/4)`` (at most 19 % above ``size``: pieces at
-    most 9 % more than needed); one already built for a larger range serves while its
-    pieces are at most twice as many as needed (``slack``, by default ``4 x`` the range:
-    Euler–Bernoulli pieces shorten like ``range**(-1/2)``), since building a plan costs
-    tens of evaluations. The plans of the last :data:`PLAN_MODELS` models are kept.
+    most 9 % more than needed). One already built serves instead when its pieces are
+    short enough for this range (:attr:`StiffnessPlan.valid_radius`: a plan cut for a
+    smaller range then has no more pieces than one cut for this), or when it was cut
+    for a larger range and its pieces are at most twice as many as needed (``slack``,
+    by default ``4 x`` the range: Euler–Bernoulli pieces shorten like
+    ``range**(-1/2)``), since building a plan costs tens of evaluations. The plans of
+    the last :data:`PLAN_MODELS` models are kept.
 
     Examples
     --------
@@ -379,6 +404,12 @@ def plan_for(model, size: float, slack: float = 4.0) -> StiffnessPlan:
             _PLANS.popitem(last=False)
         plan = plans.get(design)
         if plan is None:
+            # cut for a smaller range, yet short enough for this one: no more pieces than a
+            # plan cut for it (a larger plan serves under the slack rule below)
+            serving = [p for p in plans.values()
+                       if p.radius <= design * design <= p.valid_radius]
+            if serving:
+                return min(serving, key=lambda p: p.n)
             larger = [d for d in plans if design < d <= slack * design]
             if larger:
                 return plans[min(larger)]

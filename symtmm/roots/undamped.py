@@ -299,7 +299,18 @@ class _Search:
             w, k = self.count_off(w, 2.0 * w)
             if k >= count:
                 return float(w), int(k)
-            w = _next_top(w, k, count, weyl)
+            nxt = _next_top(w, k, count, weyl)
+            # the plans built so far may serve well above their own range (a chain's pieces
+            # are mostly its stretches between springs): up to the highest range on the
+            # grid they serve, a count needs no plan of its own
+            served = self.counter.served_range()
+            grid = 2.0 ** (math.floor(4 * math.log2(served) + 1e-9) / 4) if served > 0 else 0.0
+            if 1.1 * w < grid < nxt:          # (a count barely above w would not pay)
+                w, k = self.count_off(grid, 2.0 * grid)
+                if k >= count:
+                    return float(w), int(k)
+                nxt = _next_top(w, k, count, weyl)
+            w = nxt
         raise ComputationError(f"fewer than {count} eigenvalues below 1e150 rad/s")
 
     # -- isolation -------------------------------------------------------------------------
