@@ -20,13 +20,14 @@ import math
 
 import sympy as sp
 from sympy.polys.domains import QQ
+from sympy.polys.polyerrors import CoercionFailed
 
 from .assembly import point_elements
 from .elements import Coupling, GroundSpring
 from .elements.base import stiffness_coefficients
 from .elements.layer import joined, member
 from .errors import ComputationError, ModelError
-from .expr import exact_float as _float
+from .expr import exact_float
 from .limits import MAX_PIECES
 from .model import FREEDOM_INDEX, GROUND, Model
 
@@ -198,15 +199,15 @@ class Mesh:
             changed = False
             for a, b, x0, x1, _ in layers:
                 for i, j in ((a, b), (b, a)):
-                    extra = {x for x in required[i] if _float(x0) <= _float(x) <= _float(x1)
+                    extra = {x for x in required[i] if exact_float(x0) <= exact_float(x) <= exact_float(x1)
                              and x not in required[j]}
                     if extra:
                         required[j] |= extra
                         changed = True
-        xs_of = [sorted(r, key=_float) for r in required]
+        xs_of = [sorted(r, key=exact_float) for r in required]
 
         def covering(xa, xb):
-            return [la for la in layers if _float(la[2]) <= _float(xa) and _float(xb) <= _float(la[3])]
+            return [la for la in layers if exact_float(la[2]) <= exact_float(xa) and exact_float(xb) <= exact_float(la[3])]
 
         def group(i, xa, xb):
             """The beams joined to ``i`` over ``[xa, xb]`` through layers, and those layers."""
@@ -243,7 +244,7 @@ class Mesh:
         for i, xs in enumerate(xs_of):
             for xa, xb in itertools.pairwise(xs):
                 members, used = group(i, xa, xb)
-                ratio = max(_float(xb - xa) / longest(j, xb - xa, used) for j in members)
+                ratio = max(exact_float(xb - xa) / longest(j, xb - xa, used) for j in members)
                 total += ratio
                 if not total <= MAX_PIECES:
                     # (before the exact coordinates of millions of pieces are made)
@@ -264,18 +265,18 @@ class Mesh:
                 n_sub = subdivisions[(b_idx, xa)]
                 points += [xa + (xb - xa) * sp.Rational(k, n_sub) for k in range(1, n_sub + 1)]
             ids = list(range(len(self._nodes), len(self._nodes) + len(points)))
-            self._nodes += [(_float(x), b_idx) for x in points]
+            self._nodes += [(exact_float(x), b_idx) for x in points]
             self.node_x += points
             self._node_length += [0.0] * len(points)
             self._beam_nodes.append(dict(zip(points, ids)))
         for b_idx, beam in enumerate(model.beams):
             xs = xs_of[b_idx]
             nodes = self._beam_nodes[b_idx]
-            points = sorted(nodes, key=_float)
-            starts = [_float(x) for x in xs[:-1]]
+            points = sorted(nodes, key=exact_float)
+            starts = [exact_float(x) for x in xs[:-1]]
             for xa_node, xb_node in itertools.pairwise(points):
                 # the stretch between required points this piece lies in
-                k = bisect.bisect_right(starts, _float(xa_node)) - 1
+                k = bisect.bisect_right(starts, exact_float(xa_node)) - 1
                 members, used = groups.get((b_idx, xs[k]), ([b_idx], []))
                 if members[0] != b_idx:
                     continue                # the group's first beam makes the coupled piece
@@ -289,7 +290,7 @@ class Mesh:
                                  length)
                     self.segments.append((tuple(members), seg, ia, ib))
                 for i in ia + ib:
-                    self._node_length[i] = max(self._node_length[i], _float(length))
+                    self._node_length[i] = max(self._node_length[i], exact_float(length))
 
     def _number(self, subs) -> dict:
         """Number the free freedoms along ``x``; a body's next to its first attachment's node.
@@ -303,7 +304,7 @@ class Mesh:
                 place[("n", node, k)] = (x, b_idx, node, k)
         body_node = []
         for bi, body in enumerate(self.model.bodies):
-            first = min(body.attachments, key=lambda a: (_float(a.x), index[a.beam]))
+            first = min(body.attachments, key=lambda a: (exact_float(a.x), index[a.beam]))
             node = self._node(first.beam, first.x)
             body_node.append(node)
             frame = self.model.body_frame(body)
@@ -354,7 +355,7 @@ class Mesh:
                 if c:
                     constraints.append((ends[0][0].name if ends else None, c))
         for beam, nodes in zip(self.model.beams, self._beam_nodes):
-            ends = sorted(nodes, key=_float)
+            ends = sorted(nodes, key=exact_float)
             for x, bc in ((ends[0], beam.left), (ends[-1], beam.right)):
                 for k in BC_FREEDOMS_FIXED[bc]:
                     constraints.append((None, {("n", nodes[x], k): sp.Integer(1)}))
@@ -491,18 +492,20 @@ def _static_null_space(model: Model, mesh: Mesh | None = None):
     from sympy.polys.matrices import DomainMatrix
 
     def coarse():
-        return Mesh(model.require_numeric().resolved(), lambda beam, seg: _float(seg.l))
+        return Mesh(model.require_numeric().resolved(), lambda beam, seg: exact_float(seg.l))
 
-    if mesh is None:
+    own = mesh is None
+    if own:
         mesh = coarse()
     try:
         # rational models (most): the rows in QQ's numbers, each SymPy number converted
         # once (SymPy's arithmetic was two thirds of a 10-level chain's null space)
         rows, domain = _null_rows(_local_null_rows(mesh), _to_qq), QQ
-    except _NotRational:
+    except CoercionFailed:
         # an algebraic field's rank grows steeply with the size (a frame with an inclined
         # member: 0.25 s on its own mesh, 12 s on a plan's of 87 freedoms): the coarse mesh
-        mesh = coarse()
+        if not own:
+            mesh = coarse()
         rows, domain = _null_rows(_local_null_rows(mesh), lambda c: c), None
     n = mesh.size
     if not rows:
@@ -535,17 +538,10 @@ def _local_null_rows(mesh: Mesh) -> list:
     return out
 
 
-class _NotRational(Exception):
-    """A coefficient of the null-space rows is not a rational number."""
-
-
 @functools.lru_cache(maxsize=4096)
 def _to_qq(c):
-    if not isinstance(c, (int, sp.Rational)):
-        c = sp.sympify(c)
-        if not c.is_Rational:
-            raise _NotRational
-    return QQ(int(c.p), int(c.q)) if isinstance(c, sp.Rational) else QQ(c)
+    """``c`` (an exact number) in QQ, once per number; ``CoercionFailed`` if irrational."""
+    return QQ.from_sympy(sp.sympify(c))
 
 
 def _null_rows(local_rows, number) -> list:

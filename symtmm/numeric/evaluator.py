@@ -123,17 +123,19 @@ class Evaluator:
             plan = self._plans[design] = plan_for(self.model, size)
         return plan
 
+    def _built(self) -> list:
+        return list(self._plans.values()) + list(self._borrowed.values())
+
     def served_range(self) -> float:
         """The largest ``|lam|`` some plan this search has built serves (0 before any;
         :attr:`~symtmm.numeric.plan.StiffnessPlan.valid_radius`)."""
-        built = list(self._plans.values()) + list(self._borrowed.values())
-        return max((math.sqrt(plan.valid_radius) for plan in built), default=0.0)
+        return max((math.sqrt(plan.valid_radius) for plan in self._built()), default=0.0)
 
     def coarsest_plan(self, size: float) -> StiffnessPlan:
         """The plan with the fewest freedoms this search has built, else one for ``size``
         (for work on the model's mesh that any cut serves, such as the static null space:
         no plan is built for it alone)."""
-        built = list(self._plans.values()) + list(self._borrowed.values())
+        built = self._built()
         if built:
             return min(built, key=lambda plan: plan.n)
         return self.plan(size, 1)

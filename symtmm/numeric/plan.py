@@ -47,7 +47,7 @@ from .arith import DOUBLE, Arithmetic
 from .segments import kind, kind_order, kind_size, kind_tables
 
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "rcm_order", "wave_number_bound",
-           "plan_for", "design_range", "clear_plans", "PLAN_MODELS"]
+           "plan_for", "design_range", "design_below", "clear_plans", "PLAN_MODELS"]
 
 #: SymPy's one (a singleton): most coefficients of the scatter are it.
 ONE = sp.S.One
@@ -375,6 +375,20 @@ def clear_plans():
 def design_range(size: float) -> float:
     """The range ``2**(k/4) >= size`` a plan for ``|lam| <= size`` is cut for."""
     return 2.0 ** (math.ceil(4 * math.log2(max(float(size), 1e-300)) - 1e-9) / 4)
+
+
+def design_below(size: float) -> float:
+    """The largest range ``2**(k/4) <= size`` (0 for ``size`` 0): a plan that serves
+    ``|lam| <= size`` serves the plans' lookup for it.
+
+    Examples
+    --------
+    >>> design_below(45.3), design_range(45.3), design_below(0.0)
+    (45.254833995939045, 53.81737057623773, 0.0)
+    """
+    if not size > 0:
+        return 0.0
+    return 2.0 ** (math.floor(4 * math.log2(float(size)) + 1e-9) / 4)
 
 
 def plan_for(model, size: float, slack: float = 4.0) -> StiffnessPlan:

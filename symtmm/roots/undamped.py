@@ -56,6 +56,7 @@ from ..mesh import static_nullity
 from ..model import Model
 from ..numeric.arith import MP
 from ..numeric.evaluator import exact_mpf as _exact_mpf
+from ..numeric.plan import design_below
 from ..results import Eigenvalue, Spectrum, first, print_apart, prints_alike
 from .bracket import SEPARATION_DIGITS, scaled, scaled_ends, shrink
 from .count import Counter, digits_for, proof_arithmetic
@@ -224,11 +225,12 @@ def _exact_mpc_imag(w) -> mpmath.mpc:
 class _Search:
     """Isolation, refinement and proof of the roots of one undamped model."""
 
-    def __init__(self, model: Model, digits: int, omega_hi: float, rigid: int = 0,
+    def __init__(self, model: Model, digits: int, omega_hi: float,
                  certified: bool | None = None):
         self.model = model
         self.digits = digits
-        self.rigid = rigid
+        # the rigid-body modes: set by the solve once the top is found, on its plans' mesh
+        self.rigid = 0
         self.certified = certified
         self.counter = Counter(model, omega_hi)
         self._proved: dict = {}         # (point, digits) -> count proved in balls
@@ -303,8 +305,7 @@ class _Search:
             # the plans built so far may serve well above their own range (a chain's pieces
             # are mostly its stretches between springs): up to the highest range on the
             # grid they serve, a count needs no plan of its own
-            served = self.counter.served_range()
-            grid = 2.0 ** (math.floor(4 * math.log2(served) + 1e-9) / 4) if served > 0 else 0.0
+            grid = design_below(self.counter.served_range())
             if 1.1 * w < grid < nxt:          # (a count barely above w would not pay)
                 w, k = self.count_off(grid, 2.0 * grid)
                 if k >= count:
@@ -877,10 +878,10 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         hi = float(omega_max)
         if hi < 0:
             raise ValueError("omega_max must not be negative")
-        search = _Search(model, digits, max(hi, 1e-300), 0, certified)
+        search = _Search(model, digits, max(hi, 1e-300), certified)
     else:
         hi = _first_guess(model)
-        search = _Search(model, digits, hi, 0, certified)
+        search = _Search(model, digits, hi, certified)
     counted = None
     if omega_max is None and count > 0:
         # (the count at the top includes the rigid-body modes; the plans it builds serve
