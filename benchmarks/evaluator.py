@@ -10,6 +10,11 @@ exactly that many numpy ``cos, cosh, sin, sinh`` calls' worth of arguments
 (:data:`BATCH` points x the kinds, real arguments in ``[0, 3]`` like the
 pieces' ``beta l``): at most :data:`LIMIT` times.
 
+What it cannot avoid either is the elimination of its band: timed alone (the
+kernel's own compiled loop, on a copy of ``K`` at the same points), it is
+reported beside the target, and ``Delta / (transcendental + elimination)``
+says how much the rest (assembly, bounds, signs, logarithms) adds to the two.
+
 Beside it, for the same frequencies: the naive per-point numpy transfer
 product a user would write (:class:`benchmarks.baselines.NaiveTransfer`), and the
 C evaluator symtmm generates (``symtmm codegen --lang c``, ``gcc -O2``, the loop
@@ -102,6 +107,7 @@ def measure(model, quick: bool, baselines: bool) -> dict:
     x = 3.0 * np.random.default_rng(0).random(BATCH * size["kinds"])
     per["transcendental"] = _min_seconds(lambda: (np.cos(x), np.cosh(x), np.sin(x), np.sinh(x)),
                                          repeat) / BATCH
+    per["elimination"] = _min_seconds(kernel.elimination(omegas), repeat) / BATCH
     lam = 1j * omegas
     per["naive_numpy"] = per["generated_c"] = None
     if baselines:
@@ -115,6 +121,8 @@ def measure(model, quick: bool, baselines: bool) -> dict:
             per["generated_c"] = min(c.delta_loop(lam)[1] for _ in range(repeat)) / BATCH
     return dict(size, seconds_per_point=per,
                 ratio_to_transcendental=per["delta"] / per["transcendental"],
+                elimination_to_transcendental=per["elimination"] / per["transcendental"],
+                ratio_to_floor=per["delta"] / (per["transcendental"] + per["elimination"]),
                 log_delta_error=_accuracy(kernel, omegas[::BATCH // ACCURACY]),
                 profile=_own_time(lambda: kernel.delta(omegas)))
 

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
+import numpy as np
+
 __all__ = ["internals"]
 
 
@@ -26,7 +28,9 @@ def internals() -> SimpleNamespace:
         frequency axis, with ``counts(omegas, digits=None)`` (eigenvalues below
         each ``omega``; ``-1`` where undecided), ``delta(omegas, digits=None)``
         (``(log|Delta|, sign)`` arrays in double precision, else ``Delta`` per
-        point as mpmath numbers: a ball's midpoint), ``size(omega)`` (pieces, distinct
+        point as mpmath numbers: a ball's midpoint), ``elimination(omegas)`` (a call
+        that runs the double-precision band elimination alone on ``K`` at those
+        points, on a fresh copy each time: for timing), ``size(omega)`` (pieces, distinct
         segment kinds, freedoms and half-bandwidth of the compiled model at that
         range) and ``evaluations()``; ``digits=None`` is double precision, a
         number the proof arithmetic at that many digits.
@@ -42,6 +46,7 @@ def internals() -> SimpleNamespace:
     from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
     from symtmm.numeric.evaluator import Evaluator
     from symtmm.numeric.plan import StiffnessPlan
+    from symtmm.numeric.stiffness import assemble, eliminate
     from symtmm.roots import undamped
     from symtmm.roots.count import Counter
 
@@ -60,6 +65,20 @@ def internals() -> SimpleNamespace:
             ar = arithmetic(digits)
             return [ar.to_mpmath(v) for v in counter.delta(omegas, ar)[0]]
 
+        def elimination(omegas):
+            w = np.asarray(omegas, dtype=float)
+            plan = counter.plan(float(np.max(w)), w.size)
+            K, _ = assemble(plan, DOUBLE, -(w * w))
+            B, n, b = K.shape
+            band = np.concatenate([K, np.zeros((B, b, b), dtype=K.dtype)], axis=1)
+            work = np.empty_like(band)
+
+            def run():
+                np.copyto(work, band)
+                with np.errstate(all="ignore"):
+                    eliminate(plan, DOUBLE, work, n)
+            return run
+
         def size(omega):
             plan = counter.plan(omega)
             return dict(pieces=len(plan.mesh.segments), kinds=len(plan.kinds),
@@ -67,7 +86,8 @@ def internals() -> SimpleNamespace:
 
         return SimpleNamespace(
             counts=lambda omegas, digits=None: counter.counts(omegas, arithmetic(digits)),
-            delta=delta, size=size, evaluations=lambda: counter.evaluations)
+            delta=delta, elimination=elimination, size=size,
+            evaluations=lambda: counter.evaluations)
 
     def factor_key(args, kwargs):
         # Counter.factors(self, omegas, ar=DOUBLE, ...), Evaluator.factors(self, lam, ar=DOUBLE,

@@ -301,10 +301,18 @@ def _why_evaluator(ev) -> list:
     for name, m in ev["models"].items():
         per = m["seconds_per_point"]
         top = ", ".join(f"{k} {_pct(v['share'])}" for k, v in m["profile"]["own_time"].items())
+        floor = ""
+        if per.get("elimination") is not None:
+            floor = (f". The band elimination alone costs {_g(per['elimination'] * 1e6)} us, "
+                     f"{_g(m['elimination_to_transcendental'])}x the transcendental functions"
+                     + (" (the target lies below what the elimination alone costs)"
+                        if m["elimination_to_transcendental"] > 5 else "")
+                     + f"; Delta / (transcendental + elimination) {_g(m['ratio_to_floor'])}")
         out.append(f"{name}: {m['kinds']} distinct segment kinds ({m['pieces']} pieces, "
                    f"{m['freedoms']} freedoms, half-bandwidth {m['band']}): Delta "
                    f"{_g(per['delta'] * 1e6)} us per point, its transcendental functions "
                    f"{_g(per['transcendental'] * 1e6)} us, ratio {_g(m['ratio_to_transcendental'])}"
+                   + floor
                    + (". Own time in batch calls (cProfile): " + top if m["ratio_to_transcendental"] > 5
                       else "") + ".")
     return out
@@ -511,7 +519,10 @@ def _evaluator(ev) -> list:
            (f"A batch of {ev['batch']} frequencies in [1, {ev['omega_max']:g}] rad/s. `Delta`: "
             "the kernel's double-precision Delta and count (one factorization). "
             "`transcendental`: numpy cos, cosh, sin, sinh on one argument per distinct segment "
-            "kind and point. `naive numpy`: per point, the stacked transfer matrices multiplied "
+            "kind and point. `elimination`: the kernel's band elimination alone (its compiled "
+            "loop) on K at the same points; `floor`: transcendental + elimination, the two "
+            "parts no evaluation of this Delta avoids. `naive numpy`: per point, the stacked "
+            "transfer matrices multiplied "
             "in a Python loop (benchmarks/baselines.py). `generated C`: `symtmm codegen --lang "
             "c`, gcc -O2, the loop over points timed inside C. Microseconds per point, best of "
             f"several runs. Accuracy: |log|Delta| - log|Delta_50||, median / max over "
@@ -520,14 +531,16 @@ def _evaluator(ev) -> list:
     for name, m in ev["models"].items():
         per = m["seconds_per_point"]
         rows.append([name, m["kinds"], m["pieces"], m["freedoms"], m["band"]]
-                    + [_g(per[k] * 1e6 if per[k] is not None else None)
-                       for k in ("delta", "transcendental", "naive_numpy", "generated_c")]
+                    + [_g(per[k] * 1e6 if per.get(k) is not None else None)
+                       for k in ("delta", "transcendental", "elimination", "naive_numpy",
+                                 "generated_c")]
                     + [f"**{_g(m['ratio_to_transcendental'])}**",
+                       _g(m.get("ratio_to_floor")),
                        (f"{_g(m['log_delta_error']['median'], 2)} / "
                         f"{_g(m['log_delta_error']['max'], 2)}")])
     out += _table(["model", "kinds", "pieces", "freedoms", "band", "Delta us",
-                   "transcendental us", "naive numpy us", "generated C us",
-                   "Delta / transcendental", "accuracy"], rows)
+                   "transcendental us", "elimination us", "naive numpy us", "generated C us",
+                   "Delta / transcendental", "Delta / floor", "accuracy"], rows)
     return out
 
 

@@ -46,7 +46,7 @@ from .arith import DOUBLE, Arithmetic
 from .segments import _matmul, family_matrices, stack_matrix
 
 __all__ = ["segment_stiffness", "coupled_stiffness", "eb_stiffness", "stiffness_values",
-           "assemble", "factor", "envelope_maps", "Factors", "dense"]
+           "assemble", "factor", "eliminate", "envelope_maps", "Factors", "dense"]
 
 try:        # the elimination loop in C (setup.py); without a compiler, numpy runs it
     from . import _band
@@ -542,6 +542,39 @@ def envelope_maps(plan, reverse: bool = False) -> list:
     return out
 
 
+def eliminate(plan, ar: Arithmetic, Kb, n: int, reverse: bool = False) -> None:
+    """The band elimination without pivoting, in place on ``Kb`` ``(B, n + w, w)`` (the
+    band padded with ``w`` zero rows): afterwards row ``k`` holds ``d_k`` and
+    ``d_k L[k + j, k]``. Doubles in the compiled loop where it is built (else its numpy
+    twin), Python numbers over the envelope's pairs only."""
+    B, _, w = Kb.shape
+    if COMPILED and Kb.dtype in (np.float64, np.complex128):
+        _band.eliminate(Kb, B, n + w, w, n, Kb.dtype == np.complex128)
+    elif Kb.dtype == object:
+        exact_zero_possible = not ar.rigorous
+        # numbers of Python objects: the envelope's pairs only (exact zeros skipped)
+        for k, (J, rows, cols, fi, fj) in enumerate(envelope_maps(plan, reverse)):
+            piv = Kb[:, k, 0]
+            if exact_zero_possible:
+                zero = np.array([v == 0 for v in piv], dtype=bool)
+                if zero.any():              # (mpmath refuses to divide by an exact 0)
+                    piv = piv.copy()
+                    piv[zero] = ar.exact(1)
+            if J.size:
+                row = Kb[:, k, J]
+                f = row / piv[:, None]
+                Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
+    else:
+        # the numpy twin of the C loop (the same operations, the same factors)
+        rows, cols, fi, fj = _update_maps(w)
+        for k in range(n):
+            piv = Kb[:, k, 0]
+            if w > 1:
+                row = Kb[:, k, 1:]
+                f = row / piv[:, None]
+                Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
+
+
 def _ldl(plan, ar: Arithmetic, K, det12, reverse: bool = False) -> Factors:
     B, n, w = K.shape
     if n == 0:
@@ -549,33 +582,9 @@ def _ldl(plan, ar: Arithmetic, K, det12, reverse: bool = False) -> Factors:
                        np.ones((B, 0), dtype=bool), det12)
     # in place on a copy padded with zero rows: afterwards row k holds d_k and d_k L[k+j, k]
     Kb = np.concatenate([K, ar.zeros((B, w, w), like=K)], axis=1)
-    exact_zero_possible = Kb.dtype == object and not ar.rigorous
     compiled = COMPILED and Kb.dtype in (np.float64, np.complex128)
     with np.errstate(all="ignore"):
-        if compiled:
-            _band.eliminate(Kb, B, n + w, w, n, Kb.dtype == np.complex128)
-        elif Kb.dtype == object:
-            # numbers of Python objects: the envelope's pairs only (exact zeros skipped)
-            for k, (J, rows, cols, fi, fj) in enumerate(envelope_maps(plan, reverse)):
-                piv = Kb[:, k, 0]
-                if exact_zero_possible:
-                    zero = np.array([v == 0 for v in piv], dtype=bool)
-                    if zero.any():              # (mpmath refuses to divide by an exact 0)
-                        piv = piv.copy()
-                        piv[zero] = ar.exact(1)
-                if J.size:
-                    row = Kb[:, k, J]
-                    f = row / piv[:, None]
-                    Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
-        else:
-            # the numpy twin of the C loop (the same operations, the same factors)
-            rows, cols, fi, fj = _update_maps(w)
-            for k in range(n):
-                piv = Kb[:, k, 0]
-                if w > 1:
-                    row = Kb[:, k, 1:]
-                    f = row / piv[:, None]
-                    Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
+        eliminate(plan, ar, Kb, n, reverse)
         pivots = Kb[:, :n, 0]
         scale = None
         if ar.needs_scale and compiled:
