@@ -244,6 +244,35 @@ def test_bracket_refinement_closes_in_few_steps(curvature, noise):
     assert steps.max() <= 10, steps
 
 
+def test_a_settled_bracket_stops_when_its_step_is_below_the_width():
+    """Around a root at the centre of a narrow bracket (a sweep's estimate), the secant
+    points converge from one side and the other end stays: the bracket halves once and
+    then waits for the scaling of its far end. ``settle`` stops where the step from the
+    latest point is below the width, with that point as near the root as the width asks:
+    never a step more, and one fewer on most curvatures."""
+    roots = np.array([9.5986542925, 199.859448127, 61.6728228679])
+
+    def run(curvature, settle):
+        steps = np.zeros(3, dtype=int)
+
+        def f(x, idx):
+            d = (x - roots[idx]) / roots[idx]
+            return -0.31 * d * (1 + curvature * d)
+
+        def probe(c, idx):
+            steps[np.unique(idx)] += 1
+            v = f(c, idx)
+            return v, np.where(v < 0, 1, -1)
+        a, b = roots * (1 - 1e-3), roots * (1 + 1.1e-3)
+        idx = np.arange(3)
+        out = shrink(a, b, f(a, idx), f(b, idx), probe, 1e-11, settle=settle)
+        np.testing.assert_allclose(out, roots, rtol=1e-11)
+        return steps.max()
+    pairs = [(run(c, True), run(c, False)) for c in (3.0, -20.0, 20.0, -3.0)]
+    assert all(s <= p for s, p in pairs)
+    assert sum(s < p for s, p in pairs) >= 2, pairs
+
+
 @pytest.mark.parametrize("growth, most", [(0.3, 9), (1.0, 13), (3.0, 17)])
 def test_a_crawling_bracket_shrinks_by_spread_points(growth, most):
     """A root near the left end of a wide bracket under a value growing exponentially to

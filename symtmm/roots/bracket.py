@@ -53,7 +53,7 @@ def scaled_ends(logabs, sign):
     return scaled(logabs[:R], sign[:R], ref), scaled(logabs[R:], sign[R:], ref), ref
 
 
-def shrink(a, b, fa, fb, probe, width: float, steps: int = 100):
+def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = False):
     """Shrink every bracket ``[a_i, b_i]`` (one root inside) to relative ``width``.
 
     Parameters
@@ -68,6 +68,10 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100):
         that bracket there).
     width : float
         Relative width at which a bracket is done.
+    settle : bool
+        Also done where the secant step from a bracket's latest point is shorter than
+        half the width: the latest point is then as close to the root as a bracket of
+        that width would tell, and no more steps narrow the bracket around it.
 
     Returns
     -------
@@ -103,6 +107,18 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100):
         A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
         with np.errstate(all="ignore"):
             c = B - FB * (B - A) / (FB - FA)
+        if settle:
+            # the step from the latest point is below the width: that point is the root
+            # as far as the secant tells (the other end's value, scaled down, only ever
+            # lengthens the step)
+            latest = np.where(last[idx] > 0, B, A)
+            near = (last[idx] != 0) & (np.abs(c - latest) <= 0.5 * width * np.abs(latest))
+            if near.any():
+                active[idx[near]] = False
+                keep = ~near
+                idx, A, B, FA, FB, c = idx[keep], A[keep], B[keep], FA[keep], FB[keep], c[keep]
+                if idx.size == 0:
+                    break
         # (a step that rounds onto an end is not bad: the root is next to it, and the
         # guard below puts the point just inside, which closes the bracket)
         bad = ~np.isfinite(c) | (c < A) | (c > B) | (FA * FB > 0)

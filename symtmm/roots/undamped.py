@@ -404,7 +404,7 @@ class _Search:
             return fc, side
 
         fa0, fb0 = fa.copy(), fb.copy()        # (their signs: the scaling keeps them)
-        return shrink(a, b, fa, fb, probe, _DOUBLE_REFINED)
+        return shrink(a, b, fa, fb, probe, _DOUBLE_REFINED, settle=True)
 
     # -- the digits, proved, all roots at once -------------------------------------------------
     def _values(self, points, ctx):
