@@ -18,12 +18,13 @@ from .roots.undamped import solve_undamped
 __all__ = ["solve", "METHODS"]
 
 
-def _default(model, count, omega_max, sigma_max, digits, prove_count=False):
+def _default(model, count, omega_max, sigma_max, digits, prove_count=False, guesses=None):
     if model.damped:
         return solve_damped(model, count=count, omega_max=omega_max, sigma_max=sigma_max,
                             digits=digits, prove_count=prove_count)
     # (the count on the frequency axis is proved already: Wittrick-Williams in balls)
-    return solve_undamped(model, count=count, omega_max=omega_max, digits=digits)
+    return solve_undamped(model, count=count, omega_max=omega_max, digits=digits,
+                          guesses=guesses)
 
 
 def _contour(model, count, omega_max, sigma_max, digits, prove_count=False):
@@ -34,12 +35,22 @@ def _contour(model, count, omega_max, sigma_max, digits, prove_count=False):
     return replace(spectrum, method="contour")
 
 
+def _pairs(guesses) -> list:
+    """``guesses`` as ``(omega, half-width)`` floats; a clear error for anything else."""
+    try:
+        return [(float(w), float(d)) for w, d in guesses]
+    except (TypeError, ValueError):
+        raise ModelError("guesses must be pairs (omega, relative half-width) of numbers",
+                         field="guesses") from None
+
+
 #: Root-search methods by name.
 METHODS = {"default": _default, "contour": _contour, "fmin1d": fmin1d, "fmin2d": fmin2d}
 
 
 def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
-          digits: int = 15, method: str = "default", prove_count: bool = False) -> Spectrum:
+          digits: int = 15, method: str = "default", prove_count: bool = False,
+          guesses=None) -> Spectrum:
     """Eigenvalues ``lam`` with ``Im lam >= 0``, ascending by ``Im lam``.
 
     Parameters
@@ -62,6 +73,13 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
         eigenvalues in the search region by a winding number in ball arithmetic
         (python-flint; :func:`symtmm.roots.damped.solve_damped`). Undamped models have
         their count proved always.
+    guesses : sequence of (float, float), optional
+        Estimates ``(omega, relative half-width)`` of the first ``count`` natural
+        frequencies, from a nearby model (:func:`symtmm.sweep.sweep` passes its
+        previous steps' values, extrapolated). The default method on an undamped model
+        looks there first; what it proves, and so every printed digit, does not depend
+        on them (:meth:`symtmm.roots.undamped._Search.guided`). Other searches ignore
+        them.
 
     Examples
     --------
@@ -85,5 +103,7 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
         raise ModelError(f"method {method} is a grid search: it proves nothing; a proved count "
                          "needs the default or the contour method", field="method")
     extra = {"prove_count": True} if prove_count else {}
+    if guesses is not None and method == "default":
+        extra["guesses"] = _pairs(guesses)
     spectrum = METHODS[method](model, count, omega_max, sigma_max, digits, **extra)
     return spectrum.with_model_name(spectrum.model_name or model.source or "", model.title)

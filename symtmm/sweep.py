@@ -120,15 +120,19 @@ def value_string(value) -> str:
 # one step (runs in a worker)
 # -----------------------------------------------------------------------------------
 
-def _solve_step(payload):
-    """Solve one resolved model; return its spectrum and weighted tracking shapes."""
+def _solve_step(payload, before=()):
+    """Solve one resolved model; return its spectrum and weighted tracking shapes.
+
+    ``before``: the spectra of the steps just before it (at most two, the nearer
+    last), whose frequencies tell the search where to look (:func:`_guesses`).
+    """
     model, count, sigma_max, digits, method, points = payload
     from .modes import displacements
     from .solve import solve
 
     with progress.shown(False):         # the sweep's own bar counts the steps
         spectrum = solve(model, count=count, sigma_max=sigma_max, digits=digits,
-                         method=method)
+                         method=method, guesses=_guesses(before))
     weights = []
     for beam in model.beams:
         w = np.full(points, float(beam.L) / (points - 1) * float(beam.m))
@@ -137,6 +141,57 @@ def _solve_step(payload):
     weight = np.concatenate(weights)
     shapes = [Y * weight for Y in displacements(model, list(spectrum), points, TRACK_DIGITS)]
     return spectrum, shapes
+
+
+#: Relative half-width about a frequency when a step follows one step only: the first
+#: step of the paper's figure 10 (the spring moved by a hundredth) shifts its
+#: frequencies by up to 3 %.
+FIRST_WIDTH = 3e-2
+#: The narrowest half-width: closer to a root double precision may not count.
+LEAST_WIDTH = 1e-5
+
+
+def _guesses(before):
+    """Estimates ``(omega, relative half-width)`` of a step's frequencies from the spectra
+    ``before`` it (the nearer last), or None.
+
+    After two steps, each frequency (by its rank, multiplicity counted) is extrapolated
+    along the line through them, give or take half its change over the last step: a
+    smooth branch moves on by about as much, and its curvature errs by far less. After
+    one, the frequency itself, give or take :data:`FIRST_WIDTH`. A branch that crosses
+    another, or a step where a frequency jumps, only widens the search there: the
+    search proves what it finds as it would without estimates
+    (:meth:`symtmm.roots.undamped._Search.guided`).
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> from symtmm.solve import solve
+    >>> beams = [Model((Beam("b", EI, 1, 1, left="pinned", right="pinned"),)) for EI in (1, 4)]
+    >>> [[round(w, 4), d] for w, d in _guesses([solve(m, count=1, digits=8) for m in beams])]
+    [[29.6088, 0.16666666666666666]]
+    """
+    rows = [[float(e.omega) for e in s for _ in range(e.multiplicity)] for s in before
+            if not s.damped]
+    if not rows:
+        return None
+    last = rows[-1]
+    if len(rows) < 2 or len(rows[-2]) != len(last):
+        return [(w, FIRST_WIDTH) for w in last if w > 0]
+    out = []
+    for w0, w1 in zip(rows[-2], last):
+        guess = 2 * w1 - w0
+        if w1 > 0 and guess > 0:
+            out.append((guess, max(abs(guess - w1) / (2 * guess), LEAST_WIDTH)))
+    return out
+
+
+def _solve_run(payloads) -> list:
+    """:func:`_solve_step` of consecutive steps, each after the ones before it."""
+    out = []
+    for p in payloads:
+        out.append(_solve_step(p, [spectrum for spectrum, _ in out[-2:]]))
+    return out
 
 
 def _progress(total: int, enabled: bool | None):
@@ -203,19 +258,24 @@ def _run(payloads, jobs, scheduler, progress):
                     client.close()
         elif jobs <= 1 or n == 1:
             for i, p in enumerate(payloads):
-                results[i] = _solve_step(p)
+                results[i] = _solve_step(p, [spectrum for spectrum, _ in results[max(0, i - 2):i]])
                 bar.update()
         else:
             from concurrent.futures import ProcessPoolExecutor, as_completed
             from concurrent.futures.process import BrokenProcessPool
 
             try:
+                # runs of consecutive steps, each solved after the ones before it in its
+                # run (:func:`_guesses`): four runs a process balance the load
+                size = -(-n // (4 * min(jobs, n)))
                 with ProcessPoolExecutor(max_workers=min(jobs, n),
                                          mp_context=_process_context()) as pool:
-                    futures = {pool.submit(_solve_step, p): i for i, p in enumerate(payloads)}
+                    futures = {pool.submit(_solve_run, payloads[i:i + size]): i
+                               for i in range(0, n, size)}
                     for fut in as_completed(futures):
-                        results[futures[fut]] = fut.result()
-                        bar.update()
+                        done = fut.result()
+                        results[futures[fut]:futures[fut] + len(done)] = done
+                        bar.update(len(done))
             except BrokenProcessPool:
                 raise ComputationError(
                     "a worker process died; in a script, call sweep() under "

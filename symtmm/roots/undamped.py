@@ -69,6 +69,8 @@ _DOUBLE_WIDTH = 1e-11
 #: wrong without any pivot looking small (the pivot that changes sign may be large and
 #: steep), and the proof arithmetic would only have to widen the bracket again.
 _DOUBLE_REFINED = 1e-11
+#: Where :meth:`_Search.guided` counts above the highest estimate, relative to it.
+_TOP_MARGIN = 1.05
 #: Largest number of points one bracket contributes to an isolation batch.
 _SPLIT_POINTS = 16
 #: Largest precision (decimal digits) the refinement may climb to.
@@ -314,15 +316,53 @@ class _Search:
             w = nxt
         raise ComputationError(f"fewer than {count} eigenvalues below 1e150 rad/s")
 
+    def guided(self, guesses, count: int):
+        """``((top, J(top)), cuts)`` from estimates of the eigenvalues, or None.
+
+        ``guesses``: ``(omega, half-width)`` pairs, estimates of the first ``count``
+        natural frequencies with a relative uncertainty (a sweep's previous steps
+        extrapolated). The ends of every ``omega (1 -+ half-width)`` are counted in one
+        double-precision batch: where an estimate was good, its root is bracketed that
+        narrowly at once, with no search for the top and no isolation rounds, and the
+        double-precision refinement starts close to it. Nothing is taken on trust: the
+        counts partition ``[0, top]`` for :meth:`isolate` as its own cuts would (a bracket
+        that holds two roots, or a gap that holds one, is split there), and every root
+        is proved as without estimates. A point double precision cannot count (too near
+        a root) is left out. None where the counts do not serve (a falling count, or fewer
+        than ``count`` below the highest point): the search then runs as without
+        estimates.
+        """
+        points = {float(w) * (1 + side * abs(float(d))) for w, d in guesses
+                  for side in (-1, 1)}
+        points = sorted(p for p in points if math.isfinite(p) and p > 0)
+        if not points:
+            return None
+        # and a margin above them, in the same batch: where the highest estimate fell
+        # short, the count there still reaches the top
+        points.append(_TOP_MARGIN * points[-1])
+        counts = self.counter.counts(np.array(points)).tolist()
+        # (a point too near a root for a double count to be trusted is no cut)
+        points, counts = [p for p, c in zip(points, counts) if c >= 0], \
+            [c for c in counts if c >= 0]
+        if not counts or any(b < a for a, b in itertools.pairwise(counts)) or \
+                counts[-1] < count:
+            return None
+        # (past the first point that counts `count`, nothing more is needed)
+        last = next(i for i, c in enumerate(counts) if c >= count)
+        return (points[last], counts[last]), list(zip(points[:last], counts[:last]))
+
     # -- isolation -------------------------------------------------------------------------
-    def isolate(self, top: float, c_top: int, wanted=None) -> list:
+    def isolate(self, top: float, c_top: int, wanted=None, cuts=()) -> list:
         """Brackets ``(a, J(a), b, J(b))`` holding ``J(b) - J(a) >= 1`` roots, ascending.
 
         One root each, except those narrower than double precision resolves (clusters).
-        The cut points of a round are counted in one batch.
+        The cut points of a round are counted in one batch. ``cuts``: points
+        ``(omega, J(omega))`` in ``(0, top)`` counted already, ascending with counts that
+        do not fall (:meth:`guided`): the first round splits there.
         """
         limit = None if wanted is None else self.rigid + wanted
-        work = [(0.0, self.rigid, float(top), int(c_top))]
+        ends = [(0.0, self.rigid)] + list(cuts) + [(float(top), int(c_top))]
+        work = [(a, ca, b, cb) for (a, ca), (b, cb) in itertools.pairwise(ends)]
         done = []
         while work:
             if limit is not None:
@@ -839,7 +879,8 @@ class _MorePrecision(Exception):
 
 
 def solve_undamped(model: Model, count: int | None = None, omega_max=None,
-                   digits: int = 15, certified: bool | None = None) -> Spectrum:
+                   digits: int = 15, certified: bool | None = None,
+                   guesses=None) -> Spectrum:
     """Natural frequencies of an undamped model.
 
     Parameters
@@ -856,6 +897,10 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     certified : bool, optional
         Prove in ball arithmetic (needs python-flint); False: mpmath at two
         precisions; None (default): balls where python-flint is installed.
+    guesses : sequence of (float, float), optional
+        With ``count``: estimates ``(omega, relative half-width)`` of the natural
+        frequencies (a sweep's previous steps, extrapolated). They decide where the
+        search looks first, never what it proves (:meth:`_Search.guided`).
 
     Returns
     -------
@@ -882,13 +927,16 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
     else:
         hi = _first_guess(model)
         search = _Search(model, digits, hi, certified)
-    counted = None
+    counted, cuts = None, []
     if omega_max is None and count > 0:
         # (the count at the top includes the rigid-body modes; the plans it builds serve
         # the static null space below, which needs no mesh of its own)
-        counted = search.top_for(count)
+        guided = search.guided(guesses, count) if guesses else None
+        counted, cuts = guided or (search.top_for(count), [])
         hi = counted[0]
     rigid = search.rigid = rigid_body_modes(model, search.counter.coarsest_plan(hi).mesh)
+    if cuts and cuts[0][1] < rigid:
+        cuts = []                   # (a double count below the rigid-body modes: not cuts)
     check_stable(model, rigid, search.counter)
     eigen = []
     if rigid:
@@ -900,7 +948,7 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
             # include a root sitting exactly on omega_max (a top the search chose is
             # counted already: no root there matters)
             top, c_top = counted or search.count_off(hi * (1 + 4e-16), 2 * hi)
-            brackets = search.isolate(top, c_top, wanted)
+            brackets = search.isolate(top, c_top, wanted, cuts)
             simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
             clusters = [(a, ca, b, cb - ca) for a, ca, b, cb in brackets if cb - ca > 1]
             next_stage("refining")
