@@ -58,6 +58,26 @@ def test_rouche_proves_a_zero_alone_and_nothing_where_there_is_none():
     assert search._rouche([(root, r), (beside, r), (between, r)], 60) == [True, False, False]
 
 
+def test_rouche_encloses_each_square_once_where_the_first_radius_proves(monkeypatch):
+    """Each disk radius is a dense ball determinant per box: a box proved by the first
+    radius tried costs one enclosure, not one per radius. The reference: the roots of
+    the Green's-function characteristic equation, as above."""
+    from symtmm.roots.damped import _Problem, _Search
+    model = Model(PP.beams, (Spring("b", "ground", x="3/10", k=0, c=4),)).require_numeric()
+    search = _Search(_Problem(model, 60.0, certified=True), 15)
+    enclosed = []
+    enclose = type(search.p.kernel).enclose
+    monkeypatch.setattr(type(search.p.kernel), "enclose",
+                        lambda self, lam, ar: enclosed.append(len(lam)) or enclose(self, lam, ar))
+    with mpmath.workdps(50):
+        sup = [(mpmath.mpf(3) / 10, 0, 4)]
+        roots = [mpmath.findroot(lambda z: pp_char(z, 1, 1, 1, sup), mpmath.mpc(*guess))
+                 for guess in ((-2.7, 9.6), (-1.3, 39.3))]
+        items = [(root, mpmath.mpf(10) ** -20 * abs(root)) for root in roots]
+    assert search._rouche(items, 60) == [True, True]
+    assert enclosed == [2]
+
+
 def test_exact_parameters_as_balls():
     import sympy as sp
     with flint.ctx.workprec(200):
