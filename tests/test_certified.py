@@ -78,6 +78,32 @@ def test_rouche_encloses_each_square_once_where_the_first_radius_proves(monkeypa
     assert enclosed == [2]
 
 
+def test_a_band_ball_whose_last_pivot_holds_zero_still_holds_delta(monkeypatch):
+    """Within 1e-55 of a root, at 200 bits, the band elimination cannot decide its last
+    pivot (the one that carries the zero of Delta); its ball is finite and holds Delta,
+    so it is used as it is, without the dense determinant. The reference: the root of
+    the Green's-function characteristic equation, and Delta there from the transfer
+    formulation at 90 digits (a second formulation)."""
+    from symtmm.compile import Evaluator
+    from symtmm.numeric.arith import Ball
+    from symtmm.numeric.evaluator import Evaluator as Kernel
+    from symtmm.numeric.stiffness import Factors
+    model = Model(PP.beams, (Spring("b", "ground", x="3/10", k=0, c=4),)).require_numeric()
+    with mpmath.workdps(90):
+        sup = [(mpmath.mpf(3) / 10, 0, 4)]
+        root = mpmath.findroot(lambda z: pp_char(z, 1, 1, 1, sup), mpmath.mpc(-2.7, 9.6))
+        z = root * (1 + mpmath.mpf(10) ** -75)
+    kernel = Kernel(model, 60.0)
+    assert not kernel.factors([z], Ball(200), retry=False).trusted[0]
+    dense = []
+    monkeypatch.setattr(Factors, "pivoted_delta", lambda self, points: dense.append(points))
+    [value], [trusted] = kernel.delta([z], Ball(200), retry=False)
+    assert trusted and not dense and value.abs_upper().is_finite()
+    exact = Evaluator(model).delta_mp(z, dps=90)
+    with flint.ctx.workprec(300):
+        assert value.contains(flint.acb(exact.real, exact.imag))
+
+
 def test_exact_parameters_as_balls():
     import sympy as sp
     with flint.ctx.workprec(200):
