@@ -697,23 +697,22 @@ class _Search:
                 off = max(zs_off.real.abs_upper(), zs_off.imag.abs_upper())
                 if off < rr:
                     model[i] = (s, rr - off, rr * flint.arb(2).sqrt())   # (|w - z| on it)
-            # the disks one radius at a time, each for the boxes the smaller ones left
+            # the disks one radius at a time, each for the boxes the radii before left
             # unproved: the first proves most (an enclosure is a dense determinant each)
             out = [False] * len(items)
             todo = list(model)
             for k in factors:
                 if not todo:
                     break
-                boxes = [flint.acb(flint.arb(centres[i][0].real.mid(), centres[i][1] * 10 ** k),
-                                   flint.arb(centres[i][0].imag.mid(), centres[i][1] * 10 ** k))
-                         for i in todo]
+                rho = {i: centres[i][1] * 10 ** k for i in todo}
+                boxes = [flint.acb(flint.arb(centres[i][0].real.mid(), rho[i]),
+                                   flint.arb(centres[i][0].imag.mid(), rho[i])) for i in todo]
                 still = []
                 for i, bound in zip(todo, self.p.kernel.enclose(boxes, ar)):
                     s, dist, reach = model[i]
                     rr = centres[i][1]
                     M = bound.abs_upper()
-                    rho = rr * 10 ** k
-                    if M.is_finite() and 4 * M * reach * (rr + reach) / (rho * rho) < \
+                    if M.is_finite() and 4 * M * reach * (rr + reach) / (rho[i] * rho[i]) < \
                             s.abs_lower() * dist:
                         out[i] = True
                     else:
