@@ -46,6 +46,7 @@ from symtmm.modelfile import load
 from symtmm.numeric.arith import ball_available
 from symtmm.numeric.evaluator import Evaluator as Kernel
 from symtmm.results import decimal_string
+from symtmm.roots.contour import Rectangle
 from symtmm.roots.damped import DAMPED_PROOFS, count_in_rectangle, default_sigma_max, solve_damped
 from symtmm.roots.undamped import PROOFS, solve_undamped
 from symtmm.solve import METHODS, solve
@@ -525,3 +526,31 @@ def test_contour_sides_and_rectangles_are_sampled_together():
     halves = [Rectangle(-3, 0.5, -1, 2.5), Rectangle(0.5, 3.5, -1, 2.5)]
     assert [n for n, _ in ap.counts_and_centers(halves)] == [2, 2]   # -2, 2i | 1, 3 + i
     assert len(calls) <= 8
+
+
+@pytest.mark.parametrize("rect", [Rectangle(-3.0, 0.0, 1.0, 5.0),
+                                  Rectangle(-9.0, 0.0, -2.0, 2.0, True),
+                                  Rectangle(-1.0, 0.0, -6.0, 6.0, True)],
+                         ids=["upper", "wide symmetric", "tall symmetric"])
+def test_quarters_count_every_zero_of_the_rectangle_once(rect):
+    """A rectangle of three zeros or more is cut into quarters in one generation. With the
+    mirrored parts counted twice (a symmetric rectangle's count is of the whole, mirror
+    included), the quarters hold every zero of the rectangle exactly once: checked with
+    the zeros of a polynomial spread over it, counted by the argument principle."""
+    from symtmm.roots.contour import ArgumentPrinciple
+    from symtmm.roots.damped import _Search
+    zs = [complex(rect.x0 + (rect.x1 - rect.x0) * u, rect.y0 + (rect.y1 - rect.y0) * v)
+          for u, v in ((0.13, 0.21), (0.71, 0.33), (0.37, 0.86), (0.88, 0.92), (0.52, 0.61))]
+    if rect.symmetric:
+        zs = [complex(z.real, abs(z.imag) * 0.999) for z in zs]
+        zs += [z.conjugate() for z in zs]
+
+    def f(z):
+        v = np.prod([z - r for r in zs], axis=0)
+        return np.log(np.abs(v)), np.angle(v), np.ones(z.shape, dtype=bool)
+    ap = ArgumentPrinciple(f, spacing=lambda z: 0.05)
+    quarters = _Search._quarters(rect)
+    assert len(quarters) == 4
+    counts = [n for n, _ in ap.counts_and_centers([q for q, _ in quarters])]
+    assert sum(n * w for n, (_, w) in zip(counts, quarters)) == ap.count(rect) == len(zs)
+
