@@ -186,11 +186,14 @@ def _guesses(before):
     return out
 
 
-def _solve_run(payloads) -> list:
-    """:func:`_solve_step` of consecutive steps, each after the ones before it."""
+def _solve_run(payloads, done=None) -> list:
+    """:func:`_solve_step` of consecutive steps, each after the ones before it;
+    ``done()`` after each (a progress bar's update; in a worker, none)."""
     out = []
     for p in payloads:
         out.append(_solve_step(p, [spectrum for spectrum, _ in out[-2:]]))
+        if done is not None:
+            done()
     return out
 
 
@@ -257,9 +260,7 @@ def _run(payloads, jobs, scheduler, progress):
                 if own:
                     client.close()
         elif jobs <= 1 or n == 1:
-            for i, p in enumerate(payloads):
-                results[i] = _solve_step(p, [spectrum for spectrum, _ in results[max(0, i - 2):i]])
-                bar.update()
+            results = _solve_run(payloads, bar.update)
         else:
             from concurrent.futures import ProcessPoolExecutor, as_completed
             from concurrent.futures.process import BrokenProcessPool

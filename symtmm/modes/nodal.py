@@ -5,7 +5,8 @@ beams, whose entries grow like ``exp(|s| L)``: high modes lose more digits than
 double precision has and are walked in mpmath. The stiffness kernel's pieces are
 short (``|s| l <= NU_MAX``, :mod:`symtmm.numeric.plan`), so nothing grows there:
 
-1. a null vector of the scaled ``K(lam)`` (dense singular value decomposition:
+1. a null vector of the scaled ``K(lam)`` (dense singular value decomposition, by
+   the symmetric eigensolver for an undamped mode's real ``K``:
    the right singular vectors of the ``m`` smallest singular values, ``m`` the
    multiplicity) gives the deflection and rotation of every node;
 2. each piece's end forces follow from its ends, ``f0 = U12**-1 (d1 - U11 d0)``

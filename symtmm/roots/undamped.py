@@ -361,7 +361,9 @@ class _Search:
         do not fall (:meth:`guided`): the first round splits there.
         """
         limit = None if wanted is None else self.rigid + wanted
-        ends = [(0.0, self.rigid)] + list(cuts) + [(float(top), int(c_top))]
+        # (a double count below the rigid-body modes, exact at 0, is wrong: no cut)
+        ends = [(0.0, self.rigid)] + [(w, c) for w, c in cuts if c >= self.rigid] + \
+            [(float(top), int(c_top))]
         work = [(a, ca, b, cb) for (a, ca), (b, cb) in itertools.pairwise(ends)]
         done = []
         while work:
@@ -935,8 +937,6 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         counted, cuts = guided or (search.top_for(count), [])
         hi = counted[0]
     rigid = search.rigid = rigid_body_modes(model, search.counter.coarsest_plan(hi).mesh)
-    if cuts and cuts[0][1] < rigid:
-        cuts = []                   # (a double count below the rigid-body modes: not cuts)
     check_stable(model, rigid, search.counter)
     eigen = []
     if rigid:
