@@ -1,14 +1,25 @@
-"""The optional C extension; everything else is in pyproject.toml.
+"""The optional C extensions; everything else is in pyproject.toml.
 
 ``symtmm.numeric._band`` runs the banded LDL^T elimination of double-precision
-batches in C. It is optional: without a C compiler the install goes on and the
-same loop runs in numpy (``symtmm.numeric.stiffness``).
+batches in C, ``symtmm.numeric._multiword`` the ball factorisations of Euler–Bernoulli
+models in multi-word balls. Both are optional: without a C compiler the install
+goes on, the double loop runs in numpy (``symtmm.numeric.stiffness``) and every ball
+in Arb.
 """
 
 from setuptools import Extension, setup
 
-setup(ext_modules=[Extension(
-    "symtmm.numeric._band", ["symtmm/numeric/_band.c"],
-    # a fused multiply-add would round differently from the numpy loop
-    extra_compile_args=["-O2", "-ffp-contract=off"],
-    optional=True)])
+setup(ext_modules=[
+    Extension(
+        "symtmm.numeric._band", ["symtmm/numeric/_band.c"],
+        # a fused multiply-add would round differently from the numpy loop
+        extra_compile_args=["-O2", "-ffp-contract=off"],
+        optional=True),
+    Extension(
+        # multi-word balls: their error-free sums must not be fused either
+        "symtmm.numeric._multiword", ["symtmm/numeric/_multiword.c"],
+        depends=["symtmm/numeric/_multiword_dd.h", "symtmm/numeric/_multiword_limbs.h",
+                 "symtmm/numeric/_multiword_kernel.h"],
+        extra_compile_args=["-O2", "-ffp-contract=off"],
+        optional=True),
+])

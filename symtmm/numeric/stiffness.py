@@ -310,6 +310,11 @@ class Factors:
         ``(B, n, b + 1)``: the band factorised (kept for a pivoted determinant where the
         elimination without pivoting broke down: :meth:`pivoted_delta`); of a double batch
         factorised in parts, its rows at the untrusted points only (:class:`BandRows`).
+    products : numpy.ndarray or None
+        ``(B,)`` where given: per point the product of its pivots and of ``det U12`` to
+        the plan's multiplicities (``Delta`` but for the plan's constant), as computed by
+        the factorisation at its full precision, which then keeps cheaper, wider balls as
+        pivots (:mod:`symtmm.numeric.multiword`); None entries where it did not.
     """
 
     plan: object
@@ -319,6 +324,7 @@ class Factors:
     decided: np.ndarray
     det12: np.ndarray
     K: np.ndarray | None = None
+    products: np.ndarray | None = None
 
     @property
     def trusted(self) -> np.ndarray:
@@ -355,9 +361,15 @@ class Factors:
                 else mine.astype(np.result_type(mine, theirs))
             out[points] = theirs
             return out
+        products = None
+        if self.products is not None or other.products is not None:
+            products = (self.products.copy() if self.products is not None
+                        else np.full(self.pivots.shape[0], None, dtype=object))
+            products[points] = (other.products if other.products is not None
+                                else np.full(np.size(points), None, dtype=object))
         return Factors(self.plan, other.ar, merge(self.pivots, other.pivots),
                        merge(self.signs, other.signs), merge(self.decided, other.decided),
-                       merge(self.det12, other.det12), merge(self.K, other.K))
+                       merge(self.det12, other.det12), merge(self.K, other.K), products)
 
     @staticmethod
     def joined(parts) -> Factors:
@@ -412,6 +424,9 @@ class Factors:
             const = self._constant()
             out = []
             for p in range(self.pivots.shape[0]):
+                if self.products is not None and self.products[p] is not None:
+                    out.append(const * self.products[p])
+                    continue
                 value = const
                 for v in self.pivots[p]:
                     value = value * v
@@ -439,7 +454,9 @@ def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Facto
     marked undecided. ``reverse``: the freedoms in the opposite order (another set of
     leading minors, the same inertia and determinant): where a leading minor is nearly
     singular at a point (a sub-structure's eigenvalue), the other end's are not.
-    In double precision a batch is factorised in parts of at most :data:`BAND_ENTRIES`.
+    In double precision a batch is factorised in parts of at most :data:`BAND_ENTRIES`;
+    in balls, an undamped Euler–Bernoulli plan first in compiled multi-word balls
+    (:mod:`symtmm.numeric.multiword`).
     """
     if ar is DOUBLE:
         step = max(1, BAND_ENTRIES // max(1, plan.n * plan.width))
@@ -448,6 +465,10 @@ def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Facto
             parts = [factor(plan, ar, lam2[i:i + step], None if lam is None else lam[i:i + step],
                             reverse) for i in range(0, lam2.shape[0], step)]
             return Factors.joined(parts)
+    if ar.rigorous:
+        from . import multiword     # (it builds on this module)
+        if multiword.serves(plan, ar, lam2, lam):
+            return multiword.factor(plan, ar, lam2, reverse)
     with ar:
         K, det12 = assemble(plan, ar, lam2, lam)
         if reverse:

@@ -1,0 +1,312 @@
+/*
+ * Multi-word balls: rigorous enclosures with a midpoint of 2 to 5 64-bit words (128 to
+ * 320 bits) in compiled loops, for the proofs of symtmm.numeric.multiword (undamped
+ * Euler-Bernoulli models: there the kernel's Arb balls pay a Python call per operation).
+ *
+ * A ball of N words holds every real m + t with |t| <= r: the midpoint m = (-1)^s
+ * 0.m[0]m[1]..m[N-1] (binary) 2^e, a binary floating-point number of 64 N bits (its
+ * leading bit set, the exponent a 64-bit integer), the radius r a double. The operations
+ * compute the midpoints' exact result in integer words (the whole product; sums with
+ * one guard word) and cut it to N words, adding to the radius a bound of what they cut
+ * (one unit of the last word kept, or of the guard word for the bits an alignment shifted
+ * out), and what the operands' radii carry:
+ *
+ *   x + y:  r = x.r + y.r + cut;
+ *   x * y:  r = |x| y.r + |y| x.r + x.r y.r + cut  (|x|: its leading 53 bits plus one unit);
+ *   1 / y:  q from Newton steps; |1/y_mid - q| <= |1 - q y_mid| / |y_mid|, with
+ *           1 - q y_mid enclosed by the operations above (a posteriori: no analysis of
+ *           the iteration); r = y.r / (|y|_min |y_mid|) + that.
+ *
+ * Radii are computed in round-to-nearest and then inflated: up(v) = v (1 + 2^-48) +
+ * 2^-1021 exceeds the exact value of a sum of at most a dozen rounded non-negative terms
+ * (each rounding at most 2^-53 relative) and every error of gradual underflow. A number
+ * whose exponent leaves +-EXP_MAX, or anything not finite (a division by a ball holding
+ * 0), makes the point fail: the caller then evaluates it in Arb.
+ *
+ * The kernel (_multiword_kernel.h) is compiled once per number of words N, 2 to 5, so
+ * that its loops over the words have a fixed length. No numpy headers: arrays come as
+ * buffers of 64-bit words, N + 3 per ball (the words, e, s and the bits of r).
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+/* exponents beyond this fail (radii and bounds are doubles) */
+#define EXP_MAX 1000
+
+#define INFLATE (1.0 + 0x1p-48)
+#define DEFLATE (1.0 - 0x1p-48)
+#define TINY 0x1p-1021
+
+static inline double up(double v) { return v * INFLATE + TINY; }
+
+/* 2^k for -1022 <= k <= 1023, built from its bits (ldexp is a library call; this is on the
+ * hot path of every operation) */
+static inline double pow2(int k)
+{
+    const uint64_t bits = (uint64_t)(k + 1023) << 52;
+    double v;
+    memcpy(&v, &bits, sizeof v);
+    return v;
+}
+/* a lower bound of a non-negative v computed with a few roundings (may be negative) */
+static inline double down(double v) { return v * DEFLATE - TINY; }
+
+/* A pivot below 2^-PAIR_BITS of the entry coupling it to the next freedom is eliminated
+ * with that freedom as one 2x2 block P = [[a, b], [b, c]] (pivot2): one tiny pivot (a
+ * leading sub-structure near one of its eigenvalues) would multiply the radii of every
+ * entry it updates by the square of that ratio, the block's inverse multiplies them by
+ * about 1. The trailing entries lose R^T P^-1 R (Haynsworth: the inertia and determinant
+ * of K are P's and those of that Schur complement's). P's two "pivots", whose signs are
+ * its inertia and whose product is det P: (det P, 1) where det P < 0, else (a, det P / a)
+ * or (c, det P / c); the point fails where the block's inertia is not decided. */
+#define PAIR_BITS 8
+
+#define CAT_(a, b) a##_##b
+#define CAT(a, b) CAT_(a, b)
+
+/* two words: double-double balls (about 106 bits, a few double operations each) */
+#define F(name) name##_2
+#define BALL ball_2
+#define W_ 3
+#define PREC_BITS 106
+#include "_multiword_dd.h"
+#include "_multiword_kernel.h"
+#undef F
+#undef BALL
+#undef W_
+#undef PREC_BITS
+
+/* three to five words: integer mantissas (64 bits a word) */
+#define F(name) CAT(name, NW)
+#define BALL F(ball)
+#define W_ (NW + 3)
+#define PREC_BITS (64 * NW)
+#define NW 3
+#include "_multiword_limbs.h"
+#include "_multiword_kernel.h"
+#undef NW
+#define NW 4
+#include "_multiword_limbs.h"
+#include "_multiword_kernel.h"
+#undef NW
+#define NW 5
+#include "_multiword_limbs.h"
+#include "_multiword_kernel.h"
+#undef NW
+#undef F
+#undef BALL
+#undef W_
+#undef PREC_BITS
+
+#define MIN_WORDS 2
+#define MAX_WORDS 5
+
+/* 64-bit words per ball of N words: the double-double's three doubles, else the mantissa,
+ * the exponent, the sign and the radius */
+static inline Py_ssize_t ball_words(int N) { return N == 2 ? 3 : N + 3; }
+
+/* assemble(N, lam2, kinds, coef, tails, K, targets, source, bcoef, starts, band, det12,
+ *          V, ok)
+ *   balls of N words (N + 3 64-bit words each): lam2 (B,); kinds (S, 4) = (EI, l, A, F);
+ *   coef (4, K) the balls of 1/(4k + j)!; tails (4, K + 1) doubles, upper bounds of
+ *   1/(4k + j)!; targets, source (T,) int64 and bcoef (T,): the plan's scatter, layer q
+ *   being terms starts[q] .. starts[q + 1] - 1 (each target at most once in a layer);
+ *   band (B, nk) written; det12 (B, S) written; V (16 S + 3) workspace; ok (B,) uint8
+ *   written: 0 where a value is not finite (the point is left to Arb).
+ * The sources index V = [D of every kind (16 each), 1, lam (0: no dashpots), lam2]: the
+ * columns of symtmm.numeric.stiffness.assemble. */
+static PyObject *assemble(PyObject *self, PyObject *args)
+{
+    Py_buffer lb, kb, cb, tb, tgb, srcb, bcb, stb, bandb, detb, vb, okb;
+    Py_ssize_t K;
+    int N;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "iy*y*y*y*ny*y*y*y*w*w*w*w*", &N, &lb, &kb, &cb, &tb, &K,
+                          &tgb, &srcb, &bcb, &stb, &bandb, &detb, &vb, &okb))
+        return NULL;
+    int good = N >= MIN_WORDS && N <= MAX_WORDS;
+    const Py_ssize_t item = 8 * ball_words(N);
+    const Py_ssize_t B = good ? lb.len / item : 0, S = good ? kb.len / item / 4 : 0;
+    const Py_ssize_t T = tgb.len / 8, Q = stb.len / 8 - 1, nv = 16 * S + 3;
+    const Py_ssize_t nk = B ? bandb.len / item / B : 0;
+    good = good && K >= 2 && cb.len == 4 * K * item && tb.len == 4 * (K + 1) * 8
+           && srcb.len == tgb.len && bcb.len == T * item && Q >= 0
+           && detb.len == B * S * item && vb.len == nv * item && okb.len == B
+           && (B == 0 || bandb.len == B * nk * item);
+    const long long *tg = tgb.buf, *src = srcb.buf, *st = stb.buf;
+    for (Py_ssize_t i = 0; good && i < T; i++)
+        good = src[i] >= 0 && src[i] < nv && tg[i] >= 0 && tg[i] < nk;
+    for (Py_ssize_t q = 0; good && q <= Q; q++)
+        good = st[q] >= 0 && st[q] <= T && (q == 0 || st[q] >= st[q - 1]);
+    if (good) {
+        Py_BEGIN_ALLOW_THREADS
+#define ASSEMBLE(n) assemble_points_##n(lb.buf, kb.buf, S, cb.buf, tb.buf, K, tg, src, \
+                                        bcb.buf, st, Q, bandb.buf, nk, detb.buf, vb.buf, \
+                                        okb.buf, B)
+        switch (N) {
+        case 2: ASSEMBLE(2); break;
+        case 3: ASSEMBLE(3); break;
+        case 4: ASSEMBLE(4); break;
+        default: ASSEMBLE(5); break;
+        }
+#undef ASSEMBLE
+        Py_END_ALLOW_THREADS
+    }
+    PyBuffer_Release(&lb); PyBuffer_Release(&kb); PyBuffer_Release(&cb);
+    PyBuffer_Release(&tb); PyBuffer_Release(&tgb); PyBuffer_Release(&srcb);
+    PyBuffer_Release(&bcb); PyBuffer_Release(&stb); PyBuffer_Release(&bandb);
+    PyBuffer_Release(&detb); PyBuffer_Release(&vb); PyBuffer_Release(&okb);
+    if (!good) {
+        PyErr_SetString(PyExc_ValueError, "multi-word tables and buffers do not fit");
+        return NULL;
+    }
+    Py_RETURN_NONE;
+}
+
+/* eliminate(N, band, B, rows, w, n, ok): LDL^T without pivoting in place on (B, rows, w)
+ * balls, as symtmm.numeric.stiffness.eliminate, but for the 2x2 blocks above; row k then
+ * holds d_k first (the L factors are not kept). Exact zeros are skipped (the envelope).
+ * A point whose pivot (or block) cannot be decided is stopped there with ok[p] = 0. */
+static PyObject *eliminate(PyObject *self, PyObject *args)
+{
+    Py_buffer buf, okb;
+    Py_ssize_t B, rows, w, n;
+    int N;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "iw*nnnnw*", &N, &buf, &B, &rows, &w, &n, &okb))
+        return NULL;
+    if (N < MIN_WORDS || N > MAX_WORDS || B < 0 || w < 1 || n < 0 || rows < n + w
+            || buf.len != B * rows * w * 8 * ball_words(N) || okb.len != B) {
+        PyBuffer_Release(&buf); PyBuffer_Release(&okb);
+        PyErr_SetString(PyExc_ValueError, "multi-word band of the wrong size");
+        return NULL;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    switch (N) {
+    case 2: eliminate_points_2(buf.buf, B, rows, w, n, okb.buf); break;
+    case 3: eliminate_points_3(buf.buf, B, rows, w, n, okb.buf); break;
+    case 4: eliminate_points_4(buf.buf, B, rows, w, n, okb.buf); break;
+    default: eliminate_points_5(buf.buf, B, rows, w, n, okb.buf); break;
+    }
+    Py_END_ALLOW_THREADS
+    PyBuffer_Release(&buf); PyBuffer_Release(&okb);
+    Py_RETURN_NONE;
+}
+
+/* power_product(N, x, k, out, ok): out (B,) = prod_i x[:, i]^k[i] of balls x (B, count),
+ * k (count,) int64 >= 0, each as a ball and one more word, the power of two (int64) it is
+ * to be multiplied by; ok (B,) uint8 written (0: not finite). */
+static PyObject *power_product(PyObject *self, PyObject *args)
+{
+    Py_buffer xb, kb, ob, okb;
+    int N;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "iy*y*w*w*", &N, &xb, &kb, &ob, &okb))
+        return NULL;
+    const Py_ssize_t item = 8 * ball_words(N), B = okb.len, count = kb.len / 8;
+    int good = N >= MIN_WORDS && N <= MAX_WORDS && ob.len == B * (item + 8)
+               && xb.len == B * count * item;
+    for (Py_ssize_t i = 0; good && i < count; i++)
+        good = ((const long long *)kb.buf)[i] >= 0;
+    if (good) {
+        switch (N) {
+        case 2: power_product_points_2(xb.buf, count, kb.buf, ob.buf, okb.buf, B); break;
+        case 3: power_product_points_3(xb.buf, count, kb.buf, ob.buf, okb.buf, B); break;
+        case 4: power_product_points_4(xb.buf, count, kb.buf, ob.buf, okb.buf, B); break;
+        default: power_product_points_5(xb.buf, count, kb.buf, ob.buf, okb.buf, B); break;
+        }
+    }
+    PyBuffer_Release(&xb); PyBuffer_Release(&kb); PyBuffer_Release(&ob);
+    PyBuffer_Release(&okb);
+    if (!good) {
+        PyErr_SetString(PyExc_ValueError, "power_product: buffers of the wrong size");
+        return NULL;
+    }
+    Py_RETURN_NONE;
+}
+
+/* ops(op, N, x, y, out): elementwise on (M, N + 3) balls, op 0 add, 1 sub, 2 mul,
+ * 3 x / y (as x times 1/y); for the tests of the enclosures. */
+static PyObject *ops(PyObject *self, PyObject *args)
+{
+    Py_buffer xb, yb, ob;
+    int op, N;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "iiy*y*w*", &op, &N, &xb, &yb, &ob))
+        return NULL;
+    const Py_ssize_t item = 8 * ball_words(N);
+    if (op < 0 || op > 3 || N < MIN_WORDS || N > MAX_WORDS || yb.len != xb.len
+            || ob.len != xb.len || xb.len % item) {
+        PyBuffer_Release(&xb); PyBuffer_Release(&yb); PyBuffer_Release(&ob);
+        PyErr_SetString(PyExc_ValueError, "ops: bad operation or buffers");
+        return NULL;
+    }
+    const Py_ssize_t M = xb.len / item;
+    switch (N) {
+    case 2: ops_points_2(op, xb.buf, yb.buf, ob.buf, M); break;
+    case 3: ops_points_3(op, xb.buf, yb.buf, ob.buf, M); break;
+    case 4: ops_points_4(op, xb.buf, yb.buf, ob.buf, M); break;
+    default: ops_points_5(op, xb.buf, yb.buf, ob.buf, M); break;
+    }
+    PyBuffer_Release(&xb); PyBuffer_Release(&yb); PyBuffer_Release(&ob);
+    Py_RETURN_NONE;
+}
+
+/* krylov(N, x, coef, tails, K, out): out (M, 4, N + 3) the c_j of the balls x (M, N + 3)
+ * (the tests); radius +inf where |x| is beyond the series' reach. */
+static PyObject *kry(PyObject *self, PyObject *args)
+{
+    Py_buffer xb, cb, tb, ob;
+    Py_ssize_t K;
+    int N;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "iy*y*y*nw*", &N, &xb, &cb, &tb, &K, &ob))
+        return NULL;
+    const Py_ssize_t item = 8 * ball_words(N);
+    const int good = N >= MIN_WORDS && N <= MAX_WORDS && K >= 2 && cb.len == 4 * K * item
+                     && tb.len == 4 * (K + 1) * 8 && xb.len % item == 0
+                     && ob.len == 4 * xb.len;
+    if (good) {
+        const Py_ssize_t M = xb.len / item;
+        switch (N) {
+        case 2: krylov_points_2(xb.buf, cb.buf, tb.buf, K, ob.buf, M); break;
+        case 3: krylov_points_3(xb.buf, cb.buf, tb.buf, K, ob.buf, M); break;
+        case 4: krylov_points_4(xb.buf, cb.buf, tb.buf, K, ob.buf, M); break;
+        default: krylov_points_5(xb.buf, cb.buf, tb.buf, K, ob.buf, M); break;
+        }
+    }
+    PyBuffer_Release(&xb); PyBuffer_Release(&cb); PyBuffer_Release(&tb);
+    PyBuffer_Release(&ob);
+    if (!good) {
+        PyErr_SetString(PyExc_ValueError, "krylov: buffers of the wrong size");
+        return NULL;
+    }
+    Py_RETURN_NONE;
+}
+
+static PyMethodDef methods[] = {
+    {"assemble", assemble, METH_VARARGS,
+     "assemble(N, lam2, kinds, coef, tails, K, targets, source, bcoef, starts, band, det12, "
+     "V, ok): the band of K(lam2) in balls of N words from Euler-Bernoulli kinds."},
+    {"eliminate", eliminate, METH_VARARGS,
+     "eliminate(N, band, B, rows, w, n, ok): LDL^T without pivoting of ball bands, in place."},
+    {"power_product", power_product, METH_VARARGS,
+     "power_product(N, x, k, out, ok): out[p] = prod_i x[p, i]**k[i] of balls."},
+    {"ops", ops, METH_VARARGS, "ops(op, N, x, y, out): elementwise ball operations (tests)."},
+    {"krylov", kry, METH_VARARGS,
+     "krylov(N, x, coef, tails, K, out): the c_j of balls (tests)."},
+    {NULL, NULL, 0, NULL}
+};
+
+static struct PyModuleDef module = {
+    PyModuleDef_HEAD_INIT, "_multiword", "Multi-word balls in compiled loops.", -1, methods,
+    NULL, NULL, NULL, NULL
+};
+
+PyMODINIT_FUNC PyInit__multiword(void)
+{
+    return PyModule_Create(&module);
+}

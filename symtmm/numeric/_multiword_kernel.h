@@ -1,0 +1,317 @@
+/*
+ * The kernel of _multiword.c over one of its ball arithmetics (included after it, with F,
+ * BALL, W_ and PREC_BITS defined): the series of the c_j, the Euler-Bernoulli stiffness,
+ * the scatter, the band LDL^T with 2x2 blocks, running products, and the entry points of
+ * the tests.
+ */
+#define MUL(a, b) F(mul)(&(a), &(b))
+#define ADD(a, b) F(add)(&(a), &(b))
+#define SUB(a, b) F(sub)(&(a), &(b))
+
+/* c_j(x) = sum_k x^k / (4k + j)!, j = 0..3, each with the fewest terms (at most K) whose
+ * tail is below 2^-PREC_BITS: coef (4, K, W_) the balls of 1/(4k + j)!, tails (4, K + 1)
+ * upper bounds of 1/(4k + j)!. The tail beyond k terms is at most twice the first omitted
+ * term where consecutive terms shrink at least twofold, |x| <= (4k+j+1)..(4k+j+4) / 2. */
+static int F(krylov)(const BALL *x, const uint64_t *coef, const double *tails, Py_ssize_t K,
+                     BALL c[4])
+{
+    const double X = up(F(mid_up)(x) + x->r);
+    const double goal = ldexp(1.0, -PREC_BITS);
+    for (int j = 0; j < 4; j++) {
+        double XK = 1.0, tail = INFINITY;
+        Py_ssize_t terms = 0;
+        for (Py_ssize_t k = 1; k <= K && !terms; k++) {
+            XK = up(XK * X);
+            const double q = (double)(4 * k + j + 1) * (4 * k + j + 2) * (4 * k + j + 3)
+                             * (4 * k + j + 4);
+            if (X <= 0.5 * q * DEFLATE) {
+                const double bound = up(2.0 * XK * tails[(K + 1) * j + k]);
+                if (bound <= goal || k == K) {
+                    terms = k;
+                    tail = bound;
+                }
+            }
+        }
+        if (!terms)
+            return 0;
+        const uint64_t *cj = coef + W_ * K * j;
+        BALL acc = F(load)(cj + W_ * (terms - 1));
+        for (Py_ssize_t k = terms - 2; k >= 0; k--) {
+            const BALL t = MUL(acc, *x), ck = F(load)(cj + W_ * k);
+            acc = ADD(t, ck);
+        }
+        acc.r = up(acc.r + tail);
+        if (!F(finite)(&acc))
+            return 0;
+        c[j] = acc;
+    }
+    return 1;
+}
+
+/* The 4x4 stiffness of a kind (row-major, rows (Q0, -M0, -Q1, M1), columns (Y0, Theta0,
+ * Y1, Theta1)) and det U12, at lam2, as symtmm.numeric.stiffness.eb_stiffness. */
+static int F(eb_kind)(const BALL *lam2, const uint64_t *kc, const uint64_t *coef,
+                      const double *tails, Py_ssize_t K, uint64_t *D, uint64_t *det12)
+{
+    const BALL EI = F(load)(kc), l = F(load)(kc + W_), A = F(load)(kc + 2 * W_),
+               Fx = F(load)(kc + 3 * W_);
+    const BALL lA = MUL(*lam2, A), lAF = ADD(lA, Fx), x = F(neg)(lAF);
+    BALL c[4];
+    if (!F(krylov)(&x, coef, tails, K, c))
+        return 0;
+    const BALL c22 = MUL(c[2], c[2]), c13 = MUL(c[1], c[3]), dc = SUB(c22, c13);
+    const BALL l2 = MUL(l, l), l3 = MUL(l2, l), l3dc = MUL(l3, dc);
+    const BALL inv = F(inv)(&l3dc), s = MUL(EI, inv);
+    const BALL sl = MUL(s, l), sl2 = MUL(sl, l);
+    const BALL c01 = MUL(c[0], c[1]), c23 = MUL(c[2], c[3]), xc23 = MUL(x, c23);
+    const BALL e11 = SUB(c01, xc23), k11 = MUL(s, e11);
+    const BALL c11 = MUL(c[1], c[1]), c02 = MUL(c[0], c[2]), e12 = SUB(c11, c02);
+    const BALL k12 = MUL(sl, e12), k13 = MUL(s, c[1]), k14 = MUL(sl, c[2]);
+    const BALL c12 = MUL(c[1], c[2]), c03 = MUL(c[0], c[3]), e22 = SUB(c12, c03);
+    const BALL k22 = MUL(sl2, e22), k24 = MUL(sl2, c[3]);
+    const BALL m13 = F(neg)(k13), m14 = F(neg)(k14), m12 = F(neg)(k12);
+    const BALL rows[16] = {k11, k12, m13, k14, k12, k22, m14, k24,
+                           m13, m14, k11, m12, k14, k24, m12, k22};
+    for (int i = 0; i < 16; i++) {
+        if (!F(finite)(&rows[i]))
+            return 0;
+        F(store)(D + W_ * i, &rows[i]);
+    }
+    const BALL l4 = MUL(l2, l2), l4dc = MUL(l4, dc), EI2 = MUL(EI, EI);
+    const BALL iEI2 = F(inv)(&EI2), det = MUL(l4dc, iEI2);
+    if (!F(finite)(&det))
+        return 0;
+    F(store)(det12, &det);
+    return 1;
+}
+
+/* The band of every point (see assemble in _multiword.c). */
+static void F(assemble_points)(const uint64_t *lam2s, const uint64_t *kinds, Py_ssize_t S,
+                               const uint64_t *coef, const double *tails, Py_ssize_t K,
+                               const long long *tg, const long long *src, const uint64_t *bc,
+                               const long long *st, Py_ssize_t Q, uint64_t *bands,
+                               Py_ssize_t nk, uint64_t *dets, uint64_t *V, unsigned char *ok,
+                               Py_ssize_t B)
+{
+    const BALL one = F(exact)(1.0), zero = F(exact)(0.0);
+    for (Py_ssize_t p = 0; p < B; p++) {
+        const BALL lam2 = F(load)(lam2s + W_ * p);
+        uint64_t *band = bands + W_ * p * nk, *det = dets + W_ * p * S;
+        int fine = 1;
+        for (Py_ssize_t s = 0; fine && s < S; s++)
+            fine = F(eb_kind)(&lam2, kinds + 4 * W_ * s, coef, tails, K, V + 16 * W_ * s,
+                              det + W_ * s);
+        ok[p] = (unsigned char)fine;
+        if (!fine)
+            continue;
+        F(store)(V + W_ * (16 * S), &one);
+        F(store)(V + W_ * (16 * S + 1), &zero);
+        F(store)(V + W_ * (16 * S + 2), &lam2);
+        for (Py_ssize_t i = 0; i < nk; i++)
+            F(store)(band + W_ * i, &zero);
+        for (Py_ssize_t q = 0; q < Q; q++) {
+            for (Py_ssize_t i = st[q]; i < st[q + 1]; i++) {
+                const BALL v = F(load)(V + W_ * src[i]), c = F(load)(bc + W_ * i);
+                int k2;
+                const BALL term = F(power_of_two)(&c, &k2) ? F(scale)(&v, k2) : MUL(v, c);
+                uint64_t *target = band + W_ * tg[i];
+                if (q == 0) {
+                    F(store)(target, &term);
+                } else {
+                    const BALL old = F(load)(target), sum = ADD(old, term);
+                    F(store)(target, &sum);
+                }
+            }
+        }
+    }
+}
+
+/* One 1x1 pivot at row k: 0 where its ball holds 0. */
+static int F(pivot1)(uint64_t *Kp, Py_ssize_t k, Py_ssize_t w)
+{
+    uint64_t *row = Kp + W_ * k * w;
+    const BALL piv = F(load)(row);
+    if (!F(nonzero)(&piv))
+        return 0;
+    const BALL inv = F(inv)(&piv);
+    for (Py_ssize_t i = 1; i < w; i++) {
+        const BALL ri = F(load)(row + W_ * i);
+        if (F(is_zero)(&ri))
+            continue;
+        const BALL f = MUL(ri, inv);
+        uint64_t *target = Kp + W_ * ((k + i) * w - i);
+        for (Py_ssize_t j = i; j < w; j++) {
+            const BALL rj = F(load)(row + W_ * j);
+            if (F(is_zero)(&rj))
+                continue;
+            const BALL old = F(load)(target + W_ * j), u = MUL(f, rj), z = SUB(old, u);
+            F(store)(target + W_ * j, &z);
+        }
+    }
+    return 1;
+}
+
+/* Rows k and k + 1 as one block (see pivot2 in _multiword.c). */
+static int F(pivot2)(uint64_t *Kp, Py_ssize_t k, Py_ssize_t w)
+{
+    uint64_t *row0 = Kp + W_ * k * w, *row1 = Kp + W_ * (k + 1) * w;
+    const BALL a = F(load)(row0), b = F(load)(row0 + W_), c = F(load)(row1);
+    const BALL ac = MUL(a, c), bb = MUL(b, b), det = SUB(ac, bb);
+    if (!F(nonzero)(&det))
+        return 0;
+    BALL d0, d1;
+    if (F(negative)(&det)) {
+        d0 = det;
+        d1 = F(exact)(1.0);
+    } else if (F(nonzero)(&a)) {
+        const BALL ia = F(inv)(&a);
+        d0 = a;
+        d1 = MUL(det, ia);
+    } else if (F(nonzero)(&c)) {
+        const BALL ic = F(inv)(&c);
+        d0 = c;
+        d1 = MUL(det, ic);
+    } else {
+        return 0;
+    }
+    const BALL inv = F(inv)(&det), zero = F(exact)(0.0);
+    /* columns k + 2 .. k + w: row k holds them at offsets 2 .. w - 1 (then 0), row k + 1
+     * at offsets 1 .. w - 1 */
+    const Py_ssize_t m = w - 1;
+    BALL r0[m > 0 ? m : 1], r1[m > 0 ? m : 1], F0[m > 0 ? m : 1], F1[m > 0 ? m : 1];
+    for (Py_ssize_t t = 0; t < m; t++) {
+        r0[t] = t + 2 < w ? F(load)(row0 + W_ * (t + 2)) : zero;
+        r1[t] = F(load)(row1 + W_ * (t + 1));
+        BALL f0 = zero, f1 = zero;
+        if (!F(is_zero)(&r0[t])) {
+            f0 = MUL(c, r0[t]);
+            const BALL br = MUL(b, r0[t]);
+            f1 = F(neg)(br);
+        }
+        if (!F(is_zero)(&r1[t])) {
+            const BALL br = MUL(b, r1[t]), ar = MUL(a, r1[t]);
+            f0 = SUB(f0, br);
+            f1 = ADD(f1, ar);
+        }
+        F0[t] = F(is_zero)(&f0) ? zero : MUL(f0, inv);
+        F1[t] = F(is_zero)(&f1) ? zero : MUL(f1, inv);
+    }
+    for (Py_ssize_t s = 0; s < m; s++) {
+        if (F(is_zero)(&r0[s]) && F(is_zero)(&r1[s]))
+            continue;
+        uint64_t *target = Kp + W_ * ((k + 2 + s) * w - s);
+        for (Py_ssize_t t = s; t < m; t++) {
+            BALL u = zero;
+            if (!F(is_zero)(&r0[s]) && !F(is_zero)(&F0[t]))
+                u = MUL(r0[s], F0[t]);
+            if (!F(is_zero)(&r1[s]) && !F(is_zero)(&F1[t])) {
+                const BALL v = MUL(r1[s], F1[t]);
+                u = F(is_zero)(&u) ? v : ADD(u, v);
+            }
+            if (!F(is_zero)(&u)) {
+                const BALL old = F(load)(target + W_ * t), z = SUB(old, u);
+                F(store)(target + W_ * t, &z);
+            }
+        }
+    }
+    if (!F(finite)(&d0) || !F(finite)(&d1))
+        return 0;
+    F(store)(row0, &d0);
+    F(store)(row1, &d1);
+    return 1;
+}
+
+/* LDL^T of every point's band (see eliminate in _multiword.c). */
+static void F(eliminate_points)(uint64_t *buf, Py_ssize_t B, Py_ssize_t rows, Py_ssize_t w,
+                                Py_ssize_t n, unsigned char *ok)
+{
+    for (Py_ssize_t p = 0; p < B; p++) {
+        if (!ok[p])
+            continue;
+        uint64_t *Kp = buf + W_ * p * rows * w;
+        Py_ssize_t k = 0;
+        while (k < n) {
+            const BALL a = F(load)(Kp + W_ * k * w);
+            int pair = 0;
+            if (k + 1 < n && w > 1) {
+                const BALL next = F(load)(Kp + W_ * k * w + W_);
+                pair = !F(nonzero)(&a)
+                       || ldexp(fabs(F(head)(&a)), PAIR_BITS) < fabs(F(head)(&next));
+            }
+            if (pair ? !F(pivot2)(Kp, k, w) : !F(pivot1)(Kp, k, w)) {
+                ok[p] = 0;
+                break;
+            }
+            k += pair ? 2 : 1;
+        }
+    }
+}
+
+/* out[p] = prod_i x[p, i]^k[i] (k >= 0), by squaring: a ball (W_ words) and a power of two
+ * it is to be multiplied by (a product such as Delta leaves the doubles' range: the
+ * running product is rescaled as it goes), W_ + 1 words; ok[p] = 0 where not finite. */
+static void F(power_product_points)(const uint64_t *x, Py_ssize_t count, const long long *k,
+                                    uint64_t *out, unsigned char *ok, Py_ssize_t B)
+{
+    for (Py_ssize_t p = 0; p < B; p++) {
+        BALL acc = F(exact)(1.0);
+        int64_t shift = 0;
+        int fine = 1;
+        for (Py_ssize_t i = 0; fine && i < count; i++) {
+            BALL base = F(load)(x + W_ * (p * count + i));
+            for (long long m = k[i]; fine && m > 0; m >>= 1) {
+                if (m & 1)
+                    acc = MUL(acc, base);
+                if (m > 1)
+                    base = MUL(base, base);
+                F(rescale)(&acc, &shift);
+                fine = F(finite)(&acc) && F(finite)(&base);
+            }
+        }
+        ok[p] = (unsigned char)fine;
+        F(store)(out + (W_ + 1) * p, &acc);
+        out[(W_ + 1) * p + W_] = (uint64_t)shift;
+    }
+}
+
+/* Elementwise operations (the tests): op 0 add, 1 sub, 2 mul, 3 x / y (as x times 1/y). */
+static void F(ops_points)(int op, const uint64_t *x, const uint64_t *y, uint64_t *o,
+                          Py_ssize_t M)
+{
+    for (Py_ssize_t i = 0; i < M; i++) {
+        const BALL a = F(load)(x + W_ * i), b = F(load)(y + W_ * i);
+        BALL z;
+        switch (op) {
+        case 0: z = ADD(a, b); break;
+        case 1: z = SUB(a, b); break;
+        case 2: z = MUL(a, b); break;
+        default: {
+            const BALL ib = F(inv)(&b);
+            z = MUL(a, ib);
+        }
+        }
+        F(store)(o + W_ * i, &z);
+    }
+}
+
+/* The c_j of balls (the tests); radius +inf beyond the series' reach. */
+static void F(krylov_points)(const uint64_t *x, const uint64_t *coef, const double *tails,
+                             Py_ssize_t K, uint64_t *out, Py_ssize_t M)
+{
+    for (Py_ssize_t i = 0; i < M; i++) {
+        BALL c[4];
+        const BALL xi = F(load)(x + W_ * i);
+        if (!F(krylov)(&xi, coef, tails, K, c)) {
+            for (int j = 0; j < 4; j++) {
+                c[j] = F(exact)(0.0);
+                c[j].r = INFINITY;
+            }
+        }
+        for (int j = 0; j < 4; j++)
+            F(store)(out + 4 * W_ * i + W_ * j, &c[j]);
+    }
+}
+
+#undef MUL
+#undef ADD
+#undef SUB

@@ -1,0 +1,351 @@
+"""Ball factorisations of Euler–Bernoulli models in compiled multi-word balls.
+
+A proof factorises ``K(omega)`` in Arb balls a few times per root, and there every ball
+operation is a Python call (0.1-0.2 us, most of it the call). Where the model is
+undamped and made of Euler–Bernoulli segments, the same kernel (the series of the
+``c_j``, :func:`~symtmm.numeric.stiffness.eb_stiffness`, the plan's scatter, the band
+``LDL^T``) runs in C (``_multiword.c``) on balls whose midpoint is a binary
+floating-point number of ``N`` 64-bit words (:func:`tiers`: 2 to 5, 128 to 320 bits)
+and whose radius bounds every cut and rounding. A point whose every pivot ball there
+excludes zero has its pivots, signs and ``Delta`` proved as in Arb.
+
+The other points are factorised in Arb at the precision asked, as before: where a pivot
+ball holds zero (the radii grow along the band, by up to ``2**40`` on example 1 and more
+on long chains; or the point lies closer to a root than the words resolve). A tiny pivot
+beside a large coupling (a leading sub-structure near one of its eigenvalues) is
+eliminated as a 2x2 block with the next freedom, whose inverse does not multiply the
+radii by the square of their ratio; a point still undecided is tried with the freedoms
+the other way round, then with one word more.
+
+The results are balls of the arithmetic asked for (:class:`~symtmm.numeric.arith.Ball`),
+as rigorous as Arb's and wider: each pivot about its leading double, widened by the rest
+(``Delta`` good to about 1e-14 relative: what a secant or Newton step near a root needs,
+whose error is that times its distance from the root; the signs are proved already).
+
+Examples
+--------
+A pinned-pinned beam's first natural frequency is ``pi**2``: the counts on either side,
+proved in multi-word balls.
+
+>>> from symtmm.model import Beam, Model
+>>> from symtmm.numeric.arith import Ball
+>>> from symtmm.roots.count import Counter
+>>> c = Counter(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 100.0)
+>>> c.counts([9.8696044010893, 9.8696044010894], Ball(150)).tolist()
+[0, 1]
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .arith import Ball, memo
+
+try:        # the compiled balls (setup.py); without a compiler every ball runs in Arb
+    from . import _multiword
+except ImportError:  # pragma: no cover - tested by switching it off
+    _multiword = None
+
+#: Whether ball factorisations are tried in multi-word balls first; tests switch it off
+#: to run Arb alone.
+ENABLED = _multiword is not None
+
+#: The fewest and the most words of a midpoint (as compiled).
+MIN_WORDS, MAX_WORDS = 2, 5
+
+#: The most terms of the series of the ``c_j``; each takes the fewest whose tail is below
+#: ``2**-(64 N)`` (the pieces' ``|x| <= 81``: about 17 at 5 words, 9 for ``|x| < 1``).
+TERMS = 26
+
+_MASK = (1 << 64) - 1
+
+
+def serves(plan, ar, lam2, lam) -> bool:
+    """Whether a ball batch at ``lam2`` can be tried in balls of words."""
+    if not (ENABLED and isinstance(ar, Ball) and tiers(ar.prec, plan.n) and lam is None
+            and plan.n and not plan.damped and not getattr(ar, "closed_stiffness", False)):
+        return False
+    if any(family != "eb" for family, _ in plan.tables(ar)["kinds"]):
+        return False
+    return all(isinstance(v, ar.flint.arb) for v in np.asarray(lam2).reshape(-1))
+
+
+def width(N: int) -> int:
+    """64-bit words per ball of ``N`` words: a double-double's three doubles (``N = 2``),
+    else the mantissa's ``N`` words, the exponent, the sign and the radius."""
+    return 3 if N == 2 else N + 3
+
+
+def _up(x) -> float:
+    """An exact arb (a bound) as the least double not below it."""
+    r = float(x)
+    return math.nextafter(r, math.inf) if r < x else r
+
+
+def encode(v, flint, N: int) -> list:
+    """A real arb ball as a ball of ``N`` words (:func:`width` unsigned 64-bit integers): the
+    midpoint to ``N`` words (a double-double for 2; else its leading ``64 N`` bits, its
+    exponent and sign), the radius as a double covering the ball and what was cut."""
+    if N == 2:
+        mid = v.mid()
+        hi = float(mid)
+        rest = mid - flint.arb(hi)
+        lo = float(rest.mid())
+        r = _up((v.rad() + abs(rest - flint.arb(lo)).upper()).upper())
+        if not (math.isfinite(hi) and math.isfinite(r) and abs(hi) < 2.0 ** 1000):
+            raise OverflowError("a ball beyond the range of the compiled balls")
+        return [int(x) for x in np.array([hi, lo, r]).view(np.uint64)]
+    man, exp = v.mid().man_exp()
+    man, exp = int(man), int(exp)
+    cut = 0.0
+    if man == 0:
+        words, e, sign = [0] * N, 0, 0
+    else:
+        sign, a = int(man < 0), abs(man)
+        bits = a.bit_length()
+        e = exp + bits
+        if not -1000 <= e <= 1000:
+            raise OverflowError("a ball beyond the range of the compiled balls")
+        drop = bits - 64 * N
+        if drop > 0:
+            top = a >> drop
+            if a - (top << drop):
+                cut = math.ldexp(1.0, max(e - 64 * N, -1074))
+        else:
+            top = a << -drop
+        words = [(top >> (64 * (N - 1 - k))) & _MASK for k in range(N)]
+    r = _up(v.rad())
+    if cut:
+        r = math.nextafter(r + cut, math.inf)
+    if not math.isfinite(r):
+        raise OverflowError("a ball beyond the range of the compiled balls")
+    return words + [e & _MASK, sign, int(np.float64(r).view(np.uint64))]
+
+
+def decode(row) -> tuple:
+    """``(midpoint, radius)`` of a ball of words as Fractions (exact; for checks)."""
+    from fractions import Fraction
+    row = np.asarray(row, dtype=np.uint64)
+    if len(row) == 3:
+        hi, lo, r = (float(x) for x in row.view(np.float64))
+        return Fraction(hi) + Fraction(lo), Fraction(r)
+    N = len(row) - 3
+    m = sum(int(row[k]) << (64 * (N - 1 - k)) for k in range(N))
+    e = int(row[N:N + 1].view(np.int64)[0])
+    mid = Fraction(m) * Fraction(2) ** (e - 64 * N)
+    r = Fraction(float(row[N + 2:N + 3].view(np.float64)[0]))
+    return (-mid if int(row[N + 1]) else mid), r
+
+
+def _encoded(values, flint, N: int) -> np.ndarray:
+    return np.array([encode(v, flint, N) for v in values], dtype=np.uint64).reshape(
+        len(values), width(N))
+
+
+def _series(ar: Ball, N: int):
+    """The balls of ``1/(4k + j)!`` (``(4, TERMS, width)``) and upper bounds of them as
+    doubles (``(4, TERMS + 1)``: the tails), once per precision and number of words."""
+    flint = ar.flint
+
+    def build():
+        with flint.ctx.workprec(64 * N + 64):
+            coef = np.array([_encoded([1 / flint.arb.fac_ui(4 * k + j) for k in range(TERMS)],
+                                      flint, N) for j in range(4)], dtype=np.uint64)
+            tails = np.array([[_up((1 / flint.arb.fac_ui(4 * k + j)).upper())
+                               for k in range(TERMS + 1)] for j in range(4)], dtype=float)
+        return coef, tails
+    return ar.cached(("multiword series", TERMS, N), build)
+
+
+def _tables(plan, ar: Ball, N: int) -> dict | None:
+    """The plan's constants as balls of ``N`` words (None where one does not fit)."""
+    flint = ar.flint
+    t = plan.tables(ar)
+    seen: dict = {}             # (the plan's equal coefficients are one arb: ar.exact caches)
+
+    def convert(v):
+        out = seen.get(id(v))
+        if out is None:
+            out = seen[id(v)] = (v, encode(v, flint, N))
+        return out[1]
+    try:
+        kinds = [[convert(consts[name][s]) for name in ("EI", "l", "A", "F")]
+                 for _, consts in t["kinds"] for s in range(len(consts["EI"]))]
+        targets, source, bcoef, starts = [], [], [], [0]
+        for tg, src, cf in t["layers"]:
+            targets += [int(v) for v in tg]
+            source += [int(v) for v in src]
+            bcoef += [convert(v) for v in cf]
+            starts.append(len(targets))
+    except OverflowError:
+        return None
+    coef, tails = _series(ar, N)
+    return {"kinds": np.array(kinds, dtype=np.uint64).reshape(-1, 4, width(N)), "coef": coef,
+            "tails": tails, "targets": np.array(targets, dtype=np.int64),
+            "source": np.array(source, dtype=np.int64),
+            "bcoef": np.array(bcoef, dtype=np.uint64).reshape(-1, width(N)),
+            "starts": np.array(starts, dtype=np.int64)}
+
+
+def tiers(prec: int, n: int) -> list:
+    """The numbers of words a batch asking ``prec`` bits of a plan of ``n`` freedoms is tried
+    in, in turn (the points a tier leaves undecided go to the next, then to Arb).
+
+    The bits asked less the quarter of a bit per freedom that the ball elimination adds
+    for the growth of its radii (:meth:`~symtmm.numeric.evaluator.Evaluator._ball`), to
+    the nearest word, then one word more: 2 and 3 words for the proofs at 15 digits (144
+    bits), 3 and 4 at 30, 4 and 5 at 50. None beyond 5 words.
+    """
+    first = max(MIN_WORDS, round((prec - n // 4) / 64))
+    return [N for N in (first, first + 1) if N <= MAX_WORDS]
+
+
+def factor(plan, ar: Ball, lam2, reverse: bool = False):
+    """:func:`~symtmm.numeric.stiffness.factor` of an undamped Euler–Bernoulli plan in balls:
+    the points decided in multi-word balls (:func:`tiers`), the rest in ``ar`` (Arb)."""
+    from .stiffness import BandRows, Factors, _ldl, assemble, reversed_band
+
+    flint = ar.flint
+    lam2 = np.asarray(lam2, dtype=object)
+    B, n = lam2.shape[0], plan.n
+    pivots = np.empty((B, n), dtype=object)
+    dets = np.empty((B, len(plan.multiplicity)), dtype=object)
+    products = np.full(B, None, dtype=object)
+    signs = np.ones((B, n), dtype=np.int8)
+    todo = np.arange(B)
+    for N in tiers(ar.prec, n):
+        if not todo.size:
+            break
+        done = _decided(plan, ar, lam2[todo], reverse, N)
+        if done is None:
+            break
+        ok, piv, det12 = done
+        good = todo[ok]
+        if good.size:
+            with ar:
+                pivots[good] = _balls(piv, flint)
+                dets[good] = _balls(det12, flint)
+                products[good] = _product(plan, piv, det12, flint, N)
+            signs[good] = _signs(piv)
+        todo = todo[~ok]
+    with ar:
+        fa = Factors(plan, ar, pivots, signs, np.ones((B, n), dtype=bool), dets,
+                     BandRows({}), products)
+        if todo.size:
+            K, d12 = assemble(plan, ar, lam2[todo])
+            if reverse:
+                K = reversed_band(K)
+            fa = fa.replaced(todo, _ldl(plan, ar, K, d12, reverse))
+    return fa
+
+
+def _product(plan, piv, det12, flint, N: int) -> np.ndarray:
+    """Per point the product of its pivots and of ``det U12`` to the plan's multiplicities,
+    in balls of ``N`` words (as the factorisation's), as Arb balls at the working
+    precision: ``Delta`` but for the plan's constant, to every bit the words carry (the
+    pivots kept are about their leading double only)."""
+    B, n, W = piv.shape
+    x = np.ascontiguousarray(np.concatenate([piv, det12], axis=1))
+    k = np.concatenate([np.ones(n, dtype=np.int64), np.asarray(plan.multiplicity,
+                                                               dtype=np.int64)])
+    out = np.empty((B, W + 1), dtype=np.uint64)
+    ok = np.zeros(B, dtype=np.uint8)
+    _multiword.power_product(N, x, k, out, ok)
+    products = np.full(B, None, dtype=object)
+    two = flint.arb(2)
+    for p in np.nonzero(ok)[0]:
+        mid, r = decode(out[p, :W])
+        shift = int(out[p, W:].view(np.int64)[0])
+        # (mid, a dyadic rational of at most 64 N bits, exact in Arb at the precision of
+        # the words; the product as a ball times its power of two: Delta leaves the
+        # doubles' range)
+        value = (flint.arb(flint.fmpz(mid.numerator)) / flint.arb(flint.fmpz(mid.denominator))
+                 + flint.arb(0, float(r)))
+        products[p] = value * two ** shift
+    return products
+
+
+def _decided(plan, ar: Ball, lam2, reverse: bool, N: int):
+    """``(ok, pivots, det U12)`` of the points ``lam2`` in balls of ``N`` words: ``ok`` per
+    point whether every pivot was decided, the pivot and ``det U12`` balls of those points
+    ``(..., width)``; None where the plan's numbers do not fit the compiled balls."""
+    tabs = memo(plan, ar, f"multiword {N}", lambda: _tables(plan, ar, N))
+    if tabs is None:
+        return None
+    B, n, w = lam2.shape[0], plan.n, plan.width
+    try:
+        with ar:
+            points = _encoded(lam2, ar.flint, N)
+    except OverflowError:
+        return None
+    S, W = tabs["kinds"].shape[0], width(N)
+    band = np.empty((B, n * w, W), dtype=np.uint64)
+    det12 = np.empty((B, S, W), dtype=np.uint64)
+    ok = np.zeros(B, dtype=np.uint8)
+    _multiword.assemble(N, points, tabs["kinds"], tabs["coef"], tabs["tails"], TERMS,
+                        tabs["targets"], tabs["source"], tabs["bcoef"], tabs["starts"],
+                        band, det12, np.empty((16 * S + 3, W), dtype=np.uint64), ok)
+    band = band.reshape(B, n, w, W)
+    built = ok.copy()
+    Kb = _eliminated(band, reverse, ok, N)
+    # where a pivot stayed undecided, the other order's leading minors (the same inertia
+    # and determinant) may keep their radii narrower
+    again = np.nonzero(built & (ok == 0))[0]
+    if again.size:
+        ok2 = built[again].copy()
+        Kb[again] = _eliminated(band[again], not reverse, ok2, N)
+        ok[again] = ok2
+    ok = ok.astype(bool)
+    return ok, Kb[ok, :n, 0, :], det12[ok]
+
+
+def _eliminated(band, reverse: bool, ok, N: int) -> np.ndarray:
+    """The band ``(B, n, w, width)`` of balls of ``N`` words (its freedoms reversed if
+    asked) padded and eliminated; ``ok`` cleared where a pivot ball holds 0."""
+    from .stiffness import reversed_band
+    B, n, w, W = band.shape
+    if reverse:
+        band = np.stack([reversed_band(band[..., c]) for c in range(W)], axis=-1)
+    Kb = np.ascontiguousarray(np.concatenate([band, np.zeros((B, w, w, W), dtype=np.uint64)],
+                                             axis=1))
+    _multiword.eliminate(N, Kb, B, n + w, w, n, ok)
+    return Kb
+
+
+def _signs(balls) -> np.ndarray:
+    """The signs of balls of words (decided ones: their midpoints are not 0)."""
+    if balls.shape[-1] == 3:
+        return np.where(balls[..., 0].view(np.float64) < 0, -1, 1).astype(np.int8)
+    return np.where(balls[..., -2] != 0, -1, 1).astype(np.int8)
+
+
+def _balls(balls, flint) -> np.ndarray:
+    """Arb balls (an object array of the leading shape) holding balls of words
+    ``(..., width)``: about the leading double, widened by 2**-51 of it (the consumers of a
+    factorisation's pivots need signs and approximate values, the count being proved
+    already and ``Delta`` coming whole from :func:`_product`; one Arb constructor call per
+    number)."""
+    if balls.shape[-1] == 3:
+        hi, lo, r = (balls[..., i].view(np.float64) for i in range(3))
+        return _arb_of(flint)(hi, (r + np.abs(lo)) * _INFLATE + _TINY)
+    N = balls.shape[-1] - 3
+    e = balls[..., N].view(np.int64)
+    head = np.ldexp(balls[..., 0].astype(float), (e - 64).astype(int))
+    head = np.where(balls[..., N + 1] != 0, -head, head)
+    rad = (balls[..., N + 2].view(np.float64) + np.abs(head) * 2.0 ** -51) * _INFLATE + _TINY
+    return _arb_of(flint)(head, rad)
+
+
+#: ``(1 + 2**-48) v + 2**-1021`` exceeds the rounded sum ``v`` of two non-negative doubles
+#: and what rounding the leading word to a double (2**-53 of it) and ``ldexp`` leave out.
+_INFLATE, _TINY = 1.0 + 2.0 ** -48, 2.0 ** -1021
+
+
+def _arb_of(flint, _cache={}):
+    """``flint.arb(mid, rad)`` as a numpy ufunc (made once)."""
+    f = _cache.get("arb")
+    if f is None:
+        f = _cache["arb"] = np.frompyfunc(flint.arb, 2, 1)
+    return f

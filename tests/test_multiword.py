@@ -1,0 +1,276 @@
+"""Multi-word balls (symtmm/numeric/_multiword.c, symtmm.numeric.multiword) against exact
+references: rational arithmetic for the operations, mpmath's closed forms for the series,
+closed-form natural frequencies for the counts, Arb at 400 bits for Delta.
+
+The extension is an optional build; without it these tests are skipped and every ball
+runs in Arb (as in the rest of the suite then).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+
+from symtmm.model import Beam, Model, Spring
+from symtmm.modelfile import load
+from symtmm.numeric import multiword, stiffness
+from symtmm.numeric.arith import Ball
+from symtmm.results import decimal_string
+from symtmm.roots.count import Counter
+from symtmm.solve import solve
+
+flint = pytest.importorskip("flint")
+pytestmark = pytest.mark.skipif(multiword._multiword is None, reason="C extension not built")
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+MASK = (1 << 64) - 1
+
+
+def _row(mid: Fraction, N: int, r: float = 0.0) -> list:
+    """The ball of N words of an exact ``mid`` (a double-double for N = 2, else a dyadic of
+    at most 64 N bits) and radius r."""
+    if N == 2:
+        hi = float(mid)
+        lo = float(mid - Fraction(hi))
+        assert Fraction(hi) + Fraction(lo) == mid
+        return [int(x) for x in np.array([hi, lo, r]).view(np.uint64)]
+    if mid == 0:
+        return [0] * N + [0, 0, int(np.float64(r).view(np.uint64))]
+    sign, a = int(mid < 0), abs(mid)
+    num, den = a.numerator, a.denominator
+    assert den & (den - 1) == 0
+    bits = num.bit_length()
+    e = bits - (den.bit_length() - 1)
+    top = num << (64 * N - bits)
+    words = [(top >> (64 * (N - 1 - k))) & MASK for k in range(N)]
+    return words + [e & MASK, sign, int(np.float64(r).view(np.uint64))]
+
+
+def _random_balls(rng, M, N, zero_radius=False):
+    """(M, width) balls over 80 binary orders of magnitude: midpoints of random bits (64 N of
+    them, or a double-double for N = 2; some with trailing zeros), radii from 0 to
+    2**-(bits - 8) relative."""
+    bits_of = 106 if N == 2 else 64 * N
+    rows = []
+    for _ in range(M):
+        bits = int(rng.integers(1, bits_of + 1))
+        a = int.from_bytes(rng.bytes(8 * 5), "little") >> (320 - bits) | (1 << (bits - 1))
+        if N == 2:              # (a double-double: two runs of 53 bits at most)
+            hi_bits = min(bits, 53)
+            a = (a >> (bits - hi_bits) << (bits - hi_bits)) + (a & ((1 << min(53, bits -
+                                                                              hi_bits)) - 1))
+        mid = Fraction(a) * Fraction(2) ** (int(rng.integers(-40, 40)) - bits)
+        if rng.random() < 0.5:
+            mid = -mid
+        r = 0.0 if zero_radius else float(abs(mid)) * 2.0 ** -float(rng.integers(bits_of - 8,
+                                                                                 bits_of + 20))
+        rows.append(_row(mid, N, r))
+    return np.array(rows, dtype=np.uint64)
+
+
+@pytest.mark.parametrize("N", [2, 3, 5])
+@pytest.mark.parametrize("op", [0, 1, 2, 3])
+@pytest.mark.parametrize("zero_radius", [True, False])
+def test_operations_enclose_the_exact_results(N, op, zero_radius):
+    rng = np.random.default_rng(100 * N + 10 * op + zero_radius)
+    X, Y = _random_balls(rng, 200, N, zero_radius), _random_balls(rng, 200, N, zero_radius)
+    out = np.empty_like(X)
+    multiword._multiword.ops(op, N, X, Y, out)
+    apply = [lambda a, b: a + b, lambda a, b: a - b, lambda a, b: a * b,
+             lambda a, b: a / b][op]
+    for x, y, z in zip(X, Y, out):
+        (mx, rx), (my, ry), (mid, r) = (multiword.decode(v) for v in (x, y, z))
+        exact = apply(mx, my)
+        # every value of the operands' balls (their ends and midpoints) lands in the result
+        for sx in (-1, 0, 1):
+            for sy in (-1, 0, 1):
+                assert abs(apply(mx + sx * rx, my + sy * ry) - mid) <= r
+        # and the result is tight: about 64 N bits (106 for a double-double) where the
+        # operands are exact
+        if zero_radius and exact != 0:
+            assert r <= abs(exact) * Fraction(2) ** (-(100 if N == 2 else 64 * N - 4))
+
+
+@pytest.mark.parametrize("N", [2, 3])
+def test_cancellation_keeps_the_words_below(N):
+    # 1 + 2**-100 - 1: exactly 2**-100
+    x = np.array([_row(1 + Fraction(1, 2**100), N)], dtype=np.uint64)
+    y = np.array([_row(Fraction(1), N)], dtype=np.uint64)
+    out = np.empty_like(x)
+    multiword._multiword.ops(1, N, x, y, out)
+    mid, r = multiword.decode(out[0])
+    # (exact; the double-double's bound is a priori: 2**-51 of the tails it rounded)
+    assert mid == Fraction(1, 2**100) and r <= (Fraction(1, 2**140) if N == 2 else 0)
+
+
+def test_a_division_by_a_ball_holding_zero_is_not_finite():
+    for N in (2, 3):
+        x = np.array([_row(Fraction(1), N)] * 2, dtype=np.uint64)
+        y = np.array([_row(Fraction(1, 2**60), N, 1e-18), _row(Fraction(0), N)],
+                     dtype=np.uint64)
+        out = np.empty_like(x)
+        multiword._multiword.ops(3, N, x, y, out)
+        assert not np.isfinite(out[:, -1].view(np.float64)).any()
+
+
+def _closed_c(x: mpmath.mpf) -> list:
+    """c_0..c_3 of x by their closed forms (mpmath; independent of the series)."""
+    if x == 0:
+        return [mpmath.mpf(1), mpmath.mpf(1), mpmath.mpf(1) / 2, mpmath.mpf(1) / 6]
+    if x > 0:
+        nu = mpmath.root(x, 4)
+        ch, sh, co, si = mpmath.cosh(nu), mpmath.sinh(nu), mpmath.cos(nu), mpmath.sin(nu)
+        return [(ch + co) / 2, (sh + si) / (2 * nu), (ch - co) / (2 * nu**2),
+                (sh - si) / (2 * nu**3)]
+    s = mpmath.root(-x / 4, 4)
+    ch, sh, co, si = mpmath.cosh(s), mpmath.sinh(s), mpmath.cos(s), mpmath.sin(s)
+    return [ch * co, (ch * si + sh * co) / (2 * s), sh * si / (2 * s**2),
+            (ch * si - sh * co) / (4 * s**3)]
+
+
+@pytest.mark.parametrize("N", [2, 3, 5])
+def test_series_enclose_the_closed_forms(N):
+    coef, tails = multiword._series(Ball(64 * N), N)
+    xs = [0.0, 1e-3, -1e-3, 0.7, -0.7, 1.0, 3.3, -3.3, 25.0, -25.0, 80.9, -80.9, 81.0 / 7]
+    X = np.array([_row(Fraction(x), N) for x in xs], dtype=np.uint64)
+    out = np.empty((len(xs), 4, multiword.width(N)), dtype=np.uint64)
+    multiword._multiword.krylov(N, X, coef, tails, multiword.TERMS, out)
+    with mpmath.workdps(110):
+        for x, c in zip(xs, out):
+            for j, ref in enumerate(_closed_c(mpmath.mpf(x))):
+                mid, r = multiword.decode(c[j])
+                mid = mpmath.mpf(mid.numerator) / mid.denominator
+                r = mpmath.mpf(r.numerator) / r.denominator
+                assert abs(ref - mid) <= r
+                bits = 106 if N == 2 else 64 * N
+                assert r <= mpmath.mpf(2) ** (-bits + 12) * max(1, abs(ref))
+
+
+def _pinned(EI=2, m=3, L="3/2"):
+    return Model((Beam("b", EI, m, L, left="pinned", right="pinned"),))
+
+
+def _pinned_root(n, EI=2, m=3, L=1.5):
+    return (n * mpmath.pi / L) ** 2 * mpmath.sqrt(mpmath.mpf(EI) / m)
+
+
+@pytest.fixture
+def arb_calls(monkeypatch):
+    """The number of ball points factorised in Arb (not in multi-word balls)."""
+    calls = []
+    original = stiffness._ldl
+
+    def spy(plan, ar, K, det12, reverse=False):
+        if isinstance(ar, Ball):
+            calls.append(K.shape[0])
+        return original(plan, ar, K, det12, reverse)
+    monkeypatch.setattr(stiffness, "_ldl", spy)
+    return calls
+
+
+def test_counts_about_closed_form_roots_in_multiword_balls(arb_calls):
+    c = Counter(_pinned(), 300.0)
+    with mpmath.workdps(60):
+        points = [_pinned_root(n) * (1 + s * mpmath.mpf(10) ** -20)
+                  for n in (1, 2, 3) for s in (-1, 1)]
+    assert c.counts(points, Ball(150)).tolist() == [0, 1, 1, 2, 2, 3]
+    assert sum(arb_calls) == 0
+
+
+def test_points_within_the_balls_of_a_root_fall_back_to_arb(arb_calls, monkeypatch):
+    # two words (about 100 bits) cannot tell a point 1e-40 from the root; Arb at the 200
+    # bits asked can
+    monkeypatch.setattr(multiword, "tiers", lambda prec, n: [2])
+    c = Counter(_pinned(), 300.0)
+    with mpmath.workdps(80):
+        points = [_pinned_root(2) * (1 + s * mpmath.mpf(10) ** -40) for s in (-1, 1)]
+        points.append(_pinned_root(2) * (1 + mpmath.mpf(10) ** -5))
+    assert c.counts(points, Ball(200)).tolist() == [1, 2, 2]
+    assert sum(arb_calls) == 2          # the two points 1e-40 from the root only
+
+
+def test_delta_encloses_arb_at_400_bits(monkeypatch):
+    model = load(EXAMPLES / "paper_ex1_ff_cc.toml")
+    c = Counter(model, 250.0)
+    omegas = [mpmath.mpf(w) for w in (1.0, 8.86195501305, 33.3, 61.67282286792, 150.5, 199.9)]
+    fast = c.factors(omegas, Ball(150))
+    monkeypatch.setattr(multiword, "ENABLED", False)
+    slow = c.factors(omegas, Ball(400))
+    assert fast.counts().tolist() == slow.counts().tolist()
+    for a, b in zip(fast.delta(), slow.delta()):
+        # (wider than Arb's at 150 bits: about 100 bits, less what the band's radii grow)
+        assert a.contains(b.mid()) and a.rad() < 1e-3 * abs(b.mid())
+
+
+def _band(rows):
+    """A symmetric tridiagonal matrix (diagonal, off-diagonal) as a band (1, n, 2) of
+    exact balls of 2 words, padded as the elimination wants it."""
+    diag, off = rows
+    n = len(diag)
+    K = np.zeros((1, n + 2, 2, 3), dtype=np.uint64)
+    for k in range(n):
+        K[0, k, 0] = _row(Fraction(diag[k]), 2)
+        if k < n - 1:
+            K[0, k, 1] = _row(Fraction(off[k]), 2)
+    return np.ascontiguousarray(K)
+
+
+def _fraction_det(diag, off):
+    d_prev, d = Fraction(1), Fraction(diag[0])
+    for k in range(1, len(diag)):
+        d_prev, d = d, Fraction(diag[k]) * d - Fraction(off[k - 1]) ** 2 * d_prev
+    return d
+
+
+@pytest.mark.parametrize("diag, off", [
+    ([2.0**-20, 1.0, 3.0, -2.0], [1.0, 0.5, 0.25]),        # a tiny pivot: det P < 0
+    ([2.0**-20, 4.0, 3.0, 2.0], [2.0**-10, 0.5, 0.25]),    # det P > 0, tiny pivot first
+    ([0.0, 0.0, 3.0, 1.0], [1.0, 2.0, 0.5]),               # an exact zero pivot
+    ([-1.0, 2.0**-30, 5.0, 1.0], [0.5, 1.0, 0.75]),        # the block in the middle
+])
+def test_two_by_two_blocks_keep_the_inertia_and_the_determinant(diag, off):
+    K = _band((diag, off))
+    ok = np.ones(1, dtype=np.uint8)
+    multiword._multiword.eliminate(2, K, 1, len(diag) + 2, 2, len(diag), ok)
+    assert ok[0] == 1
+    pivots = [multiword.decode(row) for row in K[0, :len(diag), 0]]
+    dense = np.diag(diag) + np.diag(off, 1) + np.diag(off, -1)
+    assert sum(mid < 0 for mid, _ in pivots) == (np.linalg.eigvalsh(dense) < 0).sum()
+    product, radius = Fraction(1), Fraction(0)
+    for mid, r in pivots:                # the product's ball from the pivots' balls
+        radius = abs(product) * r + abs(mid) * radius + radius * r
+        product *= mid
+    assert abs(_fraction_det(diag, off) - product) <= radius
+
+
+def test_an_undecided_block_stops_the_point():
+    K = _band(([1.0, 1.0], [1.0]))         # singular: det P = 0 exactly
+    ok = np.ones(1, dtype=np.uint8)
+    multiword._multiword.eliminate(2, K, 1, 4, 2, 2, ok)
+    assert ok[0] == 0
+
+
+def test_solves_print_alike_with_and_without_multiword_balls(monkeypatch):
+    model = Model((Beam("a", 1, 1, 1, left="clamped", right="free"),
+                   Beam("b", 2, 1, 1, left="pinned", right="pinned")),
+                  (Spring("a", "b", "1/3", 50),))
+    fast = solve(model, count=6, digits=15)
+    monkeypatch.setattr(multiword, "ENABLED", False)
+    slow = solve(model, count=6, digits=15)
+    assert [str(e.omega) for e in fast] == [str(e.omega) for e in slow]
+    assert [e.proof for e in fast] == [e.proof for e in slow]
+
+
+def test_closed_form_frequencies_at_15_and_30_digits():
+    for digits in (15, 30):
+        found = solve(_pinned(), count=3, digits=digits)
+        with mpmath.workdps(digits + 10):
+            for n, e in enumerate(found, start=1):
+                ref = _pinned_root(n)
+                assert decimal_string(e.omega, digits) == decimal_string(ref, digits)
