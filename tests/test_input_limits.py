@@ -350,6 +350,55 @@ right = "sliding"
     assert run.code in (0, 1)
 
 
+RAYLEIGH_PAIR_WITH_MASS = """
+[parameters]
+K = 3.7
+
+[[beam]]
+name = "b0"
+EI = 0.1
+m = 2
+L = 1.5
+left = "pinned"
+right = "free"
+theory = "rayleigh"
+rhoI = 0.000450
+kw = 1
+
+[[beam]]
+name = "b1"
+EI = 0.5
+m = 0.25
+L = 1.5
+left = "pinned"
+right = "clamped"
+theory = "rayleigh"
+rhoI = 0.00140625
+
+[[spring]]
+between = ["b0", "b1"]
+x = 0.75
+k = "2*K**2"
+kind = "rotational"
+
+[[mass]]
+beam = "b0"
+x = 0.75
+M = 1
+"""
+
+
+def test_derive_of_a_long_factor_keeps_near_its_time_budget(tmp_path):
+    """A factor of 6143 operations went through SymPy's expand and collect in one call (the
+    single-angle rewriting): 25-30 s that no budget check could interrupt, with
+    --max-seconds 5 (found by the long property-based run). Long factors are now kept as
+    they are; the rest of the derivation checks its budget between steps."""
+    run = run_file(tmp_path, RAYLEIGH_PAIR_WITH_MASS, "derive", "--json", "--max-seconds", "5",
+                   limit=60)
+    assert_contract(run, 60)
+    assert run.seconds < 15
+
+
 def test_derive_with_pi_in_a_timoshenko_mass():
     """pi in a coefficient is a generator of the ring like any symbol (it was refused as an
     "unexpected term"). Reference: the pinned-pinned Timoshenko beam's closed form, mode n:

@@ -382,6 +382,14 @@ def _square_free(e):
     return rest * base if k % 2 else rest
 
 
+#: Operations beyond which a factor is not rewritten in single angles (:func:`_single_angles`):
+#: SymPy's expand and collect of one factor cannot be interrupted by the budget, and took
+#: 25-30 s on a factor of 6143 operations (two Rayleigh beams joined by a rotational
+#: spring, a mass and a foundation), far past a ``--max-seconds`` of 5; the factors this
+#: rewriting shortens (double angles of Euler–Bernoulli pairs) have tens to hundreds.
+_SINGLE_ANGLE_OPS = 1500
+
+
 def _single_angles(f, Om):
     """``f`` with each part multiplying one power of ``Om`` written, where shorter, as a
     product of functions of ``Om`` itself instead of sums of double angles.
@@ -398,8 +406,9 @@ def _single_angles(f, Om):
     ...                + sp.Rational(5, 4) - 2*sp.cos(O)*sp.cosh(O)) + sp.sin(O), O)
     Omega**3*(cos(Omega)*cosh(Omega) - 1)**2 + sin(Omega)
     """
-    if not f.has(*_TRIG):
+    if not f.has(*_TRIG) or sp.count_ops(f) > _SINGLE_ANGLE_OPS:
         return f
+    spend()
     try:
         parts = sp.collect(sp.expand(f), Om, evaluate=False)
     except (TypeError, ValueError):  # pragma: no cover - a form collect cannot split

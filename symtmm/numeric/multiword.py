@@ -4,9 +4,10 @@ A proof factorises ``K(omega)`` in Arb balls a few times per root, and there eve
 operation is a Python call (0.1-0.2 us, most of it the call). Where the model is
 undamped and made of Euler–Bernoulli segments, the same kernel (the series of the
 ``c_j``, :func:`~symtmm.numeric.stiffness.eb_stiffness`, the plan's scatter, the band
-``LDL^T``) runs in C (``_multiword.c``) on balls whose midpoint is a binary
-floating-point number of ``N`` 64-bit words (:func:`tiers`: 2 to 5, 128 to 320 bits)
-and whose radius bounds every cut and rounding. A point whose every pivot ball there
+``LDL^T``) runs in C (``_multiword.c``) on balls whose midpoint takes ``N`` 64-bit words
+(:func:`tiers`): a double-double for 2 (about 106 bits), else a binary floating-point
+number of an ``N``-word mantissa (192 to 320 bits), and whose radius bounds every cut and
+rounding. A point whose every pivot ball there
 excludes zero has its pivots, signs and ``Delta`` proved as in Arb.
 
 The other points are factorised in Arb at the precision asked, as before: where a pivot
@@ -18,9 +19,11 @@ radii by the square of their ratio; a point still undecided is tried with the fr
 the other way round, then with one word more.
 
 The results are balls of the arithmetic asked for (:class:`~symtmm.numeric.arith.Ball`),
-as rigorous as Arb's and wider: each pivot about its leading double, widened by the rest
-(``Delta`` good to about 1e-14 relative: what a secant or Newton step near a root needs,
-whose error is that times its distance from the root; the signs are proved already).
+as rigorous as Arb's: each pivot about its leading double, widened by the rest (its
+consumers need its sign, proved already, and an approximate value), and ``Delta`` whole,
+from a running product in the words
+(:attr:`~symtmm.numeric.stiffness.Factors.products`: the secant steps of a proof at 50
+digits need every digit of it).
 
 Examples
 --------
