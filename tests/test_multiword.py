@@ -119,6 +119,20 @@ def test_a_division_by_a_ball_holding_zero_is_not_finite():
         assert not np.isfinite(out[:, -1].view(np.float64)).any()
 
 
+@pytest.mark.parametrize("N", [2, 3, 5])
+def test_rationals_are_encoded_within_their_radius(N):
+    rng = np.random.default_rng(N)
+    values = [Fraction(1, 3), Fraction(-2, 7), Fraction(10) ** 30, Fraction(1, 10**40),
+              Fraction(3, 2**70), Fraction(0), Fraction(-1)]
+    values += [Fraction(int(rng.integers(-10**12, 10**12)), int(rng.integers(1, 10**12)))
+               for _ in range(200)]
+    bits = 106 if N == 2 else 64 * N
+    for q in values:
+        mid, r = multiword.decode(multiword.encode_rational(q, N))
+        assert abs(mid - q) <= r
+        assert r <= abs(q) * Fraction(2) ** (-bits + 2)
+
+
 def _closed_c(x: mpmath.mpf) -> list:
     """c_0..c_3 of x by their closed forms (mpmath; independent of the series)."""
     if x == 0:

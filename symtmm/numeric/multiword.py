@@ -41,6 +41,7 @@ proved in multi-word balls.
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 import numpy as np
 
@@ -70,7 +71,7 @@ def serves(plan, ar, lam2, lam) -> bool:
     if not (ENABLED and isinstance(ar, Ball) and tiers(ar.prec, plan.n) and lam is None
             and plan.n and not plan.damped and not getattr(ar, "closed_stiffness", False)):
         return False
-    if any(family != "eb" for family, _ in plan.tables(ar)["kinds"]):
+    if any(family != "eb" for family, _ in plan.kinds):
         return False
     return all(isinstance(v, ar.flint.arb) for v in np.asarray(lam2).reshape(-1))
 
@@ -127,9 +128,57 @@ def encode(v, flint, N: int) -> list:
     return words + [e & _MASK, sign, int(np.float64(r).view(np.uint64))]
 
 
+def encode_rational(q: Fraction, N: int) -> list:
+    """An exact rational as a ball of ``N`` words, as :func:`encode` (no Arb on the way: the
+    plans' numbers are mostly rationals)."""
+    if N == 2:
+        hi = float(q)                    # (correctly rounded)
+        rest = q - Fraction(hi)
+        lo = float(rest)
+        rest = abs(rest - Fraction(lo))
+        r = float(rest)
+        if Fraction(r) < rest:
+            r = math.nextafter(r, math.inf)
+        if not (math.isfinite(hi) and abs(hi) < 2.0 ** 1000 and math.isfinite(r)):
+            raise OverflowError("a number beyond the range of the compiled balls")
+        return [int(x) for x in np.array([hi, lo, r]).view(np.uint64)]
+    if q == 0:
+        return [0] * (N + 3)
+    p, d = abs(q.numerator), q.denominator
+    e = p.bit_length() - d.bit_length() + 1          # |q| < 2**e
+    if p * (1 << max(0, 1 - e)) < d * (1 << max(0, e - 1)):
+        e -= 1                                        # now 2**(e-1) <= |q| < 2**e
+    if not -1000 <= e <= 1000:
+        raise OverflowError("a number beyond the range of the compiled balls")
+    shift = 64 * N - e
+    num, den = (p << shift, d) if shift >= 0 else (p, d << -shift)
+    top, rem = divmod(num, den)
+    r = math.ldexp(1.0, max(e - 64 * N, -1074)) if rem else 0.0
+    words = [(top >> (64 * (N - 1 - k))) & _MASK for k in range(N)]
+    return words + [e & _MASK, int(q < 0), int(np.float64(r).view(np.uint64))]
+
+
+def _exact_balls(values, ar: Ball, N: int) -> list:
+    """Exact SymPy numbers as balls of ``N`` words: rationals directly, others through
+    their Arb enclosures (``ar.exact``, cached); equal numbers converted once."""
+    import sympy as sp
+    out, seen = [], {}
+    for v in values:
+        hit = seen.get(v)
+        if hit is None:
+            v_ = sp.sympify(v)
+            if v_.is_Rational:
+                hit = encode_rational(Fraction(int(v_.p), int(v_.q)), N)
+            else:
+                with ar:
+                    hit = encode(ar.exact(v_), ar.flint, N)
+            seen[v] = hit
+        out.append(hit)
+    return out
+
+
 def decode(row) -> tuple:
-    """``(midpoint, radius)`` of a ball of words as Fractions (exact; for checks)."""
-    from fractions import Fraction
+    """``(midpoint, radius)`` of a ball of words as Fractions (exact)."""
     row = np.asarray(row, dtype=np.uint64)
     if len(row) == 3:
         hi, lo, r = (float(x) for x in row.view(np.float64))
@@ -163,24 +212,20 @@ def _series(ar: Ball, N: int):
 
 
 def _tables(plan, ar: Ball, N: int) -> dict | None:
-    """The plan's constants as balls of ``N`` words (None where one does not fit)."""
-    flint = ar.flint
-    t = plan.tables(ar)
-    seen: dict = {}             # (the plan's equal coefficients are one arb: ar.exact caches)
-
-    def convert(v):
-        out = seen.get(id(v))
-        if out is None:
-            out = seen[id(v)] = (v, encode(v, flint, N))
-        return out[1]
+    """The plan's constants as balls of ``N`` words, from its exact numbers (None where one
+    does not fit)."""
+    import sympy as sp
     try:
-        kinds = [[convert(consts[name][s]) for name in ("EI", "l", "A", "F")]
-                 for _, consts in t["kinds"] for s in range(len(consts["EI"]))]
+        kinds = []
+        for family, (EI, m, l, kw) in plan.kinds:
+            EI, m, l, kw = (sp.sympify(v) for v in (EI, m, l, kw))
+            kinds += _exact_balls([EI, l, m * l**4 / EI, kw * l**4 / EI], ar, N)
+        coefficients = plan.coefficients
         targets, source, bcoef, starts = [], [], [], [0]
-        for tg, src, cf in t["layers"]:
+        for tg, src, terms in plan.layer_maps():
             targets += [int(v) for v in tg]
             source += [int(v) for v in src]
-            bcoef += [convert(v) for v in cf]
+            bcoef += _exact_balls([coefficients[t] for t in terms], ar, N)
             starts.append(len(targets))
     except OverflowError:
         return None

@@ -336,11 +336,22 @@ class StiffnessPlan:
         return memo(self, ar, "tables", lambda: self._tables(ar))
 
     def _tables(self, ar: Arithmetic) -> dict:
+        coef = ar.array([ar.exact(c) for _, _, c in self._triples])
+        return {"kinds": self._kind_tables(ar),
+                "layers": [(targets, source, coef[terms])
+                           for targets, source, terms in self.layer_maps()]}
+
+    def layer_maps(self) -> list:
+        """The scatter's layers, arithmetic apart: per ``q``, ``(targets, source, terms)``
+        with ``terms`` the indices of the exact coefficients (of the plan's triples) of
+        every band entry's ``q``-th term (:meth:`tables`). Built once."""
+        cached = self.__dict__.get("_layer_maps")
+        if cached is not None:
+            return cached
         nd = self._stiffness_length
         col = {("lam", 0): nd, ("lam", 1): nd + 1, ("lam", 2): nd + 2}
         source = np.array([s[1] if s[0] == "D" else col[s] for _, s, _ in self._triples],
                           dtype=np.int64)
-        coef = ar.array([ar.exact(c) for _, _, c in self._triples])
         targets = np.array([t for t, _, _ in self._triples], dtype=np.int64)
         # the sums a term at a time: layer q holds the q-th term of every entry that has
         # one (at most a few per entry; the triples are sorted by entry, in plan order)
@@ -349,8 +360,15 @@ class StiffnessPlan:
         layers = []
         for q in range(int(np.max(ends - starts, initial=0))):
             terms = starts[ends - starts > q] + q
-            layers.append((targets[terms], source[terms], coef[terms]))
-        return {"kinds": self._kind_tables(ar), "layers": layers}
+            layers.append((targets[terms], source[terms], terms))
+        self.__dict__["_layer_maps"] = layers
+        return layers
+
+    @property
+    def coefficients(self) -> list:
+        """The exact coefficients of the scatter, in the order of :meth:`layer_maps`'
+        ``terms``."""
+        return [c for _, _, c in self._triples]
 
     def _kind_tables(self, ar: Arithmetic) -> list:
         """The kinds' constants in ``ar`` (converted once: the static diagonal asks for
