@@ -40,12 +40,13 @@ proved in multi-word balls.
 
 from __future__ import annotations
 
+import functools
 import math
 from fractions import Fraction
 
 import numpy as np
 
-from .arith import Ball, memo
+from .arith import Ball
 
 try:        # the compiled balls (setup.py); without a compiler every ball runs in Arb
     from . import _multiword
@@ -196,25 +197,35 @@ def _encoded(values, flint, N: int) -> np.ndarray:
         len(values), width(N))
 
 
-def _series(ar: Ball, N: int):
+@functools.lru_cache(maxsize=None)
+def _series(N: int):
     """The balls of ``1/(4k + j)!`` (``(4, TERMS, width)``) and upper bounds of them as
-    doubles (``(4, TERMS + 1)``: the tails), once per precision and number of words."""
+    doubles (``(4, TERMS + 1)``: the tails), once per number of words."""
+    ar = _words_arithmetic(N)
     flint = ar.flint
-
-    def build():
-        with flint.ctx.workprec(64 * N + 64):
-            coef = np.array([_encoded([1 / flint.arb.fac_ui(4 * k + j) for k in range(TERMS)],
-                                      flint, N) for j in range(4)], dtype=np.uint64)
-            tails = np.array([[_up((1 / flint.arb.fac_ui(4 * k + j)).upper())
-                               for k in range(TERMS + 1)] for j in range(4)], dtype=float)
-        return coef, tails
-    return ar.cached(("multiword series", TERMS, N), build)
+    with ar:
+        coef = np.array([_encoded([1 / flint.arb.fac_ui(4 * k + j) for k in range(TERMS)],
+                                  flint, N) for j in range(4)], dtype=np.uint64)
+        tails = np.array([[_up((1 / flint.arb.fac_ui(4 * k + j)).upper())
+                           for k in range(TERMS + 1)] for j in range(4)], dtype=float)
+    return coef, tails
 
 
-def _tables(plan, ar: Ball, N: int) -> dict | None:
+def _words_arithmetic(N: int) -> Ball:
+    """The Arb arithmetic that encloses irrational constants for balls of ``N`` words (a
+    word more than they hold)."""
+    return Ball(64 * N + 64)
+
+
+def _tables(plan, N: int) -> dict | None:
     """The plan's constants as balls of ``N`` words, from its exact numbers (None where one
-    does not fit)."""
+    does not fit), once per plan and number of words (whatever the precision asked: the
+    rationals are encoded exactly, the others from Arb a word beyond the words)."""
     import sympy as sp
+    cache = plan.__dict__.setdefault("_multiword_tables", {})
+    if N in cache:
+        return cache[N]
+    ar = _words_arithmetic(N)
     try:
         kinds = []
         for family, (EI, m, l, kw) in plan.kinds:
@@ -228,13 +239,15 @@ def _tables(plan, ar: Ball, N: int) -> dict | None:
             bcoef += _exact_balls([coefficients[t] for t in terms], ar, N)
             starts.append(len(targets))
     except OverflowError:
+        cache[N] = None
         return None
-    coef, tails = _series(ar, N)
-    return {"kinds": np.array(kinds, dtype=np.uint64).reshape(-1, 4, width(N)), "coef": coef,
+    coef, tails = _series(N)
+    out = cache[N] = {"kinds": np.array(kinds, dtype=np.uint64).reshape(-1, 4, width(N)), "coef": coef,
             "tails": tails, "targets": np.array(targets, dtype=np.int64),
             "source": np.array(source, dtype=np.int64),
             "bcoef": np.array(bcoef, dtype=np.uint64).reshape(-1, width(N)),
             "starts": np.array(starts, dtype=np.int64)}
+    return out
 
 
 def tiers(prec: int, n: int) -> list:
@@ -319,7 +332,7 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int):
     """``(ok, pivots, det U12)`` of the points ``lam2`` in balls of ``N`` words: ``ok`` per
     point whether every pivot was decided, the pivot and ``det U12`` balls of those points
     ``(..., width)``; None where the plan's numbers do not fit the compiled balls."""
-    tabs = memo(plan, ar, f"multiword {N}", lambda: _tables(plan, ar, N))
+    tabs = _tables(plan, N)
     if tabs is None:
         return None
     B, n, w = lam2.shape[0], plan.n, plan.width
