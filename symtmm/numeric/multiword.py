@@ -317,14 +317,19 @@ def _product(plan, piv, det12, flint, N: int) -> np.ndarray:
     products = np.full(B, None, dtype=object)
     two = flint.arb(2)
     for p in np.nonzero(ok)[0]:
-        mid, r = decode(out[p, :W])
-        shift = int(out[p, W:].view(np.int64)[0])
-        # (mid, a dyadic rational of at most 64 N bits, exact in Arb at the precision of
-        # the words; the product as a ball times its power of two: Delta leaves the
-        # doubles' range)
-        value = (flint.arb(flint.fmpz(mid.numerator)) / flint.arb(flint.fmpz(mid.denominator))
-                 + flint.arb(0, float(r)))
-        products[p] = value * two ** shift
+        row = out[p]
+        shift = int(row[W:].view(np.int64)[0])
+        # (each part exact in Arb at the words' precision; the product times its power of
+        # two: Delta leaves the doubles' range)
+        if N == 2:
+            hi, lo, r = (float(v) for v in row[:3].view(np.float64))
+            value = flint.arb(hi) + flint.arb(lo)
+        else:
+            m = sum(int(row[i]) << (64 * (N - 1 - i)) for i in range(N))
+            e = int(row[N:N + 1].view(np.int64)[0])
+            r = float(row[N + 2:N + 3].view(np.float64)[0])
+            value = flint.arb(flint.fmpz(-m if int(row[N + 1]) else m)) * two ** (e - 64 * N)
+        products[p] = (value + flint.arb(0, r)) * two ** shift
     return products
 
 
