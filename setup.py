@@ -1,7 +1,7 @@
 """The optional C extensions; everything else is in pyproject.toml.
 
 ``symtmm.numeric._band`` runs the banded LDL^T elimination of double-precision
-batches in C, ``symtmm.numeric._multiword`` the ball factorisations of Euler–Bernoulli
+batches in C, ``symtmm.numeric._multiword`` the ball factorisations of undamped beam
 models in multi-word balls. Both are optional: without a C compiler the install
 goes on, the double loop runs in numpy (``symtmm.numeric.stiffness``) and every ball
 in Arb.

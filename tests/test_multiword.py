@@ -222,6 +222,55 @@ def test_delta_encloses_arb_at_400_bits(monkeypatch):
         assert a.contains(b.mid()) and a.rad() < 1e-3 * abs(b.mid())
 
 
+def _general_beams():
+    """Pinned-pinned beams of the general family with closed-form frequencies: tension,
+    Rayleigh, Timoshenko (EI 2, m 3, L 3/2; k_n = n pi / L)."""
+    def tension(k):            # EI k^4 + N k^2 = m w^2
+        return mpmath.sqrt((2 * k**4 + 5 * k**2) / 3)
+
+    def rayleigh(k):           # EI k^4 = w^2 (m + rhoI k^2)
+        return mpmath.sqrt(2 * k**4 / (3 + mpmath.mpf("0.05") * k**2))
+
+    def timoshenko(k):         # EI k^4 - w^2 (m + k^2 (rhoI + EI m / kGA)) + w^4 rhoI m / kGA
+        rhoI, kGA = mpmath.mpf("0.05"), mpmath.mpf(40)
+        A, B, C = rhoI * 3 / kGA, -(3 + k**2 * (rhoI + 2 * 3 / kGA)), 2 * k**4
+        return mpmath.sqrt((-B - mpmath.sqrt(B * B - 4 * A * C)) / (2 * A))
+    common = dict(left="pinned", right="pinned")
+    return [(Beam("b", 2, 3, "3/2", N=5, **common), tension),
+            (Beam("b", 2, 3, "3/2", theory="rayleigh", rhoI="1/20", **common), rayleigh),
+            (Beam("b", 2, 3, "3/2", theory="timoshenko", rhoI="1/20", kGA=40, **common),
+             timoshenko)]
+
+
+@pytest.mark.parametrize("case", range(3))
+def test_general_beams_count_about_closed_form_roots_in_words(case, arb_calls):
+    beam, omega = _general_beams()[case]
+    c = Counter(Model((beam,)), 200.0)
+    with mpmath.workdps(60):
+        roots = [omega(n * mpmath.pi / mpmath.mpf("1.5")) for n in (1, 2, 3)]
+        points = [r * (1 + s * mpmath.mpf(10) ** -20) for r in roots for s in (-1, 1)]
+    assert c.factors(points[:1], Ball(150)).plan.kinds[0][0] == "theory"
+    assert c.counts(points, Ball(150)).tolist() == [0, 1, 1, 2, 2, 3]
+    assert sum(arb_calls) == 0
+
+
+def test_general_beams_delta_encloses_arb_at_400_bits(monkeypatch):
+    beams = [b for b, _ in _general_beams()]
+    model = Model((Beam("a", 1, 1, 1, left="clamped", right="free", N=-1),
+                   beams[1], Beam("t", 3, 2, 1, left="free", right="clamped",
+                                  theory="timoshenko", rhoI="1/30", kGA=60)),
+                  (Spring("a", "b", "1/2", 40), Spring("b", "t", "1/3", 25)))
+    c = Counter(model, 120.0)
+    omegas = [mpmath.mpf(w) for w in (0.7, 3.3, 11.0, 27.5, 60.1, 99.9)]
+    fast = c.factors(omegas, Ball(150))
+    monkeypatch.setattr(multiword, "ENABLED", False)
+    slow = c.factors(omegas, Ball(400))
+    assert fast.counts().tolist() == slow.counts().tolist()
+    assert all(p is not None for p in fast.products)          # (decided in words)
+    for a, b in zip(fast.delta(), slow.delta()):
+        assert a.contains(b.mid()) and a.rad() < 1e-10 * abs(b.mid())
+
+
 def _band(rows):
     """A symmetric tridiagonal matrix (diagonal, off-diagonal) as a band (1, n, 2) of
     exact balls of 2 words, padded as the elimination wants it."""

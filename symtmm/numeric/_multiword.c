@@ -1,7 +1,7 @@
 /*
  * Multi-word balls: rigorous enclosures with a midpoint of 2 to 5 64-bit words (128 to
  * 320 bits) in compiled loops, for the proofs of symtmm.numeric.multiword (undamped
- * Euler-Bernoulli models: there the kernel's Arb balls pay a Python call per operation).
+ * beam models: there the kernel's Arb balls pay a Python call per operation).
  *
  * A ball of N words holds every real m + t with |t| <= r: the midpoint m = (-1)^s
  * 0.m[0]m[1]..m[N-1] (binary) 2^e, a binary floating-point number of 64 N bits (its
@@ -108,44 +108,51 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
  * the exponent, the sign and the radius */
 static inline Py_ssize_t ball_words(int N) { return N == 2 ? 3 : N + 3; }
 
-/* assemble(N, lam2, kinds, coef, tails, K, targets, source, bcoef, starts, band, det12,
- *          V, ok)
- *   balls of N words (N + 3 64-bit words each): lam2 (B,); kinds (S, 4) = (EI, l, A, F);
- *   coef (4, K) the balls of 1/(4k + j)!; tails (4, K + 1) doubles, upper bounds of
- *   1/(4k + j)!; targets, source (T,) int64 and bcoef (T,): the plan's scatter, layer q
- *   being terms starts[q] .. starts[q + 1] - 1 (each target at most once in a layer);
- *   band (B, nk) written; det12 (B, S) written; V (16 S + 3) workspace; ok (B,) uint8
- *   written: 0 where a value is not finite (the point is left to Arb).
+/* assemble(N, lam2, kinds, families, coef, tails, K, tcoef, ttails, TK, targets, source,
+ *          bcoef, starts, band, det12, V, ok)
+ *   balls of N words (ball_words(N) 64-bit words each): lam2 (B,); kinds (S, 8): per
+ *   kind (EI, l, A, F, 0...) where families[s] = 0 (Euler-Bernoulli), (EI, a, b, cN, rhoI,
+ *   m, kw, l) where 1 (a general beam); coef (4, K) the balls of 1/(4k + j)!, tails
+ *   (4, K + 1) doubles, upper bounds of 1/(4k + j)!; tcoef (2 TK + 2,) the balls of 1/k!,
+ *   ttails (2,) doubles, 2 TK / (2 TK)! and 2 TK / (2 TK + 1)! rounded up; targets,
+ *   source (T,) int64 and bcoef (T,): the plan's scatter, layer q being terms
+ *   starts[q] .. starts[q + 1] - 1 (each target at most once in a layer); band (B, nk)
+ *   written; det12 (B, S) written; V (16 S + 3) workspace; ok (B,) uint8 written: 0
+ *   where a value is not finite (the point is left to Arb).
  * The sources index V = [D of every kind (16 each), 1, lam (0: no dashpots), lam2]: the
  * columns of symtmm.numeric.stiffness.assemble. */
 static PyObject *assemble(PyObject *self, PyObject *args)
 {
-    Py_buffer lb, kb, cb, tb, tgb, srcb, bcb, stb, bandb, detb, vb, okb;
-    Py_ssize_t K;
+    Py_buffer lb, kb, fb, cb, tb, tcb, ttb, tgb, srcb, bcb, stb, bandb, detb, vb, okb;
+    Py_ssize_t K, TK;
     int N;
     (void)self;
-    if (!PyArg_ParseTuple(args, "iy*y*y*y*ny*y*y*y*w*w*w*w*", &N, &lb, &kb, &cb, &tb, &K,
-                          &tgb, &srcb, &bcb, &stb, &bandb, &detb, &vb, &okb))
+    if (!PyArg_ParseTuple(args, "iy*y*y*y*y*ny*y*ny*y*y*y*w*w*w*w*", &N, &lb, &kb, &fb, &cb,
+                          &tb, &K, &tcb, &ttb, &TK, &tgb, &srcb, &bcb, &stb, &bandb, &detb,
+                          &vb, &okb))
         return NULL;
     int good = N >= MIN_WORDS && N <= MAX_WORDS;
     const Py_ssize_t item = 8 * ball_words(N);
-    const Py_ssize_t B = good ? lb.len / item : 0, S = good ? kb.len / item / 4 : 0;
+    const Py_ssize_t B = good ? lb.len / item : 0, S = fb.len / 8;
     const Py_ssize_t T = tgb.len / 8, Q = stb.len / 8 - 1, nv = 16 * S + 3;
     const Py_ssize_t nk = B ? bandb.len / item / B : 0;
-    good = good && K >= 2 && cb.len == 4 * K * item && tb.len == 4 * (K + 1) * 8
+    good = good && K >= 2 && TK >= 2 && kb.len == 8 * S * item && cb.len == 4 * K * item
+           && tb.len == 4 * (K + 1) * 8 && tcb.len == (2 * TK + 2) * item && ttb.len == 16
            && srcb.len == tgb.len && bcb.len == T * item && Q >= 0
            && detb.len == B * S * item && vb.len == nv * item && okb.len == B
            && (B == 0 || bandb.len == B * nk * item);
-    const long long *tg = tgb.buf, *src = srcb.buf, *st = stb.buf;
+    const long long *tg = tgb.buf, *src = srcb.buf, *st = stb.buf, *fam = fb.buf;
+    for (Py_ssize_t i = 0; good && i < S; i++)
+        good = fam[i] == 0 || fam[i] == 1;
     for (Py_ssize_t i = 0; good && i < T; i++)
         good = src[i] >= 0 && src[i] < nv && tg[i] >= 0 && tg[i] < nk;
     for (Py_ssize_t q = 0; good && q <= Q; q++)
         good = st[q] >= 0 && st[q] <= T && (q == 0 || st[q] >= st[q - 1]);
     if (good) {
         Py_BEGIN_ALLOW_THREADS
-#define ASSEMBLE(n) assemble_points_##n(lb.buf, kb.buf, S, cb.buf, tb.buf, K, tg, src, \
-                                        bcb.buf, st, Q, bandb.buf, nk, detb.buf, vb.buf, \
-                                        okb.buf, B)
+#define ASSEMBLE(n) assemble_points_##n(lb.buf, kb.buf, fam, S, cb.buf, tb.buf, K, tcb.buf, \
+                                        ttb.buf, TK, tg, src, bcb.buf, st, Q, bandb.buf, nk, \
+                                        detb.buf, vb.buf, okb.buf, B)
         switch (N) {
         case 2: ASSEMBLE(2); break;
         case 3: ASSEMBLE(3); break;
@@ -155,8 +162,9 @@ static PyObject *assemble(PyObject *self, PyObject *args)
 #undef ASSEMBLE
         Py_END_ALLOW_THREADS
     }
-    PyBuffer_Release(&lb); PyBuffer_Release(&kb); PyBuffer_Release(&cb);
-    PyBuffer_Release(&tb); PyBuffer_Release(&tgb); PyBuffer_Release(&srcb);
+    PyBuffer_Release(&lb); PyBuffer_Release(&kb); PyBuffer_Release(&fb);
+    PyBuffer_Release(&cb); PyBuffer_Release(&tb); PyBuffer_Release(&tcb);
+    PyBuffer_Release(&ttb); PyBuffer_Release(&tgb); PyBuffer_Release(&srcb);
     PyBuffer_Release(&bcb); PyBuffer_Release(&stb); PyBuffer_Release(&bandb);
     PyBuffer_Release(&detb); PyBuffer_Release(&vb); PyBuffer_Release(&okb);
     if (!good) {
@@ -289,8 +297,8 @@ static PyObject *kry(PyObject *self, PyObject *args)
 
 static PyMethodDef methods[] = {
     {"assemble", assemble, METH_VARARGS,
-     "assemble(N, lam2, kinds, coef, tails, K, targets, source, bcoef, starts, band, det12, "
-     "V, ok): the band of K(lam2) in balls of N words from Euler-Bernoulli kinds."},
+     "assemble(N, lam2, kinds, families, coef, tails, K, tcoef, ttails, TK, targets, source, "
+     "bcoef, starts, band, det12, V, ok): the band of K(lam2) in balls of N words."},
     {"eliminate", eliminate, METH_VARARGS,
      "eliminate(N, band, B, rows, w, n, ok): LDL^T without pivoting of ball bands, in place."},
     {"power_product", power_product, METH_VARARGS,

@@ -1,8 +1,8 @@
 /*
  * The kernel of _multiword.c over one of its ball arithmetics (included after it, with F,
- * BALL, W_ and PREC_BITS defined): the series of the c_j, the Euler-Bernoulli stiffness,
- * the scatter, the band LDL^T with 2x2 blocks, running products, and the entry points of
- * the tests.
+ * BALL, W_ and PREC_BITS defined): the series of the c_j and the Euler-Bernoulli
+ * stiffness, the general beams' series and stiffness, the scatter, the band LDL^T with 2x2
+ * blocks, running products, and the entry points of the tests.
  */
 #define MUL(a, b) F(mul)(&(a), &(b))
 #define ADD(a, b) F(add)(&(a), &(b))
@@ -85,9 +85,160 @@ static int F(eb_kind)(const BALL *lam2, const uint64_t *kc, const uint64_t *coef
     return 1;
 }
 
+/* The 4x4 stiffness and det U12 of a general beam kind (axial force, rotary inertia, shear:
+ * symtmm.numeric.segments.theory_matrices, then stiffness.coupled_stiffness of one beam),
+ * kc = (EI, a, b, cN, rhoI, m, kw, l). F0, F1 by their series in (t, d) on a piece
+ * h = l / 2^j with rho h^2 <= 1/2 (rho >= the largest |r|, r the eigenvalues of G; then
+ * |q_k| <= k and the tails beyond TK terms are below 2 TK / (2 TK)! and 2 TK / (2 TK + 1)!,
+ * ttails), then doubled j times. tcoef: the balls of 1/k!, k < 2 TK + 2. */
+static int F(theory_kind)(const BALL *lam2, const uint64_t *kc, const uint64_t *tcoef,
+                          const double *ttails, Py_ssize_t TK, uint64_t *D, uint64_t *det12)
+{
+    const BALL EI = F(load)(kc), a = F(load)(kc + W_), b = F(load)(kc + 2 * W_),
+               cN = F(load)(kc + 3 * W_), rhoI = F(load)(kc + 4 * W_),
+               m = F(load)(kc + 5 * W_), kw = F(load)(kc + 6 * W_), l = F(load)(kc + 7 * W_);
+    const BALL rl = MUL(rhoI, *lam2), c = ADD(cN, rl);
+    const BALL ml = MUL(m, *lam2), mu = ADD(ml, kw);
+    const BALL iEI = F(inv)(&EI);
+    const BALL ci = MUL(c, iEI), bm = MUL(b, mu), t = SUB(ci, bm);
+    const BALL aa = MUL(a, a), bc = MUL(b, c), ab = SUB(aa, bc), mab = MUL(mu, ab),
+               d = MUL(mab, iEI);
+    if (!F(finite)(&t) || !F(finite)(&d))
+        return 0;
+    const double tu = up(F(mid_up)(&t) + t.r), du = up(F(mid_up)(&d) + d.r);
+    const double rho = up(tu / 2 + up(sqrt(up(tu * tu / 4 + du))));
+    const double lu = up(F(mid_up)(&l) + l.r);
+    int j = 0;
+    double reach = up(rho * up(lu * lu));
+    while (!(reach <= 0.5 * DEFLATE)) {
+        if (++j > 60 || !isfinite(reach))
+            return 0;
+        reach = up(reach / 4);
+    }
+    const BALL h = F(scale)(&l, -j), hh = MUL(h, h), T = MUL(t, hh), hhhh = MUL(hh, hh),
+               Dd = MUL(d, hhhh);
+    BALL q_prev = F(exact)(0.0), q = F(exact)(1.0);
+    BALL s0b = F(exact)(0.0), s0a = s0b, s1b = s0b, s1a = s0b;
+    for (Py_ssize_t k = 1; k < TK; k++) {
+        const BALL e2 = F(load)(tcoef + W_ * 2 * k), e3 = F(load)(tcoef + W_ * (2 * k + 1));
+        const BALL u0 = MUL(q, e2), u1 = MUL(q_prev, e2), u2 = MUL(q, e3), u3 = MUL(q_prev, e3);
+        s0b = ADD(s0b, u0);
+        s0a = ADD(s0a, u1);
+        s1b = ADD(s1b, u2);
+        s1a = ADD(s1a, u3);
+        const BALL Tq = MUL(T, q), Dq = MUL(Dd, q_prev);
+        q_prev = q;
+        q = SUB(Tq, Dq);
+    }
+    s0b.r = up(s0b.r + ttails[0]);
+    s0a.r = up(s0a.r + ttails[0]);
+    s1b.r = up(s1b.r + ttails[1]);
+    s1a.r = up(s1a.r + ttails[1]);
+    const BALL one = F(exact)(1.0), two = F(exact)(2.0);
+    const BALL D0 = MUL(Dd, s0a), D1 = MUL(Dd, s1a), om1 = SUB(one, D1), hhh = MUL(hh, h);
+    BALL a0 = SUB(one, D0), b0 = MUL(hh, s0b), a1 = MUL(h, om1), b1 = MUL(hhh, s1b);
+    for (int i = 0; i < j; i++) {
+        /* F0(2h) = 2 F0^2 - I, F1(2h) = 2 F0 F1, with G^2 = t G - d I */
+        const BALL a0a0 = MUL(a0, a0), b0b0 = MUL(b0, b0), db0b0 = MUL(d, b0b0),
+                   a0b0 = MUL(a0, b0), tb0b0 = MUL(t, b0b0), a0a1 = MUL(a0, a1),
+                   b0b1 = MUL(b0, b1), db0b1 = MUL(d, b0b1), a0b1 = MUL(a0, b1),
+                   a1b0 = MUL(a1, b0), tb0b1 = MUL(t, b0b1);
+        const BALL x0 = SUB(a0a0, db0b0), x0t = MUL(two, x0);
+        const BALL y0 = MUL(two, a0b0), y1 = ADD(y0, tb0b0);
+        const BALL z0 = SUB(a0a1, db0b1), w0 = ADD(a0b1, a1b0), w1 = ADD(w0, tb0b1);
+        a0 = SUB(x0t, one);
+        b0 = MUL(two, y1);
+        a1 = MUL(two, z0);
+        b1 = MUL(two, w1);
+    }
+    if (!F(finite)(&a0) || !F(finite)(&b0) || !F(finite)(&a1) || !F(finite)(&b1))
+        return 0;
+    /* U in the order [Y, Theta, M, Q] (segments._assemble) */
+    const BALL g00 = F(neg)(bm), g01 = MUL(a, iEI), am = MUL(a, mu), g10 = F(neg)(am),
+               g11 = ci;
+    const BALL p00 = ci, p01 = g01, p10 = g10, p11 = g00;
+    const BALL t00 = MUL(b1, p00), t01 = MUL(b1, p01), t10 = MUL(b1, p10), t11 = MUL(b1, p11);
+    const BALL h00 = ADD(a1, t00), h01 = t01, h10 = t10, h11 = ADD(a1, t11);
+    const BALL v00 = MUL(b1, g00), v01 = MUL(b1, g01), v10 = MUL(b1, g10), v11 = MUL(b1, g11);
+    const BALL k00 = ADD(a1, v00), k01 = v01, k10 = v10, k11 = ADD(a1, v11);
+    BALL U[4][4];
+    {
+        const BALL x = MUL(b0, g00), ah00 = MUL(a, h00), bh10 = MUL(b, h10),
+                   ah01 = MUL(a, h01), bh11 = MUL(b, h11);
+        U[0][0] = ADD(a0, x);
+        U[0][1] = ADD(ah00, bh10);
+        U[0][2] = MUL(b0, g01);
+        U[0][3] = ADD(ah01, bh11);
+    }
+    {
+        const BALL x = MUL(b0, p00);
+        U[1][0] = MUL(k10, iEI);
+        U[1][1] = ADD(a0, x);
+        U[1][2] = MUL(k11, iEI);
+        U[1][3] = MUL(b0, p01);
+    }
+    {
+        const BALL ch00 = MUL(c, h00), ah10 = MUL(a, h10), x = MUL(b0, g11),
+                   ch01 = MUL(c, h01), ah11 = MUL(a, h11);
+        U[2][0] = MUL(b0, g10);
+        U[2][1] = ADD(ch00, ah10);
+        U[2][2] = ADD(a0, x);
+        U[2][3] = ADD(ch01, ah11);
+    }
+    {
+        const BALL mk00 = MUL(mu, k00), mk01 = MUL(mu, k01), x = MUL(b0, p11);
+        U[3][0] = F(neg)(mk00);
+        U[3][1] = MUL(b0, p10);
+        U[3][2] = F(neg)(mk01);
+        U[3][3] = ADD(a0, x);
+    }
+    /* the stiffness of one beam (stiffness.coupled_stiffness): f0 = A d0 + inv d1,
+     * f1 = C d0 + E d1 with inv = U12^-1, A = -inv U11, C = U21 + U22 A, E = U22 inv */
+    const BALL u00 = MUL(U[0][2], U[1][3]), u11 = MUL(U[0][3], U[1][2]), det = SUB(u00, u11);
+    const BALL idet = F(inv)(&det);
+    BALL I[2][2], A2[2][2], C2[2][2], E2[2][2];
+    I[0][0] = MUL(U[1][3], idet);
+    {
+        const BALL x = MUL(U[0][3], idet), y = MUL(U[1][2], idet);
+        I[0][1] = F(neg)(x);
+        I[1][0] = F(neg)(y);
+    }
+    I[1][1] = MUL(U[0][2], idet);
+    for (int r = 0; r < 2; r++)
+        for (int q2 = 0; q2 < 2; q2++) {
+            const BALL x = MUL(I[r][0], U[0][q2]), y = MUL(I[r][1], U[1][q2]), s2 = ADD(x, y);
+            A2[r][q2] = F(neg)(s2);
+        }
+    for (int r = 0; r < 2; r++)
+        for (int q2 = 0; q2 < 2; q2++) {
+            const BALL x = MUL(U[2 + r][2], A2[0][q2]), y = MUL(U[2 + r][3], A2[1][q2]),
+                       s2 = ADD(x, y), x2 = MUL(U[2 + r][2], I[0][q2]),
+                       y2 = MUL(U[2 + r][3], I[1][q2]);
+            C2[r][q2] = ADD(U[2 + r][q2], s2);
+            E2[r][q2] = ADD(x2, y2);
+        }
+    /* rows (Q0, -M0, -Q1, M1): f0 rows (M0, Q0), f1 rows (M1, Q1) */
+    const BALL rows[16] = {
+        A2[1][0], A2[1][1], I[1][0], I[1][1],
+        F(neg)(A2[0][0]), F(neg)(A2[0][1]), F(neg)(I[0][0]), F(neg)(I[0][1]),
+        F(neg)(C2[1][0]), F(neg)(C2[1][1]), F(neg)(E2[1][0]), F(neg)(E2[1][1]),
+        C2[0][0], C2[0][1], E2[0][0], E2[0][1]};
+    for (int i = 0; i < 16; i++) {
+        if (!F(finite)(&rows[i]))
+            return 0;
+        F(store)(D + W_ * i, &rows[i]);
+    }
+    if (!F(finite)(&det))
+        return 0;
+    F(store)(det12, &det);
+    return 1;
+}
+
 /* The band of every point (see assemble in _multiword.c). */
-static void F(assemble_points)(const uint64_t *lam2s, const uint64_t *kinds, Py_ssize_t S,
+static void F(assemble_points)(const uint64_t *lam2s, const uint64_t *kinds,
+                               const long long *families, Py_ssize_t S,
                                const uint64_t *coef, const double *tails, Py_ssize_t K,
+                               const uint64_t *tcoef, const double *ttails, Py_ssize_t TK,
                                const long long *tg, const long long *src, const uint64_t *bc,
                                const long long *st, Py_ssize_t Q, uint64_t *bands,
                                Py_ssize_t nk, uint64_t *dets, uint64_t *V, unsigned char *ok,
@@ -99,8 +250,11 @@ static void F(assemble_points)(const uint64_t *lam2s, const uint64_t *kinds, Py_
         uint64_t *band = bands + W_ * p * nk, *det = dets + W_ * p * S;
         int fine = 1;
         for (Py_ssize_t s = 0; fine && s < S; s++)
-            fine = F(eb_kind)(&lam2, kinds + 4 * W_ * s, coef, tails, K, V + 16 * W_ * s,
-                              det + W_ * s);
+            fine = families[s] == 0
+                ? F(eb_kind)(&lam2, kinds + 8 * W_ * s, coef, tails, K, V + 16 * W_ * s,
+                             det + W_ * s)
+                : F(theory_kind)(&lam2, kinds + 8 * W_ * s, tcoef, ttails, TK,
+                                 V + 16 * W_ * s, det + W_ * s);
         ok[p] = (unsigned char)fine;
         if (!fine)
             continue;

@@ -1,10 +1,12 @@
-"""Ball factorisations of Euler–Bernoulli models in compiled multi-word balls.
+"""Ball factorisations of beam models in compiled multi-word balls.
 
 A proof factorises ``K(omega)`` in Arb balls a few times per root, and there every ball
 operation is a Python call (0.1-0.2 us, most of it the call). Where the model is
-undamped and made of Euler–Bernoulli segments, the same kernel (the series of the
-``c_j``, :func:`~symtmm.numeric.stiffness.eb_stiffness`, the plan's scatter, the band
-``LDL^T``) runs in C (``_multiword.c``) on balls whose midpoint takes ``N`` 64-bit words
+undamped and made of Euler–Bernoulli segments and general beams (axial force, rotary
+inertia, shear), the same kernel (the series of the ``c_j`` and
+:func:`~symtmm.numeric.stiffness.eb_stiffness`; the series in ``(t, d)`` of
+:func:`~symtmm.numeric.segments.theory_matrices` and the stiffness of one beam; the plan's
+scatter, the band ``LDL^T``) runs in C (``_multiword.c``) on balls whose midpoint takes ``N`` 64-bit words
 (:func:`tiers`): a double-double for 2 (about 106 bits), else a binary floating-point
 number of an ``N``-word mantissa (192 to 320 bits), and whose radius bounds every cut and
 rounding. A point whose every pivot ball there
@@ -66,13 +68,18 @@ TERMS = 26
 
 _MASK = (1 << 64) - 1
 
+#: The segment families the compiled kernel holds, by its codes: Euler–Bernoulli
+#: (``eb_stiffness``) and general beams (axial force, rotary inertia, shear:
+#: ``theory_matrices`` and the stiffness of one beam).
+_FAMILIES = {"eb": 0, "theory": 1}
+
 
 def serves(plan, ar, lam2, lam) -> bool:
     """Whether a ball batch at ``lam2`` can be tried in balls of words."""
     if not (ENABLED and isinstance(ar, Ball) and tiers(ar.prec, plan.n) and lam is None
             and plan.n and not plan.damped and not getattr(ar, "closed_stiffness", False)):
         return False
-    if any(family != "eb" for family, _ in plan.kinds):
+    if any(family not in _FAMILIES for family, _ in plan.kinds):
         return False
     return all(isinstance(v, ar.flint.arb) for v in np.asarray(lam2).reshape(-1))
 
@@ -217,6 +224,24 @@ def _words_arithmetic(N: int) -> Ball:
     return Ball(64 * N + 64)
 
 
+@functools.lru_cache(maxsize=None)
+def _theory_series(N: int):
+    """``(TK, 1/k! for k < 2 TK + 2 as balls, (2 TK/(2 TK)!, 2 TK/(2 TK + 1)!) rounded up)``:
+    the general beams' series in ``(t, d)`` (:func:`~symtmm.numeric.segments._series`) to
+    the words' bits, once per number of words."""
+    bits = 106 if N == 2 else 64 * N
+    K = 2
+    while math.log2(K) - math.lgamma(2 * K + 1) / math.log(2) > -(bits + 4):
+        K += 1
+    ar = _words_arithmetic(N)
+    flint = ar.flint
+    with ar:
+        coef = _encoded([1 / flint.arb.fac_ui(k) for k in range(2 * K + 2)], flint, N)
+        tails = np.array([_up((flint.arb(2 * K) / flint.arb.fac_ui(2 * K + i)).upper())
+                          for i in (0, 1)], dtype=float)
+    return K, coef, tails
+
+
 def _tables(plan, N: int) -> dict | None:
     """The plan's constants as balls of ``N`` words, from its exact numbers (None where one
     does not fit), once per plan and number of words (whatever the precision asked: the
@@ -227,10 +252,15 @@ def _tables(plan, N: int) -> dict | None:
         return cache[N]
     ar = _words_arithmetic(N)
     try:
-        kinds = []
-        for family, (EI, m, l, kw) in plan.kinds:
-            EI, m, l, kw = (sp.sympify(v) for v in (EI, m, l, kw))
-            kinds += _exact_balls([EI, l, m * l**4 / EI, kw * l**4 / EI], ar, N)
+        kinds, families = [], []
+        for family, consts in plan.kinds:
+            if family == "eb":
+                EI, m, l, kw = (sp.sympify(v) for v in consts)
+                values = [EI, l, m * l**4 / EI, kw * l**4 / EI] + [sp.Integer(0)] * 4
+            else:               # (EI, a, b, cN, rhoI, m, kw, l)
+                values = [sp.sympify(v) for v in consts]
+            kinds += _exact_balls(values, ar, N)
+            families.append(_FAMILIES[family])
         coefficients = plan.coefficients
         targets, source, bcoef, starts = [], [], [], [0]
         for tg, src, terms in plan.layer_maps():
@@ -242,11 +272,14 @@ def _tables(plan, N: int) -> dict | None:
         cache[N] = None
         return None
     coef, tails = _series(N)
-    out = cache[N] = {"kinds": np.array(kinds, dtype=np.uint64).reshape(-1, 4, width(N)), "coef": coef,
-            "tails": tails, "targets": np.array(targets, dtype=np.int64),
-            "source": np.array(source, dtype=np.int64),
-            "bcoef": np.array(bcoef, dtype=np.uint64).reshape(-1, width(N)),
-            "starts": np.array(starts, dtype=np.int64)}
+    TK, tcoef, ttails = _theory_series(N)
+    out = cache[N] = {
+        "kinds": np.array(kinds, dtype=np.uint64).reshape(-1, 8, width(N)),
+        "families": np.array(families, dtype=np.int64), "coef": coef, "tails": tails,
+        "TK": TK, "tcoef": tcoef, "ttails": ttails,
+        "targets": np.array(targets, dtype=np.int64), "source": np.array(source, dtype=np.int64),
+        "bcoef": np.array(bcoef, dtype=np.uint64).reshape(-1, width(N)),
+        "starts": np.array(starts, dtype=np.int64)}
     return out
 
 
@@ -264,7 +297,7 @@ def tiers(prec: int, n: int) -> list:
 
 
 def factor(plan, ar: Ball, lam2, reverse: bool = False):
-    """:func:`~symtmm.numeric.stiffness.factor` of an undamped Euler–Bernoulli plan in balls:
+    """:func:`~symtmm.numeric.stiffness.factor` of an undamped plan of beams in balls:
     the points decided in multi-word balls (:func:`tiers`), the rest in ``ar`` (Arb)."""
     from .stiffness import BandRows, Factors, _ldl, assemble, reversed_band
 
@@ -350,7 +383,8 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int):
     band = np.empty((B, n * w, W), dtype=np.uint64)
     det12 = np.empty((B, S, W), dtype=np.uint64)
     ok = np.zeros(B, dtype=np.uint8)
-    _multiword.assemble(N, points, tabs["kinds"], tabs["coef"], tabs["tails"], TERMS,
+    _multiword.assemble(N, points, tabs["kinds"], tabs["families"], tabs["coef"],
+                        tabs["tails"], TERMS, tabs["tcoef"], tabs["ttails"], tabs["TK"],
                         tabs["targets"], tabs["source"], tabs["bcoef"], tabs["starts"],
                         band, det12, np.empty((16 * S + 3, W), dtype=np.uint64), ok)
     band = band.reshape(B, n, w, W)

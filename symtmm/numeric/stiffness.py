@@ -455,7 +455,7 @@ def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Facto
     leading minors, the same inertia and determinant): where a leading minor is nearly
     singular at a point (a sub-structure's eigenvalue), the other end's are not.
     In double precision a batch is factorised in parts of at most :data:`BAND_ENTRIES`;
-    in balls, an undamped Euler–Bernoulli plan first in compiled multi-word balls
+    in balls, an undamped plan of beams first in compiled multi-word balls
     (:mod:`symtmm.numeric.multiword`).
     """
     if ar is DOUBLE:
