@@ -29,9 +29,17 @@
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
+
+/* The error-free transformations need every double operation rounded once, to double:
+ * not through x87's extended registers (32-bit x86 without SSE2). Where that cannot be
+ * had, the extension does not build and every proof runs in Arb. */
+#if !defined(FLT_EVAL_METHOD) || FLT_EVAL_METHOD != 0
+#error "double operations must round to double (FLT_EVAL_METHOD 0)"
+#endif
 
 /* exponents beyond this fail (radii and bounds are doubles) */
 #define EXP_MAX 1000
