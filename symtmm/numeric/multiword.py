@@ -63,7 +63,8 @@ ENABLED = _multiword is not None
 MIN_WORDS, MAX_WORDS = 2, 5
 
 #: The most terms of the series of the ``c_j``; each takes the fewest whose tail is below
-#: ``2**-(64 N)`` (the pieces' ``|x| <= 81``: about 17 at 5 words, 9 for ``|x| < 1``).
+#: the words' resolution (``2**-106`` for a double-double, ``2**-(64 N)`` else; the pieces'
+#: ``|x| <= 81``: about 17 terms at 5 words, 9 for ``|x| < 1``).
 TERMS = 26
 
 _MASK = (1 << 64) - 1
