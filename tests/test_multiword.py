@@ -271,6 +271,21 @@ def test_general_beams_delta_encloses_arb_at_400_bits(monkeypatch):
         assert a.contains(b.mid()) and a.rad() < 1e-10 * abs(b.mid())
 
 
+def test_freedoms_the_other_way_round_give_the_same_counts_and_delta():
+    model = load(EXAMPLES / "paper_ex1_ff_cc.toml")
+    c = Counter(model, 250.0)
+    omegas = [mpmath.mpf(w) for w in (1.0, 8.86195501305, 33.3, 120.9, 199.9)]
+    plan = c.factors(omegas, Ball(150)).plan
+    ar = Ball(150)
+    with ar:
+        lam2 = np.array([-(ar.number(w) ** 2) for w in omegas], dtype=object)
+    ahead = multiword.factor(plan, ar, lam2)
+    back = multiword.factor(plan, ar, lam2, reverse=True)
+    assert ahead.counts().tolist() == back.counts().tolist()
+    for a, b in zip(ahead.delta(), back.delta()):
+        assert a.overlaps(b)
+
+
 def _band(rows):
     """A symmetric tridiagonal matrix (diagonal, off-diagonal) as a band (1, n, 2) of
     exact balls of 2 words, padded as the elimination wants it."""

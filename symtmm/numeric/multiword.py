@@ -167,13 +167,19 @@ def encode_rational(q: Fraction, N: int) -> list:
     return words + [e & _MASK, int(q < 0), int(np.float64(r).view(np.uint64))]
 
 
+#: Exact numbers already encoded, by ``(number, words)``: a model's plans, and a sweep's
+#: steps, share most of their coefficients (powers of two, its springs' constants).
+_ENCODED: dict = {}
+
+
 def _exact_balls(values, ar: Ball, N: int) -> list:
     """Exact SymPy numbers as balls of ``N`` words: rationals directly, others through
-    their Arb enclosures (``ar.exact``, cached); equal numbers converted once."""
+    their Arb enclosures (``ar``); each number converted once (:data:`_ENCODED`)."""
     import sympy as sp
-    out, seen = [], {}
+    out = []
     for v in values:
-        hit = seen.get(v)
+        key = (v, N)
+        hit = _ENCODED.get(key)
         if hit is None:
             v_ = sp.sympify(v)
             if v_.is_Rational:
@@ -181,7 +187,9 @@ def _exact_balls(values, ar: Ball, N: int) -> list:
             else:
                 with ar:
                     hit = encode(ar.exact(v_), ar.flint, N)
-            seen[v] = hit
+            if len(_ENCODED) >= 1 << 16:
+                _ENCODED.clear()
+            _ENCODED[key] = hit
         out.append(hit)
     return out
 
@@ -219,6 +227,7 @@ def _series(N: int):
     return coef, tails
 
 
+@functools.lru_cache(maxsize=None)
 def _words_arithmetic(N: int) -> Ball:
     """The Arb arithmetic that encloses irrational constants for balls of ``N`` words (a
     word more than they hold)."""
@@ -405,10 +414,14 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int):
 def _eliminated(band, reverse: bool, ok, N: int) -> np.ndarray:
     """The band ``(B, n, w, width)`` of balls of ``N`` words (its freedoms reversed if
     asked) padded and eliminated; ``ok`` cleared where a pivot ball holds 0."""
-    from .stiffness import reversed_band
     B, n, w, W = band.shape
     if reverse:
-        band = np.stack([reversed_band(band[..., c]) for c in range(W)], axis=-1)
+        # (stiffness.reversed_band, each ball's words carried along)
+        out = np.zeros_like(band)
+        for j in range(w):
+            rows = np.arange(n - j)
+            out[:, rows, j] = band[:, n - 1 - rows - j, j]
+        band = out
     Kb = np.ascontiguousarray(np.concatenate([band, np.zeros((B, w, w, W), dtype=np.uint64)],
                                              axis=1))
     _multiword.eliminate(N, Kb, B, n + w, w, n, ok)
