@@ -6,10 +6,10 @@ undamped and made of Euler–Bernoulli segments and general beams (axial force, 
 inertia, shear), the same kernel (the series of the ``c_j`` and
 :func:`~symtmm.numeric.stiffness.eb_stiffness`; the series in ``(t, d)`` of
 :func:`~symtmm.numeric.segments.theory_matrices` and the stiffness of one beam; the plan's
-scatter, the band ``LDL^T``) runs in C (``_multiword.c``) on balls whose midpoint takes ``N`` 64-bit words
-(:func:`tiers`): a double-double for 2 (about 106 bits), else a binary floating-point
-number of an ``N``-word mantissa (192 to 320 bits), and whose radius bounds every cut and
-rounding. A point whose every pivot ball there
+scatter, the band ``LDL^T``) runs in C (``_multiword.c``) on balls whose midpoint takes
+``N`` 64-bit words (:func:`tiers`): a double-double for 2 (about 106 bits), else a binary
+floating-point number of an ``N``-word mantissa (192 to 320 bits), and whose radius
+bounds every cut and rounding. A point whose every pivot ball there
 excludes zero has its pivots, signs and ``Delta`` proved as in Arb.
 
 The other points are factorised in Arb at the precision asked, as before: where a pivot
@@ -213,7 +213,7 @@ def _encoded(values, flint, N: int) -> np.ndarray:
         len(values), width(N))
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _series(N: int):
     """The balls of ``1/(4k + j)!`` (``(4, TERMS, width)``) and upper bounds of them as
     doubles (``(4, TERMS + 1)``: the tails), once per number of words."""
@@ -227,14 +227,14 @@ def _series(N: int):
     return coef, tails
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _words_arithmetic(N: int) -> Ball:
     """The Arb arithmetic that encloses irrational constants for balls of ``N`` words (a
     word more than they hold)."""
     return Ball(64 * N + 64)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _theory_series(N: int):
     """``(TK, 1/k! for k < 2 TK + 2 as balls, (2 TK/(2 TK)!, 2 TK/(2 TK + 1)!) rounded up)``:
     the general beams' series in ``(t, d)`` (:func:`~symtmm.numeric.segments._series`) to
@@ -457,9 +457,7 @@ def _balls(balls, flint) -> np.ndarray:
 _INFLATE, _TINY = 1.0 + 2.0 ** -48, 2.0 ** -1021
 
 
-def _arb_of(flint, _cache={}):
+@functools.cache
+def _arb_of(flint):
     """``flint.arb(mid, rad)`` as a numpy ufunc (made once)."""
-    f = _cache.get("arb")
-    if f is None:
-        f = _cache["arb"] = np.frompyfunc(flint.arb, 2, 1)
-    return f
+    return np.frompyfunc(flint.arb, 2, 1)

@@ -466,7 +466,7 @@ def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Facto
                             reverse) for i in range(0, lam2.shape[0], step)]
             return Factors.joined(parts)
     if ar.rigorous:
-        from . import multiword     # (it builds on this module)
+        from . import multiword  # (it builds on this module)
         if multiword.serves(plan, ar, lam2, lam):
             return multiword.factor(plan, ar, lam2, reverse)
     with ar:
