@@ -414,14 +414,10 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int):
 def _eliminated(band, reverse: bool, ok, N: int) -> np.ndarray:
     """The band ``(B, n, w, width)`` of balls of ``N`` words (its freedoms reversed if
     asked) padded and eliminated; ``ok`` cleared where a pivot ball holds 0."""
+    from .stiffness import reversed_band
     B, n, w, W = band.shape
     if reverse:
-        # (stiffness.reversed_band, each ball's words carried along)
-        out = np.zeros_like(band)
-        for j in range(w):
-            rows = np.arange(n - j)
-            out[:, rows, j] = band[:, n - 1 - rows - j, j]
-        band = out
+        band = reversed_band(band)
     Kb = np.ascontiguousarray(np.concatenate([band, np.zeros((B, w, w, W), dtype=np.uint64)],
                                              axis=1))
     _multiword.eliminate(N, Kb, B, n + w, w, n, ok)

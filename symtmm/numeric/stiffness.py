@@ -478,8 +478,9 @@ def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Facto
 
 def reversed_band(K) -> np.ndarray:
     """The upper band ``(B, n, b + 1)`` of ``P K P`` with ``P`` the reversal of the freedoms:
-    ``K'[r, r + j] = K[n-1-r-j, n-1-r]``, stored at row ``n-1-r-j``, column ``j``."""
-    _, n, w = K.shape
+    ``K'[r, r + j] = K[n-1-r-j, n-1-r]``, stored at row ``n-1-r-j``, column ``j``. Trailing
+    axes (the words of a compiled ball) are carried along."""
+    n, w = K.shape[1:3]
     out = np.zeros_like(K) if K.dtype != object else K.copy()
     for j in range(w):
         rows = np.arange(n - j)
