@@ -112,6 +112,15 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #define MIN_WORDS 2
 #define MAX_WORDS 5
 
+/* f_N(...) for the N (2 to 5) of the call: one kernel instance per number of words */
+#define BY_WORDS(N, f, ...)                                                                \
+    switch (N) {                                                                           \
+    case 2: f##_2(__VA_ARGS__); break;                                                     \
+    case 3: f##_3(__VA_ARGS__); break;                                                     \
+    case 4: f##_4(__VA_ARGS__); break;                                                     \
+    default: f##_5(__VA_ARGS__); break;                                                    \
+    }
+
 /* 64-bit words per ball of N words: the double-double's three doubles, else the mantissa,
  * the exponent, the sign and the radius */
 static inline Py_ssize_t ball_words(int N) { return N == 2 ? 3 : N + 3; }
@@ -158,16 +167,9 @@ static PyObject *assemble(PyObject *self, PyObject *args)
         good = st[q] >= 0 && st[q] <= T && (q == 0 || st[q] >= st[q - 1]);
     if (good) {
         Py_BEGIN_ALLOW_THREADS
-#define ASSEMBLE(n) assemble_points_##n(lb.buf, kb.buf, fam, S, cb.buf, tb.buf, K, tcb.buf, \
-                                        ttb.buf, TK, tg, src, bcb.buf, st, Q, bandb.buf, nk, \
-                                        detb.buf, vb.buf, okb.buf, B)
-        switch (N) {
-        case 2: ASSEMBLE(2); break;
-        case 3: ASSEMBLE(3); break;
-        case 4: ASSEMBLE(4); break;
-        default: ASSEMBLE(5); break;
-        }
-#undef ASSEMBLE
+        BY_WORDS(N, assemble_points, lb.buf, kb.buf, fam, S, cb.buf, tb.buf, K, tcb.buf,
+                 ttb.buf, TK, tg, src, bcb.buf, st, Q, bandb.buf, nk, detb.buf, vb.buf,
+                 okb.buf, B)
         Py_END_ALLOW_THREADS
     }
     PyBuffer_Release(&lb); PyBuffer_Release(&kb); PyBuffer_Release(&fb);
@@ -201,12 +203,7 @@ static PyObject *eliminate(PyObject *self, PyObject *args)
         return NULL;
     }
     Py_BEGIN_ALLOW_THREADS
-    switch (N) {
-    case 2: eliminate_points_2(buf.buf, B, rows, w, n, okb.buf); break;
-    case 3: eliminate_points_3(buf.buf, B, rows, w, n, okb.buf); break;
-    case 4: eliminate_points_4(buf.buf, B, rows, w, n, okb.buf); break;
-    default: eliminate_points_5(buf.buf, B, rows, w, n, okb.buf); break;
-    }
+    BY_WORDS(N, eliminate_points, buf.buf, B, rows, w, n, okb.buf)
     Py_END_ALLOW_THREADS
     PyBuffer_Release(&buf); PyBuffer_Release(&okb);
     Py_RETURN_NONE;
@@ -228,12 +225,7 @@ static PyObject *power_product(PyObject *self, PyObject *args)
     for (Py_ssize_t i = 0; good && i < count; i++)
         good = ((const long long *)kb.buf)[i] >= 0;
     if (good) {
-        switch (N) {
-        case 2: power_product_points_2(xb.buf, count, kb.buf, ob.buf, okb.buf, B); break;
-        case 3: power_product_points_3(xb.buf, count, kb.buf, ob.buf, okb.buf, B); break;
-        case 4: power_product_points_4(xb.buf, count, kb.buf, ob.buf, okb.buf, B); break;
-        default: power_product_points_5(xb.buf, count, kb.buf, ob.buf, okb.buf, B); break;
-        }
+        BY_WORDS(N, power_product_points, xb.buf, count, kb.buf, ob.buf, okb.buf, B)
     }
     PyBuffer_Release(&xb); PyBuffer_Release(&kb); PyBuffer_Release(&ob);
     PyBuffer_Release(&okb);
@@ -261,12 +253,7 @@ static PyObject *ops(PyObject *self, PyObject *args)
         return NULL;
     }
     const Py_ssize_t M = xb.len / item;
-    switch (N) {
-    case 2: ops_points_2(op, xb.buf, yb.buf, ob.buf, M); break;
-    case 3: ops_points_3(op, xb.buf, yb.buf, ob.buf, M); break;
-    case 4: ops_points_4(op, xb.buf, yb.buf, ob.buf, M); break;
-    default: ops_points_5(op, xb.buf, yb.buf, ob.buf, M); break;
-    }
+    BY_WORDS(N, ops_points, op, xb.buf, yb.buf, ob.buf, M)
     PyBuffer_Release(&xb); PyBuffer_Release(&yb); PyBuffer_Release(&ob);
     Py_RETURN_NONE;
 }
@@ -287,12 +274,7 @@ static PyObject *kry(PyObject *self, PyObject *args)
                      && ob.len == 4 * xb.len;
     if (good) {
         const Py_ssize_t M = xb.len / item;
-        switch (N) {
-        case 2: krylov_points_2(xb.buf, cb.buf, tb.buf, K, ob.buf, M); break;
-        case 3: krylov_points_3(xb.buf, cb.buf, tb.buf, K, ob.buf, M); break;
-        case 4: krylov_points_4(xb.buf, cb.buf, tb.buf, K, ob.buf, M); break;
-        default: krylov_points_5(xb.buf, cb.buf, tb.buf, K, ob.buf, M); break;
-        }
+        BY_WORDS(N, krylov_points, xb.buf, cb.buf, tb.buf, K, ob.buf, M)
     }
     PyBuffer_Release(&xb); PyBuffer_Release(&cb); PyBuffer_Release(&tb);
     PyBuffer_Release(&ob);

@@ -10,8 +10,6 @@
  * the radius r a double. Stored as NW + 3 words: m, e, s, the bits of r. */
 typedef struct { uint64_t m[NW]; int64_t e; int64_t s; double r; } BALL;
 
-static inline int F(mid_zero)(const BALL *x) { return x->m[0] == 0; }
-
 static inline int F(is_zero)(const BALL *x) { return x->m[0] == 0 && x->r == 0.0; }
 
 static inline int F(finite)(const BALL *x)

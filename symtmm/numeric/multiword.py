@@ -92,79 +92,71 @@ def width(N: int) -> int:
 
 
 def _up(x) -> float:
-    """An exact arb (a bound) as the least double not below it."""
+    """An exact number (an exact arb or a Fraction) as the least double not below it."""
     r = float(x)
-    return math.nextafter(r, math.inf) if r < x else r
+    below = r < x if not isinstance(x, Fraction) else Fraction(r) < x
+    return math.nextafter(r, math.inf) if below else r
+
+
+def resolution(N: int) -> int:
+    """The bits a midpoint of ``N`` words holds: 106 for a double-double, else ``64 N``."""
+    return 106 if N == 2 else 64 * N
 
 
 def encode(v, flint, N: int) -> list:
-    """A real arb ball as a ball of ``N`` words (:func:`width` unsigned 64-bit integers): the
-    midpoint to ``N`` words (a double-double for 2; else its leading ``64 N`` bits, its
-    exponent and sign), the radius as a double covering the ball and what was cut."""
-    if N == 2:
-        mid = v.mid()
-        hi = float(mid)
-        rest = mid - flint.arb(hi)
-        lo = float(rest.mid())
-        r = _up((v.rad() + abs(rest - flint.arb(lo)).upper()).upper())
-        if not (math.isfinite(hi) and math.isfinite(r) and abs(hi) < 2.0 ** 1000):
+    """A real arb ball as a ball of ``N`` words (:func:`width` unsigned 64-bit integers):
+    its midpoint, an exact dyadic rational, as :func:`encode_rational` writes it, the
+    radius widened by the ball's own."""
+    man, exp = (int(x) for x in v.mid().man_exp())
+    row = _encode_ratio(man << exp, 1, N) if exp >= 0 else _encode_ratio(man, 1 << -exp, N)
+    radius = _up(v.rad())
+    if radius:
+        cut = float(np.uint64(row[-1]).view(np.float64))
+        r = math.nextafter(cut + radius, math.inf)
+        if not math.isfinite(r):
             raise OverflowError("a ball beyond the range of the compiled balls")
-        return [int(x) for x in np.array([hi, lo, r]).view(np.uint64)]
-    man, exp = v.mid().man_exp()
-    man, exp = int(man), int(exp)
-    cut = 0.0
-    if man == 0:
-        words, e, sign = [0] * N, 0, 0
-    else:
-        sign, a = int(man < 0), abs(man)
-        bits = a.bit_length()
-        e = exp + bits
-        if not -1000 <= e <= 1000:
-            raise OverflowError("a ball beyond the range of the compiled balls")
-        drop = bits - 64 * N
-        if drop > 0:
-            top = a >> drop
-            if a - (top << drop):
-                cut = math.ldexp(1.0, max(e - 64 * N, -1074))
-        else:
-            top = a << -drop
-        words = [(top >> (64 * (N - 1 - k))) & _MASK for k in range(N)]
-    r = _up(v.rad())
-    if cut:
-        r = math.nextafter(r + cut, math.inf)
-    if not math.isfinite(r):
-        raise OverflowError("a ball beyond the range of the compiled balls")
-    return words + [e & _MASK, sign, int(np.float64(r).view(np.uint64))]
+        row[-1] = int(np.float64(r).view(np.uint64))
+    return row
 
 
 def encode_rational(q: Fraction, N: int) -> list:
-    """An exact rational as a ball of ``N`` words, as :func:`encode` (no Arb on the way: the
-    plans' numbers are mostly rationals)."""
+    """An exact rational as a ball of ``N`` words: its nearest double-double (``N = 2``) or
+    its leading ``64 N`` bits, exponent and sign, the radius (a double, rounded up) bounding
+    what that cuts off. No Arb on the way: the plans' numbers are mostly rationals."""
+    return _encode_ratio(q.numerator, q.denominator, N)
+
+
+def _encode_ratio(p: int, d: int, N: int) -> list:
+    """:func:`encode_rational` of ``p / d`` (integers, ``d > 0``), in integer arithmetic
+    (Python's ``int / int`` rounds correctly)."""
     if N == 2:
-        hi = float(q)                    # (correctly rounded)
-        rest = q - Fraction(hi)
-        lo = float(rest)
-        rest = abs(rest - Fraction(lo))
-        r = float(rest)
-        if Fraction(r) < rest:
+        hi = p / d
+        hn, hd = hi.as_integer_ratio()
+        rn, rd = p * hd - hn * d, d * hd              # the rest, p/d - hi, exactly
+        lo = rn / rd
+        ln, ld = lo.as_integer_ratio()
+        cn, cd = abs(rn * ld - ln * rd), rd * ld      # what the double-double cuts off
+        r = cn / cd
+        rn_, rd_ = r.as_integer_ratio()
+        if rn_ * cd < cn * rd_:
             r = math.nextafter(r, math.inf)
         if not (math.isfinite(hi) and abs(hi) < 2.0 ** 1000 and math.isfinite(r)):
             raise OverflowError("a number beyond the range of the compiled balls")
         return [int(x) for x in np.array([hi, lo, r]).view(np.uint64)]
-    if q == 0:
+    if p == 0:
         return [0] * (N + 3)
-    p, d = abs(q.numerator), q.denominator
-    e = p.bit_length() - d.bit_length() + 1          # |q| < 2**e
-    if p * (1 << max(0, 1 - e)) < d * (1 << max(0, e - 1)):
-        e -= 1                                        # now 2**(e-1) <= |q| < 2**e
+    a = abs(p)
+    e = a.bit_length() - d.bit_length() + 1          # |p/d| < 2**e
+    if a * (1 << max(0, 1 - e)) < d * (1 << max(0, e - 1)):
+        e -= 1                                        # now 2**(e-1) <= |p/d| < 2**e
     if not -1000 <= e <= 1000:
         raise OverflowError("a number beyond the range of the compiled balls")
     shift = 64 * N - e
-    num, den = (p << shift, d) if shift >= 0 else (p, d << -shift)
+    num, den = (a << shift, d) if shift >= 0 else (a, d << -shift)
     top, rem = divmod(num, den)
     r = math.ldexp(1.0, max(e - 64 * N, -1074)) if rem else 0.0
     words = [(top >> (64 * (N - 1 - k))) & _MASK for k in range(N)]
-    return words + [e & _MASK, int(q < 0), int(np.float64(r).view(np.uint64))]
+    return words + [e & _MASK, int(p < 0), int(np.float64(r).view(np.uint64))]
 
 
 #: Exact numbers already encoded, by ``(number, words)``: a model's plans, and a sweep's
@@ -194,18 +186,26 @@ def _exact_balls(values, ar: Ball, N: int) -> list:
     return out
 
 
-def decode(row) -> tuple:
-    """``(midpoint, radius)`` of a ball of words as Fractions (exact)."""
+def _parts(row) -> tuple:
+    """``(mantissa, exponent, radius)`` of a ball of words: its midpoint is ``mantissa *
+    2**exponent`` (integers; for a double-double the sum of its two doubles) exactly."""
     row = np.asarray(row, dtype=np.uint64)
     if len(row) == 3:
         hi, lo, r = (float(x) for x in row.view(np.float64))
-        return Fraction(hi) + Fraction(lo), Fraction(r)
+        (hn, hd), (ln, ld) = hi.as_integer_ratio(), lo.as_integer_ratio()
+        d = max(hd, ld)                                 # (powers of two)
+        return hn * (d // hd) + ln * (d // ld), -(d.bit_length() - 1), r
     N = len(row) - 3
     m = sum(int(row[k]) << (64 * (N - 1 - k)) for k in range(N))
     e = int(row[N:N + 1].view(np.int64)[0])
-    mid = Fraction(m) * Fraction(2) ** (e - 64 * N)
-    r = Fraction(float(row[N + 2:N + 3].view(np.float64)[0]))
-    return (-mid if int(row[N + 1]) else mid), r
+    r = float(row[N + 2:N + 3].view(np.float64)[0])
+    return (-m if int(row[N + 1]) else m), e - 64 * N, r
+
+
+def decode(row) -> tuple:
+    """``(midpoint, radius)`` of a ball of words as Fractions (exact)."""
+    m, e, r = _parts(row)
+    return Fraction(m) * Fraction(2) ** e, Fraction(r)
 
 
 def _encoded(values, flint, N: int) -> np.ndarray:
@@ -214,17 +214,20 @@ def _encoded(values, flint, N: int) -> np.ndarray:
 
 
 @functools.cache
+def _inverse_factorials(N: int, count: int) -> tuple:
+    """``1/k!`` for ``k < count``: as balls of ``N`` words ``(count, width)`` and as upper
+    bounds in doubles (exact rationals: no Arb on the way)."""
+    values = [Fraction(1, math.factorial(k)) for k in range(count)]
+    return (np.array([encode_rational(v, N) for v in values], dtype=np.uint64),
+            np.array([_up(v) for v in values]))
+
+
 def _series(N: int):
     """The balls of ``1/(4k + j)!`` (``(4, TERMS, width)``) and upper bounds of them as
-    doubles (``(4, TERMS + 1)``: the tails), once per number of words."""
-    ar = _words_arithmetic(N)
-    flint = ar.flint
-    with ar:
-        coef = np.array([_encoded([1 / flint.arb.fac_ui(4 * k + j) for k in range(TERMS)],
-                                  flint, N) for j in range(4)], dtype=np.uint64)
-        tails = np.array([[_up((1 / flint.arb.fac_ui(4 * k + j)).upper())
-                           for k in range(TERMS + 1)] for j in range(4)], dtype=float)
-    return coef, tails
+    doubles (``(4, TERMS + 1)``: the tails), for the ``c_j``."""
+    balls, ups = _inverse_factorials(N, 4 * TERMS + 4)
+    coef = balls[:4 * TERMS].reshape(TERMS, 4, -1).transpose(1, 0, 2)
+    return np.ascontiguousarray(coef), np.ascontiguousarray(ups.reshape(TERMS + 1, 4).T)
 
 
 @functools.cache
@@ -238,18 +241,13 @@ def _words_arithmetic(N: int) -> Ball:
 def _theory_series(N: int):
     """``(TK, 1/k! for k < 2 TK + 2 as balls, (2 TK/(2 TK)!, 2 TK/(2 TK + 1)!) rounded up)``:
     the general beams' series in ``(t, d)`` (:func:`~symtmm.numeric.segments._series`) to
-    the words' bits, once per number of words."""
-    bits = 106 if N == 2 else 64 * N
+    the words' bits."""
     K = 2
-    while math.log2(K) - math.lgamma(2 * K + 1) / math.log(2) > -(bits + 4):
+    while math.log2(K) - math.lgamma(2 * K + 1) / math.log(2) > -(resolution(N) + 4):
         K += 1
-    ar = _words_arithmetic(N)
-    flint = ar.flint
-    with ar:
-        coef = _encoded([1 / flint.arb.fac_ui(k) for k in range(2 * K + 2)], flint, N)
-        tails = np.array([_up((flint.arb(2 * K) / flint.arb.fac_ui(2 * K + i)).upper())
-                          for i in (0, 1)], dtype=float)
-    return K, coef, tails
+    balls, _ = _inverse_factorials(N, 2 * K + 2)
+    tails = np.array([_up(Fraction(2 * K, math.factorial(2 * K + i))) for i in (0, 1)])
+    return K, balls, tails
 
 
 def _tables(plan, N: int) -> dict | None:
@@ -360,19 +358,11 @@ def _product(plan, piv, det12, flint, N: int) -> np.ndarray:
     products = np.full(B, None, dtype=object)
     two = flint.arb(2)
     for p in np.nonzero(ok)[0]:
-        row = out[p]
-        shift = int(row[W:].view(np.int64)[0])
-        # (each part exact in Arb at the words' precision; the product times its power of
-        # two: Delta leaves the doubles' range)
-        if N == 2:
-            hi, lo, r = (float(v) for v in row[:3].view(np.float64))
-            value = flint.arb(hi) + flint.arb(lo)
-        else:
-            m = sum(int(row[i]) << (64 * (N - 1 - i)) for i in range(N))
-            e = int(row[N:N + 1].view(np.int64)[0])
-            r = float(row[N + 2:N + 3].view(np.float64)[0])
-            value = flint.arb(flint.fmpz(-m if int(row[N + 1]) else m)) * two ** (e - 64 * N)
-        products[p] = (value + flint.arb(0, r)) * two ** shift
+        # (exact in Arb: an integer times a power of two, then the radius, then the power
+        # of two the running product was rescaled by: Delta leaves the doubles' range)
+        m, e, r = _parts(out[p, :W])
+        shift = int(out[p, W:].view(np.int64)[0])
+        products[p] = (flint.arb(flint.fmpz(m)) * two ** e + flint.arb(0, r)) * two ** shift
     return products
 
 

@@ -386,8 +386,13 @@ class Factors:
                 for i in np.nonzero(~part.trusted)[0]:
                     rows[offset + int(i)] = part.K[i]
             offset += part.pivots.shape[0]
+        products = None
+        if any(p.products is not None for p in parts):
+            products = np.concatenate([p.products if p.products is not None
+                                       else np.full(p.pivots.shape[0], None, dtype=object)
+                                       for p in parts])
         return Factors(first.plan, first.ar, cat("pivots"), cat("signs"), cat("decided"),
-                       cat("det12"), BandRows(rows))
+                       cat("det12"), BandRows(rows), products)
 
     def _constant(self):
         ar, plan = self.ar, self.plan
