@@ -18,7 +18,8 @@ import pytest
 from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load
 from symtmm.numeric import multiword, stiffness
-from symtmm.numeric.arith import Ball
+from symtmm.numeric.arith import DOUBLE, Ball
+from symtmm.numeric.plan import StiffnessPlan
 from symtmm.results import decimal_string
 from symtmm.roots.count import Counter
 from symtmm.solve import solve
@@ -354,3 +355,60 @@ def test_closed_form_frequencies_at_15_and_30_digits():
             for n, e in enumerate(found, start=1):
                 ref = _pinned_root(n)
                 assert decimal_string(e.omega, digits) == decimal_string(ref, digits)
+
+
+# -- plain doubles (one word, no radius): the double-precision batches' band -------------
+def _mixed_model():
+    beams = [b for b, _ in _general_beams()]
+    return Model((Beam("a", 1, 1, 1, left="clamped", right="free", N=-1),
+                  beams[1], Beam("t", 3, 2, 1, left="free", right="clamped",
+                                 theory="timoshenko", rhoI="1/30", kGA=60)),
+                 (Spring("a", "b", "1/2", 40), Spring("b", "t", "1/3", 25)))
+
+
+@pytest.mark.parametrize("which", ["ex1", "mixed"])
+def test_double_band_agrees_with_the_numpy_closed_forms(which):
+    # the compiled kernel over doubles (the c_j by their series, general beams by theirs
+    # in (t, d)) against numpy's band from the closed forms in cosh, cos of the roots
+    model = load(EXAMPLES / "paper_ex1_ff_cc.toml") if which == "ex1" else _mixed_model()
+    plan = Counter(model, 250.0).plan(250.0)
+    lam2 = -np.linspace(0.0, 250.0, 101) ** 2
+    K, det12, ok = multiword.double_band(plan, lam2)
+    K0, det0 = stiffness.assemble(plan, DOUBLE, lam2)
+    assert ok.all()
+    scale = np.abs(K0).max(axis=(1, 2))[:, None, None]
+    assert np.all(np.abs(K - K0) <= 1e-12 * scale)
+    assert np.all(np.abs(det12 - det0) <= 1e-12 * np.abs(det0))
+
+
+def test_double_counts_about_closed_form_roots_with_the_compiled_band(monkeypatch):
+    beam, omega = _general_beams()[2]
+    for model, root in ((_pinned(), _pinned_root),
+                        (Model((beam,)), lambda n: omega(n * mpmath.pi / mpmath.mpf("1.5")))):
+        c = Counter(model, 300.0)
+        points = [float(root(n)) * (1 + s * 1e-8) for n in (1, 2, 3) for s in (-1, 1)]
+        assert multiword.serves_double(c.plan(max(points)), -np.array(points) ** 2, None)
+        fast = c.counts(points, DOUBLE)
+        # (a point next to a sub-structure's eigenvalue may stay undecided in doubles: the
+        # caller decides it otherwise; the numpy band leaves the same ones)
+        assert [n for n, k in zip([0, 1, 1, 2, 2, 3], fast) if k >= 0] == \
+            [k for k in fast if k >= 0]
+        assert np.sum(fast >= 0) >= 4
+        with monkeypatch.context() as m:
+            m.setattr(multiword, "ENABLED", False)
+            assert c.counts(points, DOUBLE).tolist() == fast.tolist()
+
+
+def test_points_beyond_the_compiled_series_are_built_in_numpy(monkeypatch):
+    # a plan cut for omega <= 10 asked at omega = 1e5: its pieces' |x| (about 3e8) leaves
+    # the reach of the series' terms, and numpy's closed forms build those points' band
+    plan = StiffnessPlan(load(EXAMPLES / "paper_ex1_ff_cc.toml").require_numeric(), 100.0)
+    lam2 = -np.array([5.0, 1e5]) ** 2
+    _, _, ok = multiword.double_band(plan, lam2)
+    assert ok.tolist() == [True, False]
+    fast = stiffness.factor(plan, DOUBLE, lam2)
+    monkeypatch.setattr(multiword, "ENABLED", False)
+    slow = stiffness.factor(plan, DOUBLE, lam2)
+    assert fast.counts().tolist() == slow.counts().tolist()
+    assert np.array_equal(fast.pivots[1], slow.pivots[1])
+    assert np.allclose(fast.log_delta()[0], slow.log_delta()[0], rtol=1e-9)

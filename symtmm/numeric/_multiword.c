@@ -24,7 +24,9 @@
  * 0), makes the point fail: the caller then evaluates it in Arb.
  *
  * The kernel (_multiword_kernel.h) is compiled once per number of words N, 2 to 5, so
- * that its loops over the words have a fixed length. No numpy headers: arrays come as
+ * that its loops over the words have a fixed length, and once more over plain doubles
+ * (N = 1, _multiword_double.h: no radius, not an enclosure) for the stiffness and band of
+ * the double-precision batches, which the elimination of _band.c then factorises. No numpy headers: arrays come as
  * buffers of 64-bit words, N + 3 per ball (the words, e, s and the bits of r).
  */
 #define PY_SSIZE_T_CLEAN
@@ -75,6 +77,20 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #define CAT_(a, b) a##_##b
 #define CAT(a, b) CAT_(a, b)
 
+/* one word: plain doubles, no radius (the double-precision batches' band) */
+#define F(name) name##_1
+#define BALL ball_1
+#define W_ 1
+#define PREC_BITS 53
+#define PLAIN_DOUBLE
+#include "_multiword_double.h"
+#include "_multiword_kernel.h"
+#undef PLAIN_DOUBLE
+#undef F
+#undef BALL
+#undef W_
+#undef PREC_BITS
+
 /* two words: double-double balls (about 106 bits, a few double operations each) */
 #define F(name) name##_2
 #define BALL ball_2
@@ -109,21 +125,22 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #undef W_
 #undef PREC_BITS
 
-#define MIN_WORDS 2
+#define MIN_WORDS 1
 #define MAX_WORDS 5
 
-/* f_N(...) for the N (2 to 5) of the call: one kernel instance per number of words */
+/* f_N(...) for the N (1 to 5) of the call: one kernel instance per number of words */
 #define BY_WORDS(N, f, ...)                                                                \
     switch (N) {                                                                           \
+    case 1: f##_1(__VA_ARGS__); break;                                                     \
     case 2: f##_2(__VA_ARGS__); break;                                                     \
     case 3: f##_3(__VA_ARGS__); break;                                                     \
     case 4: f##_4(__VA_ARGS__); break;                                                     \
     default: f##_5(__VA_ARGS__); break;                                                    \
     }
 
-/* 64-bit words per ball of N words: the double-double's three doubles, else the mantissa,
- * the exponent, the sign and the radius */
-static inline Py_ssize_t ball_words(int N) { return N == 2 ? 3 : N + 3; }
+/* 64-bit words per ball of N words: a plain double's one, the double-double's three
+ * doubles, else the mantissa, the exponent, the sign and the radius */
+static inline Py_ssize_t ball_words(int N) { return N == 1 ? 1 : N == 2 ? 3 : N + 3; }
 
 /* assemble(N, lam2, kinds, families, coef, tails, K, tcoef, ttails, TK, targets, source,
  *          bcoef, starts, band, det12, V, ok)

@@ -34,6 +34,11 @@ static int F(krylov)(const BALL *x, const uint64_t *coef, const double *tails, P
         }
         if (!terms)
             return 0;
+#ifdef PLAIN_DOUBLE
+        /* (no radius to carry a tail beyond the resolution: such a point fails) */
+        if (!(tail <= goal))
+            return 0;
+#endif
         const uint64_t *cj = coef + W_ * K * j;
         BALL acc = F(load)(cj + W_ * (terms - 1));
         for (Py_ssize_t k = terms - 2; k >= 0; k--) {

@@ -48,6 +48,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from ..expr import exact_float
 from .arith import Ball
 
 try:        # the compiled balls (setup.py); without a compiler every ball runs in Arb
@@ -85,10 +86,55 @@ def serves(plan, ar, lam2, lam) -> bool:
     return all(isinstance(v, ar.flint.arb) for v in np.asarray(lam2).reshape(-1))
 
 
+def serves_double(plan, lam2, lam) -> bool:
+    """Whether a double-precision batch at ``lam2`` has its band built by the compiled
+    kernel over plain doubles (:func:`double_band`)."""
+    return (ENABLED and lam is None and plan.n > 0 and not plan.damped
+            and np.asarray(lam2).dtype == np.float64
+            and all(family in _FAMILIES for family, _ in plan.kinds))
+
+
+def double_band(plan, lam2):
+    """``(K, det U12, ok)`` of :func:`~symtmm.numeric.stiffness.assemble` in double
+    precision, by the compiled kernel over plain doubles (one word, no radius: the same
+    series, stiffness and scatter as the balls', one call for the batch); ``ok`` false
+    where a value is not finite or beyond the series' reach (the caller assembles those
+    points in numpy). None where the plan's numbers do not fit doubles.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> from symtmm.numeric.arith import DOUBLE
+    >>> from symtmm.numeric.plan import StiffnessPlan
+    >>> from symtmm.numeric.stiffness import assemble
+    >>> plan = StiffnessPlan(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 1e4)
+    >>> lam2 = -np.array([10.0, 50.0]) ** 2
+    >>> K, det12, ok = double_band(plan, lam2)
+    >>> K0, det0 = assemble(plan, DOUBLE, lam2)
+    >>> bool(ok.all()), bool(np.allclose(K, K0, rtol=1e-12, atol=1e-12 * abs(K0).max()))
+    (True, True)
+    """
+    tabs = _tables(plan, 1)
+    if tabs is None:
+        return None
+    lam2 = np.ascontiguousarray(lam2, dtype=np.float64)
+    B, n, w = lam2.shape[0], plan.n, plan.width
+    S = tabs["kinds"].shape[0]
+    band = np.empty((B, n * w))
+    det12 = np.empty((B, S))
+    ok = np.zeros(B, dtype=np.uint8)
+    _multiword.assemble(1, lam2, tabs["kinds"], tabs["families"], tabs["coef"],
+                        tabs["tails"], TERMS, tabs["tcoef"], tabs["ttails"], tabs["TK"],
+                        tabs["targets"], tabs["source"], tabs["bcoef"], tabs["starts"],
+                        band, det12, np.empty(16 * S + 3), ok)
+    return band.reshape(B, n, w), det12, ok.astype(bool)
+
+
 def width(N: int) -> int:
-    """64-bit words per ball of ``N`` words: a double-double's three doubles (``N = 2``),
-    else the mantissa's ``N`` words, the exponent, the sign and the radius."""
-    return 3 if N == 2 else N + 3
+    """64-bit words per ball of ``N`` words: a plain double's one (``N = 1``, no radius:
+    :func:`double_band`), a double-double's three doubles (``N = 2``), else the mantissa's
+    ``N`` words, the exponent, the sign and the radius."""
+    return 1 if N == 1 else 3 if N == 2 else N + 3
 
 
 def _up(x) -> float:
@@ -99,8 +145,9 @@ def _up(x) -> float:
 
 
 def resolution(N: int) -> int:
-    """The bits a midpoint of ``N`` words holds: 106 for a double-double, else ``64 N``."""
-    return 106 if N == 2 else 64 * N
+    """The bits a midpoint of ``N`` words holds: 53 for a double, 106 for a double-double,
+    else ``64 N``."""
+    return 53 if N == 1 else 106 if N == 2 else 64 * N
 
 
 def encode(v, flint, N: int) -> list:
@@ -109,6 +156,8 @@ def encode(v, flint, N: int) -> list:
     radius widened by the ball's own."""
     man, exp = (int(x) for x in v.mid().man_exp())
     row = _encode_ratio(man << exp, 1, N) if exp >= 0 else _encode_ratio(man, 1 << -exp, N)
+    if N == 1:
+        return row              # (a plain double keeps no radius)
     radius = _up(v.rad())
     if radius:
         cut = float(np.uint64(row[-1]).view(np.float64))
@@ -128,7 +177,12 @@ def encode_rational(q: Fraction, N: int) -> list:
 
 def _encode_ratio(p: int, d: int, N: int) -> list:
     """:func:`encode_rational` of ``p / d`` (integers, ``d > 0``), in integer arithmetic
-    (Python's ``int / int`` rounds correctly)."""
+    (Python's ``int / int`` rounds correctly); for ``N = 1`` the nearest double alone."""
+    if N == 1:
+        value = p / d
+        if not math.isfinite(value):
+            raise OverflowError("a number beyond the range of doubles")
+        return [int(np.float64(value).view(np.uint64))]
     if N == 2:
         hi = p / d
         hn, hd = hi.as_integer_ratio()
@@ -164,9 +218,10 @@ def _encode_ratio(p: int, d: int, N: int) -> list:
 _ENCODED: dict = {}
 
 
-def _exact_balls(values, ar: Ball, N: int) -> list:
+def _exact_balls(values, ar: Ball | None, N: int) -> list:
     """Exact SymPy numbers as balls of ``N`` words: rationals directly, others through
-    their Arb enclosures (``ar``); each number converted once (:data:`_ENCODED`)."""
+    their Arb enclosures (``ar``; for a plain double, ``N = 1``, the nearest float, no Arb
+    needed); each number converted once (:data:`_ENCODED`)."""
     import sympy as sp
     out = []
     for v in values:
@@ -176,6 +231,11 @@ def _exact_balls(values, ar: Ball, N: int) -> list:
             v_ = sp.sympify(v)
             if v_.is_Rational:
                 hit = encode_rational(Fraction(int(v_.p), int(v_.q)), N)
+            elif N == 1:
+                value = exact_float(v_)
+                if not math.isfinite(value):
+                    raise OverflowError("a number beyond the range of doubles")
+                hit = [int(np.float64(value).view(np.uint64))]
             else:
                 with ar:
                     hit = encode(ar.exact(v_), ar.flint, N)
@@ -258,7 +318,7 @@ def _tables(plan, N: int) -> dict | None:
     cache = plan.__dict__.setdefault("_multiword_tables", {})
     if N in cache:
         return cache[N]
-    ar = _words_arithmetic(N)
+    ar = _words_arithmetic(N) if N > 1 else None     # (doubles need no Arb)
     try:
         kinds, families = [], []
         for family, consts in plan.kinds:
