@@ -42,6 +42,7 @@ from .jsonout import dumps, header
 from .model import Model
 from .numeric.arith import DOUBLE, MP
 from .numeric.linalg import orthonormal
+from .numeric.threads import one_blas_thread
 from .results import decimal_string
 from .tables import Tabular
 
@@ -295,6 +296,7 @@ def _orthonormal(vectors):
     return orthonormal(DOUBLE, np.asarray(vectors).T, complete=True)
 
 
+@one_blas_thread
 def track_branches(clusters, threshold: float = MAC_THRESHOLD) -> list:
     """Branch ids for every eigenvalue of every step, from sampled mode shapes.
 

@@ -19,7 +19,8 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 # symtmm's command line, as installed and with the extras made unimportable
 _PLAIN = "import sys\nfrom symtmm.cli import main\nsys.exit(main(sys.argv[1:]))\n"
 _BLOCKED = ("import sys\n"
-            "for name in ('scipy', 'matplotlib', 'flint', 'gmpy2', 'dask', 'distributed', 'tqdm'):\n"
+            "for name in ('scipy', 'matplotlib', 'flint', 'gmpy2', 'dask', 'distributed', "
+            "'tqdm', 'threadpoolctl'):\n"
             "    sys.modules[name] = None\n") + _PLAIN
 
 

@@ -32,6 +32,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..numeric.threads import one_blas_thread
+
 __all__ = ["localising_rotation"]
 
 
@@ -40,6 +42,7 @@ def _off(parts, p: int, q: int) -> float:
     return float(sum(E[p, q] ** 2 for E in parts))
 
 
+@one_blas_thread
 def localising_rotation(parts, sweeps: int = 50, tol: float = 1e-15) -> np.ndarray:
     """The orthogonal ``Q`` (floats) that jointly diagonalises the symmetric ``parts``.
 

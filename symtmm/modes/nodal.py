@@ -36,6 +36,7 @@ from ..numeric.arith import DOUBLE
 from ..numeric.plan import plan_for
 from ..numeric.segments import cut_tables, family_matrices, kind_order, kind_tables
 from ..numeric.stiffness import assemble, dense
+from ..numeric.threads import one_blas_thread
 
 __all__ = ["DENSE_LIMIT", "nodal_displacements"]
 
@@ -97,6 +98,7 @@ def _null_vectors(A, mult: int):
     return Vh[n - mult:].conj().T
 
 
+@one_blas_thread
 def nodal_displacements(model, eigenvalues, points: int) -> list:
     """``Y`` at ``points`` equally spaced points along every beam, per eigenvalue.
 

@@ -114,7 +114,7 @@ def double_band(plan, lam2):
     >>> bool(ok.all()), bool(np.allclose(K, K0, rtol=1e-12, atol=1e-12 * abs(K0).max()))
     (True, True)
     """
-    tabs = _tables(plan, 1)
+    tabs = _double_tables(plan)
     if tabs is None:
         return None
     lam2 = np.ascontiguousarray(lam2, dtype=np.float64)
@@ -348,6 +348,46 @@ def _tables(plan, N: int) -> dict | None:
         "targets": np.array(targets, dtype=np.int64), "source": np.array(source, dtype=np.int64),
         "bcoef": np.array(bcoef, dtype=np.uint64).reshape(-1, width(N)),
         "starts": np.array(starts, dtype=np.int64)}
+    return out
+
+
+#: The columns of a kind's constants in the compiled kernel, by family (zeros after them).
+_COLUMNS = {"eb": ("EI", "l", "A", "F"), "theory": ("EI", "a", "b", "cN", "rhoI", "m", "kw", "l")}
+
+
+def _double_tables(plan) -> dict | None:
+    """:func:`_tables` for plain doubles (one word), from the plan's double-precision
+    tables (the numbers numpy's band uses; no SymPy on the way); None where one is not
+    finite."""
+    from .arith import DOUBLE
+    cache = plan.__dict__.setdefault("_multiword_tables", {})
+    if 1 in cache:
+        return cache[1]
+    t = plan.tables(DOUBLE)
+    kinds, families = [np.zeros((0, 8))], []
+    for family, consts in t["kinds"]:           # (grouped by family, in the plan's order)
+        cols = [np.asarray(consts[c], dtype=float) for c in _COLUMNS[family]]
+        block = np.zeros((cols[0].size, 8))
+        block[:, :len(cols)] = np.stack(cols, axis=1)
+        kinds.append(block)
+        families += [_FAMILIES[family]] * cols[0].size
+    kinds = np.concatenate(kinds)
+    layers = t["layers"]
+    bcoef = np.concatenate([np.zeros(0)] + [np.asarray(c, dtype=float) for _, _, c in layers])
+    if not (np.isfinite(kinds).all() and np.isfinite(bcoef).all()):
+        cache[1] = None
+        return None
+    coef, tails = _series(1)
+    TK, tcoef, ttails = _theory_series(1)
+    out = cache[1] = {
+        "kinds": kinds, "families": np.array(families, dtype=np.int64), "coef": coef,
+        "tails": tails, "TK": TK, "tcoef": tcoef, "ttails": ttails,
+        "targets": np.concatenate([np.zeros(0, dtype=np.int64)]
+                                  + [np.asarray(tg, dtype=np.int64) for tg, _, _ in layers]),
+        "source": np.concatenate([np.zeros(0, dtype=np.int64)]
+                                 + [np.asarray(sr, dtype=np.int64) for _, sr, _ in layers]),
+        "bcoef": bcoef,
+        "starts": np.cumsum([0] + [len(tg) for tg, _, _ in layers]).astype(np.int64)}
     return out
 
 
