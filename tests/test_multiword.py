@@ -8,17 +8,20 @@ runs in Arb (as in the rest of the suite then).
 
 from __future__ import annotations
 
+import dataclasses
 from fractions import Fraction
 from pathlib import Path
 
 import mpmath
 import numpy as np
 import pytest
+import sympy as sp
 
 from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load
 from symtmm.numeric import multiword, stiffness
 from symtmm.numeric.arith import DOUBLE, Ball
+from symtmm.numeric.evaluator import Evaluator
 from symtmm.numeric.plan import StiffnessPlan
 from symtmm.results import decimal_string
 from symtmm.roots.count import Counter
@@ -412,3 +415,81 @@ def test_points_beyond_the_compiled_series_are_built_in_numpy(monkeypatch):
     assert fast.counts().tolist() == slow.counts().tolist()
     assert np.array_equal(fast.pivots[1], slow.pivots[1])
     assert np.allclose(fast.log_delta()[0], slow.log_delta()[0], rtol=1e-9)
+
+
+# -- complex balls (pairs of real ones): the damped models --------------------------------
+@pytest.mark.parametrize("N", [2, 3])
+@pytest.mark.parametrize("op", [0, 1, 2, 3])
+def test_complex_operations_enclose_the_exact_results(N, op):
+    # a complex ball is a rectangle: its real part's ball and its imaginary part's; every
+    # point of the operands' rectangles (corners, edges' midpoints, centres) lands in it
+    rng = np.random.default_rng(1000 + 10 * N + op)
+    M = 60
+    X = np.concatenate([_random_balls(rng, M, N), _random_balls(rng, M, N)], axis=1)
+    Y = np.concatenate([_random_balls(rng, M, N), _random_balls(rng, M, N)], axis=1)
+    out = np.empty_like(X)
+    multiword._multiword.ops(op, multiword.COMPLEX + N, X, Y, out)
+    W = multiword.width(N)
+
+    def parts(row):
+        (a, ra), (b, rb) = multiword.decode(row[:W]), multiword.decode(row[W:])
+        return a, b, ra, rb
+
+    def apply(x, y):                    # exact complex arithmetic on pairs of Fractions
+        (a, b), (c, d) = x, y
+        if op == 0:
+            return a + c, b + d
+        if op == 1:
+            return a - c, b - d
+        if op == 2:
+            return a * c - b * d, a * d + b * c
+        n = c * c + d * d
+        return (a * c + b * d) / n, (b * c - a * d) / n
+    for x, y, z in zip(X, Y, out):
+        a, b, ra, rb = parts(x)
+        c, d, rc, rd = parts(y)
+        zr, zi, rzr, rzi = parts(z)
+        for s in [(sa, sb, sc, sd) for sa in (-1, 0, 1) for sb in (-1, 1)
+                  for sc in (-1, 0, 1) for sd in (-1, 1)]:
+            re, im = apply((a + s[0] * ra, b + s[1] * rb), (c + s[2] * rc, d + s[3] * rd))
+            assert abs(re - zr) <= rzr and abs(im - zi) <= rzi
+
+
+def _damped_model():
+    """Example 4's three beams (springs with dashpots), a Timoshenko beam in the middle."""
+    model = load(EXAMPLES / "paper_ex4_damped.toml").require_numeric()
+    b1, b2, b3 = model.beams
+    return dataclasses.replace(model, beams=(b1, dataclasses.replace(
+        b2, theory="timoshenko", rhoI=sp.Rational(1, 2000), kGA=sp.Integer(10**6)), b3))
+
+
+@pytest.mark.parametrize("which", ["ex4", "timoshenko"])
+def test_complex_double_band_agrees_with_numpy(which):
+    model = load(EXAMPLES / "paper_ex4_damped.toml").require_numeric() \
+        if which == "ex4" else _damped_model()
+    plan = Evaluator(model, 1500.0).plan(1500.0)
+    lam = np.array([complex(-3, 100), complex(-50, 700), complex(-1000, 1400), complex(-1, 1)])
+    assert multiword.serves_double(plan, lam * lam, lam)
+    K, det12, ok = multiword.double_band(plan, lam * lam, lam)
+    K0, det0 = stiffness.assemble(plan, DOUBLE, lam * lam, lam)
+    assert ok.all() and K.dtype == np.complex128
+    scale = np.abs(K0).max(axis=(1, 2))[:, None, None]
+    assert np.all(np.abs(K - K0) <= 1e-12 * scale)
+    assert np.all(np.abs(det12 - det0) <= 1e-12 * np.abs(det0))
+
+
+@pytest.mark.parametrize("which", ["ex4", "timoshenko"])
+def test_complex_delta_encloses_arb_at_400_bits(which, monkeypatch, arb_calls):
+    model = load(EXAMPLES / "paper_ex4_damped.toml").require_numeric() \
+        if which == "ex4" else _damped_model()
+    ev = Evaluator(model, 1500.0)
+    fast_ar, slow_ar = Ball(150), Ball(400)
+    with fast_ar:
+        points = [fast_ar.flint.acb(x, y) for x, y in ((-3, 100), (-50, 700), (-1000, 1400))]
+    fast = ev.factors(points, fast_ar)
+    assert sum(arb_calls) == 0                       # (decided in complex words)
+    assert all(p is not None for p in fast.products) and (fast.signs == 0).all()
+    monkeypatch.setattr(multiword, "ENABLED", False)
+    slow = ev.factors(points, slow_ar)
+    for a, b in zip(fast.delta(), slow.delta()):
+        assert a.contains(b.mid()) and a.rad() < 1e-10 * abs(b.mid())

@@ -125,26 +125,100 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #undef W_
 #undef PREC_BITS
 
-#define MIN_WORDS 1
-#define MAX_WORDS 5
+/* complex balls: a real ball of N words for each part (code 10 + N), for the damped
+ * models, whose dashpots make the band complex */
+#define R(name) name##_1
+#define RBALL ball_1
+#define RW_ 1
+#define F(name) name##_c1
+#define BALL cball_1
+#define W_ 2
+#define PREC_BITS 53
+#define PLAIN_DOUBLE
+#include "_multiword_complex.h"
+#include "_multiword_kernel.h"
+#undef PLAIN_DOUBLE
+#undef R
+#undef RBALL
+#undef RW_
+#undef F
+#undef BALL
+#undef W_
+#undef PREC_BITS
 
-/* f_N(...) for the N (1 to 5) of the call: one kernel instance per number of words */
+#define R(name) name##_2
+#define RBALL ball_2
+#define RW_ 3
+#define F(name) name##_c2
+#define BALL cball_2
+#define W_ 6
+#define PREC_BITS 106
+#include "_multiword_complex.h"
+#include "_multiword_kernel.h"
+#undef R
+#undef RBALL
+#undef RW_
+#undef F
+#undef BALL
+#undef W_
+#undef PREC_BITS
+
+#define R(name) CAT(name, NW)
+#define RBALL R(ball)
+#define RW_ (NW + 3)
+#define F(name) CAT(name, CAT(c, NW))
+#define BALL F(ball)
+#define W_ (2 * (NW + 3))
+#define PREC_BITS (64 * NW)
+#define NW 3
+#include "_multiword_complex.h"
+#include "_multiword_kernel.h"
+#undef NW
+#define NW 4
+#include "_multiword_complex.h"
+#include "_multiword_kernel.h"
+#undef NW
+#define NW 5
+#include "_multiword_complex.h"
+#include "_multiword_kernel.h"
+#undef NW
+#undef R
+#undef RBALL
+#undef RW_
+#undef F
+#undef BALL
+#undef W_
+#undef PREC_BITS
+
+/* the codes of the arithmetics: N (1 to 5) words, real; 10 + N complex */
+static inline int valid_words(int N) { return (N >= 1 && N <= 5) || (N >= 11 && N <= 15); }
+
+/* f_N(...) for the code N of the call: one kernel instance per arithmetic */
 #define BY_WORDS(N, f, ...)                                                                \
     switch (N) {                                                                           \
     case 1: f##_1(__VA_ARGS__); break;                                                     \
     case 2: f##_2(__VA_ARGS__); break;                                                     \
     case 3: f##_3(__VA_ARGS__); break;                                                     \
     case 4: f##_4(__VA_ARGS__); break;                                                     \
-    default: f##_5(__VA_ARGS__); break;                                                    \
+    case 5: f##_5(__VA_ARGS__); break;                                                     \
+    case 11: f##_c1(__VA_ARGS__); break;                                                   \
+    case 12: f##_c2(__VA_ARGS__); break;                                                   \
+    case 13: f##_c_3(__VA_ARGS__); break;                                                  \
+    case 14: f##_c_4(__VA_ARGS__); break;                                                  \
+    default: f##_c_5(__VA_ARGS__); break;                                                  \
     }
 
-/* 64-bit words per ball of N words: a plain double's one, the double-double's three
- * doubles, else the mantissa, the exponent, the sign and the radius */
-static inline Py_ssize_t ball_words(int N) { return N == 1 ? 1 : N == 2 ? 3 : N + 3; }
+/* 64-bit words per ball of code N: a plain double's one, the double-double's three
+ * doubles, else the mantissa, the exponent, the sign and the radius; complex: twice */
+static inline Py_ssize_t ball_words(int N)
+{
+    return N > 10 ? 2 * ball_words(N - 10) : N == 1 ? 1 : N == 2 ? 3 : N + 3;
+}
 
-/* assemble(N, lam2, kinds, families, coef, tails, K, tcoef, ttails, TK, targets, source,
- *          bcoef, starts, band, det12, V, ok)
- *   balls of N words (ball_words(N) 64-bit words each): lam2 (B,); kinds (S, 8): per
+/* assemble(N, lam2, lam, kinds, families, coef, tails, K, tcoef, ttails, TK, targets,
+ *          source, bcoef, starts, band, det12, V, ok)
+ *   balls of code N (ball_words(N) 64-bit words each): lam2 (B,); lam (B,), or empty
+ *   where there are no dashpots (its column then 0); kinds (S, 8): per
  *   kind (EI, l, A, F, 0...) where families[s] = 0 (Euler-Bernoulli), (EI, a, b, cN, rhoI,
  *   m, kw, l) where 1 (a general beam); coef (4, K) the balls of 1/(4k + j)!, tails
  *   (4, K + 1) doubles, upper bounds of 1/(4k + j)!; tcoef (2 TK + 2,) the balls of 1/k!,
@@ -153,19 +227,19 @@ static inline Py_ssize_t ball_words(int N) { return N == 1 ? 1 : N == 2 ? 3 : N 
  *   starts[q] .. starts[q + 1] - 1 (each target at most once in a layer); band (B, nk)
  *   written; det12 (B, S) written; V (16 S + 3) workspace; ok (B,) uint8 written: 0
  *   where a value is not finite (the point is left to Arb).
- * The sources index V = [D of every kind (16 each), 1, lam (0: no dashpots), lam2]: the
+ * The sources index V = [D of every kind (16 each), 1, lam, lam2]: the
  * columns of symtmm.numeric.stiffness.assemble. */
 static PyObject *assemble(PyObject *self, PyObject *args)
 {
-    Py_buffer lb, kb, fb, cb, tb, tcb, ttb, tgb, srcb, bcb, stb, bandb, detb, vb, okb;
+    Py_buffer lb, lmb, kb, fb, cb, tb, tcb, ttb, tgb, srcb, bcb, stb, bandb, detb, vb, okb;
     Py_ssize_t K, TK;
     int N;
     (void)self;
-    if (!PyArg_ParseTuple(args, "iy*y*y*y*y*ny*y*ny*y*y*y*w*w*w*w*", &N, &lb, &kb, &fb, &cb,
-                          &tb, &K, &tcb, &ttb, &TK, &tgb, &srcb, &bcb, &stb, &bandb, &detb,
-                          &vb, &okb))
+    if (!PyArg_ParseTuple(args, "iy*y*y*y*y*y*ny*y*ny*y*y*y*w*w*w*w*", &N, &lb, &lmb, &kb, &fb,
+                          &cb, &tb, &K, &tcb, &ttb, &TK, &tgb, &srcb, &bcb, &stb, &bandb,
+                          &detb, &vb, &okb))
         return NULL;
-    int good = N >= MIN_WORDS && N <= MAX_WORDS;
+    int good = valid_words(N);
     const Py_ssize_t item = 8 * ball_words(N);
     const Py_ssize_t B = good ? lb.len / item : 0, S = fb.len / 8;
     const Py_ssize_t T = tgb.len / 8, Q = stb.len / 8 - 1, nv = 16 * S + 3;
@@ -174,7 +248,7 @@ static PyObject *assemble(PyObject *self, PyObject *args)
            && tb.len == 4 * (K + 1) * 8 && tcb.len == (2 * TK + 2) * item && ttb.len == 16
            && srcb.len == tgb.len && bcb.len == T * item && Q >= 0
            && detb.len == B * S * item && vb.len == nv * item && okb.len == B
-           && (B == 0 || bandb.len == B * nk * item);
+           && (B == 0 || bandb.len == B * nk * item) && (lmb.len == 0 || lmb.len == lb.len);
     const long long *tg = tgb.buf, *src = srcb.buf, *st = stb.buf, *fam = fb.buf;
     for (Py_ssize_t i = 0; good && i < S; i++)
         good = fam[i] == 0 || fam[i] == 1;
@@ -184,12 +258,14 @@ static PyObject *assemble(PyObject *self, PyObject *args)
         good = st[q] >= 0 && st[q] <= T && (q == 0 || st[q] >= st[q - 1]);
     if (good) {
         Py_BEGIN_ALLOW_THREADS
-        BY_WORDS(N, assemble_points, lb.buf, kb.buf, fam, S, cb.buf, tb.buf, K, tcb.buf,
+        BY_WORDS(N, assemble_points, lb.buf, lmb.len ? lmb.buf : NULL, kb.buf, fam, S,
+                 cb.buf, tb.buf, K, tcb.buf,
                  ttb.buf, TK, tg, src, bcb.buf, st, Q, bandb.buf, nk, detb.buf, vb.buf,
                  okb.buf, B)
         Py_END_ALLOW_THREADS
     }
-    PyBuffer_Release(&lb); PyBuffer_Release(&kb); PyBuffer_Release(&fb);
+    PyBuffer_Release(&lb); PyBuffer_Release(&lmb); PyBuffer_Release(&kb);
+    PyBuffer_Release(&fb);
     PyBuffer_Release(&cb); PyBuffer_Release(&tb); PyBuffer_Release(&tcb);
     PyBuffer_Release(&ttb); PyBuffer_Release(&tgb); PyBuffer_Release(&srcb);
     PyBuffer_Release(&bcb); PyBuffer_Release(&stb); PyBuffer_Release(&bandb);
@@ -213,7 +289,7 @@ static PyObject *eliminate(PyObject *self, PyObject *args)
     (void)self;
     if (!PyArg_ParseTuple(args, "iw*nnnnw*", &N, &buf, &B, &rows, &w, &n, &okb))
         return NULL;
-    if (N < MIN_WORDS || N > MAX_WORDS || B < 0 || w < 1 || n < 0 || rows < n + w
+    if (!valid_words(N) || B < 0 || w < 1 || n < 0 || rows < n + w
             || buf.len != B * rows * w * 8 * ball_words(N) || okb.len != B) {
         PyBuffer_Release(&buf); PyBuffer_Release(&okb);
         PyErr_SetString(PyExc_ValueError, "multi-word band of the wrong size");
@@ -237,7 +313,7 @@ static PyObject *power_product(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "iy*y*w*w*", &N, &xb, &kb, &ob, &okb))
         return NULL;
     const Py_ssize_t item = 8 * ball_words(N), B = okb.len, count = kb.len / 8;
-    int good = N >= MIN_WORDS && N <= MAX_WORDS && ob.len == B * (item + 8)
+    int good = valid_words(N) && ob.len == B * (item + 8)
                && xb.len == B * count * item;
     for (Py_ssize_t i = 0; good && i < count; i++)
         good = ((const long long *)kb.buf)[i] >= 0;
@@ -263,7 +339,7 @@ static PyObject *ops(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "iiy*y*w*", &op, &N, &xb, &yb, &ob))
         return NULL;
     const Py_ssize_t item = 8 * ball_words(N);
-    if (op < 0 || op > 3 || N < MIN_WORDS || N > MAX_WORDS || yb.len != xb.len
+    if (op < 0 || op > 3 || !valid_words(N) || yb.len != xb.len
             || ob.len != xb.len || xb.len % item) {
         PyBuffer_Release(&xb); PyBuffer_Release(&yb); PyBuffer_Release(&ob);
         PyErr_SetString(PyExc_ValueError, "ops: bad operation or buffers");
@@ -286,7 +362,7 @@ static PyObject *kry(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "iy*y*y*nw*", &N, &xb, &cb, &tb, &K, &ob))
         return NULL;
     const Py_ssize_t item = 8 * ball_words(N);
-    const int good = N >= MIN_WORDS && N <= MAX_WORDS && K >= 2 && cb.len == 4 * K * item
+    const int good = valid_words(N) && K >= 2 && cb.len == 4 * K * item
                      && tb.len == 4 * (K + 1) * 8 && xb.len % item == 0
                      && ob.len == 4 * xb.len;
     if (good) {
@@ -304,8 +380,8 @@ static PyObject *kry(PyObject *self, PyObject *args)
 
 static PyMethodDef methods[] = {
     {"assemble", assemble, METH_VARARGS,
-     "assemble(N, lam2, kinds, families, coef, tails, K, tcoef, ttails, TK, targets, source, "
-     "bcoef, starts, band, det12, V, ok): the band of K(lam2) in balls of N words."},
+     "assemble(N, lam2, lam, kinds, families, coef, tails, K, tcoef, ttails, TK, targets, "
+     "source, bcoef, starts, band, det12, V, ok): the band of K(lam) in balls of code N."},
     {"eliminate", eliminate, METH_VARARGS,
      "eliminate(N, band, B, rows, w, n, ok): LDL^T without pivoting of ball bands, in place."},
     {"power_product", power_product, METH_VARARGS,

@@ -39,6 +39,11 @@ static inline double F(mid_up)(const BALL *x) { return up(fabs(x->hi) + fabs(x->
 
 static inline double F(head)(const BALL *x) { return x->hi; }
 
+/* an upper bound of |v| over the ball; the radius grown by t >= 0 */
+static inline double F(mag)(const BALL *x) { return up(F(mid_up)(x) + x->r); }
+
+static inline void F(widen)(BALL *x, double t) { x->r = up(x->r + t); }
+
 static inline BALL F(exact)(double v)
 {
     BALL z = {v, 0.0, isfinite(v) ? 0.0 : INFINITY};

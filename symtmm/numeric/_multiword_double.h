@@ -1,18 +1,17 @@
 /*
  * Plain doubles for _multiword.c (included there once, with F, BALL and W_ defined): the
- * kernel's "balls" of one word, the double itself, with no radius kept (r reads 0 and is
- * never stored). Not an enclosure: the double-precision batches' stiffness and band
+ * kernel's "balls" of one word, the double itself, with no radius. Not an enclosure: the double-precision batches' stiffness and band
  * (symtmm.numeric.stiffness.assemble in numpy otherwise), whose pivots' signs the
  * backward-error test of symtmm.numeric.stiffness decides, as for the numpy loop's.
  *
  * Each operation rounds once, to nearest; the series' term counts follow the same rule
  * as the balls' (tails below 2^-53).
  */
-typedef struct { double m, r; } BALL;
+typedef struct { double m; } BALL;
 
 static inline BALL F(exact)(double v)
 {
-    BALL z = {v, 0.0};
+    BALL z = {v};
     return z;
 }
 
@@ -23,6 +22,15 @@ static inline int F(finite)(const BALL *x) { return isfinite(x->m); }
 static inline double F(mid_up)(const BALL *x) { return fabs(x->m); }
 
 static inline double F(head)(const BALL *x) { return x->m; }
+
+/* |v| (no radius: nothing to widen) */
+static inline double F(mag)(const BALL *x) { return fabs(x->m); }
+
+static inline void F(widen)(BALL *x, double t)
+{
+    (void)x;
+    (void)t;
+}
 
 static inline BALL F(neg)(BALL x)
 {
@@ -54,7 +62,7 @@ static inline int F(power_of_two)(const BALL *c, int *k)
 
 static inline BALL F(load)(const uint64_t *p)
 {
-    BALL z = {0.0, 0.0};
+    BALL z;
     memcpy(&z.m, p, sizeof(double));
     return z;
 }

@@ -2,7 +2,9 @@
  * The kernel of _multiword.c over one of its ball arithmetics (included after it, with F,
  * BALL, W_ and PREC_BITS defined): the series of the c_j and the Euler-Bernoulli
  * stiffness, the general beams' series and stiffness, the scatter, the band LDL^T with 2x2
- * blocks, running products, and the entry points of the tests.
+ * blocks, running products, and the entry points of the tests. A ball is read through its
+ * arithmetic's functions only (F(mag): an upper bound of its modulus; F(widen): its
+ * radius grown by a bound): real balls and complex ones (pairs of real balls) alike.
  */
 #define MUL(a, b) F(mul)(&(a), &(b))
 #define ADD(a, b) F(add)(&(a), &(b))
@@ -15,7 +17,7 @@
 static int F(krylov)(const BALL *x, const uint64_t *coef, const double *tails, Py_ssize_t K,
                      BALL c[4])
 {
-    const double X = up(F(mid_up)(x) + x->r);
+    const double X = F(mag)(x);
     const double goal = ldexp(1.0, -PREC_BITS);
     for (int j = 0; j < 4; j++) {
         double XK = 1.0, tail = INFINITY;
@@ -45,7 +47,7 @@ static int F(krylov)(const BALL *x, const uint64_t *coef, const double *tails, P
             const BALL t = MUL(acc, *x), ck = F(load)(cj + W_ * k);
             acc = ADD(t, ck);
         }
-        acc.r = up(acc.r + tail);
+        F(widen)(&acc, tail);
         if (!F(finite)(&acc))
             return 0;
         c[j] = acc;
@@ -110,9 +112,9 @@ static int F(theory_kind)(const BALL *lam2, const uint64_t *kc, const uint64_t *
                d = MUL(mab, iEI);
     if (!F(finite)(&t) || !F(finite)(&d))
         return 0;
-    const double tu = up(F(mid_up)(&t) + t.r), du = up(F(mid_up)(&d) + d.r);
+    const double tu = F(mag)(&t), du = F(mag)(&d);
     const double rho = up(tu / 2 + up(sqrt(up(tu * tu / 4 + du))));
-    const double lu = up(F(mid_up)(&l) + l.r);
+    const double lu = F(mag)(&l);
     int j = 0;
     double reach = up(rho * up(lu * lu));
     while (!(reach <= 0.5 * DEFLATE)) {
@@ -135,10 +137,10 @@ static int F(theory_kind)(const BALL *lam2, const uint64_t *kc, const uint64_t *
         q_prev = q;
         q = SUB(Tq, Dq);
     }
-    s0b.r = up(s0b.r + ttails[0]);
-    s0a.r = up(s0a.r + ttails[0]);
-    s1b.r = up(s1b.r + ttails[1]);
-    s1a.r = up(s1a.r + ttails[1]);
+    F(widen)(&s0b, ttails[0]);
+    F(widen)(&s0a, ttails[0]);
+    F(widen)(&s1b, ttails[1]);
+    F(widen)(&s1a, ttails[1]);
     const BALL one = F(exact)(1.0), two = F(exact)(2.0);
     const BALL D0 = MUL(Dd, s0a), D1 = MUL(Dd, s1a), om1 = SUB(one, D1), hhh = MUL(hh, h);
     BALL a0 = SUB(one, D0), b0 = MUL(hh, s0b), a1 = MUL(h, om1), b1 = MUL(hhh, s1b);
@@ -240,7 +242,8 @@ static int F(theory_kind)(const BALL *lam2, const uint64_t *kc, const uint64_t *
 }
 
 /* The band of every point (see assemble in _multiword.c). */
-static void F(assemble_points)(const uint64_t *lam2s, const uint64_t *kinds,
+static void F(assemble_points)(const uint64_t *lam2s, const uint64_t *lams,
+                               const uint64_t *kinds,
                                const long long *families, Py_ssize_t S,
                                const uint64_t *coef, const double *tails, Py_ssize_t K,
                                const uint64_t *tcoef, const double *ttails, Py_ssize_t TK,
@@ -264,7 +267,12 @@ static void F(assemble_points)(const uint64_t *lam2s, const uint64_t *kinds,
         if (!fine)
             continue;
         F(store)(V + W_ * (16 * S), &one);
-        F(store)(V + W_ * (16 * S + 1), &zero);
+        if (lams) {
+            const BALL lam = F(load)(lams + W_ * p);
+            F(store)(V + W_ * (16 * S + 1), &lam);
+        } else {
+            F(store)(V + W_ * (16 * S + 1), &zero);
+        }
         F(store)(V + W_ * (16 * S + 2), &lam2);
         for (Py_ssize_t i = 0; i < nk; i++)
             F(store)(band + W_ * i, &zero);
@@ -463,7 +471,7 @@ static void F(krylov_points)(const uint64_t *x, const uint64_t *coef, const doub
         if (!F(krylov)(&xi, coef, tails, K, c)) {
             for (int j = 0; j < 4; j++) {
                 c[j] = F(exact)(0.0);
-                c[j].r = INFINITY;
+                F(widen)(&c[j], INFINITY);
             }
         }
         for (int j = 0; j < 4; j++)

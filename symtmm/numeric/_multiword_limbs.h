@@ -47,6 +47,11 @@ static inline double F(head)(const BALL *x)
     return x->s ? -v : v;
 }
 
+/* an upper bound of |v| over the ball; the radius grown by t >= 0 */
+static inline double F(mag)(const BALL *x) { return up(F(mid_up)(x) + x->r); }
+
+static inline void F(widen)(BALL *x, double t) { x->r = up(x->r + t); }
+
 /* one unit of the word `words` (counted from 1) of a number of exponent e: 2^(e - 64 words)
  * (below 2^-1021, which up() adds anyway: 0) */
 static inline double F(unit)(int64_t e, int words)

@@ -2,7 +2,7 @@
 
 A proof factorises ``K(omega)`` in Arb balls a few times per root, and there every ball
 operation is a Python call (0.1-0.2 us, most of it the call). Where the model is
-undamped and made of Euler–Bernoulli segments and general beams (axial force, rotary
+made of Euler–Bernoulli segments and general beams (axial force, rotary
 inertia, shear), the same kernel (the series of the ``c_j`` and
 :func:`~symtmm.numeric.stiffness.eb_stiffness`; the series in ``(t, d)`` of
 :func:`~symtmm.numeric.segments.theory_matrices` and the stiffness of one beam; the plan's
@@ -10,7 +10,11 @@ scatter, the band ``LDL^T``) runs in C (``_multiword.c``) on balls whose midpoin
 ``N`` 64-bit words (:func:`tiers`): a double-double for 2 (about 106 bits), else a binary
 floating-point number of an ``N``-word mantissa (192 to 320 bits), and whose radius
 bounds every cut and rounding. A point whose every pivot ball there
-excludes zero has its pivots, signs and ``Delta`` proved as in Arb.
+excludes zero has its pivots, signs and ``Delta`` proved as in Arb. Where the points or
+the dashpots are complex (damped models), a complex ball is a pair of real ones, a
+rectangle as Arb's ``acb``, each operation composed of the real balls' enclosures.
+The same kernel over plain doubles (one word, no radius: not an enclosure) builds the
+double-precision batches' band (:func:`double_band`), real or complex.
 
 The other points are factorised in Arb at the precision asked, as before: where a pivot
 ball holds zero (the radii grow along the band, by up to ``2**40`` on example 1 and more
@@ -77,29 +81,50 @@ _FAMILIES = {"eb": 0, "theory": 1}
 
 
 def serves(plan, ar, lam2, lam) -> bool:
-    """Whether a ball batch at ``lam2`` can be tried in balls of words."""
-    if not (ENABLED and isinstance(ar, Ball) and tiers(ar.prec, plan.n) and lam is None
-            and plan.n and not plan.damped and not getattr(ar, "closed_stiffness", False)):
+    """Whether a ball batch at ``lam2`` (``lam`` too with dashpots) can be tried in balls
+    of words: real balls, or complex ones (pairs of real balls) where the points or the
+    dashpots are complex."""
+    if not (ENABLED and isinstance(ar, Ball) and tiers(ar.prec, plan.n) and plan.n
+            and (lam is not None or not plan.damped)
+            and not getattr(ar, "closed_stiffness", False)):
         return False
     if any(family not in _FAMILIES for family, _ in plan.kinds):
         return False
-    return all(isinstance(v, ar.flint.arb) for v in np.asarray(lam2).reshape(-1))
+    kinds = (ar.flint.arb, ar.flint.acb)
+    return all(isinstance(v, kinds) for v in np.asarray(lam2).reshape(-1)) and \
+        (lam is None or all(isinstance(v, kinds) for v in np.asarray(lam).reshape(-1)))
 
 
 def serves_double(plan, lam2, lam) -> bool:
-    """Whether a double-precision batch at ``lam2`` has its band built by the compiled
-    kernel over plain doubles (:func:`double_band`)."""
-    return (ENABLED and lam is None and plan.n > 0 and not plan.damped
-            and np.asarray(lam2).dtype == np.float64
+    """Whether a double-precision batch at ``lam2`` (``lam`` too with dashpots) has its
+    band built by the compiled kernel over plain doubles (:func:`double_band`)."""
+    return (ENABLED and plan.n > 0 and (lam is not None or not plan.damped)
+            and np.asarray(lam2).dtype in (np.float64, np.complex128)
+            and (lam is None or np.asarray(lam).dtype in (np.float64, np.complex128))
             and all(family in _FAMILIES for family, _ in plan.kinds))
 
 
-def double_band(plan, lam2):
+#: The code of complex balls of ``N`` words in the compiled kernel (a real ball of ``N``
+#: words for each part).
+COMPLEX = 10
+
+
+def _complex_tables(tabs: dict, N: int) -> dict:
+    """The tables of real balls of ``N`` words as complex ones (imaginary parts 0)."""
+    out = dict(tabs)
+    for key in ("kinds", "coef", "tcoef", "bcoef"):
+        real = tabs[key] if N > 1 else tabs[key][..., None].view(np.uint64)
+        out[key] = np.ascontiguousarray(np.concatenate([real, np.zeros_like(real)], axis=-1))
+    return out
+
+
+def double_band(plan, lam2, lam=None):
     """``(K, det U12, ok)`` of :func:`~symtmm.numeric.stiffness.assemble` in double
     precision, by the compiled kernel over plain doubles (one word, no radius: the same
-    series, stiffness and scatter as the balls', one call for the batch); ``ok`` false
-    where a value is not finite or beyond the series' reach (the caller assembles those
-    points in numpy). None where the plan's numbers do not fit doubles.
+    series, stiffness and scatter as the balls', one call for the batch); complex where
+    ``lam2`` or ``lam`` (the dashpots') is; ``ok`` false where a value is not finite or
+    beyond the series' reach (the caller assembles those points in numpy). None where
+    the plan's numbers do not fit doubles.
 
     Examples
     --------
@@ -117,16 +142,21 @@ def double_band(plan, lam2):
     tabs = _double_tables(plan)
     if tabs is None:
         return None
-    lam2 = np.ascontiguousarray(lam2, dtype=np.float64)
+    complex_ = np.iscomplexobj(lam2) or (lam is not None and np.iscomplexobj(lam))
+    dtype, code = (np.complex128, COMPLEX + 1) if complex_ else (np.float64, 1)
+    if complex_:
+        tabs = _complex_tables(tabs, 1)
+    lam2 = np.ascontiguousarray(lam2, dtype=dtype)
+    lam = b"" if lam is None else np.ascontiguousarray(lam, dtype=dtype)
     B, n, w = lam2.shape[0], plan.n, plan.width
-    S = tabs["kinds"].shape[0]
-    band = np.empty((B, n * w))
-    det12 = np.empty((B, S))
+    S = tabs["families"].shape[0]
+    band = np.empty((B, n * w), dtype=dtype)
+    det12 = np.empty((B, S), dtype=dtype)
     ok = np.zeros(B, dtype=np.uint8)
-    _multiword.assemble(1, lam2, tabs["kinds"], tabs["families"], tabs["coef"],
+    _multiword.assemble(code, lam2, lam, tabs["kinds"], tabs["families"], tabs["coef"],
                         tabs["tails"], TERMS, tabs["tcoef"], tabs["ttails"], tabs["TK"],
                         tabs["targets"], tabs["source"], tabs["bcoef"], tabs["starts"],
-                        band, det12, np.empty(16 * S + 3), ok)
+                        band, det12, np.empty(16 * S + 3, dtype=dtype), ok)
     return band.reshape(B, n, w), det12, ok.astype(bool)
 
 
@@ -268,7 +298,13 @@ def decode(row) -> tuple:
     return Fraction(m) * Fraction(2) ** e, Fraction(r)
 
 
-def _encoded(values, flint, N: int) -> np.ndarray:
+def _encoded(values, flint, N: int, complex_: bool = False) -> np.ndarray:
+    """Arb balls as balls of ``N`` words ``(len, words)``; complex ones (the real part's
+    words, then the imaginary part's) if asked."""
+    if complex_:
+        parts = [(z.real, z.imag) for z in (flint.acb(v) for v in values)]
+        return np.array([encode(re, flint, N) + encode(im, flint, N) for re, im in parts],
+                        dtype=np.uint64).reshape(len(values), 2 * width(N))
     return np.array([encode(v, flint, N) for v in values], dtype=np.uint64).reshape(
         len(values), width(N))
 
@@ -404,46 +440,52 @@ def tiers(prec: int, n: int) -> list:
     return [N for N in (first, first + 1) if N <= MAX_WORDS]
 
 
-def factor(plan, ar: Ball, lam2, reverse: bool = False):
-    """:func:`~symtmm.numeric.stiffness.factor` of an undamped plan of beams in balls:
-    the points decided in multi-word balls (:func:`tiers`), the rest in ``ar`` (Arb)."""
+def factor(plan, ar: Ball, lam2, reverse: bool = False, lam=None):
+    """:func:`~symtmm.numeric.stiffness.factor` of a plan of beams in balls: the points
+    decided in multi-word balls (:func:`tiers`), the rest in ``ar`` (Arb). Complex balls
+    where the points or the dashpots (``lam``) are complex: there every pivot is decided
+    when its ball excludes 0, and the signs are 0 (as Arb's complex factorisation)."""
     from .stiffness import BandRows, Factors, _ldl, assemble, reversed_band
 
     flint = ar.flint
     lam2 = np.asarray(lam2, dtype=object)
+    lam = None if lam is None else np.asarray(lam, dtype=object)
+    complex_ = any(isinstance(v, flint.acb) for v in lam2) or lam is not None
     B, n = lam2.shape[0], plan.n
     pivots = np.empty((B, n), dtype=object)
     dets = np.empty((B, len(plan.multiplicity)), dtype=object)
     products = np.full(B, None, dtype=object)
-    signs = np.ones((B, n), dtype=np.int8)
+    signs = (np.zeros if complex_ else np.ones)((B, n), dtype=np.int8)
     todo = np.arange(B)
     for N in tiers(ar.prec, n):
         if not todo.size:
             break
-        done = _decided(plan, ar, lam2[todo], reverse, N)
+        done = _decided(plan, ar, lam2[todo], reverse, N,
+                        None if lam is None else lam[todo], complex_)
         if done is None:
             break
         ok, piv, det12 = done
         good = todo[ok]
         if good.size:
             with ar:
-                pivots[good] = _balls(piv, flint)
-                dets[good] = _balls(det12, flint)
-                products[good] = _product(plan, piv, det12, flint, N)
-            signs[good] = _signs(piv)
+                pivots[good] = _balls(piv, flint, complex_)
+                dets[good] = _balls(det12, flint, complex_)
+                products[good] = _product(plan, piv, det12, flint, N, complex_)
+            if not complex_:
+                signs[good] = _signs(piv)
         todo = todo[~ok]
     with ar:
         fa = Factors(plan, ar, pivots, signs, np.ones((B, n), dtype=bool), dets,
                      BandRows({}), products)
         if todo.size:
-            K, d12 = assemble(plan, ar, lam2[todo])
+            K, d12 = assemble(plan, ar, lam2[todo], None if lam is None else lam[todo])
             if reverse:
                 K = reversed_band(K)
             fa = fa.replaced(todo, _ldl(plan, ar, K, d12, reverse))
     return fa
 
 
-def _product(plan, piv, det12, flint, N: int) -> np.ndarray:
+def _product(plan, piv, det12, flint, N: int, complex_: bool = False) -> np.ndarray:
     """Per point the product of its pivots and of ``det U12`` to the plan's multiplicities,
     in balls of ``N`` words (as the factorisation's), as Arb balls at the working
     precision: ``Delta`` but for the plan's constant, to every bit the words carry (the
@@ -454,48 +496,63 @@ def _product(plan, piv, det12, flint, N: int) -> np.ndarray:
                                                                dtype=np.int64)])
     out = np.empty((B, W + 1), dtype=np.uint64)
     ok = np.zeros(B, dtype=np.uint8)
-    _multiword.power_product(N, x, k, out, ok)
+    _multiword.power_product(COMPLEX + N if complex_ else N, x, k, out, ok)
     products = np.full(B, None, dtype=object)
     two = flint.arb(2)
+
+    def arb(words):
+        # (exact in Arb: an integer times a power of two, then the radius)
+        m, e, r = _parts(words)
+        return flint.arb(flint.fmpz(m)) * two ** e + flint.arb(0, r)
     for p in np.nonzero(ok)[0]:
-        # (exact in Arb: an integer times a power of two, then the radius, then the power
-        # of two the running product was rescaled by: Delta leaves the doubles' range)
-        m, e, r = _parts(out[p, :W])
-        shift = int(out[p, W:].view(np.int64)[0])
-        products[p] = (flint.arb(flint.fmpz(m)) * two ** e + flint.arb(0, r)) * two ** shift
+        # (then the power of two the running product was rescaled by: Delta leaves the
+        # doubles' range)
+        shift = two ** int(out[p, W:].view(np.int64)[0])
+        if complex_:
+            products[p] = flint.acb(arb(out[p, :W // 2]), arb(out[p, W // 2:W])) * shift
+        else:
+            products[p] = arb(out[p, :W]) * shift
     return products
 
 
-def _decided(plan, ar: Ball, lam2, reverse: bool, N: int):
-    """``(ok, pivots, det U12)`` of the points ``lam2`` in balls of ``N`` words: ``ok`` per
-    point whether every pivot was decided, the pivot and ``det U12`` balls of those points
-    ``(..., width)``; None where the plan's numbers do not fit the compiled balls."""
+def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bool = False):
+    """``(ok, pivots, det U12)`` of the points ``lam2`` (``lam``: the dashpots') in balls
+    of ``N`` words, complex ones if asked: ``ok`` per point whether every pivot was
+    decided, the pivot and ``det U12`` balls of those points ``(..., words)``; None where
+    the plan's numbers do not fit the compiled balls."""
     tabs = _tables(plan, N)
     if tabs is None:
         return None
+    code, W = N, width(N)
+    if complex_:
+        cache = plan.__dict__["_multiword_tables"]
+        if ("complex", N) not in cache:
+            cache[("complex", N)] = _complex_tables(tabs, N)
+        tabs, code, W = cache[("complex", N)], COMPLEX + N, 2 * W
     B, n, w = lam2.shape[0], plan.n, plan.width
     try:
         with ar:
-            points = _encoded(lam2, ar.flint, N)
+            points = _encoded(lam2, ar.flint, N, complex_)
+            lams = b"" if lam is None else _encoded(lam, ar.flint, N, complex_)
     except OverflowError:
         return None
-    S, W = tabs["kinds"].shape[0], width(N)
+    S = tabs["families"].shape[0]
     band = np.empty((B, n * w, W), dtype=np.uint64)
     det12 = np.empty((B, S, W), dtype=np.uint64)
     ok = np.zeros(B, dtype=np.uint8)
-    _multiword.assemble(N, points, tabs["kinds"], tabs["families"], tabs["coef"],
+    _multiword.assemble(code, points, lams, tabs["kinds"], tabs["families"], tabs["coef"],
                         tabs["tails"], TERMS, tabs["tcoef"], tabs["ttails"], tabs["TK"],
                         tabs["targets"], tabs["source"], tabs["bcoef"], tabs["starts"],
                         band, det12, np.empty((16 * S + 3, W), dtype=np.uint64), ok)
     band = band.reshape(B, n, w, W)
     built = ok.copy()
-    Kb = _eliminated(band, reverse, ok, N)
+    Kb = _eliminated(band, reverse, ok, code)
     # where a pivot stayed undecided, the other order's leading minors (the same inertia
     # and determinant) may keep their radii narrower
     again = np.nonzero(built & (ok == 0))[0]
     if again.size:
         ok2 = built[again].copy()
-        Kb[again] = _eliminated(band[again], not reverse, ok2, N)
+        Kb[again] = _eliminated(band[again], not reverse, ok2, code)
         ok[again] = ok2
     ok = ok.astype(bool)
     return ok, Kb[ok, :n, 0, :], det12[ok]
@@ -521,12 +578,15 @@ def _signs(balls) -> np.ndarray:
     return np.where(balls[..., -2] != 0, -1, 1).astype(np.int8)
 
 
-def _balls(balls, flint) -> np.ndarray:
+def _balls(balls, flint, complex_: bool = False) -> np.ndarray:
     """Arb balls (an object array of the leading shape) holding balls of words
     ``(..., width)``: about the leading double, widened by 2**-51 of it (the consumers of a
     factorisation's pivots need signs and approximate values, the count being proved
     already and ``Delta`` coming whole from :func:`_product`; one Arb constructor call per
-    number)."""
+    number); complex ones from their two parts' words if asked."""
+    if complex_:
+        half = balls.shape[-1] // 2
+        return _acb_of(flint)(_balls(balls[..., :half], flint), _balls(balls[..., half:], flint))
     if balls.shape[-1] == 3:
         hi, lo, r = (balls[..., i].view(np.float64) for i in range(3))
         return _arb_of(flint)(hi, (r + np.abs(lo)) * _INFLATE + _TINY)
@@ -547,3 +607,9 @@ _INFLATE, _TINY = 1.0 + 2.0 ** -48, 2.0 ** -1021
 def _arb_of(flint):
     """``flint.arb(mid, rad)`` as a numpy ufunc (made once)."""
     return np.frompyfunc(flint.arb, 2, 1)
+
+
+@functools.cache
+def _acb_of(flint):
+    """``flint.acb(real, imag)`` of arb balls as a numpy ufunc (made once)."""
+    return np.frompyfunc(flint.acb, 2, 1)

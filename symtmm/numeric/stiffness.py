@@ -460,9 +460,9 @@ def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Facto
     leading minors, the same inertia and determinant): where a leading minor is nearly
     singular at a point (a sub-structure's eigenvalue), the other end's are not.
     In double precision a batch is factorised in parts of at most :data:`BAND_ENTRIES`,
-    the band of an undamped plan of beams built by the compiled kernel over plain doubles;
-    in balls, such a plan is first factorised in compiled multi-word balls (both
-    :mod:`symtmm.numeric.multiword`).
+    the band of a plan of beams (dashpots too) built by the compiled kernel over plain
+    doubles; in balls, such a plan is first factorised in compiled multi-word balls, real
+    or complex (both :mod:`symtmm.numeric.multiword`).
     """
     if ar is DOUBLE:
         step = max(1, BAND_ENTRIES // max(1, plan.n * plan.width))
@@ -472,19 +472,20 @@ def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Facto
                             reverse) for i in range(0, lam2.shape[0], step)]
             return Factors.joined(parts)
         from . import multiword  # (it builds on this module)
-        built = multiword.double_band(plan, lam2) \
+        built = multiword.double_band(plan, lam2, lam) \
             if multiword.serves_double(plan, lam2, lam) else None
         if built is not None:
             K, det12, ok = built
             if not ok.all():
                 # (beyond the compiled series' reach, or not finite: numpy's closed forms)
                 bad = np.nonzero(~ok)[0]
-                K[bad], det12[bad] = assemble(plan, ar, lam2[bad])
+                K[bad], det12[bad] = assemble(plan, ar, lam2[bad],
+                                              None if lam is None else np.asarray(lam)[bad])
             return _ldl(plan, ar, reversed_band(K) if reverse else K, det12, reverse)
     if ar.rigorous:
         from . import multiword  # (it builds on this module)
         if multiword.serves(plan, ar, lam2, lam):
-            return multiword.factor(plan, ar, lam2, reverse)
+            return multiword.factor(plan, ar, lam2, reverse, lam)
     with ar:
         K, det12 = assemble(plan, ar, lam2, lam)
         if reverse:
