@@ -128,6 +128,14 @@ positive_int = whole_number(1, 10**9)
 nonnegative = real_number(0.0)
 
 
+def add_time_argument(parser, what: str = "the search"):
+    """``--max-seconds S``: the time budget of a search (:mod:`symtmm.deadline`)."""
+    from .limits import SEARCH_SECONDS
+    parser.add_argument("--max-seconds", type=real_number(0.0, 1e6, low_open=True),
+                        default=SEARCH_SECONDS, metavar="S",
+                        help=f"give up {what} after S seconds (default {SEARCH_SECONDS:g})")
+
+
 def add_csv_argument(parser):
     """``--csv FILE``: the result's rows as CSV (:mod:`symtmm.tables`)."""
     parser.add_argument("--csv", metavar="FILE",

@@ -315,7 +315,13 @@ def draw_model(model: Model, mode=None, title: str | None = None, figsize=None):
     Returns
     -------
     Figure
+
+    Raises
+    ------
+    ModelError
+        Where a parameter has no value (the picture needs every length and position).
     """
+    model.require_numeric()
     planar = is_planar(model.resolved())
     fig = new_figure(figsize or ((6.5, 6.0) if planar else (7.5, 1.2 + 1.3 * len(model.beams))))
     ax = fig.add_subplot()

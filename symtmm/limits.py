@@ -43,7 +43,7 @@ __all__ = [
     "MAX_EXPRESSION_LENGTH", "MAX_NESTING", "MAX_DECADES", "MAX_EXPONENT", "FIELD_MIN",
     "FIELD_MAX", "MAX_PARAMETER_DEPTH", "MAX_FILE_BYTES", "MAX_BEAMS", "MAX_POINTS_ON_BEAMS",
     "MAX_PARAMETERS", "MAX_EIGENVALUES", "MAX_DIGITS", "MAX_GRID_POINTS", "MAX_STEPS",
-    "MAX_JOBS", "FLAG_MAX", "DERIVE_SECONDS", "DERIVE_TERMS", "MAX_PIECES",
+    "MAX_JOBS", "FLAG_MAX", "SEARCH_SECONDS", "DERIVE_SECONDS", "DERIVE_TERMS", "MAX_PIECES",
 ]
 
 # -- expressions (symtmm.expr) ---------------------------------------------------------
@@ -94,6 +94,13 @@ MAX_PIECES = 100_000
 #: Largest frequency or decay rate on the command line (rad/s): ``omega**2`` of every
 #: model within the field limits stays a double.
 FLAG_MAX = 1e100
+
+#: Default time budget of one search (``solve``, ``modes``, each step of ``sweep``), in
+#: seconds (``--max-seconds``; :mod:`symtmm.deadline`). The paper's examples take 0.01-0.3 s
+#: and a 50-level chain 0.2 s; a beam of ``kw L**4 / EI ~ 1e25`` beside ordinary ones
+#: (tens of thousands of pieces, a cluster of eigenvalues 1e-16 apart to count at
+#: thousands of bits) took minutes before it said it could not.
+SEARCH_SECONDS = 60.0
 
 # -- derive (symtmm.characteristic) ------------------------------------------------------
 #: Default time budget of one closed-form derivation, in seconds (``--max-seconds``).

@@ -8,7 +8,9 @@ Methods are registered in :data:`METHODS`; each takes
 from __future__ import annotations
 
 from .budget import check_search
+from .deadline import time_budget
 from .errors import ModelError
+from .limits import SEARCH_SECONDS
 from .model import Model
 from .results import Spectrum
 from .roots.damped import solve_damped
@@ -50,7 +52,7 @@ METHODS = {"default": _default, "contour": _contour, "fmin1d": fmin1d, "fmin2d":
 
 def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
           digits: int = 15, method: str = "default", prove_count: bool = False,
-          guesses=None) -> Spectrum:
+          guesses=None, max_seconds: float | None = SEARCH_SECONDS) -> Spectrum:
     """Eigenvalues ``lam`` with ``Im lam >= 0``, ascending by ``Im lam``.
 
     Parameters
@@ -80,6 +82,9 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
         looks there first; what it proves, and so every printed digit, does not depend
         on them (:meth:`symtmm.roots.undamped._Search.guided`). Other searches ignore
         them.
+    max_seconds : float or None
+        Time budget of the search (``--max-seconds``): past it, a
+        :class:`~symtmm.errors.ComputationError` (:mod:`symtmm.deadline`); None for none.
 
     Examples
     --------
@@ -105,5 +110,6 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
     extra = {"prove_count": True} if prove_count else {}
     if guesses is not None and method == "default":
         extra["guesses"] = _pairs(guesses)
-    spectrum = METHODS[method](model, count, omega_max, sigma_max, digits, **extra)
+    with time_budget(max_seconds):
+        spectrum = METHODS[method](model, count, omega_max, sigma_max, digits, **extra)
     return spectrum.with_model_name(spectrum.model_name or model.source or "", model.title)

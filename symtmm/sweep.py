@@ -39,6 +39,7 @@ from .display import html_table, latex_array, latex_text, text_lines
 from .errors import ComputationError, ModelError
 from .expr import ExpressionError, exact_number, parse_expression
 from .jsonout import dumps, header
+from .limits import SEARCH_SECONDS
 from .model import Model
 from .numeric.arith import DOUBLE, MP
 from .numeric.linalg import orthonormal
@@ -127,13 +128,13 @@ def _solve_step(payload, before=()):
     ``before``: the spectra of the steps just before it (at most two, the nearer
     last), whose frequencies tell the search where to look (:func:`_guesses`).
     """
-    model, count, sigma_max, digits, method, points = payload
+    model, count, sigma_max, digits, method, points, max_seconds = payload
     from .modes import displacements
     from .solve import solve
 
     with progress.shown(False):         # the sweep's own bar counts the steps
         spectrum = solve(model, count=count, sigma_max=sigma_max, digits=digits,
-                         method=method, guesses=_guesses(before))
+                         method=method, guesses=_guesses(before), max_seconds=max_seconds)
     weights = []
     for beam in model.beams:
         w = np.full(points, float(beam.L) / (points - 1) * float(beam.m))
@@ -585,7 +586,8 @@ class Sweep(Tabular):
 def sweep(model: Model, parameter: str, start, stop, steps: int, count: int = 10,
           digits: int = 12, method: str = "default", sigma_max=None, jobs: int | None = None,
           scheduler=None, progress: bool | None = None,
-          track_points: int = TRACK_POINTS) -> Sweep:
+          track_points: int = TRACK_POINTS,
+          max_seconds: float | None = SEARCH_SECONDS) -> Sweep:
     """Eigenvalues of ``model`` at ``steps`` equally spaced values of ``parameter``.
 
     Parameters
@@ -618,6 +620,8 @@ def sweep(model: Model, parameter: str, start, stop, steps: int, count: int = 10
         :mod:`symtmm.progress` decides (a terminal or Jupyter).
     track_points : int
         Sample points per beam of the shapes that track the branches.
+    max_seconds : float or None
+        Time budget of each step's search (``--max-seconds``); None for none.
 
     Returns
     -------
@@ -664,7 +668,8 @@ def sweep(model: Model, parameter: str, start, stop, steps: int, count: int = 10
         except ModelError as exc:
             raise ModelError(f"{exc.message} (at {parameter} = {value_string(value)})",
                              field=exc.field, source=model.source) from None
-        payloads.append((step_model, count, sigma_max, digits, method, track_points))
+        payloads.append((step_model, count, sigma_max, digits, method, track_points,
+                         max_seconds))
     jobs = (os.cpu_count() or 1) if jobs is None else int(jobs)
     results = _run(payloads, jobs, scheduler, progress)
     spectra = tuple(r[0] for r in results)

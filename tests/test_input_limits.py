@@ -498,3 +498,105 @@ def test_derive_with_coefficients_beyond_double_integers(tmp_path):
 def test_no_warning_at_the_field_limits(tmp_path, values, command):
     run = run_file(tmp_path, cantilever(**values), *command, limit=60)
     assert run.code == 0 and not run.warnings
+
+
+#: A beam far longer than its bending waves on a soft foundation (kw L**4 / EI ~ 1e25):
+#: tens of thousands of pieces, and its first frequencies a cluster of distinct values
+#: 1e-16 apart (all about sqrt(kw / m)), to be told apart by counts at thousands of bits.
+#: Found by a fuzzed campaign: 2 min 44 s, then an error.
+LONG_BEAM_ON_A_FOUNDATION = """
+[parameters]
+kw = 9.911e-08
+
+[[beam]]
+name = "b"
+EI = 2.783e-08
+m = 42.13
+L = 24520.0
+left = "clamped"
+right = "sliding"
+kw = "kw"
+"""
+
+
+@pytest.mark.parametrize("command", [("solve", "--count", "3"), ("modes", "--count", "1"),
+                                     ("sweep", "--param", "kw", "--from", "1e-7", "--to",
+                                      "2e-7", "--steps", "2", "--count", "2", "--jobs", "1")])
+def test_a_search_that_explodes_stops_at_its_time_budget(tmp_path, command):
+    run = run_file(tmp_path, LONG_BEAM_ON_A_FOUNDATION, *command, "--max-seconds", "2",
+                   limit=60)
+    assert_contract(run, 60)
+    assert run.code == 1 and "--max-seconds" in run.stderr
+    # (a single evaluation is not interrupted: one of this model's takes a few seconds)
+    assert run.seconds < 20
+
+
+def test_time_budgets_nest_and_the_inner_one_cannot_extend_the_outer():
+    from symtmm.deadline import check, time_budget
+    from symtmm.solve import solve
+    with time_budget(0.0), time_budget(100.0), \
+            pytest.raises(ComputationError, match="longer than 0 s"):
+        check()
+    with pytest.raises(ComputationError, match="--max-seconds"):
+        solve(loads(cantilever()), count=2, max_seconds=0.0)
+    assert len(solve(loads(cantilever()), count=2, max_seconds=None)) == 2
+
+
+#: Two beams joined by a layer, one of them a million times softer and far heavier than
+#: the other (a fuzzed file): the layer's series overflowed at some scan points and
+#: numpy's RuntimeWarnings reached stderr around a good result.
+SOFT_BEAM_ON_A_LAYER = """
+[[beam]]
+name = "b0"
+EI = 5.529e-07
+m = 0.08214
+L = 1.58
+left = "free"
+right = "pinned"
+
+[[beam]]
+name = "b1"
+EI = 0.6235
+m = 37720.0
+L = 1.58
+left = "sliding"
+right = "pinned"
+
+[[spring]]
+between = ["b1", "b0"]
+x = 1.933e-05
+k = 1.973
+
+[[spring]]
+between = ["b1", "ground"]
+x = 0
+k = 0.0001863
+
+[[layer]]
+between = ["b0", "b1"]
+k = 2967.0
+"""
+
+
+def test_a_scan_whose_series_overflow_keeps_stderr_clean(tmp_path):
+    run = run_file(tmp_path, SOFT_BEAM_ON_A_LAYER, "scan", "--omega-max", "30", "--points",
+                   "50", "--json", "--no-eigenvalues")
+    assert run.code == 0 and run.stderr == "" and not run.warnings
+    values = json.loads(run.stdout)["log10_abs_delta"]
+    assert len(values) == 50 and all(v is None or isinstance(v, float) for v in values)
+
+
+def test_drawing_a_model_with_a_parameter_without_value(tmp_path):
+    # (a name SymPy knows, zoo, is a parameter like any other in a model file)
+    run = run_file(tmp_path, cantilever(L='"zoo"'), "draw", "--plot",
+                   str(tmp_path / "m.png"))
+    assert run.code == 2 and "'zoo' has no value" in one_line(run)
+    assert not (tmp_path / "m.png").exists()
+
+
+def test_a_ball_without_a_finite_midpoint_reads_as_nan():
+    from symtmm.numeric.arith import Ball
+    flint = pytest.importorskip("flint")
+    ar = Ball(100)
+    assert str(ar.to_mpmath(flint.arb("nan"))) == "nan"
+    assert str(ar.to_mpmath(flint.acb(flint.arb("nan"), 1))) == "(nan + 1.0j)"

@@ -34,6 +34,10 @@ def run(args) -> int:
     if not args.animate:
         check_figure_path(args.plot)
     model = load_model_arg(args)
+    try:
+        model.require_numeric()         # (a picture needs every length and position)
+    except ModelError as exc:
+        raise exc.with_source(args.model) from None
     mode = None
     if args.mode is not None:
         from ..modes import mode_shapes

@@ -16,6 +16,7 @@ from __future__ import annotations
 from ..cli import (
     add_csv_argument,
     add_model_arguments,
+    add_time_argument,
     check_csv_path,
     load_model_arg,
     nonnegative,
@@ -44,6 +45,7 @@ def add_arguments(parser):
                         help="root search (see symtmm solve)")
     parser.add_argument("--json", action="store_true", help="JSON output")
     add_csv_argument(parser)
+    add_time_argument(parser, "the search and the shapes")
     parser.add_argument("--title", metavar="TEXT",
                         help="title of the figure (default: the model's title)")
     parser.add_argument("--plot", metavar="FILE",
@@ -64,7 +66,8 @@ def run(args) -> int:
     count = args.count if args.count is not None else 6
     try:
         modes = mode_shapes(model, count=count, sigma_max=args.sigma_max, points=args.points,
-                            digits=args.digits, method=args.method)
+                            digits=args.digits, method=args.method,
+                            max_seconds=args.max_seconds)
     except ModelError as exc:
         raise exc.with_source(args.model) from None
     if args.plot:

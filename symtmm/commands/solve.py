@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..cli import (
     add_csv_argument,
     add_model_arguments,
+    add_time_argument,
     check_csv_path,
     load_model_arg,
     nonnegative,
@@ -37,6 +38,7 @@ def add_arguments(parser):
                         help="also print the frequencies in Hz (Im lam / 2 pi)")
     parser.add_argument("--json", action="store_true", help="JSON output")
     add_csv_argument(parser)
+    add_time_argument(parser)
     parser.add_argument("--certified", action="store_true",
                         help="add rigorous enclosures from ball arithmetic, and for damped "
                              "models prove the count in the search region (a winding number "
@@ -56,7 +58,8 @@ def run(args) -> int:
     try:
         spectrum = solve(model, count=count, omega_max=args.omega_max,
                          sigma_max=args.sigma_max, digits=args.digits, method=args.method,
-                         prove_count=args.certified and args.method in ("default", "contour"))
+                         prove_count=args.certified and args.method in ("default", "contour"),
+                         max_seconds=args.max_seconds)
     except ModelError as exc:
         raise exc.with_source(args.model) from None
     spectrum = spectrum.with_model_name(args.model)

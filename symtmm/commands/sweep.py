@@ -12,6 +12,7 @@ from __future__ import annotations
 from ..cli import (
     add_csv_argument,
     add_model_arguments,
+    add_time_argument,
     check_csv_path,
     load_model_arg,
     nonnegative,
@@ -52,6 +53,7 @@ def add_arguments(parser):
                         help="no progress bar")
     parser.add_argument("--json", action="store_true", help="JSON output")
     add_csv_argument(parser)
+    add_time_argument(parser, "each step's search")
     parser.add_argument("--title", metavar="TEXT",
                         help="title of the figure (default: the model's title)")
     parser.add_argument("--plot", metavar="FILE", help="save the branches plot to FILE")
@@ -80,7 +82,7 @@ def run(args) -> int:
         # (whether the bar shows was decided by the command line: symtmm.cli)
         result = sweep(model, args.param, args.start, args.stop, args.steps, count=args.count,
                        digits=args.digits, method=args.method, sigma_max=args.sigma_max,
-                       jobs=args.jobs, scheduler=args.scheduler)
+                       jobs=args.jobs, scheduler=args.scheduler, max_seconds=args.max_seconds)
     except ModelError as exc:
         raise exc.with_source(args.model) from None
     if args.plot:

@@ -25,8 +25,11 @@ import numpy as np
 import sympy as sp
 
 from .. import progress
+from ..deadline import check as check_time
+from ..deadline import time_budget
 from ..errors import ModelError
 from ..expr import ExpressionError, parse_expression
+from ..limits import SEARCH_SECONDS
 from ..model import Model
 from ..numeric import transfer
 from ..numeric.arith import DOUBLE, MP
@@ -335,7 +338,8 @@ def _coordinate(value) -> sp.Expr:
 
 def mode_shapes(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
                 points: int = 101, digits: int = 15, method: str = "default",
-                spectrum: Spectrum | None = None) -> ModeSet:
+                spectrum: Spectrum | None = None,
+                max_seconds: float | None = SEARCH_SECONDS) -> ModeSet:
     """Mode shapes of the first ``count`` modes (with multiplicity) of ``model``.
 
     Parameters
@@ -344,6 +348,8 @@ def mode_shapes(model: Model, count: int | None = None, omega_max=None, sigma_ma
         Every parameter must have a value.
     count, omega_max, sigma_max, digits, method
         Passed to :func:`symtmm.solve.solve` to find the eigenvalues.
+    max_seconds : float or None
+        Time budget of the search and the shapes (``--max-seconds``); None for none.
     points : int
         Sample points per beam, both ends included.
     spectrum : Spectrum, optional
@@ -369,14 +375,20 @@ def mode_shapes(model: Model, count: int | None = None, omega_max=None, sigma_ma
     from ..solve import solve
 
     model = model.require_numeric()
-    if spectrum is None:
-        spectrum = solve(model, count=count, omega_max=omega_max, sigma_max=sigma_max,
-                         digits=digits, method=method)
+    with time_budget(max_seconds):
+        if spectrum is None:
+            spectrum = solve(model, count=count, omega_max=omega_max, sigma_max=sigma_max,
+                             digits=digits, method=method, max_seconds=None)
+        return _mode_set(model, spectrum, count, points)
+
+
+def _mode_set(model, spectrum, count, points) -> ModeSet:
     start = time.perf_counter()
     plan = ShapePlan(model)
     modes, number = [], 1
     with progress.bar(total=len(spectrum), desc="mode shapes", unit="mode") as bar:
         for e in spectrum:
+            check_time()
             shapes = shapes_at(model, e, points=points, number=number, plan=plan)
             modes += shapes
             number += len(shapes)

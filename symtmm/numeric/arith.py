@@ -620,7 +620,12 @@ def _filled(shape, value) -> np.ndarray:
 
 
 def _mpf_of(exact_arb):
-    """The ``_mpf_`` tuple of an exact arb (a midpoint), unrounded."""
+    """The ``_mpf_`` tuple of an exact arb (a midpoint), unrounded; nan for a midpoint that
+    is not finite (a ball whose elimination divided by a pivot holding 0)."""
+    if not exact_arb.is_finite():
+        if exact_arb.is_nan():
+            return libmp.fnan
+        return libmp.finf if exact_arb > 0 else libmp.fninf
     man, exp = exact_arb.man_exp()
     man = int(man)
     if man == 0:

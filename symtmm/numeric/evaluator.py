@@ -38,6 +38,7 @@ import math
 import mpmath
 import numpy as np
 
+from ..deadline import check as check_time
 from .arith import DOUBLE, Arithmetic, Ball
 from .plan import StiffnessPlan, design_range, plan_for
 from .stiffness import Factors, factor
@@ -148,6 +149,7 @@ class Evaluator:
         ``retry=False``: balls are not redone with more bits when pivots stay undecided
         (for wide input balls, whose radii no precision narrows).
         """
+        check_time()        # (a search's wall-clock budget: symtmm.deadline)
         if ar is DOUBLE:
             lam = np.asarray(lam, dtype=complex)
             top = float(np.max(np.abs(lam), initial=0.0))
@@ -211,6 +213,7 @@ class Evaluator:
             bad = np.nonzero(~fa.trusted)[0]
             if bad.size == 0 or extra >= 16 * ar.prec:
                 return fa
+            check_time()
             growth = 0.0
             for p in fa.pivots[bad].reshape(-1):
                 mid, rad = abs(p.mid()), p.rad()
@@ -270,6 +273,7 @@ class Evaluator:
         """
         from .stiffness import assemble, dense
 
+        check_time()
         points = [z for z in lam]
         top = max((float(abs(complex(z.mid()))) + float(z.rad()) for z in points), default=0.0)
         self.evaluations += len(points)

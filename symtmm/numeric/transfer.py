@@ -595,7 +595,11 @@ def log_delta(plan: TransferPlan, lam) -> tuple:
         groups.setdefault(key, []).append(i)
     for key, idx in groups.items():
         idx = np.array(idx)
-        logabs[idx], phase[idx] = _log_delta(plan, flat[idx], key)
+        # (a segment's series overflows at a point far beyond its pieces' reach, as in a
+        # scan of an extreme model: that point's value is not finite, and says so; numpy's
+        # warnings would reach the user's terminal)
+        with np.errstate(all="ignore"):
+            logabs[idx], phase[idx] = _log_delta(plan, flat[idx], key)
     return logabs.reshape(lam.shape), phase.reshape(lam.shape)
 
 

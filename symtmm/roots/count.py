@@ -22,6 +22,7 @@ import math
 
 import numpy as np
 
+from ..deadline import check as check_time
 from ..errors import ComputationError
 from ..numeric.arith import DOUBLE, MP, Arithmetic, Ball, ball_available
 from ..numeric.evaluator import Evaluator, exact_mpf
@@ -90,6 +91,7 @@ class Counter(Evaluator):
         arithmetics). ``positive``: at ``lam**2 = +omega**2`` instead (a real, growing
         ``lam``; buckling checks).
         """
+        check_time()        # (a search's wall-clock budget: symtmm.deadline)
         if ar is DOUBLE:
             w = np.asarray(omegas, dtype=float)
             self.evaluations += w.size
