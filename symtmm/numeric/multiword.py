@@ -350,28 +350,27 @@ def _tables(plan, N: int) -> dict | None:
     """The plan's constants as balls of ``N`` words, from its exact numbers (None where one
     does not fit), once per plan and number of words (whatever the precision asked: the
     rationals are encoded exactly, the others from Arb a word beyond the words)."""
-    import sympy as sp
     cache = plan.__dict__.setdefault("_multiword_tables", {})
     if N in cache:
         return cache[N]
     ar = _words_arithmetic(N) if N > 1 else None     # (doubles need no Arb)
     try:
         kinds, families = [], []
-        for family, consts in plan.kinds:
-            if family == "eb":
-                EI, m, l, kw = (sp.sympify(v) for v in consts)
-                values = [EI, l, m * l**4 / EI, kw * l**4 / EI] + [sp.Integer(0)] * 4
-            else:               # (EI, a, b, cN, rhoI, m, kw, l)
-                values = [sp.sympify(v) for v in consts]
+        for family, values in _kind_values(plan):
             kinds += _exact_balls(values, ar, N)
             families.append(_FAMILIES[family])
-        coefficients = plan.coefficients
+        # (each distinct coefficient encoded once: most are a few powers of two and the
+        # springs' constants, and a SymPy number's hash costs a microsecond)
+        unique, index = plan.distinct_coefficients()
+        encoded = np.array(_exact_balls(unique, ar, N), dtype=np.uint64).reshape(
+            len(unique), width(N))
         targets, source, bcoef, starts = [], [], [], [0]
         for tg, src, terms in plan.layer_maps():
             targets += [int(v) for v in tg]
             source += [int(v) for v in src]
-            bcoef += _exact_balls([coefficients[t] for t in terms], ar, N)
+            bcoef.append(encoded[index[terms]])
             starts.append(len(targets))
+        bcoef = np.concatenate(bcoef) if bcoef else np.zeros((0, width(N)), dtype=np.uint64)
     except OverflowError:
         cache[N] = None
         return None
@@ -382,7 +381,7 @@ def _tables(plan, N: int) -> dict | None:
         "families": np.array(families, dtype=np.int64), "coef": coef, "tails": tails,
         "TK": TK, "tcoef": tcoef, "ttails": ttails,
         "targets": np.array(targets, dtype=np.int64), "source": np.array(source, dtype=np.int64),
-        "bcoef": np.array(bcoef, dtype=np.uint64).reshape(-1, width(N)),
+        "bcoef": np.ascontiguousarray(bcoef),
         "starts": np.array(starts, dtype=np.int64)}
     return out
 
@@ -425,6 +424,24 @@ def _double_tables(plan) -> dict | None:
         "bcoef": bcoef,
         "starts": np.cumsum([0] + [len(tg) for tg, _, _ in layers]).astype(np.int64)}
     return out
+
+
+def _kind_values(plan) -> list:
+    """Per segment kind ``(family, its 8 exact constants)`` in the compiled kernel's order
+    (:data:`_COLUMNS`), once per plan for every number of words."""
+    import sympy as sp
+    cached = plan.__dict__.get("_kind_values")
+    if cached is None:
+        cached = []
+        for family, consts in plan.kinds:
+            if family == "eb":
+                EI, m, l, kw = (sp.sympify(v) for v in consts)
+                values = [EI, l, m * l**4 / EI, kw * l**4 / EI] + [sp.Integer(0)] * 4
+            else:               # (EI, a, b, cN, rhoI, m, kw, l)
+                values = [sp.sympify(v) for v in consts]
+            cached.append((family, values))
+        plan.__dict__["_kind_values"] = cached
+    return cached
 
 
 def tiers(prec: int, n: int) -> list:

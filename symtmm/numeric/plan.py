@@ -336,7 +336,10 @@ class StiffnessPlan:
         return memo(self, ar, "tables", lambda: self._tables(ar))
 
     def _tables(self, ar: Arithmetic) -> dict:
-        coef = ar.array([ar.exact(c) for _, _, c in self._triples])
+        values, index = self.distinct_coefficients()
+        # (each distinct value converted once: most are a few powers of two and the
+        # springs' constants, and a SymPy number's hash costs a microsecond)
+        coef = ar.array([ar.exact(v) for v in values])[index]
         return {"kinds": self._kind_tables(ar),
                 "layers": [(targets, source, coef[terms])
                            for targets, source, terms in self.layer_maps()]}
@@ -363,6 +366,17 @@ class StiffnessPlan:
             layers.append((targets[terms], source[terms], terms))
         self.__dict__["_layer_maps"] = layers
         return layers
+
+    def distinct_coefficients(self) -> tuple:
+        """``(values, index)``: the distinct exact coefficients of the scatter and, per
+        coefficient of :attr:`coefficients`, its place among them (built once)."""
+        cached = self.__dict__.get("_distinct")
+        if cached is None:
+            places: dict = {}
+            index = np.array([places.setdefault(c, len(places)) for c in self.coefficients],
+                             dtype=np.int64)
+            cached = self.__dict__["_distinct"] = (list(places), index)
+        return cached
 
     @property
     def coefficients(self) -> list:
