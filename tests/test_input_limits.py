@@ -600,3 +600,27 @@ def test_a_ball_without_a_finite_midpoint_reads_as_nan():
     ar = Ball(100)
     assert str(ar.to_mpmath(flint.arb("nan"))) == "nan"
     assert str(ar.to_mpmath(flint.acb(flint.arb("nan"), 1))) == "(nan + 1.0j)"
+
+
+#: A beam a million units long on a foundation (kw L**4 / EI ~ 1e31): some 1e7 waves along
+#: it at its first modes. The default search refused it at once (the mesh's limit on
+#: pieces); the contour method sampled its sides at a spacing of a few waves and the
+#: grid searches walked millions of steps per point: both ran for hours (a fuzzed file).
+BEAM_OF_TEN_MILLION_WAVES = """
+[[beam]]
+name = "b"
+EI = 1e-7
+m = 1
+L = 1e6
+left = "free"
+right = "sliding"
+kw = 1
+"""
+
+
+@pytest.mark.parametrize("method", ["default", "contour", "fmin1d", "fmin2d"])
+def test_every_method_refuses_a_model_of_millions_of_waves_at_once(tmp_path, method):
+    run = run_file(tmp_path, BEAM_OF_TEN_MILLION_WAVES, "solve", "--count", "3", "--method",
+                   method, limit=60)
+    assert run.code == 1 and "more than 100000 pieces" in one_line(run)
+    assert run.seconds < 10

@@ -48,7 +48,10 @@ import numpy as np
 import sympy as sp
 
 from ..assembly import Interval, Layout, state_rows
+from ..deadline import check as check_time
 from ..elements.base import LAM
+from ..errors import ComputationError
+from ..limits import MAX_PIECES
 from .arith import DOUBLE, Arithmetic, Batch, memo
 from .linalg import det
 from .segments import cut_tables, family_matrices, kind_order, kind_tables
@@ -564,6 +567,15 @@ def _units(plan: TransferPlan, lam2) -> np.ndarray:
     return D
 
 
+def too_many_waves(where: str) -> str:
+    """The message where the beams hold more waves than :data:`~symtmm.limits.MAX_PIECES`
+    pieces serve (as :class:`~symtmm.mesh.Mesh` says it of one beam)."""
+    return (f"the model would need more than {MAX_PIECES} pieces at {where}: its waves are "
+            "far shorter than its beams (a foundation kw or a layer k far stiffer than a "
+            "beam's EI / L**4, or a range far above its first modes); soften them or lower "
+            "the range")
+
+
 def _step_counts(plan: TransferPlan, lam2) -> np.ndarray:
     """Per point, the number of steps of ``|beta| l <= NU_STEP`` of every interval."""
     out = np.ones((lam2.size, len(plan.segments_of)), dtype=int)
@@ -585,11 +597,16 @@ def log_delta(plan: TransferPlan, lam) -> tuple:
     propagated together when they take the same steps (a batch stepped for its
     highest mode would cost its low modes digits).
     """
+    check_time()        # (a search's wall-clock budget: symtmm.deadline)
     lam = np.asarray(lam, dtype=complex)
     flat = lam.reshape(-1)
     logabs = np.empty(flat.size)
     phase = np.empty(flat.size)
     steps = _step_counts(plan, flat * flat)
+    if steps.size and not np.max(np.sum(steps, axis=1)) <= MAX_PIECES:
+        # (the stiffness kernel's meshes refuse the same; a walk of millions of steps per
+        # point would run for hours)
+        raise ComputationError(too_many_waves(f"|lam| = {float(np.max(np.abs(flat))):.6g}"))
     groups: dict = {}
     for i, key in enumerate(map(tuple, steps)):
         groups.setdefault(key, []).append(i)

@@ -68,11 +68,13 @@ import numpy as np
 from .. import progress
 from ..budget import checked_request
 from ..errors import ComputationError
+from ..limits import MAX_PIECES
 from ..mesh import zero_order
 from ..model import Model
 from ..numeric.arith import MP, Ball, ball_available
 from ..numeric.evaluator import Evaluator
 from ..numeric.evaluator import exact_mpc as _global
+from ..numeric.transfer import too_many_waves
 from ..results import Eigenvalue, Spectrum, first, prints_alike
 from .bracket import SEPARATION_DIGITS, scaled, scaled_ends, shrink
 from .contour import ArgumentPrinciple, CountError, NearZero, Rectangle
@@ -207,6 +209,10 @@ class _Problem:
             # (a float in, a float out: numpy's max of one number cost a third of this)
             k = (mu * a * a) ** 0.25 if seg is None else seg.wave_number(-a * a, consts)
             total += k * L
+        if not total <= MAX_PIECES:
+            # (a side sampled at this spacing would take more points than any mesh may
+            # have pieces: the kernel refuses such a range in the same words)
+            raise ComputationError(too_many_waves(f"|lam| = {a:.6g}"))
         return a / (1.0 + total)
 
     def min_step(self, z) -> float:
