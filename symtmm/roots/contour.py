@@ -74,6 +74,8 @@ class Rectangle:
     (True, False)
     >>> Rectangle(-2.0, 0.0, -1.0, 1.0, symmetric=True).center
     (-1+0j)
+    >>> print(Rectangle(-2.0, 0.0, 0.5, 1.0))          # (as the messages show it)
+    -2 <= Re lam <= 0, 0.5 <= Im lam <= 1
     """
 
     x0: float
@@ -87,6 +89,10 @@ class Rectangle:
             raise ValueError(f"empty rectangle {self}")
         if self.symmetric and self.y0 != -self.y1:
             raise ValueError("a symmetric rectangle needs y0 = -y1")
+
+    def __str__(self) -> str:
+        return (f"{self.x0:.6g} <= Re lam <= {self.x1:.6g}, "
+                f"{self.y0:.6g} <= Im lam <= {self.y1:.6g}")
 
     @property
     def center(self) -> complex:

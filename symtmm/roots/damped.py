@@ -348,10 +348,12 @@ class _Search:
                 counted = self._tally(kids, found, count)
                 if counted is not None:
                     return counted
-                last_error = CountError(f"counts {[n for n, _ in found]} of the parts "
-                                        f"of {rect} do not add up to {count}")
+                last_error = CountError(f"the counts of its parts, {[n for n, _ in found]}, "
+                                        f"do not add up to its {count}")
                 break   # same split, stricter sampling
-        raise ComputationError(f"cannot split the search rectangle {rect}: {last_error}")
+        where = "" if self.origin is None else f" (about {complex(self.origin):.6g})"
+        raise ComputationError(f"cannot split the search rectangle {rect}{where}: "
+                               f"{last_error}")
 
     @staticmethod
     def _tally(kids, found, count: int):
