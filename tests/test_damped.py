@@ -554,3 +554,69 @@ def test_quarters_count_every_zero_of_the_rectangle_once(rect):
     counts = [n for n, _ in ap.counts_and_centers([q for q, _ in quarters])]
     assert sum(n * w for n, (_, w) in zip(counts, quarters)) == ap.count(rect) == len(zs)
 
+
+
+#: Four beams, one of them holding a damped sprung mass; the others alone, so that their
+#: modes are eigenvalues on the imaginary axis, three of them within 0.22 rad/s of 11.6
+#: (a fuzzed model). The contour sampling took a step of 0.094 beside steps of 0.023
+#: along a side 0.008 from them, over which arg Delta turned by 2 pi and a little: one
+#: zero counted too many, and the search stopped ("cannot split the search rectangle").
+FOUR_BEAMS_AND_A_SPRUNG_MASS = """
+[[beam]]
+name = "b0"
+EI = 1
+m = 1
+L = 1
+left = "free"
+right = "free"
+
+[[beam]]
+name = "b2"
+EI = 1.368
+m = 1.9
+L = 1.29
+left = "sliding"
+right = "pinned"
+N = 0.6098
+
+[[beam]]
+name = "b3"
+EI = 0.97
+m = 1.713
+L = 0.6
+left = "clamped"
+right = "sliding"
+
+[[beam]]
+name = "b4"
+EI = 1
+m = 0.564
+L = 1.7
+left = "free"
+right = "free"
+N = 1.0356
+
+[[oscillator]]
+name = "osc"
+beam = "b0"
+x = 1
+M = 1
+k = 1
+c = 1
+"""
+
+
+@pytest.mark.parametrize("method", ["default", "contour"])
+def test_zeros_beside_a_side_are_not_counted_through_it(method):
+    from symtmm.api import loads
+    from symtmm.solve import solve
+    found = solve(loads(FOUR_BEAMS_AND_A_SPRUNG_MASS), omega_max=50, digits=12, method=method)
+    # b3 alone, clamped-sliding: omega = x**2 / L**2 sqrt(EI / m), tan x + tanh x = 0
+    with mpmath.workdps(30):
+        x = mpmath.findroot(lambda t: mpmath.tan(t) + mpmath.tanh(t), 2.365)
+        b3 = x**2 / mpmath.mpf("0.36") * mpmath.sqrt(mpmath.mpf("0.97") / mpmath.mpf("1.713"))
+    near = [e for e in found if abs(float(e.lam.imag) - 11.69) < 0.01]
+    assert len(near) == 1 and abs(near[0].lam.real) == 0
+    assert abs(near[0].lam.imag - b3) < 1e-11 * b3
+    # its two neighbours on the axis and the damped modes: every eigenvalue once
+    assert sum(e.multiplicity for e in found if 11.4 < float(e.lam.imag) < 11.8) == 3
