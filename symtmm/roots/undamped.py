@@ -453,20 +453,23 @@ class _Search:
         """``(Delta(i w), J(w))`` at mpmath points in the proof arithmetic, the values as
         numbers of ``ctx`` (the refinement's bookkeeping context: a global mpmath number
         would round every secant step through it to the ambient 15 digits); None where
-        the count is undecided (its ball may have no finite midpoint)."""
+        the count is undecided (its ball may have no finite midpoint). Also per point a
+        bound of the value's error where balls give one (floats; 0 otherwise)."""
         values, counts = self.counter.delta(points, self.hp)
+        radii = [float(v.rad()) if self.hp.rigorous and c >= 0 else 0.0
+                 for v, c in zip(values, counts)]
         return [ctx.mpf(mpmath.re(self.hp.to_mpmath(v))) if c >= 0 else None
-                for v, c in zip(values, counts)], counts
+                for v, c in zip(values, counts)], counts, radii
 
     def _evaluate(self, points, ctx):
-        """``(Delta(i w) in ctx, J(w), proved)`` at mpmath points (:meth:`_values`).
+        """``(Delta(i w) in ctx, J(w), proved, radii)`` at mpmath points (:meth:`_values`).
 
         A point whose ball count stays undecided (at high modes the ball elimination can
         widen its radii beyond any precision while the factorisation itself is sound) is
         counted again in mpmath at two precisions, and if both agree that count is used,
         not proved (``proved`` False there).
         """
-        out, counts = self._values(points, ctx)
+        out, counts, radii = self._values(points, ctx)
         proved = np.full(len(points), self.hp.rigorous)
         bad = [j for j, c in enumerate(counts) if c < 0]
         if bad and self.hp.rigorous:
@@ -477,7 +480,7 @@ class _Search:
             for j, v, k1, k2 in zip(bad, first, c1, c2):
                 if k1 >= 0 and k1 == k2:
                     counts[j], out[j], proved[j] = k1, ctx.mpf(mpmath.re(ar.to_mpmath(v))), False
-        return out, counts, proved
+        return out, counts, proved, radii
 
     def _checked(self, points, counts) -> bool:
         """Without balls, the counts again at a second precision must agree."""
@@ -559,15 +562,15 @@ class _Search:
                         owner.append((i, 2))
             if not owner:
                 break
-            values, counts, proved = self._evaluate(tests, ctx)
+            values, counts, proved, radii = self._evaluate(tests, ctx)
             at = 0
             for i, n in owner:
-                new = [_Point(tests[j], values[j], counts[j], bool(proved[j]))
+                new = [_Point(tests[j], values[j], counts[j], bool(proved[j]), radii[j])
                        for j in range(at, at + n)]
                 at += n
                 # a pair, or the kept point and the one beyond the root, in order
                 p1, p2 = sorted(new if n == 2 else new + [older[i]], key=lambda q: q.t)
-                (t1, f1, k1, _), (t2, f2, k2, _) = p1, p2
+                (t1, f1, k1, _, _), (t2, f2, k2, _, _) = p1, p2
                 by_balls[i] = p1.ball and p2.ball
                 for t, f, k in ((t1, f1, k1), (t2, f2, k2)):
                     _tighten(i, t, f, k, ca, a, b, fa, fb)
@@ -584,8 +587,17 @@ class _Search:
                     raise _MorePrecision()          # a proving pair must be decided
                 # the next estimate: a secant through the pair, kept inside the bracket
                 step = None
-                if f1 is not None and f2 is not None and f1 != f2:
+                # (the difference must stand above the values' errors: else the slope is
+                # their rounding, and the step lands anywhere in the bracket)
+                resolved = f1 is not None and f2 is not None and \
+                    abs(f2 - f1) > 8 * (p1.r + p2.r)
+                if resolved and f1 != f2:
                     step = t2 - f2 * (t2 - t1) / (f2 - f1)
+                elif f1 is not None and f2 is not None and h[i] <= target:
+                    # the pair as narrow as the digits need, and its values do not tell
+                    # it apart: the band loses more digits than the precision keeps (a
+                    # piece 1e-12 long beside pieces of 0.3: 38 digits)
+                    raise _MorePrecision()
                 if step is None or not a[i] < step < b[i]:
                     width = b[i] - a[i]
                     step = None
@@ -663,7 +675,7 @@ class _Search:
         n = len(first)
         logs, signs, _ = self.counter.signed_log_delta(np.concatenate(
             [mids * (1 - d), mids * (1 + d), mids * (1 - d / 2), mids * (1 + d / 2), mids]))
-        values, counts = self._values([c[i] for i in first], ctx)
+        values, counts, radii = self._values([c[i] for i in first], ctx)
 
         def double(k):
             if not np.isfinite(logs[k]):
@@ -677,7 +689,7 @@ class _Search:
             t, f, k = c[i], values[j], counts[j]
             _tighten(i, t, f, k, ca, a, b, fa, fb)
             if f is not None:
-                older[i] = _Point(t, f, k, self.hp.rigorous)      # (counted in hp)
+                older[i] = _Point(t, f, k, self.hp.rigorous, radii[j])    # (counted in hp)
             near = [double(j + q * n) for q in range(4)]
             if f is None or d[j] <= 0 or any(v is None for v in near):
                 continue
@@ -832,6 +844,7 @@ class _Point(NamedTuple):
     f: object
     k: int
     ball: bool
+    r: float = 0.0          # a bound of the error of f (balls), else 0
 
 
 def _tighten(i, t, f, k, ca, a, b, fa, fb):
