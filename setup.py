@@ -19,7 +19,8 @@ setup(ext_modules=[
         # multi-word balls: their error-free sums must not be fused either
         "symtmm.numeric._multiword", ["symtmm/numeric/_multiword.c"],
         depends=["symtmm/numeric/_multiword_double.h", "symtmm/numeric/_multiword_complex.h",
-                 "symtmm/numeric/_multiword_dd.h",
+                 "symtmm/numeric/_multiword_instance.h", "symtmm/numeric/_multiword_words.h",
+                 "symtmm/numeric/_multiword_nw.h", "symtmm/numeric/_multiword_dd.h",
                  "symtmm/numeric/_multiword_limbs.h", "symtmm/numeric/_multiword_kernel.h"],
         extra_compile_args=["-O2", "-ffp-contract=off"],
         optional=True),

@@ -77,53 +77,34 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #define CAT_(a, b) a##_##b
 #define CAT(a, b) CAT_(a, b)
 
+/* Each instance: its names (F, BALL), words per ball (W_), bits (PREC_BITS) and, for
+ * complex balls, those of the real balls they pair (R, RBALL, RW_); then its arithmetic's
+ * header and the kernel (ARITH, _multiword_instance.h), which ends by undefining them.
+ * The integer mantissas' headers are written in NW: _multiword_words.h makes the
+ * instances of 3, 4 and 5 words of WORDS_ARITH. */
+
 /* one word: plain doubles, no radius (the double-precision batches' band) */
 #define F(name) name##_1
 #define BALL ball_1
 #define W_ 1
 #define PREC_BITS 53
 #define PLAIN_DOUBLE
-#include "_multiword_double.h"
-#include "_multiword_kernel.h"
-#undef PLAIN_DOUBLE
-#undef F
-#undef BALL
-#undef W_
-#undef PREC_BITS
+#define ARITH "_multiword_double.h"
+#include "_multiword_instance.h"
 
 /* two words: double-double balls (about 106 bits, a few double operations each) */
 #define F(name) name##_2
 #define BALL ball_2
 #define W_ 3
 #define PREC_BITS 106
-#include "_multiword_dd.h"
-#include "_multiword_kernel.h"
-#undef F
-#undef BALL
-#undef W_
-#undef PREC_BITS
+#define ARITH "_multiword_dd.h"
+#include "_multiword_instance.h"
 
 /* three to five words: integer mantissas (64 bits a word) */
-#define F(name) CAT(name, NW)
-#define BALL F(ball)
-#define W_ (NW + 3)
-#define PREC_BITS (64 * NW)
-#define NW 3
-#include "_multiword_limbs.h"
-#include "_multiword_kernel.h"
-#undef NW
-#define NW 4
-#include "_multiword_limbs.h"
-#include "_multiword_kernel.h"
-#undef NW
-#define NW 5
-#include "_multiword_limbs.h"
-#include "_multiword_kernel.h"
-#undef NW
-#undef F
-#undef BALL
-#undef W_
-#undef PREC_BITS
+#define WORDS_ARITH "_multiword_limbs.h"
+#define NAMES(name) CAT(name, NW)
+#define WORDS (NW + 3)
+#include "_multiword_words.h"
 
 /* complex balls: a real ball of N words for each part (code 10 + N), for the damped
  * models, whose dashpots make the band complex */
@@ -135,16 +116,8 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #define W_ 2
 #define PREC_BITS 53
 #define PLAIN_DOUBLE
-#include "_multiword_complex.h"
-#include "_multiword_kernel.h"
-#undef PLAIN_DOUBLE
-#undef R
-#undef RBALL
-#undef RW_
-#undef F
-#undef BALL
-#undef W_
-#undef PREC_BITS
+#define ARITH "_multiword_complex.h"
+#include "_multiword_instance.h"
 
 #define R(name) name##_2
 #define RBALL ball_2
@@ -153,42 +126,14 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #define BALL cball_2
 #define W_ 6
 #define PREC_BITS 106
-#include "_multiword_complex.h"
-#include "_multiword_kernel.h"
-#undef R
-#undef RBALL
-#undef RW_
-#undef F
-#undef BALL
-#undef W_
-#undef PREC_BITS
+#define ARITH "_multiword_complex.h"
+#include "_multiword_instance.h"
 
-#define R(name) CAT(name, NW)
-#define RBALL R(ball)
-#define RW_ (NW + 3)
-#define F(name) CAT(name, CAT(c, NW))
-#define BALL F(ball)
-#define W_ (2 * (NW + 3))
-#define PREC_BITS (64 * NW)
-#define NW 3
-#include "_multiword_complex.h"
-#include "_multiword_kernel.h"
-#undef NW
-#define NW 4
-#include "_multiword_complex.h"
-#include "_multiword_kernel.h"
-#undef NW
-#define NW 5
-#include "_multiword_complex.h"
-#include "_multiword_kernel.h"
-#undef NW
-#undef R
-#undef RBALL
-#undef RW_
-#undef F
-#undef BALL
-#undef W_
-#undef PREC_BITS
+#define WORDS_ARITH "_multiword_complex.h"
+#define NAMES(name) CAT(name, CAT(c, NW))
+#define WORDS (2 * (NW + 3))
+#define REAL_NAMES(name) CAT(name, NW)
+#include "_multiword_words.h"
 
 /* the codes of the arithmetics: N (1 to 5) words, real; 10 + N complex */
 static inline int valid_words(int N) { return (N >= 1 && N <= 5) || (N >= 11 && N <= 15); }
