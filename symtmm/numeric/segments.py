@@ -81,14 +81,13 @@ def eb_constants(ar: Arithmetic, segments) -> dict:
 
     ``A = m l**4 / EI`` and ``F = kw l**4 / EI`` give ``x = -(A lam**2 + F)``.
     """
-    cols = {"EI": [], "l": [], "A": [], "F": []}
-    for EI, m, l, kw in segments:
+    def build(EI, m, l, kw):
         EI, m, l, kw = (sp.sympify(v) for v in (EI, m, l, kw))
-        cols["EI"].append(ar.exact(EI))
-        cols["l"].append(ar.exact(l))
-        cols["A"].append(ar.exact(m * l**4 / EI))
-        cols["F"].append(ar.exact(kw * l**4 / EI))
-    return {k: ar.array(v) for k, v in cols.items()}
+        return (ar.exact(EI), ar.exact(l), ar.exact(m * l**4 / EI), ar.exact(kw * l**4 / EI))
+    # (each segment's numbers once per arithmetic: a chain's plans for two ranges share
+    # most of their segments, and SymPy's products cost tens of microseconds)
+    rows = [ar.cached(("eb", *seg), lambda seg=seg: build(*seg)) for seg in segments]
+    return {k: ar.array([r[j] for r in rows]) for j, k in enumerate(("EI", "l", "A", "F"))}
 
 
 def _factorial_series(ar: Arithmetic, x, p: int) -> list:
