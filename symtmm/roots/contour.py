@@ -278,8 +278,9 @@ class ArgumentPrinciple:
         mids = []
         for k in range(len(ts) - 1):
             lo, hi = ts[k], ts[k + 1]
-            if passed[k] and graded[k] and (lo, hi) in line.verified:
-                continue
+            if passed[k] and (lo, hi) in line.verified and \
+                    (graded[k] or hi - lo < self.min_step(line.point(lo))):
+                continue        # (a step already below the least is not graded further)
             mid = 0.5 * (lo + hi)
             if not passed[k] and (hi - lo < self.min_step(line.point(mid))
                                   or not lo < mid < hi):
