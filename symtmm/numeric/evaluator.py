@@ -42,8 +42,17 @@ from ..deadline import check as check_time
 from .arith import DOUBLE, Arithmetic, Ball
 from .plan import StiffnessPlan, design_range, plan_for
 from .stiffness import Factors, factor
+from .threads import one_blas_thread
 
 __all__ = ["Evaluator", "exact_mpf", "exact_mpc"]
+
+
+@one_blas_thread
+def _pivoted(full) -> tuple:
+    """``(sign, log|det|, condition number)`` of dense ``(B, n, n)`` matrices by LAPACK
+    (small matrices: on one BLAS thread, :mod:`symtmm.numeric.threads`)."""
+    sign, logdet = np.linalg.slogdet(full)
+    return sign, logdet, np.linalg.cond(full)
 
 
 def exact_mpf(x) -> mpmath.mpf:
@@ -250,8 +259,7 @@ class Evaluator:
             from .stiffness import dense
             full = dense(fa.plan, fa.K[bad])
             with np.errstate(all="ignore"):
-                sign, logdet = np.linalg.slogdet(full)
-                cond = np.linalg.cond(full)
+                sign, logdet, cond = _pivoted(full)
             la12, ph12 = DOUBLE.log_abs_arg(fa.det12[bad])
             mult = fa.plan.multiplicity
             good = np.isfinite(logdet) & (cond * fa.plan.n * 2.2e-16 < 1e-6)

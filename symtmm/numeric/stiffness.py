@@ -42,6 +42,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..deadline import check as check_time
 from .arith import DOUBLE, Arithmetic
 from .segments import _matmul, family_matrices, stack_matrix
 
@@ -441,6 +442,9 @@ class Factors:
         return ar.array(out)
 
 
+#: Pivots of an elimination in Python numbers between checks of the search's time budget.
+_CHECK_EVERY = 256
+
 #: Entries of the band (points x freedoms x (half-bandwidth + 1)) one double-precision
 #: factorisation works on at once: a whole large batch leaves the caches and costs more
 #: per point. Measured, 1000 points per call (benchmarks.models): the 50-level chain (1034
@@ -593,6 +597,10 @@ def eliminate(plan, ar: Arithmetic, Kb, n: int, reverse: bool = False) -> None:
         exact_zero_possible = not ar.rigorous
         # numbers of Python objects: the envelope's pairs only (exact zeros skipped)
         for k, (J, rows, cols, fi, fj) in enumerate(envelope_maps(plan, reverse)):
+            if k % _CHECK_EVERY == 0:
+                # (one elimination of tens of thousands of freedoms at thousands of bits
+                # takes seconds: the search's time budget is checked along it)
+                check_time()
             piv = Kb[:, k, 0]
             if exact_zero_possible:
                 zero = np.array([v == 0 for v in piv], dtype=bool)
