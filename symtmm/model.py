@@ -145,8 +145,11 @@ def _check_inside(x: sp.Expr, beam, field_name: str) -> None:
     """``x`` lies on ``beam`` (ends included), where both are numbers."""
     inside = [(x - beam.x0), (beam.x1 - x)]
     if all(d.is_number for d in inside) and any(_negative(d) for d in inside):
+        # (how far past it, also where x rounds to the end in 6 digits: 0.87 + 1e-16)
+        past, end = (-inside[0], "start") if _negative(inside[0]) else (-inside[1], "end")
         raise ModelError(f"x = {short(x)} lies outside beam '{beam.name}' "
-                         f"[{short(beam.x0)}, {short(beam.x1)}]", field=field_name)
+                         f"[{short(beam.x0)}, {short(beam.x1)}], {short(past)} beyond its "
+                         f"{end}", field=field_name)
 
 
 @dataclass(frozen=True)

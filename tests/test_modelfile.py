@@ -236,3 +236,14 @@ def test_models_with_parameters_pickle(examples_dir):
     model = load(examples_dir / "paper_ex1_ff_cc.toml")
     again = pickle.loads(pickle.dumps(model))
     assert again == model and again.resolved().springs[0].k == 100
+
+
+def test_a_position_just_past_its_beam_says_how_far(tmp_path):
+    # (rounded to 6 digits x reads as the end itself: the distance tells why it is out)
+    path = tmp_path / "m.toml"
+    path.write_text('[[beam]]\nname = "b"\nEI = 1\nm = 1\nL = "53/100"\nx0 = "17/50"\n'
+                    'left = "pinned"\nright = "pinned"\n\n[[spring]]\n'
+                    'between = ["b", "ground"]\nx = "0.87 + 1e-16"\nk = 1\n')
+    with pytest.raises(ModelError, match=r"lies outside beam 'b' \[17/50, 87/100\], "
+                                         r"1\.00000e-16 beyond its end"):
+        load(path)
