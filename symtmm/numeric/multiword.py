@@ -88,7 +88,7 @@ def serves(plan, ar, lam2, lam) -> bool:
             and (lam is not None or not plan.damped)
             and not getattr(ar, "closed_stiffness", False)):
         return False
-    if any(family not in _FAMILIES for family, _ in plan.kinds):
+    if not _beams_only(plan):
         return False
     kinds = (ar.flint.arb, ar.flint.acb)
     return all(isinstance(v, kinds) for v in np.asarray(lam2).reshape(-1)) and \
@@ -101,7 +101,12 @@ def serves_double(plan, lam2, lam) -> bool:
     return (ENABLED and plan.n > 0 and (lam is not None or not plan.damped)
             and np.asarray(lam2).dtype in (np.float64, np.complex128)
             and (lam is None or np.asarray(lam).dtype in (np.float64, np.complex128))
-            and all(family in _FAMILIES for family, _ in plan.kinds))
+            and _beams_only(plan))
+
+
+def _beams_only(plan) -> bool:
+    """Every segment kind of the plan one the compiled kernel holds (:data:`_FAMILIES`)."""
+    return all(family in _FAMILIES for family, _ in plan.kinds)
 
 
 #: The code of complex balls of ``N`` words in the compiled kernel (a real ball of ``N``
@@ -364,26 +369,37 @@ def _tables(plan, N: int) -> dict | None:
         unique, index = plan.distinct_coefficients()
         encoded = np.array(_exact_balls(unique, ar, N), dtype=np.uint64).reshape(
             len(unique), width(N))
-        targets, source, bcoef, starts = [], [], [], [0]
-        for tg, src, terms in plan.layer_maps():
-            targets += [int(v) for v in tg]
-            source += [int(v) for v in src]
-            bcoef.append(encoded[index[terms]])
-            starts.append(len(targets))
-        bcoef = np.concatenate(bcoef) if bcoef else np.zeros((0, width(N)), dtype=np.uint64)
     except OverflowError:
         cache[N] = None
         return None
+    scatter = _scatter(plan)
     coef, tails = _series(N)
     TK, tcoef, ttails = _theory_series(N)
     out = cache[N] = {
         "kinds": np.array(kinds, dtype=np.uint64).reshape(-1, 8, width(N)),
         "families": np.array(families, dtype=np.int64), "coef": coef, "tails": tails,
         "TK": TK, "tcoef": tcoef, "ttails": ttails,
-        "targets": np.array(targets, dtype=np.int64), "source": np.array(source, dtype=np.int64),
-        "bcoef": np.ascontiguousarray(bcoef),
-        "starts": np.array(starts, dtype=np.int64)}
+        "targets": scatter["targets"], "source": scatter["source"],
+        "bcoef": np.ascontiguousarray(encoded[index[scatter["terms"]]]),
+        "starts": scatter["starts"]}
     return out
+
+
+def _scatter(plan) -> dict:
+    """The plan's scatter for the compiled kernel, arithmetic apart: ``targets``,
+    ``source`` and ``terms`` (indices of its coefficients) of every term, layer after layer
+    (:meth:`~symtmm.numeric.plan.StiffnessPlan.layer_maps`), and where each layer starts
+    (``starts``); once per plan, for every arithmetic."""
+    cached = plan.__dict__.get("_multiword_scatter")
+    if cached is None:
+        layers = plan.layer_maps()
+        empty = np.zeros(0, dtype=np.int64)
+        cached = plan.__dict__["_multiword_scatter"] = {
+            key: np.ascontiguousarray(np.concatenate(
+                [empty] + [np.asarray(layer[i], dtype=np.int64) for layer in layers]))
+            for i, key in enumerate(("targets", "source", "terms"))}
+        cached["starts"] = np.cumsum([0] + [len(tg) for tg, _, _ in layers]).astype(np.int64)
+    return cached
 
 
 #: The columns of a kind's constants in the compiled kernel, by family (zeros after them).
@@ -407,22 +423,18 @@ def _double_tables(plan) -> dict | None:
         kinds.append(block)
         families += [_FAMILIES[family]] * cols[0].size
     kinds = np.concatenate(kinds)
-    layers = t["layers"]
-    bcoef = np.concatenate([np.zeros(0)] + [np.asarray(c, dtype=float) for _, _, c in layers])
+    bcoef = np.concatenate([np.zeros(0)] + [np.asarray(c, dtype=float) for _, _, c in t["layers"]])
     if not (np.isfinite(kinds).all() and np.isfinite(bcoef).all()):
         cache[1] = None
         return None
+    scatter = _scatter(plan)
     coef, tails = _series(1)
     TK, tcoef, ttails = _theory_series(1)
     out = cache[1] = {
         "kinds": kinds, "families": np.array(families, dtype=np.int64), "coef": coef,
         "tails": tails, "TK": TK, "tcoef": tcoef, "ttails": ttails,
-        "targets": np.concatenate([np.zeros(0, dtype=np.int64)]
-                                  + [np.asarray(tg, dtype=np.int64) for tg, _, _ in layers]),
-        "source": np.concatenate([np.zeros(0, dtype=np.int64)]
-                                 + [np.asarray(sr, dtype=np.int64) for _, sr, _ in layers]),
-        "bcoef": bcoef,
-        "starts": np.cumsum([0] + [len(tg) for tg, _, _ in layers]).astype(np.int64)}
+        "targets": scatter["targets"], "source": scatter["source"], "bcoef": bcoef,
+        "starts": scatter["starts"]}
     return out
 
 
@@ -430,13 +442,14 @@ def _kind_values(plan) -> list:
     """Per segment kind ``(family, its 8 exact constants)`` in the compiled kernel's order
     (:data:`_COLUMNS`), once per plan for every number of words."""
     import sympy as sp
+
+    from .segments import eb_exact
     cached = plan.__dict__.get("_kind_values")
     if cached is None:
         cached = []
         for family, consts in plan.kinds:
             if family == "eb":
-                EI, m, l, kw = (sp.sympify(v) for v in consts)
-                values = [EI, l, m * l**4 / EI, kw * l**4 / EI] + [sp.Integer(0)] * 4
+                values = list(eb_exact(*consts)) + [sp.Integer(0)] * 4
             else:               # (EI, a, b, cN, rhoI, m, kw, l)
                 values = [sp.sympify(v) for v in consts]
             cached.append((family, values))

@@ -42,7 +42,7 @@ import sympy as sp
 
 from .arith import Arithmetic
 
-__all__ = ["eb_constants", "eb_matrices", "theory_constants", "theory_matrices", "rod_constants",
+__all__ = ["eb_exact", "eb_constants", "eb_matrices", "theory_constants", "theory_matrices", "rod_constants",
            "rod_matrices", "f_functions", "kind_inertia",
            "coupled_constants", "coupled_matrices", "transfer_matrices", "family_matrices", "cut_tables",
            "stack_matrix", "kind", "kind_order", "kind_size", "kind_tables", "segment_matrix"]
@@ -76,14 +76,19 @@ def _inverse_factorials(ar: Arithmetic, n: int) -> list:
 
 
 # -- Euler–Bernoulli --------------------------------------------------------------------
+def eb_exact(EI, m, l, kw) -> tuple:
+    """``(EI, l, A, F)`` of a segment, exact: ``A = m l**4 / EI``, ``F = kw l**4 / EI``."""
+    EI, m, l, kw = (sp.sympify(v) for v in (EI, m, l, kw))
+    return EI, l, m * l**4 / EI, kw * l**4 / EI
+
+
 def eb_constants(ar: Arithmetic, segments) -> dict:
     """Constant arrays for :func:`eb_matrices` from ``(EI, m, l, kw)`` per segment (exact).
 
     ``A = m l**4 / EI`` and ``F = kw l**4 / EI`` give ``x = -(A lam**2 + F)``.
     """
-    def build(EI, m, l, kw):
-        EI, m, l, kw = (sp.sympify(v) for v in (EI, m, l, kw))
-        return (ar.exact(EI), ar.exact(l), ar.exact(m * l**4 / EI), ar.exact(kw * l**4 / EI))
+    def build(*seg):
+        return tuple(ar.exact(v) for v in eb_exact(*seg))
     # (each segment's numbers once per arithmetic: a chain's plans for two ranges share
     # most of their segments, and SymPy's products cost tens of microseconds)
     rows = [ar.cached(("eb", *seg), lambda seg=seg: build(*seg)) for seg in segments]
