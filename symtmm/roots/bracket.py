@@ -142,13 +142,19 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
         groups: list = [[] for _ in range(idx.size)]
         for m, o in enumerate(owner.tolist()):
             groups[o].append(m)
-        for j, i in enumerate(idx):
-            stop = False
+        # (the brackets' state as Python lists for the loop, written back at its end: numpy
+        # scalar reads and writes cost three times as much)
+        Al, Bl, FAl, FBl = A.tolist(), B.tolist(), FA.tolist(), FB.tolist()
+        lastl, slowl, actl = last[idx].tolist(), slow[idx].tolist(), active[idx].tolist()
+        bestl, bestfl = best[idx].tolist(), best_f[idx].tolist()
+        prevl, earll, wbl = previous[idx].tolist(), earlier[idx].tolist(), width_before.tolist()
+        for j in range(idx.size):
             left = right = None
+            stop = False
             for m in groups[j]:
                 f_m = fxl[m]
-                if not abs(f_m) >= best_f[i]:          # (also f = 0: at the root)
-                    best[i], best_f[i] = xl[m], abs(f_m)
+                if not abs(f_m) >= bestfl[j]:          # (also f = 0: at the root)
+                    bestl[j], bestfl[j] = xl[m], abs(f_m)
                 if sidel[m] == 0 or not math.isfinite(f_m) or f_m == 0:
                     # (f = 0: the point is the root as far as f can tell; bisecting toward
                     # it from the other end would cost a step per bit)
@@ -157,8 +163,8 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
                     right = m
                 elif sidel[m] < 0 and (left is None or xl[m] > xl[left]):
                     left = m
-            if stop or (left is not None and right is not None and x[left] >= x[right]):
-                active[i] = False
+            if stop or (left is not None and right is not None and xl[left] >= xl[right]):
+                actl[j] = False
                 continue
             # the end that stays is scaled only when it stayed the step before too: after
             # a step to the other side the two latest points bracket the root, and the
@@ -166,19 +172,25 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
             # slowed the refinement to a constant factor per step wherever the steps
             # alternate)
             if right is not None and left is None:
-                if last[i] > 0:
-                    m = 1 - fx[right] / fb[i]
-                    fa[i] *= m if m > 0 else 0.5
-                b[i], fb[i], last[i] = x[right], fx[right], 1
+                if lastl[j] > 0:
+                    # (an end's value may have underflowed to 0 in the scaling: halve)
+                    m = 1 - fxl[right] / FBl[j] if FBl[j] != 0 else 0.0
+                    FAl[j] *= m if m > 0 else 0.5
+                Bl[j], FBl[j], lastl[j] = xl[right], fxl[right], 1
             elif left is not None and right is None:
-                if last[i] < 0:
-                    m = 1 - fx[left] / fa[i]
-                    fb[i] *= m if m > 0 else 0.5
-                a[i], fa[i], last[i] = x[left], fx[left], -1
+                if lastl[j] < 0:
+                    m = 1 - fxl[left] / FAl[j] if FAl[j] != 0 else 0.0
+                    FBl[j] *= m if m > 0 else 0.5
+                Al[j], FAl[j], lastl[j] = xl[left], fxl[left], -1
             else:                   # both ends new: a fresh bracket, nothing to scale
-                a[i], fa[i], b[i], fb[i], last[i] = x[left], fx[left], x[right], fx[right], 0
+                Al[j], FAl[j], Bl[j], FBl[j], lastl[j] = xl[left], fxl[left], xl[right], \
+                    fxl[right], 0
             # spread points next time when three steps together have not halved the bracket
-            slow[i] = (b[i] - a[i]) > 0.5 * previous[i]
-            previous[i], earlier[i] = earlier[i], width_before[j]
-            active[i] = (b[i] - a[i]) > width * max(abs(a[i]), abs(b[i]))
+            slowl[j] = (Bl[j] - Al[j]) > 0.5 * prevl[j]
+            prevl[j], earll[j] = earll[j], wbl[j]
+            actl[j] = (Bl[j] - Al[j]) > width * max(abs(Al[j]), abs(Bl[j]))
+        a[idx], b[idx], fa[idx], fb[idx] = Al, Bl, FAl, FBl
+        last[idx], slow[idx], active[idx] = lastl, slowl, actl
+        best[idx], best_f[idx] = bestl, bestfl
+        previous[idx], earlier[idx] = prevl, earll
     return best.tolist()
