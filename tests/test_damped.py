@@ -233,6 +233,53 @@ def test_midspan_dashpot_leaves_even_modes_undamped():
     assert np.allclose(odd, fe[[0, 2]], rtol=2e-6)
 
 
+# -- the undamped eigenvalues as estimates --------------------------------------------------------
+LIGHT = [(Fraction(3, 10), 20, Fraction(1, 5)), (Fraction(7, 10), 5, Fraction(1, 10))]
+
+
+def test_light_damping_is_solved_from_the_undamped_eigenvalues(monkeypatch):
+    """Light dashpots move the eigenvalues little: the rectangle above the real axis is
+    solved from the undamped eigenvalues, with no subdivision, and every printed digit
+    agrees with the Green's-function reference."""
+    from symtmm.roots import damped
+    isolated = []
+    isolate = damped._Search.isolate
+    monkeypatch.setattr(damped._Search, "isolate",
+                        lambda self, cells, tiny: isolated.extend(cells) or
+                        isolate(self, cells, tiny))
+    model = Model((Beam("a", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                  tuple(Spring("a", "ground", x=str(x), k=k, c=str(c)) for x, k, c in LIGHT))
+    spec = solve_damped(model, omega_max=200, digits=15)
+    assert not [rect for rect, n, _ in isolated if not rect.symmetric and n]
+    refs = sorted(pp_damped_roots(1, 1, 1, LIGHT, 200, dps=40), key=lambda z: z.imag)
+    assert len(spec) == len(refs) == 4
+    for e, ref in zip(spec, refs):
+        assert_digits_correct(e.to_dict()["real"], ref.real, 15)
+        assert_digits_correct(e.to_dict()["imag"], ref.imag, 15)
+        assert e.proof == DAMPED_PROOFS["rouche"]
+
+
+def test_estimates_that_do_not_give_every_zero_leave_the_rectangle_to_the_isolation():
+    """Two estimates of one zero, or fewer estimates than zeros: None, nothing is taken
+    on trust (the caller isolates); good estimates: the zeros themselves."""
+    from symtmm.roots.damped import _Problem, _Search
+    model = Model((Beam("a", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                  tuple(Spring("a", "ground", x=str(x), k=k, c=str(c)) for x, k, c in LIGHT))
+    refs = sorted(pp_damped_roots(1, 1, 1, LIGHT, 60, dps=30), key=lambda z: z.imag)
+    assert len(refs) == 2
+    search = _Search(_Problem(model, 80.0), 12)
+    rect = Rectangle(-1.0, 1.0, 5.0, 60.0)
+    w1, w2 = (float(z.imag) for z in refs)
+    assert search.from_estimates(rect, 2, [1j * w1, 1j * w1 * (1 + 1e-9)]) is None
+    assert search.from_estimates(rect, 2, [1j * w1]) is None
+    assert search.from_estimates(rect, 3, [1j * w1, 1j * w2]) is None
+    got = search.from_estimates(rect, 2, [1j * w1 * 1.001, 1j * w2 * 0.999])
+    assert got is not None
+    for e, ref in zip(sorted(got, key=lambda e: e.lam.imag), refs):
+        assert_digits_correct(e.to_dict()["imag"], ref.imag, 12)
+        assert_digits_correct(e.to_dict()["real"], ref.real, 12)
+
+
 # -- real (overdamped) eigenvalues ----------------------------------------------------------------
 def test_overdamped_real_eigenvalue():
     """A strong dashpot at midspan: a real eigenvalue, found with Im lam = 0 exactly."""

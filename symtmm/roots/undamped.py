@@ -906,6 +906,40 @@ class _MorePrecision(Exception):
     """A count in the proof arithmetic is undecided: raise its precision."""
 
 
+def estimates(model: Model, omega_max: float, rigid: int | None = None) -> tuple:
+    """``(frequencies, evaluations)``: the natural frequencies of ``model`` without its
+    dashpots in ``(0, omega_max]``, in double precision and not proved (estimates, e.g.
+    where a damped search starts its eigenvalues); a cluster double precision does not
+    split gives its midpoint once per root in it. ``frequencies`` is None where the
+    counts do not serve (nothing is concluded from it either way). ``rigid``: the
+    rigid-body modes where known (:func:`rigid_body_modes`).
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model, Spring
+    >>> b = Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned")
+    >>> w, _ = estimates(Model((b,), (Spring("b", "ground", x="1/4", k=0, c="1/2"),)), 100)
+    >>> [round(x, 6) for x in w]                        # (n pi)^2
+    [9.869604, 39.478418, 88.82644]
+    """
+    from ..deadline import check
+    search = _Search(model, 15, max(float(omega_max), 1e-300))
+    try:
+        search.rigid = rigid if rigid is not None else \
+            rigid_body_modes(model, search.counter.coarsest_plan(omega_max).mesh)
+        top, c_top = search.count_off(float(omega_max), 2.0 * float(omega_max))
+        brackets = search.isolate(top, c_top)
+        simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
+        out = [w for w in search.refine_double(simple) if 0 < w <= omega_max]
+        for a, ca, b, cb in brackets:
+            if cb - ca > 1:
+                out += [0.5 * (a + b)] * (cb - ca)
+    except ComputationError:
+        check()                 # (a spent time budget ends the search, as elsewhere)
+        return None, search.evaluations
+    return sorted(out), search.evaluations
+
+
 def solve_undamped(model: Model, count: int | None = None, omega_max=None,
                    digits: int = 15, certified: bool | None = None,
                    guesses=None) -> Spectrum:
