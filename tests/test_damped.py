@@ -418,6 +418,28 @@ def test_dashpot_alone_on_a_rigid_body_motion(name, digits):
             assert [(e.to_dict()["real"], e.to_dict()["imag"]) for e in again] == first
 
 
+def test_a_strip_with_lam_zero_and_one_real_zero_is_cut_between_them():
+    """The mean of the strip's zeros (its contour's moment) places the real zero beside
+    lam = 0, and one cut midway parts them: a count of 1 each side (halving the strip
+    took seven generations). The real zero: the published value of the pinned-free case."""
+    from symtmm.mesh import zero_order
+    from symtmm.roots.damped import _Problem, _Search
+    (left, right), supports, published = PURE_DASHPOT["pinned-free"]
+    real = float(published[0][0])
+    model = Model((Beam("b", 1, 1, 1, left=left, right=right),),
+                  tuple(Spring("b", "ground", x, k, c) for x, k, c in supports))
+    search = _Search(_Problem(model, 300.0), 15)
+    search.zero_order = zero_order(model)[1]
+    assert search.zero_order == 1
+    strip = Rectangle(-220.0, 4.4, -4.4, 4.4, True)
+    n, center = search.ap.count_and_center(strip)
+    assert n == 2
+    assert abs(center - real / 2) < 0.01 * abs(real)
+    [kids] = search._split_all([(strip, n, center)])
+    assert [k for _, k, _, _ in kids] == [1, 1]
+    assert kids[0][0].x1 < real / 2 * 0.9 and kids[0][0].contains(real)
+
+
 # -- undamped models: the contour search agrees with the Wittrick-Williams search ---------------
 def test_contour_method_on_undamped_model_matches_undamped_solver():
     model = load(EXAMPLES / "paper_ex3_three_pp_coupled.toml")

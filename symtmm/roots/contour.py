@@ -347,8 +347,13 @@ class ArgumentPrinciple:
             n = round(turns)
             if abs(turns - n) > 0.05 or n < 0:
                 raise CountError(f"winding number {turns:.3f} around {rect} is not a count")
-            if n == 0 or rect.symmetric:
-                out.append((n, None if n == 0 else rect.center))
+            if n == 0:
+                out.append((0, None))
+            elif rect.symmetric:
+                # the lower half mirrors the upper (f real on the real axis): the whole
+                # contour's moment is 2 i Im(moment), the sum of the zeros Im(moment) / pi
+                mean = moment.imag / math.pi / n
+                out.append((n, complex(mean) if rect.contains(mean) else rect.center))
             else:
                 out.append((n, moment / (2j * math.pi) / n))
         return out
