@@ -31,7 +31,7 @@ from .expr import exact_float
 from .limits import MAX_PIECES
 from .model import FREEDOM_INDEX, GROUND, Model
 
-__all__ = ["Mesh", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
+__all__ = ["Mesh", "Stretches", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
 
 #: The node freedoms (0 = Y, 1 = Theta) each boundary condition fixes.
 BC_FREEDOMS_FIXED = {"free": (), "clamped": (0, 1), "pinned": (0,), "sliding": (1,)}
@@ -41,6 +41,158 @@ def _canonical(x) -> sp.Expr:
     """An exact coordinate in one canonical form (a dictionary key)."""
     x = sp.sympify(x)
     return x if x.is_Rational else sp.expand(x)
+
+
+class Stretches:
+    """The parts every beam of ``model`` is cut into, whatever the frequency range: between
+    its ends, point elements and rigid bodies' attachments, and over a layer at the
+    layer's ends and every such point of a beam it joins. :class:`Mesh` cuts each part
+    into equal pieces; :meth:`subdivide` says into how many.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model, Spring
+    >>> m = Model((Beam("a", 1, 1, 2, left="pinned", right="pinned"),),
+    ...           (Spring("a", "ground", "1/2", 5),))
+    >>> st = Stretches(m)
+    >>> [[str(x) for x in xs] for xs in st.xs_of]
+    [['0', '1/2', '2']]
+    >>> st.subdivide(lambda beam, seg: 0.4)[2]          # (lengths over the longest piece)
+    [1.25, 3.75]
+    """
+
+    def __init__(self, model: Model):
+        self.model = model
+        index = {b.name: i for i, b in enumerate(model.beams)}
+        points_el = point_elements(model)
+        layers = [(index[la.a], index[la.b], _canonical(la.x0), _canonical(la.x1), la)
+                  for la in model.layers]
+        required = []
+        for beam in model.beams:
+            xs = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
+            xs += [a.x for body in model.bodies for a in body.attachments if a.beam == beam.name]
+            required.append({_canonical(x) for x in xs})
+        for a, b, x0, x1, _ in layers:
+            required[a] |= {x0, x1}
+            required[b] |= {x0, x1}
+        changed = True
+        while changed:      # a beam's points over a layer are its partner's too (chains)
+            changed = False
+            for a, b, x0, x1, _ in layers:
+                for i, j in ((a, b), (b, a)):
+                    extra = {x for x in required[i] if exact_float(x0) <= exact_float(x) <= exact_float(x1)
+                             and x not in required[j]}
+                    if extra:
+                        required[j] |= extra
+                        changed = True
+        #: per beam, its required points ascending (exact)
+        self.xs_of = [sorted(r, key=exact_float) for r in required]
+        self._layers, self._index = layers, index
+        self._memory: dict = {}         # piece rule's key -> subdivide's answer
+        self._waves: dict = {}          # (beam, radius) -> its largest wave number
+
+    def group(self, i, xa, xb):
+        """The beams joined to ``i`` over ``[xa, xb]`` through layers, and those layers."""
+        model, layers = self.model, self._layers
+        cover = [la for la in layers
+                 if exact_float(la[2]) <= exact_float(xa) and exact_float(xb) <= exact_float(la[3])]
+        if not cover:
+            return [i], []
+        members, used = joined(range(len(model.beams)), [la[4] for la in cover],
+                               self._index)[i]
+        return list(members), [la for la in cover if la[4] in used]
+
+    def _longest(self, piece, i, length, used):
+        beam = self.model.beams[i]
+        k = c = 0
+        if used:
+            k = sum((la[4].k for la in used if i in la[:2]), sp.Integer(0))
+            c = sum((la[4].c for la in used if i in la[:2]), sp.Integer(0))
+        if k == 0 and c == 0:
+            key = getattr(piece, "key", None)
+            s = None if key is None else self._wave_number(i, key[0])
+            if s is not None:
+                # the plans' rule (piece_length) on an Euler-Bernoulli beam, whose largest
+                # wave number is the beam's: a segment per stretch cost most of a chain's cut
+                lf = exact_float(length)
+                return lf if s * lf <= key[1] else key[1] / s
+            return piece(beam, beam.segment(length))
+        # |X| of the coupled piece is at most that of a beam on the foundation
+        # kw + 2 |k + c lam| <= kw + 2 k + 2 c |lam|: with the range |lam|**2 <= radius
+        # the piece rule knows (plans tell it), else through 2 c |lam| <= m |lam|**2 +
+        # c**2 / m (a beam of mass 2 m)
+        from .elements import EulerBernoulliSegment
+        radius = getattr(piece, "radius", None)
+        if radius is not None:
+            lam = sp.Rational(math.sqrt(max(float(radius), 0.0))) * (1 + sp.Rational(1, 10**9))
+            return piece(beam, EulerBernoulliSegment(beam.EI, beam.m, length,
+                                                     beam.kw + 2 * k + 2 * c * lam))
+        m = beam.m * (2 if c != 0 else 1)
+        return piece(beam, EulerBernoulliSegment(beam.EI, m, length,
+                                                 beam.kw + 2 * k + c**2 / beam.m))
+
+    def _wave_number(self, i: int, radius: float):
+        """The largest wave number of beam ``i`` for ``|lam|**2 <= radius`` if it is an
+        Euler-Bernoulli beam (:func:`~symtmm.numeric.plan.wave_number_bound`), else None."""
+        from .elements import EulerBernoulliSegment
+        from .numeric.plan import wave_number_bound
+        if (i, radius) not in self._waves:
+            seg = self.model.beams[i].segment(self.model.beams[i].L)
+            self._waves[(i, radius)] = wave_number_bound(seg, radius) \
+                if isinstance(seg, EulerBernoulliSegment) else None
+        return self._waves[(i, radius)]
+
+    def estimate(self, radius: float, nu_max: float) -> int:
+        """About the pieces a plan for ``|lam|**2 <= radius`` cuts: every stretch into
+        pieces of at most ``nu_max`` over its beam's largest wave number
+        (:func:`~symtmm.numeric.plan.wave_number_bound`), layers and the other theories'
+        rules left out. One float per stretch: :meth:`subdivide` makes a segment per
+        stretch, and tells the pieces exactly."""
+        from .numeric.plan import wave_number_bound
+        total = 0
+        for beam, xs in zip(self.model.beams, self.xs_of):
+            s = wave_number_bound(beam.segment(beam.L), radius) / nu_max
+            total += sum(max(1, math.ceil(exact_float(b - a) * s - 1e-9))
+                         for a, b in itertools.pairwise(xs))
+        return total
+
+    def subdivide(self, piece) -> tuple:
+        """``(subdivisions, groups, ratios)`` for the length rule ``piece(beam, segment)``:
+        the pieces per ``(beam, start of a stretch)``; per coupled stretch ``(beam, start)``
+        of its group's first beam, ``(beams, layers)``; and per stretch (a group's once
+        per beam) its length over the longest piece the rule allows (the pieces are
+        ``ceil`` of it), in the order of the beams and their stretches. Remembered per
+        rule that has a ``key`` (:func:`~symtmm.numeric.plan.piece_rule`)."""
+        key = getattr(piece, "key", None)
+        if key is not None and key in self._memory:
+            return self._memory[key]
+        model = self.model
+        subdivisions: dict = {}          # (beam, xa) -> number of pieces
+        groups: dict = {}                # (beam, xa) -> (beams, layers) of a coupled stretch
+        ratios = []
+        total = 0
+        for i, xs in enumerate(self.xs_of):
+            for xa, xb in itertools.pairwise(xs):
+                members, used = self.group(i, xa, xb)
+                ratio = max(exact_float(xb - xa) / self._longest(piece, j, xb - xa, used)
+                            for j in members)
+                ratios.append(ratio)
+                total += ratio
+                if not total <= MAX_PIECES:
+                    # (before the exact coordinates of millions of pieces are made)
+                    raise ComputationError(
+                        f"beam '{model.beams[i].name}' would need more than {MAX_PIECES} "
+                        "pieces for this frequency range: its waves are far shorter than it "
+                        "(a foundation kw or a layer k far stiffer than its EI / L**4, or a "
+                        "range far above its first modes); soften them or lower the range")
+                n_sub = max(1, math.ceil(ratio - 1e-9))
+                for j in members:
+                    subdivisions[(j, xa)] = max(subdivisions.get((j, xa), 1), n_sub)
+                if len(members) > 1:
+                    groups[(i, xa)] = (members, used)
+        if key is not None:
+            self._memory[key] = (subdivisions, groups, ratios)
+        return subdivisions, groups, ratios
 
 
 class Mesh:
@@ -62,9 +214,13 @@ class Mesh:
         Resolved and numeric.
     piece : callable
         ``piece(beam, segment) -> float``: the longest piece allowed.
+    stretches : Stretches, optional
+        The model's :class:`Stretches` where made already.
 
     Attributes
     ----------
+    stretch_ratios : list
+        Per stretch, its length over the longest piece (:meth:`Stretches.subdivide`).
     node_x : list
         The exact coordinate of every node (along its beam's axis).
     segments : list
@@ -98,10 +254,10 @@ class Mesh:
     (6, (((0, 1),), ((1, 1),), ((2, 1),), ((3, 1),)))
     """
 
-    def __init__(self, model: Model, piece):
+    def __init__(self, model: Model, piece, stretches: Stretches | None = None):
         self.model = model
         self._index = {b.name: i for i, b in enumerate(model.beams)}
-        self._cut(piece)
+        self._cut(piece, stretches)
         subs = self._eliminate()
         number = self._number(subs)
 
@@ -168,7 +324,7 @@ class Mesh:
     def _node(self, beam_name: str, x) -> int:
         return self._beam_nodes[self._index[beam_name]][_canonical(x)]
 
-    def _cut(self, piece):
+    def _cut(self, piece, stretches=None):
         """Nodes along every beam and the segments between them.
 
         Beams joined by layers are cut at the same points over each layer (the ends of
@@ -177,87 +333,14 @@ class Mesh:
         (:class:`~symtmm.elements.layer.CoupledSegment`).
         """
         model = self.model
-        points_el = point_elements(model)
         self._nodes = []                 # (x float, beam index) per node
         self.node_x = []                 # exact x per node
         self._node_length = []           # the longest segment at each node
         self.segments = []
         self._beam_nodes = []            # per beam: exact x -> node
-        index = self._index
-        layers = [(index[la.a], index[la.b], _canonical(la.x0), _canonical(la.x1), la)
-                  for la in model.layers]
-        required = []
-        for beam in model.beams:
-            xs = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
-            xs += [a.x for body in model.bodies for a in body.attachments if a.beam == beam.name]
-            required.append({_canonical(x) for x in xs})
-        for a, b, x0, x1, _ in layers:
-            required[a] |= {x0, x1}
-            required[b] |= {x0, x1}
-        changed = True
-        while changed:      # a beam's points over a layer are its partner's too (chains)
-            changed = False
-            for a, b, x0, x1, _ in layers:
-                for i, j in ((a, b), (b, a)):
-                    extra = {x for x in required[i] if exact_float(x0) <= exact_float(x) <= exact_float(x1)
-                             and x not in required[j]}
-                    if extra:
-                        required[j] |= extra
-                        changed = True
-        xs_of = [sorted(r, key=exact_float) for r in required]
-
-        def covering(xa, xb):
-            return [la for la in layers if exact_float(la[2]) <= exact_float(xa) and exact_float(xb) <= exact_float(la[3])]
-
-        def group(i, xa, xb):
-            """The beams joined to ``i`` over ``[xa, xb]`` through layers, and those layers."""
-            cover = covering(xa, xb)
-            if not cover:
-                return [i], []
-            members, used = joined(range(len(model.beams)), [la[4] for la in cover],
-                                   index)[i]
-            return list(members), [la for la in cover if la[4] in used]
-
-        def longest(i, length, used):
-            beam = model.beams[i]
-            k = sum((la[4].k for la in used if i in la[:2]), sp.Integer(0))
-            c = sum((la[4].c for la in used if i in la[:2]), sp.Integer(0))
-            if k == 0 and c == 0:
-                return piece(beam, beam.segment(length))
-            # |X| of the coupled piece is at most that of a beam on the foundation
-            # kw + 2 |k + c lam| <= kw + 2 k + 2 c |lam|: with the range |lam|**2 <= radius
-            # the piece rule knows (plans tell it), else through 2 c |lam| <= m |lam|**2 +
-            # c**2 / m (a beam of mass 2 m)
-            from .elements import EulerBernoulliSegment
-            radius = getattr(piece, "radius", None)
-            if radius is not None:
-                lam = sp.Rational(math.sqrt(max(float(radius), 0.0))) * (1 + sp.Rational(1, 10**9))
-                return piece(beam, EulerBernoulliSegment(beam.EI, beam.m, length,
-                                                         beam.kw + 2 * k + 2 * c * lam))
-            m = beam.m * (2 if c != 0 else 1)
-            return piece(beam, EulerBernoulliSegment(beam.EI, m, length,
-                                                     beam.kw + 2 * k + c**2 / beam.m))
-
-        subdivisions: dict = {}          # (beam, xa) -> number of pieces
-        groups: dict = {}                # (beam, xa) -> (beams, layers) of a coupled stretch
-        total = 0
-        for i, xs in enumerate(xs_of):
-            for xa, xb in itertools.pairwise(xs):
-                members, used = group(i, xa, xb)
-                ratio = max(exact_float(xb - xa) / longest(j, xb - xa, used) for j in members)
-                total += ratio
-                if not total <= MAX_PIECES:
-                    # (before the exact coordinates of millions of pieces are made)
-                    raise ComputationError(
-                        f"beam '{model.beams[i].name}' would need more than {MAX_PIECES} "
-                        "pieces for this frequency range: its waves are far shorter than it "
-                        "(a foundation kw or a layer k far stiffer than its EI / L**4, or a "
-                        "range far above its first modes); soften them or lower the range")
-                n_sub = max(1, math.ceil(ratio - 1e-9))
-                for j in members:
-                    subdivisions[(j, xa)] = max(subdivisions.get((j, xa), 1), n_sub)
-                if len(members) > 1:
-                    groups[(i, xa)] = (members, used)
+        stretches = stretches or Stretches(model)
+        xs_of = stretches.xs_of
+        subdivisions, groups, self.stretch_ratios = stretches.subdivide(piece)
         for b_idx, beam in enumerate(model.beams):
             xs = xs_of[b_idx]
             points = [xs[0]]
@@ -286,7 +369,7 @@ class Mesh:
                 if len(members) == 1:
                     self.segments.append((b_idx, beam.segment(length), ia[0], ib[0]))
                 else:
-                    seg = member(model.beams, tuple(members), [la[4] for la in used], index,
+                    seg = member(model.beams, tuple(members), [la[4] for la in used], self._index,
                                  length)
                     self.segments.append((tuple(members), seg, ia, ib))
                 for i in ia + ib:

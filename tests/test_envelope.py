@@ -317,6 +317,35 @@ def test_a_string_like_beam_in_tension_builds_few_plans(monkeypatch):
     assert len(built) <= 2, built           # (1 here; 3 by the jumps alone, 7 by steps)
 
 
+@pytest.mark.parametrize("levels", [10, 20])
+def test_a_chain_is_cut_once_for_a_range_its_springs_already_cut_for(monkeypatch, levels):
+    """A chain's pieces are mostly its stretches between springs: the plan of its first
+    count is cut for twice that range where this adds at most 5 % of pieces (counted
+    exactly, the same cut the plan makes), and serves the top its search ends at (two
+    plans before). Its frequencies: the global coefficient matrix of the benchmarks'
+    references (located by a finite-element model), none from symtmm."""
+    from benchmarks import references, sparse_fe
+    from benchmarks.models import global_input
+    from symtmm.mesh import Stretches
+    from symtmm.solve import solve
+    model = chain(levels, 2).require_numeric()
+    st = Stretches(model)
+
+    def pieces(w):
+        return sum(max(1, int(np.ceil(r - 1e-9)))
+                   for r in st.subdivide(plan_module.piece_rule(w * w))[2])
+    chosen = [plan_module.generous_range(st, w) for w in (8.0, 16.0, 32.0)]
+    assert any(c > w for c, w in zip(chosen, (8.0, 16.0, 32.0)))
+    for c, w in zip(chosen, (8.0, 16.0, 32.0)):
+        assert c in (w, 2**0.5 * w, 2 * w) and pieces(c) <= 1.05 * pieces(w)
+    built = _plan_builds(monkeypatch)
+    spectrum = solve(model, count=10, digits=15)
+    assert len(built) == 1, built
+    guesses = sparse_fe.frequencies(sparse_fe.fe_input(model), 16, 10)
+    ref = references.located_omegas(*global_input(model), list(guesses))
+    assert np.allclose([float(e.omega) for e in spectrum], [float(w) for w in ref], rtol=1e-10)
+
+
 def test_small_batches_use_a_plan_for_a_larger_range(monkeypatch, examples_dir):
     """Example 1 with its springs at the ends: the isolation's batches below a quarter of
     the top frequency took plans of their own (three plans); a small batch evaluates on

@@ -46,7 +46,7 @@ from ..expr import exact_float
 from .arith import DOUBLE, Arithmetic
 from .segments import kind, kind_order, kind_size, kind_tables
 
-__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "rcm_order", "wave_number_bound",
+__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "generous_range", "rcm_order", "wave_number_bound",
            "plan_for", "design_range", "design_below", "clear_plans", "PLAN_MODELS"]
 
 #: SymPy's one (a singleton): most coefficients of the scatter are it.
@@ -99,6 +99,16 @@ def piece_length(segment, radius: float, nu_max: float = NU_MAX) -> float:
     if not isinstance(segment, EulerBernoulliSegment):
         longest = min(longest, segment.safe_length(radius))
     return longest
+
+
+def piece_rule(radius: float, nu_max: float = NU_MAX):
+    """``piece(beam, segment)``: :func:`piece_length` for ``|lam|**2 <= radius``, as
+    :class:`~symtmm.mesh.Mesh` takes it (its ``radius`` bounds a layer's ``k + c lam``; its
+    ``key`` names the rule for :meth:`~symtmm.mesh.Stretches.subdivide`'s memory)."""
+    def piece(beam, seg):
+        return piece_length(seg, radius, nu_max)
+    piece.radius, piece.key = float(radius), (float(radius), float(nu_max))
+    return piece
 
 
 def rcm_order(size: int, cliques) -> list:
@@ -194,15 +204,12 @@ class StiffnessPlan:
     (8, 3, 1)
     """
 
-    def __init__(self, model, radius: float, nu_max: float = NU_MAX):
+    def __init__(self, model, radius: float, nu_max: float = NU_MAX, stretches=None):
         from ..mesh import Mesh
         self.model = model
         self.radius = float(radius)
         self.damped = model.damped
-        def piece(beam, seg):
-            return piece_length(seg, self.radius, nu_max)
-        piece.radius = self.radius          # (the mesh bounds a layer's k + c lam with it)
-        mesh = self.mesh = Mesh(model, piece)
+        mesh = self.mesh = Mesh(model, piece_rule(self.radius, nu_max), stretches)
         n = self.n = mesh.size
         self.valid_radius = self._valid_radius(nu_max)
         cliques = ([[g for c in places for g, _ in c] for places in mesh.segment_places]
@@ -461,7 +468,55 @@ def plan_for(model, size: float, slack: float = 4.0) -> StiffnessPlan:
                 return plans[min(larger)]
     if plan is None:
         # (built outside the lock: another thread may build the same one meanwhile)
-        plan = StiffnessPlan(model, design * design)
+        from ..mesh import Stretches
+        stretches = Stretches(model)
+        design = generous_range(stretches, design)
+        plan = StiffnessPlan(model, design * design, stretches=stretches)
         with _PLANS_LOCK:
             plan = _PLANS.setdefault(model, {}).setdefault(design, plan)
     return plan
+
+
+#: A plan is cut for up to twice the range asked where that adds at most this fraction of
+#: pieces (:func:`generous_range`).
+GENEROUS_PIECES = 0.05
+
+
+def generous_range(stretches, design: float) -> float:
+    """The range a plan for ``design`` is cut for: the largest of ``design`` times ``2``
+    or ``sqrt(2)`` whose pieces are at most :data:`GENEROUS_PIECES` more, else ``design``.
+
+    A chain's pieces are mostly its stretches between springs, whatever the range, and
+    its first count misses the top it needs by a few eigenvalues (:func:`symtmm.roots.
+    undamped._next_top`): a plan for the next range would cost as much as the first, for
+    1 to 5 % more pieces (the 20- and 50-level chains of the benchmarks built two plans a
+    solve). A beam cut by its range alone gains pieces like the range's square root, and
+    keeps the range asked. The pieces are counted exactly (:meth:`~symtmm.mesh.Stretches.
+    subdivide`), not estimated.
+
+    Examples
+    --------
+    >>> from symtmm.mesh import Stretches
+    >>> from symtmm.model import Beam, Model, Spring
+    >>> one = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),))
+    >>> generous_range(Stretches(one), 1000.0)          # its pieces grow with the range
+    1000.0
+    >>> springs = tuple(Spring("b", "ground", f"{k}/20", 1) for k in range(1, 20))
+    >>> generous_range(Stretches(Model(one.beams, springs)), 100.0)
+    200.0
+    """
+    def pieces(size):
+        return sum(max(1, math.ceil(r - 1e-9))
+                   for r in stretches.subdivide(piece_rule(size * size))[2])
+    try:
+        # (a float estimate first, per stretch; then the two candidates exactly, each
+        # remembered for the plan's own mesh)
+        rough = stretches.estimate(design * design, NU_MAX)
+        for factor in (2.0, math.sqrt(2.0)):
+            larger = factor * design
+            if stretches.estimate(larger * larger, NU_MAX) <= (1 + GENEROUS_PIECES) * rough \
+                    and pieces(larger) <= (1 + GENEROUS_PIECES) * pieces(design):
+                return larger
+    except ArithmeticError:
+        pass        # (a larger range past the limit on pieces: the plan's own says so)
+    return design
