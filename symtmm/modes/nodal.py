@@ -32,6 +32,7 @@ import bisect
 
 import numpy as np
 
+from ..expr import exact_float
 from ..numeric.arith import DOUBLE
 from ..numeric.plan import plan_for
 from ..numeric.segments import cut_tables, family_matrices, kind_order, kind_tables
@@ -59,7 +60,7 @@ def _samples(model, plan, points: int):
     for s, (b, _, ia, _) in enumerate(mesh.segments):
         if isinstance(b, tuple) or plan.segment_kinds[s][0] not in ("eb", "theory"):
             return None
-        by_beam.setdefault(b, []).append((float(mesh.node_x[ia]), s))
+        by_beam.setdefault(b, []).append((exact_float(mesh.node_x[ia]), s))
     out = []
     for b, beam in enumerate(model.beams):
         starts = sorted(by_beam.get(b, []))
@@ -148,19 +149,23 @@ def nodal_displacements(model, eigenvalues, points: int) -> list:
     # per distinct kind of the pieces holding samples: its full length, then every
     # sample's offset in a piece of that kind (a sample on a piece's start is its d0)
     used = sorted({s for row in samples for s, _ in row})
-    piece_kind = {s: plan.segment_kinds[s] for s in used}
-    kinds = sorted(set(piece_kind.values()), key=kind_order)
-    lengths = {k: [] for k in kinds}
+    # (kinds by number: hashing a kind hashes its exact numbers, once per piece here where
+    # the lookups per sample cost a third of the call)
+    kinds = sorted({plan.segment_kinds[s] for s in used}, key=kind_order)
+    kind_id = {k: j for j, k in enumerate(kinds)}
+    piece_kind = {s: kind_id[plan.segment_kinds[s]] for s in used}
+    lengths: list = [[] for _ in kinds]
     for s in used:
         if not lengths[piece_kind[s]]:
-            lengths[piece_kind[s]].append(float(mesh.segments[s][1].l))
-    at = {}                 # (beam, sample) -> (kind, index into its lengths)
-    for r, row in enumerate(samples):
-        for i, (s, xi) in enumerate(row):
-            if xi != 0:
-                k = piece_kind[s]
-                at[(r, i)] = (k, len(lengths[k]))
-                lengths[k].append(float(xi))
+            lengths[piece_kind[s]].append(exact_float(mesh.segments[s][1].l))
+    at: list = [[] for _ in kinds]      # per kind: (sample, index into its lengths)
+    flat = [(r, i) for r in range(len(samples)) for i in range(points)]
+    for t, (r, i) in enumerate(flat):
+        s, xi = samples[r][i]
+        if xi != 0:
+            k = piece_kind[s]
+            at[k].append((t, len(lengths[k])))
+            lengths[k].append(float(xi))
 
     lam = np.array([complex(e.lam) for e in eigenvalues])
     lam2 = lam * lam
@@ -168,12 +173,12 @@ def nodal_displacements(model, eigenvalues, points: int) -> list:
         lam2 = lam2.real
     with DOUBLE:
         tables = kind_tables(DOUBLE, kinds)
-        U = {k: family_matrices(DOUBLE, [(k[0], cut_tables(DOUBLE, kinds, tables, j,
-                                                           np.array(lengths[k])))], lam2)[0]
-             for j, k in enumerate(kinds)}                       # (B, lengths, 4, 4)
+        U = [family_matrices(DOUBLE, [(k[0], cut_tables(DOUBLE, kinds, tables, j,
+                                                        np.array(lengths[j])))], lam2)[0]
+             for j, k in enumerate(kinds)]                      # (B, lengths, 4, 4)
         K, _ = assemble(plan, DOUBLE, lam2, None if real else lam)
     if real:
-        U, K = {k: u.real for k, u in U.items()}, K.real
+        U, K = [u.real for u in U], K.real
     Kd = dense(plan, K)
 
     # the pieces' end freedoms (Y0, Theta0, Y1, Theta1) from the free ones (mesh numbering)
@@ -181,18 +186,17 @@ def nodal_displacements(model, eigenvalues, points: int) -> list:
     for j, s in enumerate(used):
         for a, combo in enumerate(mesh.segment_places[s]):
             for g, c in combo:
-                gather[j, a, g] += float(c)
+                gather[j, a, g] += exact_float(c)
     full = np.stack([U[piece_kind[s]][:, 0] for s in used], axis=1)   # (B, pieces, 4, 4)
     # each sample: its piece, and the first row of U over its offset (e_0 on a piece start)
-    flat = [(r, i) for r in range(len(samples)) for i in range(points)]
     place = {s: j for j, s in enumerate(used)}
     owner = np.array([place[samples[r][i][0]] for r, i in flat])
     rows = np.zeros((len(eigenvalues), len(flat), 4), dtype=full.dtype)
     rows[:, :, 0] = 1.0
-    for t, key in enumerate(flat):
-        if key in at:
-            k, q = at[key]
-            rows[:, t] = U[k][:, q, 0]
+    for k, pairs in enumerate(at):
+        if pairs:
+            ts, qs = zip(*pairs)
+            rows[:, list(ts)] = U[k][:, list(qs), 0]
     scale = np.array([2.0 ** e for e in plan.exponent])
     position = np.array(plan.position)
     for p, e in enumerate(eigenvalues):
