@@ -64,7 +64,7 @@ def _random_balls(rng, M, N, zero_radius=False):
     rows = []
     for _ in range(M):
         bits = int(rng.integers(1, bits_of + 1))
-        a = int.from_bytes(rng.bytes(8 * 5), "little") >> (320 - bits) | (1 << (bits - 1))
+        a = int.from_bytes(rng.bytes(8 * 8), "little") >> (512 - bits) | (1 << (bits - 1))
         if N == 2:              # (a double-double: two runs of 53 bits at most)
             hi_bits = min(bits, 53)
             a = (a >> (bits - hi_bits) << (bits - hi_bits)) + (a & ((1 << min(53, bits -
@@ -78,7 +78,7 @@ def _random_balls(rng, M, N, zero_radius=False):
     return np.array(rows, dtype=np.uint64)
 
 
-@pytest.mark.parametrize("N", [2, 3, 5])
+@pytest.mark.parametrize("N", [2, 3, 5, 8])
 @pytest.mark.parametrize("op", [0, 1, 2, 3])
 @pytest.mark.parametrize("zero_radius", [True, False])
 def test_operations_enclose_the_exact_results(N, op, zero_radius):
@@ -123,7 +123,7 @@ def test_a_division_by_a_ball_holding_zero_is_not_finite():
         assert not np.isfinite(out[:, -1].view(np.float64)).any()
 
 
-@pytest.mark.parametrize("N", [2, 3, 5])
+@pytest.mark.parametrize("N", [2, 3, 5, 8])
 def test_rationals_are_encoded_within_their_radius(N):
     rng = np.random.default_rng(N)
     values = [Fraction(1, 3), Fraction(-2, 7), Fraction(10) ** 30, Fraction(1, 10**40),
@@ -152,14 +152,14 @@ def _closed_c(x: mpmath.mpf) -> list:
             (ch * si - sh * co) / (4 * s**3)]
 
 
-@pytest.mark.parametrize("N", [2, 3, 5])
+@pytest.mark.parametrize("N", [2, 3, 5, 8])
 def test_series_enclose_the_closed_forms(N):
     coef, tails = multiword._series(N)
     xs = [0.0, 1e-3, -1e-3, 0.7, -0.7, 1.0, 3.3, -3.3, 25.0, -25.0, 80.9, -80.9, 81.0 / 7]
     X = np.array([_row(Fraction(x), N) for x in xs], dtype=np.uint64)
     out = np.empty((len(xs), 4, multiword.width(N)), dtype=np.uint64)
     multiword._multiword.krylov(N, X, coef, tails, multiword.TERMS, out)
-    with mpmath.workdps(110):
+    with mpmath.workdps(170):
         for x, c in zip(xs, out):
             for j, ref in enumerate(_closed_c(mpmath.mpf(x))):
                 mid, r = multiword.decode(c[j])
@@ -213,16 +213,16 @@ def test_points_within_the_balls_of_a_root_fall_back_to_arb(arb_calls, monkeypat
     assert sum(arb_calls) == 2          # the two points 1e-40 from the root only
 
 
-def _against_arb(monkeypatch, model, size, omegas, relative):
-    """Counts and Delta at ``omegas`` in balls of 150 bits (words first) against Arb alone
-    at 400 bits: equal counts, Delta enclosed within ``relative`` of its value. The
+def _against_arb(monkeypatch, model, size, omegas, relative, bits=150, arb_bits=400):
+    """Counts and Delta at ``omegas`` in balls of ``bits`` (words first) against Arb alone
+    at ``arb_bits``: equal counts, Delta enclosed within ``relative`` of its value. The
     factorisation in words, returned."""
     c = Counter(model, size)
     omegas = [mpmath.mpf(w) for w in omegas]
-    fast = c.factors(omegas, Ball(150))
+    fast = c.factors(omegas, Ball(bits))
     with monkeypatch.context() as m:
         m.setattr(multiword, "ENABLED", False)
-        slow = c.factors(omegas, Ball(400))
+        slow = c.factors(omegas, Ball(arb_bits))
     assert fast.counts().tolist() == slow.counts().tolist()
     for a, b in zip(fast.delta(), slow.delta()):
         assert a.contains(b.mid()) and a.rad() < relative * abs(b.mid())
@@ -233,6 +233,22 @@ def test_delta_encloses_arb_at_400_bits(monkeypatch):
     # (wider than Arb's at 150 bits: about 100 bits, less what the band's radii grow)
     _against_arb(monkeypatch, load(EXAMPLES / "paper_ex1_ff_cc.toml"), 250.0,
                  (1.0, 8.86195501305, 33.3, 61.67282286792, 150.5, 199.9), 1e-3)
+
+
+def test_delta_in_eight_words_encloses_arb_at_1000_bits(monkeypatch):
+    """The precision of a triple root's zoom (131 digits, 470 bits): seven and eight
+    words, every point decided in them, Delta within 1e-100 of Arb's at 1000 bits."""
+    words = []
+    decided = multiword._decided
+
+    def spy(plan, ar, lam2, reverse, N, *rest):
+        out = decided(plan, ar, lam2, reverse, N, *rest)
+        words.append((N, None if out is None else int(out[0].sum())))
+        return out
+    monkeypatch.setattr(multiword, "_decided", spy)
+    _against_arb(monkeypatch, load(EXAMPLES / "paper_ex3_three_pp_coupled.toml"), 200.0,
+                 (1.0, 39.47841760435743, 150.5, 157.91367041742973), 1e-100, 470, 1000)
+    assert words == [(7, 4)]
 
 
 def _general_beams():
@@ -418,7 +434,7 @@ def test_points_beyond_the_compiled_series_are_built_in_numpy(monkeypatch):
 
 
 # -- complex balls (pairs of real ones): the damped models --------------------------------
-@pytest.mark.parametrize("N", [2, 3])
+@pytest.mark.parametrize("N", [2, 3, 8])
 @pytest.mark.parametrize("op", [0, 1, 2, 3])
 def test_complex_operations_enclose_the_exact_results(N, op):
     # a complex ball is a rectangle: its real part's ball and its imaginary part's; every

@@ -81,7 +81,7 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
  * complex balls, those of the real balls they pair (R, RBALL, RW_); then its arithmetic's
  * header and the kernel (ARITH, _multiword_instance.h), which ends by undefining them.
  * The integer mantissas' headers are written in NW: _multiword_words.h makes the
- * instances of 3, 4 and 5 words of WORDS_ARITH. */
+ * instances of 3 to 8 words of WORDS_ARITH. */
 
 /* one word: plain doubles, no radius (the double-precision batches' band) */
 #define F(name) name##_1
@@ -100,7 +100,7 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #define ARITH "_multiword_dd.h"
 #include "_multiword_instance.h"
 
-/* three to five words: integer mantissas (64 bits a word) */
+/* three to eight words: integer mantissas (64 bits a word) */
 #define WORDS_ARITH "_multiword_limbs.h"
 #define NAMES(name) CAT(name, NW)
 #define WORDS (NW + 3)
@@ -135,8 +135,8 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #define REAL_NAMES(name) CAT(name, NW)
 #include "_multiword_words.h"
 
-/* the codes of the arithmetics: N (1 to 5) words, real; 10 + N complex */
-static inline int valid_words(int N) { return (N >= 1 && N <= 5) || (N >= 11 && N <= 15); }
+/* the codes of the arithmetics: N (1 to 8) words, real; 10 + N complex */
+static inline int valid_words(int N) { return (N >= 1 && N <= 8) || (N >= 11 && N <= 18); }
 
 /* f_N(...) for the code N of the call: one kernel instance per arithmetic */
 #define BY_WORDS(N, f, ...)                                                                \
@@ -146,11 +146,17 @@ static inline int valid_words(int N) { return (N >= 1 && N <= 5) || (N >= 11 && 
     case 3: f##_3(__VA_ARGS__); break;                                                     \
     case 4: f##_4(__VA_ARGS__); break;                                                     \
     case 5: f##_5(__VA_ARGS__); break;                                                     \
+    case 6: f##_6(__VA_ARGS__); break;                                                     \
+    case 7: f##_7(__VA_ARGS__); break;                                                     \
+    case 8: f##_8(__VA_ARGS__); break;                                                     \
     case 11: f##_c1(__VA_ARGS__); break;                                                   \
     case 12: f##_c2(__VA_ARGS__); break;                                                   \
     case 13: f##_c_3(__VA_ARGS__); break;                                                  \
     case 14: f##_c_4(__VA_ARGS__); break;                                                  \
-    default: f##_c_5(__VA_ARGS__); break;                                                  \
+    case 15: f##_c_5(__VA_ARGS__); break;                                                  \
+    case 16: f##_c_6(__VA_ARGS__); break;                                                  \
+    case 17: f##_c_7(__VA_ARGS__); break;                                                  \
+    default: f##_c_8(__VA_ARGS__); break;                                                  \
     }
 
 /* 64-bit words per ball of code N: a plain double's one, the double-double's three

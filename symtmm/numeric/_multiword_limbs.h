@@ -1,6 +1,6 @@
 /*
  * Balls of an integer mantissa of NW 64-bit words, for _multiword.c (included there once
- * per NW, 3 to 5, with F, BALL and W_ defined; see there for the arithmetic and its bounds).
+ * per NW, 3 to 8, with F, BALL and W_ defined; see there for the arithmetic and its bounds).
  */
 #define MUL(a, b) F(mul)(&(a), &(b))
 #define ADD(a, b) F(add)(&(a), &(b))

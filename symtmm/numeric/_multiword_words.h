@@ -1,5 +1,5 @@
 /*
- * The instances of 3, 4 and 5 words (NW) of _multiword.c over the arithmetic WORDS_ARITH
+ * The instances of 3 to 8 words (NW) of _multiword.c over the arithmetic WORDS_ARITH
  * (a file name), real or complex: its names NAMES(name) and words per ball WORDS written
  * in NW (and, complex, the real balls' names REAL_NAMES(name)); those macros undefined
  * afterwards. _multiword_nw.h makes each.
@@ -11,6 +11,15 @@
 #include "_multiword_nw.h"
 #undef NW
 #define NW 5
+#include "_multiword_nw.h"
+#undef NW
+#define NW 6
+#include "_multiword_nw.h"
+#undef NW
+#define NW 7
+#include "_multiword_nw.h"
+#undef NW
+#define NW 8
 #include "_multiword_nw.h"
 #undef NW
 #undef WORDS_ARITH

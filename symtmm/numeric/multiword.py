@@ -65,12 +65,12 @@ except ImportError:  # pragma: no cover - tested by switching it off
 ENABLED = _multiword is not None
 
 #: The fewest and the most words of a midpoint (as compiled).
-MIN_WORDS, MAX_WORDS = 2, 5
+MIN_WORDS, MAX_WORDS = 2, 8
 
 #: The most terms of the series of the ``c_j``; each takes the fewest whose tail is below
 #: the words' resolution (``2**-106`` for a double-double, ``2**-(64 N)`` else; the pieces'
-#: ``|x| <= 81``: about 17 terms at 5 words, 9 for ``|x| < 1``).
-TERMS = 26
+#: ``|x| <= 81``: about 22 terms at 5 words, 32 at 8, 9 for ``|x| < 1``).
+TERMS = 34
 
 _MASK = (1 << 64) - 1
 
@@ -464,7 +464,7 @@ def tiers(prec: int, n: int) -> list:
     The bits asked less the quarter of a bit per freedom that the ball elimination adds
     for the growth of its radii (:meth:`~symtmm.numeric.evaluator.Evaluator._ball`), to
     the nearest word, then one word more: 2 and 3 words for the proofs at 15 digits (144
-    bits), 3 and 4 at 30, 4 and 5 at 50. None beyond 5 words.
+    bits), 3 and 4 at 30, 4 and 5 at 50. None beyond 8 words.
     """
     first = max(MIN_WORDS, round((prec - n // 4) / 64))
     return [N for N in (first, first + 1) if N <= MAX_WORDS]
