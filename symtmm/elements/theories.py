@@ -266,11 +266,15 @@ class BeamSegment(FieldElement):
                 return 0.0
             for _ in range(200):
                 mid = 0.5 * (lo + hi)
+                if mid in (lo, hi):
+                    break           # (adjacent doubles: no step moves them again)
                 lo, hi = (lo, mid) if coefs(mid)[1] >= 0 else (mid, hi)
             return coefs(hi)[0]
         lo, hi = 1e-12, 1.0 - 1e-15
         for _ in range(200):
             mid = 0.5 * (lo + hi)
+            if mid in (lo, hi):
+                break               # (adjacent doubles: no step moves them again)
             y, p = coefs(mid)
             if y > p / rhoI:
                 lo = mid
