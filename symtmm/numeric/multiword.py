@@ -495,14 +495,18 @@ def factor(plan, ar: Ball, lam2, reverse: bool = False, lam=None):
         if done is None:
             break
         ok, piv, det12 = done
-        good = todo[ok]
-        if good.size:
+        if ok.any():
+            # (of a point decided here the callers read the count, from the signs, and
+            # Delta, from the product: its pivots and det U12 stay None, as Factors says;
+            # as Arb balls they cost a quarter of a 20-level chain's batch. A point whose
+            # product left the words' range goes on, as an undecided one)
             with ar:
-                pivots[good] = _balls(piv, flint, complex_)
-                dets[good] = _balls(det12, flint, complex_)
-                products[good] = _product(plan, piv, det12, flint, N, complex_)
+                got = _product(plan, piv, det12, flint, N, complex_)
+            have = np.array([v is not None for v in got], dtype=bool)
+            ok[np.nonzero(ok)[0][~have]] = False
+            products[todo[ok]] = got[have]
             if not complex_:
-                signs[good] = _signs(piv)
+                signs[todo[ok]] = _signs(piv[have])
         todo = todo[~ok]
     with ar:
         fa = Factors(plan, ar, pivots, signs, np.ones((B, n), dtype=bool), dets,
@@ -606,40 +610,3 @@ def _signs(balls) -> np.ndarray:
     if balls.shape[-1] == 3:
         return np.where(balls[..., 0].view(np.float64) < 0, -1, 1).astype(np.int8)
     return np.where(balls[..., -2] != 0, -1, 1).astype(np.int8)
-
-
-def _balls(balls, flint, complex_: bool = False) -> np.ndarray:
-    """Arb balls (an object array of the leading shape) holding balls of words
-    ``(..., width)``: about the leading double, widened by 2**-51 of it (the consumers of a
-    factorisation's pivots need signs and approximate values, the count being proved
-    already and ``Delta`` coming whole from :func:`_product`; one Arb constructor call per
-    number); complex ones from their two parts' words if asked."""
-    if complex_:
-        half = balls.shape[-1] // 2
-        return _acb_of(flint)(_balls(balls[..., :half], flint), _balls(balls[..., half:], flint))
-    if balls.shape[-1] == 3:
-        hi, lo, r = (balls[..., i].view(np.float64) for i in range(3))
-        return _arb_of(flint)(hi, (r + np.abs(lo)) * _INFLATE + _TINY)
-    N = balls.shape[-1] - 3
-    e = balls[..., N].view(np.int64)
-    head = np.ldexp(balls[..., 0].astype(float), (e - 64).astype(int))
-    head = np.where(balls[..., N + 1] != 0, -head, head)
-    rad = (balls[..., N + 2].view(np.float64) + np.abs(head) * 2.0 ** -51) * _INFLATE + _TINY
-    return _arb_of(flint)(head, rad)
-
-
-#: ``(1 + 2**-48) v + 2**-1021`` exceeds the rounded sum ``v`` of two non-negative doubles
-#: and what rounding the leading word to a double (2**-53 of it) and ``ldexp`` leave out.
-_INFLATE, _TINY = 1.0 + 2.0 ** -48, 2.0 ** -1021
-
-
-@functools.cache
-def _arb_of(flint):
-    """``flint.arb(mid, rad)`` as a numpy ufunc (made once)."""
-    return np.frompyfunc(flint.arb, 2, 1)
-
-
-@functools.cache
-def _acb_of(flint):
-    """``flint.acb(real, imag)`` of arb balls as a numpy ufunc (made once)."""
-    return np.frompyfunc(flint.acb, 2, 1)

@@ -314,8 +314,9 @@ class Factors:
     products : numpy.ndarray or None
         ``(B,)`` where given: per point the product of its pivots and of ``det U12`` to
         the plan's multiplicities (``Delta`` but for the plan's constant), as computed by
-        the factorisation at its full precision, which then keeps cheaper, wider balls as
-        pivots (:mod:`symtmm.numeric.multiword`); None entries where it did not.
+        the factorisation at its full precision (:mod:`symtmm.numeric.multiword`); None
+        entries where it did not. A point with a product has its count and ``Delta``
+        and no more: its rows of ``pivots`` and ``det12`` are None.
     """
 
     plan: object
