@@ -234,12 +234,13 @@ class _Problem:
         to a zero)."""
         out: list = [None] * len(points)
         todo = list(range(len(points)))
+        work = digits
         for attempt in range(3):
             if not todo:
                 break
-            ar = self.arithmetic(digits * 2 ** attempt)
+            ar = self.arithmetic(work)
             vals, trusted = (kernel or self.kernel).delta([points[i] for i in todo], ar)
-            wide = []
+            wide, short = [], 0.0
             for i, v, ok in zip(todo, vals, trusted):
                 if not ok:
                     continue
@@ -247,9 +248,16 @@ class _Problem:
                     mid = abs(v.mid())
                     if not (mid.is_finite() and v.rad() < mid / 1024):
                         wide.append(i)
+                        # the digits the ball lacks, where it says (a finite midpoint)
+                        ratio = float(v.rad() / mid) if mid.is_finite() and mid != 0 else math.inf
+                        short = max(short, math.log10(1024 * ratio) if ratio > 0 else 0.0)
                         continue
                 out[i] = _global(ar.to_mpmath(v))
             todo = wide
+            # the next precision: the digits the widest ball lacked and ten more (a point
+            # near a zero, its value far below the terms: doubling took 45 -> 90 -> 180
+            # digits there, past the compiled balls), else twice as many
+            work = work + max(10, math.ceil(short) + 10) if math.isfinite(short) else 2 * work
         return out
 
     def log_delta(self, z):
@@ -508,7 +516,8 @@ class _Search:
                 start.append(z)
         if len(start) != n:
             return None
-        found = [e for e in self.refine_complex([(rect, z) for z in start]) if e is not None]
+        found = [e for e in self.refine_complex([(rect, z) for z in start], estimated=True)
+                 if e is not None]
         distinct = []
         for e in found:
             z = complex(e.lam)
@@ -623,16 +632,20 @@ class _Search:
                 z0[i], f0[i], z1[i], f1[i] = z1[i], f1[i], z2, v
         return out
 
-    def refine_complex(self, items) -> list:
+    def refine_complex(self, items, estimated: bool = False) -> list:
         """The zeros of one-zero rectangles ``(rect, center)`` above the real axis.
 
         Returns an :class:`Eigenvalue` or None (the secant strayed: split and retry)
-        per item.
+        per item. ``estimated``: the centers are double-precision estimates already
+        (:meth:`from_estimates`), which the high-precision steps start from.
         """
         if not items:
             return []
-        estimates = self._double_secant([self._at(c if c is not None and r.contains(c)
-                                                  else r.center) for r, c in items])
+        if estimated:
+            estimates = [c for _, c in items]
+        else:
+            estimates = self._double_secant([self._at(c if c is not None and r.contains(c)
+                                                      else r.center) for r, c in items])
         state = []
         for (rect, _), z in zip(items, estimates):
             zf = complex(z)
