@@ -115,8 +115,8 @@ def test_fmin2d_count_mode():
 
 def _tally(monkeypatch):
     """Count, independently of the code's own counters, every lam at which Delta, R or
-    the eigenvalue count is evaluated: the kernel's factorisations, box enclosures and
-    transfer walks (one per point of a batch)."""
+    the eigenvalue count is evaluated: the kernel's factorisations and compiled summaries,
+    box enclosures and transfer walks (one per point of a batch)."""
     from symtmm.numeric import evaluator, transfer
     from symtmm.roots import count
 
@@ -126,6 +126,12 @@ def _tally(monkeypatch):
             calls["n"] += len(lam2)
             return original(plan, ar, lam2, lam, reverse)
         monkeypatch.setattr(module, "factor", factor)
+
+        def summary(plan, lam2, lam=None, original=module.summary):
+            got = original(plan, lam2, lam)
+            calls["n"] += len(lam2) if got is not None else 0   # (None: nothing evaluated)
+            return got
+        monkeypatch.setattr(module, "summary", summary)
     original_enclose = evaluator.Evaluator.enclose
 
     def enclose(self, lam, ar):

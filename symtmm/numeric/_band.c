@@ -17,13 +17,14 @@
  * The scatter sums each entry's terms in the order of the plan a layer at a time, as
  * the numpy loop does; the bounds add, for j = 1 .. w - 1 in turn, |L D| of the
  * j-th row above, squared, over that pivot's |d| (hypot for complex magnitudes, as
- * numpy's abs).
+ * numpy's abs). summary() reads a factorised batch as the searches do.
  *
  * No numpy headers: arrays come as buffers.
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 #include <math.h>
+#include <stdint.h>
 
 static void eliminate_real(double *K, Py_ssize_t B, Py_ssize_t rows, Py_ssize_t w,
                            Py_ssize_t n)
@@ -179,6 +180,24 @@ static double magnitude(const double *x, int is_complex)
     return is_complex ? hypot(x[0], x[1]) : fabs(x[0]);
 }
 
+/* The scale of each pivot as bounds() gives it, into scale (n doubles). */
+static void pivot_scales(const double *F, const double *K, Py_ssize_t w, Py_ssize_t n,
+                         int is_complex, double *scale)
+{
+    const Py_ssize_t c = is_complex ? 2 : 1;
+    for (Py_ssize_t m = 0; m < n; m++)
+        scale[m] = magnitude(K + c * m * w, is_complex);
+    for (Py_ssize_t j = 1; j < w && j < n; j++) {
+        for (Py_ssize_t m = j; m < n; m++) {
+            const double r = magnitude(F + c * ((m - j) * w + j), is_complex);
+            const double d = magnitude(F + c * (m - j) * w, is_complex);
+            /* np.maximum(d, 1e-300): a NaN stays NaN */
+            const double q = r * r / ((d != d || d > 1e-300) ? d : 1e-300);
+            scale[m] = scale[m] + q;
+        }
+    }
+}
+
 static PyObject *bounds(PyObject *self, PyObject *args)
 {
     Py_buffer kb, k0, out;
@@ -195,24 +214,91 @@ static PyObject *bounds(PyObject *self, PyObject *args)
         return NULL;
     }
     Py_BEGIN_ALLOW_THREADS
+    for (Py_ssize_t p = 0; p < B; p++)
+        pivot_scales((const double *)kb.buf + c * p * rows * w,
+                     (const double *)k0.buf + c * p * n * w, w, n, is_complex,
+                     (double *)out.buf + p * n);
+    Py_END_ALLOW_THREADS
+    PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&out);
+    Py_RETURN_NONE;
+}
+
+/* summary(factored, band, det12, mult, logabs, phase, count, B, rows, w, n, S, trust,
+ *         growth, log_constant, is_complex): per point of a factorised double batch what
+ * the searches read of it, in one pass: log|Delta| and arg Delta (the pivots', det U12's
+ * to the kinds' multiplicities and the plan's constant, as Factors.log_delta), and the
+ * count (negative pivots; 0 for complex K) where every pivot is decided as _ldl decides
+ * it (|d| above trust times its scale, the scale within growth times the largest
+ * diagonal entry of K), else -1. */
+static PyObject *summary(PyObject *self, PyObject *args)
+{
+    Py_buffer kb, k0, d12, mult, la_out, ph_out, cnt_out;
+    Py_ssize_t B, rows, w, n, S;
+    double trust, growth, log_constant;
+    int is_complex;
+    if (!PyArg_ParseTuple(args, "y*y*y*y*w*w*w*nnnnndddp", &kb, &k0, &d12, &mult, &la_out,
+                          &ph_out, &cnt_out, &B, &rows, &w, &n, &S, &trust, &growth,
+                          &log_constant, &is_complex))
+        return NULL;
+    const Py_ssize_t item = is_complex ? 16 : 8, c = is_complex ? 2 : 1;
+    const int sizes = B >= 0 && w >= 1 && n >= 0 && S >= 0 && rows >= n + w
+        && kb.len == B * rows * w * item && k0.len == B * n * w * item
+        && d12.len == B * S * item && mult.len == S * 8 && la_out.len == B * 8
+        && ph_out.len == B * 8 && cnt_out.len == B * 8;
+    double *scale = sizes ? PyMem_Malloc((n > 0 ? n : 1) * sizeof(double)) : NULL;
+    if (scale == NULL) {
+        PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&d12);
+        PyBuffer_Release(&mult); PyBuffer_Release(&la_out); PyBuffer_Release(&ph_out);
+        PyBuffer_Release(&cnt_out);
+        if (!sizes) {
+            PyErr_SetString(PyExc_ValueError, "summary buffers of the wrong size");
+            return NULL;
+        }
+        return PyErr_NoMemory();
+    }
+    const int64_t *mu = (const int64_t *)mult.buf;
+    Py_BEGIN_ALLOW_THREADS
     for (Py_ssize_t p = 0; p < B; p++) {
         const double *F = (const double *)kb.buf + c * p * rows * w;
         const double *K = (const double *)k0.buf + c * p * n * w;
-        double *scale = (double *)out.buf + p * n;
-        for (Py_ssize_t m = 0; m < n; m++)
-            scale[m] = magnitude(K + c * m * w, is_complex);
-        for (Py_ssize_t j = 1; j < w && j < n; j++) {
-            for (Py_ssize_t m = j; m < n; m++) {
-                const double r = magnitude(F + c * ((m - j) * w + j), is_complex);
-                const double d = magnitude(F + c * (m - j) * w, is_complex);
-                /* np.maximum(d, 1e-300): a NaN stays NaN */
-                const double q = r * r / ((d != d || d > 1e-300) ? d : 1e-300);
-                scale[m] = scale[m] + q;
+        const double *D = (const double *)d12.buf + c * p * S;
+        pivot_scales(F, K, w, n, is_complex, scale);
+        double base = 1e-300;
+        for (Py_ssize_t m = 0; m < n; m++) {
+            const double a = magnitude(K + c * m * w, is_complex);
+            if (a > base || a != a)
+                base = a;
+        }
+        int decided = 1;
+        int64_t negatives = 0;
+        double la = 0.0, ph = 0.0;
+        for (Py_ssize_t m = 0; m < n; m++) {
+            const double *d = F + c * m * w;
+            const double mag = magnitude(d, is_complex);
+            if (!(mag > trust * scale[m] && scale[m] <= growth * base))
+                decided = 0;
+            la += log(mag);
+            if (is_complex)
+                ph += atan2(d[1], d[0]);
+            else if (d[0] < 0) {
+                negatives++;
+                ph += M_PI;
             }
         }
+        for (Py_ssize_t j = 0; j < S; j++) {
+            const double *v = D + c * j;
+            la += (double)mu[j] * log(magnitude(v, is_complex));
+            ph += (double)mu[j] * (is_complex ? atan2(v[1], v[0]) : (v[0] < 0 ? M_PI : 0.0));
+        }
+        ((double *)la_out.buf)[p] = la + log_constant;
+        ((double *)ph_out.buf)[p] = atan2(sin(ph), cos(ph));
+        ((int64_t *)cnt_out.buf)[p] = decided ? (is_complex ? 0 : negatives) : -1;
     }
     Py_END_ALLOW_THREADS
-    PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&out);
+    PyMem_Free(scale);
+    PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&d12);
+    PyBuffer_Release(&mult); PyBuffer_Release(&la_out); PyBuffer_Release(&ph_out);
+    PyBuffer_Release(&cnt_out);
     Py_RETURN_NONE;
 }
 
@@ -225,6 +311,9 @@ static PyMethodDef methods[] = {
     {"bounds", bounds, METH_VARARGS,
      "bounds(factored, band, out, B, rows, w, n, is_complex): the diagonal of "
      "|L||D||L^T| per freedom."},
+    {"summary", summary, METH_VARARGS,
+     "summary(factored, band, det12, mult, logabs, phase, count, B, rows, w, n, S, trust, "
+     "growth, log_constant, is_complex): log|Delta|, arg Delta and the count per point."},
     {NULL, NULL, 0, NULL}
 };
 

@@ -41,13 +41,32 @@ import numpy as np
 from ..deadline import check as check_time
 from .arith import DOUBLE, Arithmetic, Ball
 from .plan import StiffnessPlan, design_range, plan_for
-from .stiffness import Factors, factor
+from .stiffness import Factors, factor, summary
 from .threads import one_blas_thread
 
 __all__ = ["Evaluator", "exact_mpf", "exact_mpc"]
 
 
 @one_blas_thread
+def _pivoted_log_delta(fa, points=None) -> tuple:
+    """``(log|Delta|, arg Delta, trusted)`` at the ``points`` of double factors ``fa`` (all
+    where None) whose band elimination was not trusted: from the dense ``K`` factorised
+    with partial pivoting, trusted where its condition number leaves the phase good to
+    ``1e-6``; elsewhere the band's values, untrusted."""
+    from .stiffness import dense
+    points = np.arange(fa.pivots.shape[0]) if points is None else points
+    logabs, phase = (x[points] for x in fa.log_delta())
+    full = dense(fa.plan, fa.K[points])
+    with np.errstate(all="ignore"):
+        sign, logdet, cond = _pivoted(full)
+    la12, ph12 = DOUBLE.log_abs_arg(fa.det12[points])
+    mult = fa.plan.multiplicity
+    good = np.isfinite(logdet) & (cond * fa.plan.n * 2.2e-16 < 1e-6)
+    logabs = np.where(good, logdet + (la12 * mult).sum(axis=1) + fa.plan.log_constant, logabs)
+    phase = np.where(good, np.angle(sign * np.exp(1j * (ph12 * mult).sum(axis=1))), phase)
+    return logabs, phase, good
+
+
 def _pivoted(full) -> tuple:
     """``(sign, log|det|, condition number)`` of dense ``(B, n, n)`` matrices by LAPACK
     (small matrices: on one BLAS thread, :mod:`symtmm.numeric.threads`)."""
@@ -251,23 +270,29 @@ class Evaluator:
         its condition number leaves the phase good to ``1e-6``: a point near an eigenvalue
         of a leading sub-structure, not of the model, is then as good as any other.
         """
+        lam = np.asarray(lam, dtype=complex)
+        plan = self.plan(float(np.max(np.abs(lam), initial=0.0)), lam.size)
+        got = summary(plan, lam * lam, lam)
+        if got is not None:
+            # (one compiled pass; the points it leaves undecided factorised again below,
+            # for the band and the pivoted determinant)
+            check_time()
+            self.evaluations += lam.size
+            logabs, phase, counts = got
+            bad = np.nonzero(counts < 0)[0]
+            trusted = counts >= 0
+            if not bad.size or not plan.n:
+                return logabs, phase, trusted
+            self.evaluations += bad.size            # (those points again)
+            fa = factor(plan, DOUBLE, lam[bad] * lam[bad], lam[bad])
+            logabs[bad], phase[bad], trusted[bad] = _pivoted_log_delta(fa)
+            return logabs, phase, trusted
         fa = self.factors(lam, DOUBLE)
         logabs, phase = fa.log_delta()
         trusted = fa.trusted.copy()
         bad = np.nonzero(~trusted)[0]
         if bad.size and fa.plan.n:
-            from .stiffness import dense
-            full = dense(fa.plan, fa.K[bad])
-            with np.errstate(all="ignore"):
-                sign, logdet, cond = _pivoted(full)
-            la12, ph12 = DOUBLE.log_abs_arg(fa.det12[bad])
-            mult = fa.plan.multiplicity
-            good = np.isfinite(logdet) & (cond * fa.plan.n * 2.2e-16 < 1e-6)
-            logabs[bad] = np.where(good, logdet + (la12 * mult).sum(axis=1)
-                                   + fa.plan.log_constant, logabs[bad])
-            phase[bad] = np.where(good, np.angle(sign * np.exp(1j * (ph12 * mult).sum(axis=1))),
-                                  phase[bad])
-            trusted[bad] = good
+            logabs[bad], phase[bad], trusted[bad] = _pivoted_log_delta(fa, bad)
         return logabs, phase, trusted
 
     def enclose(self, lam, ar: Ball):

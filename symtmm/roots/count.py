@@ -26,7 +26,7 @@ from ..deadline import check as check_time
 from ..errors import ComputationError
 from ..numeric.arith import DOUBLE, MP, Arithmetic, Ball, ball_available
 from ..numeric.evaluator import Evaluator, exact_mpf
-from ..numeric.stiffness import factor
+from ..numeric.stiffness import factor, summary
 
 __all__ = ["Counter", "SingularCount", "SINGULAR_DIGITS", "proof_arithmetic"]
 
@@ -119,7 +119,21 @@ class Counter(Evaluator):
         """``J(omega)`` per point, ``-1`` where the arithmetic cannot decide it."""
         if len(omegas) == 0:
             return np.zeros(0, dtype=int)
+        if ar is DOUBLE:
+            got = self._summary(omegas)
+            if got is not None:
+                return got[2]
         return self.factors(omegas, ar).counts()
+
+    def _summary(self, omegas):
+        """:func:`~symtmm.numeric.stiffness.summary` at ``lam**2 = -omega**2`` (floats),
+        counted as evaluations; None where the compiled kernel does not serve."""
+        check_time()
+        w = np.asarray(omegas, dtype=float)
+        got = summary(self.plan(float(np.max(w, initial=0.0)), w.size), -(w * w))
+        if got is not None:
+            self.evaluations += w.size
+        return got
 
     # -- one point, decided ---------------------------------------------------------------
     def count(self, omega, digits: int | None = None, positive: bool = False) -> int:
@@ -183,10 +197,12 @@ class Counter(Evaluator):
     # -- Delta ------------------------------------------------------------------------------
     def signed_log_delta(self, omegas):
         """``(log|Delta|, sign Delta, counts)`` of ``Delta(i omega)`` (real), double, batched."""
-        fa = self.factors(omegas, DOUBLE)
-        logabs, phase = fa.log_delta()
-        sign = np.where(np.cos(phase) < 0, -1.0, 1.0)
-        return logabs, sign, fa.counts()
+        got = self._summary(omegas)
+        if got is None:
+            fa = self.factors(omegas, DOUBLE)
+            got = fa.log_delta() + (fa.counts(),)
+        logabs, phase, counts = got
+        return logabs, np.where(np.cos(phase) < 0, -1.0, 1.0), counts
 
     def delta(self, omegas, ar: Arithmetic):
         """``(Delta(i omega), counts)`` in ``ar`` (mpmath numbers or balls)."""
