@@ -64,7 +64,7 @@ def _random_balls(rng, M, N, zero_radius=False):
     rows = []
     for _ in range(M):
         bits = int(rng.integers(1, bits_of + 1))
-        a = int.from_bytes(rng.bytes(8 * 8), "little") >> (512 - bits) | (1 << (bits - 1))
+        a = int.from_bytes(rng.bytes(8 * 16), "little") >> (1024 - bits) | (1 << (bits - 1))
         if N == 2:              # (a double-double: two runs of 53 bits at most)
             hi_bits = min(bits, 53)
             a = (a >> (bits - hi_bits) << (bits - hi_bits)) + (a & ((1 << min(53, bits -
@@ -78,7 +78,7 @@ def _random_balls(rng, M, N, zero_radius=False):
     return np.array(rows, dtype=np.uint64)
 
 
-@pytest.mark.parametrize("N", [2, 3, 5, 8])
+@pytest.mark.parametrize("N", [2, 3, 5, 8, 12])
 @pytest.mark.parametrize("op", [0, 1, 2, 3])
 @pytest.mark.parametrize("zero_radius", [True, False])
 def test_operations_enclose_the_exact_results(N, op, zero_radius):
@@ -123,7 +123,7 @@ def test_a_division_by_a_ball_holding_zero_is_not_finite():
         assert not np.isfinite(out[:, -1].view(np.float64)).any()
 
 
-@pytest.mark.parametrize("N", [2, 3, 5, 8])
+@pytest.mark.parametrize("N", [2, 3, 5, 8, 12])
 def test_rationals_are_encoded_within_their_radius(N):
     rng = np.random.default_rng(N)
     values = [Fraction(1, 3), Fraction(-2, 7), Fraction(10) ** 30, Fraction(1, 10**40),
@@ -152,14 +152,14 @@ def _closed_c(x: mpmath.mpf) -> list:
             (ch * si - sh * co) / (4 * s**3)]
 
 
-@pytest.mark.parametrize("N", [2, 3, 5, 8])
+@pytest.mark.parametrize("N", [2, 3, 5, 8, 12])
 def test_series_enclose_the_closed_forms(N):
     coef, tails = multiword._series(N)
     xs = [0.0, 1e-3, -1e-3, 0.7, -0.7, 1.0, 3.3, -3.3, 25.0, -25.0, 80.9, -80.9, 81.0 / 7]
     X = np.array([_row(Fraction(x), N) for x in xs], dtype=np.uint64)
     out = np.empty((len(xs), 4, multiword.width(N)), dtype=np.uint64)
     multiword._multiword.krylov(N, X, coef, tails, multiword.TERMS, out)
-    with mpmath.workdps(170):
+    with mpmath.workdps(330):
         for x, c in zip(xs, out):
             for j, ref in enumerate(_closed_c(mpmath.mpf(x))):
                 mid, r = multiword.decode(c[j])
@@ -167,6 +167,10 @@ def test_series_enclose_the_closed_forms(N):
                 r = mpmath.mpf(r.numerator) / r.denominator
                 assert abs(ref - mid) <= r
                 bits = 106 if N == 2 else 64 * N
+                if N > 10 and abs(x) > 20:
+                    # (the series stops at TERMS: beyond 1/163! the words' exponents end,
+                    # and the tail there, about 2**-690 at |x| = 81, stays in the radius)
+                    bits = 600
                 assert r <= mpmath.mpf(2) ** (-bits + 12) * max(1, abs(ref))
 
 

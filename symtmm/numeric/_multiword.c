@@ -100,13 +100,16 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #define ARITH "_multiword_dd.h"
 #include "_multiword_instance.h"
 
-/* three to eight words: integer mantissas (64 bits a word) */
+/* three to twelve words: integer mantissas (64 bits a word; beyond eight, for the zoom
+ * onto a multiple root at 30 and 50 digits, k times the resolution's digits; not beyond
+ * twelve: the double radius, at least 2^-1021, would not keep the words' bits) */
+#define WORDS_MAX 12
 #define WORDS_ARITH "_multiword_limbs.h"
 #define NAMES(name) CAT(name, NW)
 #define WORDS (NW + 3)
 #include "_multiword_words.h"
 
-/* complex balls: a real ball of N words for each part (code 10 + N), for the damped
+/* complex balls: a real ball of N words for each part (code 100 + N), for the damped
  * models, whose dashpots make the band complex */
 #define R(name) name##_1
 #define RBALL ball_1
@@ -129,14 +132,15 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
 #define ARITH "_multiword_complex.h"
 #include "_multiword_instance.h"
 
+#define WORDS_MAX 8
 #define WORDS_ARITH "_multiword_complex.h"
 #define NAMES(name) CAT(name, CAT(c, NW))
 #define WORDS (2 * (NW + 3))
 #define REAL_NAMES(name) CAT(name, NW)
 #include "_multiword_words.h"
 
-/* the codes of the arithmetics: N (1 to 8) words, real; 10 + N complex */
-static inline int valid_words(int N) { return (N >= 1 && N <= 8) || (N >= 11 && N <= 18); }
+/* the codes of the arithmetics: N (1 to 12) words, real; 100 + N (N up to 8) complex */
+static inline int valid_words(int N) { return (N >= 1 && N <= 12) || (N >= 101 && N <= 108); }
 
 /* f_N(...) for the code N of the call: one kernel instance per arithmetic */
 #define BY_WORDS(N, f, ...)                                                                \
@@ -149,13 +153,17 @@ static inline int valid_words(int N) { return (N >= 1 && N <= 8) || (N >= 11 && 
     case 6: f##_6(__VA_ARGS__); break;                                                     \
     case 7: f##_7(__VA_ARGS__); break;                                                     \
     case 8: f##_8(__VA_ARGS__); break;                                                     \
-    case 11: f##_c1(__VA_ARGS__); break;                                                   \
-    case 12: f##_c2(__VA_ARGS__); break;                                                   \
-    case 13: f##_c_3(__VA_ARGS__); break;                                                  \
-    case 14: f##_c_4(__VA_ARGS__); break;                                                  \
-    case 15: f##_c_5(__VA_ARGS__); break;                                                  \
-    case 16: f##_c_6(__VA_ARGS__); break;                                                  \
-    case 17: f##_c_7(__VA_ARGS__); break;                                                  \
+    case 9: f##_9(__VA_ARGS__); break;                                                     \
+    case 10: f##_10(__VA_ARGS__); break;                                                   \
+    case 11: f##_11(__VA_ARGS__); break;                                                   \
+    case 12: f##_12(__VA_ARGS__); break;                                                   \
+    case 101: f##_c1(__VA_ARGS__); break;                                                  \
+    case 102: f##_c2(__VA_ARGS__); break;                                                  \
+    case 103: f##_c_3(__VA_ARGS__); break;                                                 \
+    case 104: f##_c_4(__VA_ARGS__); break;                                                 \
+    case 105: f##_c_5(__VA_ARGS__); break;                                                 \
+    case 106: f##_c_6(__VA_ARGS__); break;                                                 \
+    case 107: f##_c_7(__VA_ARGS__); break;                                                 \
     default: f##_c_8(__VA_ARGS__); break;                                                  \
     }
 
@@ -163,7 +171,7 @@ static inline int valid_words(int N) { return (N >= 1 && N <= 8) || (N >= 11 && 
  * doubles, else the mantissa, the exponent, the sign and the radius; complex: twice */
 static inline Py_ssize_t ball_words(int N)
 {
-    return N > 10 ? 2 * ball_words(N - 10) : N == 1 ? 1 : N == 2 ? 3 : N + 3;
+    return N > 100 ? 2 * ball_words(N - 100) : N == 1 ? 1 : N == 2 ? 3 : N + 3;
 }
 
 /* assemble(N, lam2, lam, kinds, families, coef, tails, K, tcoef, ttails, TK, targets,

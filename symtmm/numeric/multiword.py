@@ -65,12 +65,16 @@ except ImportError:  # pragma: no cover - tested by switching it off
 ENABLED = _multiword is not None
 
 #: The fewest and the most words of a midpoint (as compiled).
-MIN_WORDS, MAX_WORDS = 2, 8
+MIN_WORDS, MAX_WORDS = 2, 12
+#: The most words of a complex ball's parts (as compiled).
+MAX_COMPLEX_WORDS = 8
 
 #: The most terms of the series of the ``c_j``; each takes the fewest whose tail is below
 #: the words' resolution (``2**-106`` for a double-double, ``2**-(64 N)`` else; the pieces'
-#: ``|x| <= 81``: about 22 terms at 5 words, 32 at 8, 9 for ``|x| < 1``).
-TERMS = 34
+#: ``|x| <= 81``: about 22 terms at 5 words, 32 at 8, 9 for ``|x| < 1``; at most 40, the last
+#: ``1/163!`` within the compiled balls' exponents: beyond 11 words the largest ``|x|`` keep
+#: a tail of about ``2**-735`` in their radii).
+TERMS = 40
 
 _MASK = (1 << 64) - 1
 
@@ -111,7 +115,7 @@ def _beams_only(plan) -> bool:
 
 #: The code of complex balls of ``N`` words in the compiled kernel (a real ball of ``N``
 #: words for each part).
-COMPLEX = 10
+COMPLEX = 100
 
 
 def _complex_tables(tabs: dict, N: int) -> dict:
@@ -344,7 +348,8 @@ def _theory_series(N: int):
     the general beams' series in ``(t, d)`` (:func:`~symtmm.numeric.segments._series`) to
     the words' bits."""
     K = 2
-    while math.log2(K) - math.lgamma(2 * K + 1) / math.log(2) > -(resolution(N) + 4):
+    # (at most 80: 1/161! is the last within the compiled balls' exponents)
+    while K < 80 and math.log2(K) - math.lgamma(2 * K + 1) / math.log(2) > -(resolution(N) + 4):
         K += 1
     balls, _ = _inverse_factorials(N, 2 * K + 2)
     tails = np.array([_up(Fraction(2 * K, math.factorial(2 * K + i))) for i in (0, 1)])
@@ -464,7 +469,7 @@ def tiers(prec: int, n: int) -> list:
     The bits asked less the quarter of a bit per freedom that the ball elimination adds
     for the growth of its radii (:meth:`~symtmm.numeric.evaluator.Evaluator._ball`), to
     the nearest word, then one word more: 2 and 3 words for the proofs at 15 digits (144
-    bits), 3 and 4 at 30, 4 and 5 at 50. None beyond 8 words.
+    bits), 3 and 4 at 30, 4 and 5 at 50. None beyond 12 words.
     """
     first = max(MIN_WORDS, round((prec - n // 4) / 64))
     return [N for N in (first, first + 1) if N <= MAX_WORDS]
@@ -488,7 +493,7 @@ def factor(plan, ar: Ball, lam2, reverse: bool = False, lam=None):
     signs = (np.zeros if complex_ else np.ones)((B, n), dtype=np.int8)
     todo = np.arange(B)
     for N in tiers(ar.prec, n):
-        if not todo.size:
+        if not todo.size or (complex_ and N > MAX_COMPLEX_WORDS):
             break
         done = _decided(plan, ar, lam2[todo], reverse, N,
                         None if lam is None else lam[todo], complex_)
