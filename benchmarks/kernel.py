@@ -44,6 +44,7 @@ def internals() -> SimpleNamespace:
     from symtmm import modes
     from symtmm.compile import Evaluator as TransferEvaluator
     from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
+    from symtmm.numeric import evaluator as evaluator_module
     from symtmm.numeric.evaluator import Evaluator
     from symtmm.numeric.plan import StiffnessPlan
     from symtmm.numeric.stiffness import assemble, eliminate
@@ -89,6 +90,11 @@ def internals() -> SimpleNamespace:
             delta=delta, elimination=elimination, size=size,
             evaluations=lambda: counter.evaluations)
 
+    def summary_key(args, kwargs):
+        # Counter._summary(self, omegas); stiffness.summary(plan, lam2, lam=None): a double
+        # batch read in one compiled pass, what most double factorizations now are
+        return "double", len(args[1])
+
     def factor_key(args, kwargs):
         # Counter.factors(self, omegas, ar=DOUBLE, ...), Evaluator.factors(self, lam, ar=DOUBLE,
         # ...), Evaluator.enclose(self, lam, ar)
@@ -106,6 +112,8 @@ def internals() -> SimpleNamespace:
             # the damped search: the same kernel at complex points (Counter overrides
             # factors without calling it), and Arb enclosures over boxes
             "complex_factor": (Evaluator, "factors", factor_key),
+            "summary": (Counter, "_summary", summary_key, "factor"),
+            "complex_summary": (evaluator_module, "summary", summary_key, "complex_factor"),
             "enclose": (Evaluator, "enclose", factor_key),
             "rigid_body_modes": (undamped, "rigid_body_modes", None),
             "mode_shapes": (modes, "shapes_at", None),

@@ -57,10 +57,11 @@ def _wrap(fn, name: str, key, stats: dict, stack: list):
 
 @contextmanager
 def timed_calls(targets: dict):
-    """Own seconds, calls and points of ``owner.attr`` for each ``name: (owner, attr, key)``.
+    """Own seconds, calls and points of ``owner.attr`` for each ``name: (owner, attr, key)``
+    (or ``(owner, attr, key, label)``: the statistics under ``label``, shared).
 
     ``key(args, kwargs)`` returns ``(suffix, points)`` of a call (None: no suffix,
-    one point). The statistics are keyed by ``name`` or ``name_suffix``.
+    one point). The statistics are keyed by ``name`` (``label``) or ``name_suffix``.
 
     Examples
     --------
@@ -75,11 +76,12 @@ def timed_calls(targets: dict):
     stats: dict = {}
     stack: list = []
     saved = []
-    for name, (owner, attr, key) in targets.items():
+    for name, (owner, attr, key, *label) in targets.items():
         original = owner.__dict__[attr] if isinstance(owner, type) else getattr(owner, attr)
         saved.append((owner, attr, original))
         fn = original.__func__ if isinstance(original, staticmethod) else original
-        wrapped = _wrap(fn, name, key, stats, stack)
+        # (a fourth entry names the statistics: two routines doing one job share them)
+        wrapped = _wrap(fn, label[0] if label else name, key, stats, stack)
         setattr(owner, attr, staticmethod(wrapped) if isinstance(original, staticmethod)
                 else wrapped)
     try:
