@@ -43,8 +43,8 @@ def internals() -> SimpleNamespace:
     """
     from symtmm import modes
     from symtmm.compile import Evaluator as TransferEvaluator
-    from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
     from symtmm.numeric import evaluator as evaluator_module
+    from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
     from symtmm.numeric.evaluator import Evaluator
     from symtmm.numeric.plan import StiffnessPlan
     from symtmm.numeric.stiffness import assemble, eliminate

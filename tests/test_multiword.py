@@ -255,6 +255,33 @@ def test_delta_in_eight_words_encloses_arb_at_1000_bits(monkeypatch):
     assert words == [(7, 4)]
 
 
+def test_a_tier_that_decides_nothing_is_not_tried_again_for_the_plan(monkeypatch):
+    """A tier that decides none of a batch of three points or more (as two words about the
+    roots of the 50-level chain at 15 digits: made so here) is skipped by the plan's later
+    batches, which start at the next tier; the counts agree with Arb's alone."""
+    words = []
+    decided = multiword._decided
+
+    def spy(plan, ar, lam2, reverse, N, *rest):
+        out = decided(plan, ar, lam2, reverse, N, *rest)
+        if N == 2 and out is not None:          # two words decide nothing here
+            out = (np.zeros_like(out[0]),) + out[1:]
+        words.append((N, len(lam2), None if out is None else int(out[0].sum())))
+        return out
+    monkeypatch.setattr(multiword, "_decided", spy)
+    c = Counter(load(EXAMPLES / "paper_ex1_ff_cc.toml"), 250.0)
+    ar = Ball(144)
+    first = c.counts([mpmath.mpf(w) for w in (5.0, 20.0, 50.0, 150.0)], ar)
+    small = c.counts([mpmath.mpf(w) for w in (9.5, 100.0)], ar)      # (too few to judge)
+    again = c.counts([mpmath.mpf(w) for w in (30.0, 70.0, 121.0)], ar)
+    assert words == [(2, 4, 0), (3, 4, 4), (3, 2, 2), (3, 3, 3)]
+    with monkeypatch.context() as m:
+        m.setattr(multiword, "ENABLED", False)
+        arb = c.counts([mpmath.mpf(w) for w in (5.0, 20.0, 50.0, 150.0, 9.5, 100.0, 30.0,
+                                                 70.0, 121.0)], ar)
+    assert first.tolist() + small.tolist() + again.tolist() == arb.tolist()
+
+
 def _general_beams():
     """Pinned-pinned beams of the general family with closed-form frequencies: tension,
     Rayleigh, Timoshenko (EI 2, m 3, L 3/2; k_n = n pi / L)."""

@@ -492,7 +492,16 @@ def factor(plan, ar: Ball, lam2, reverse: bool = False, lam=None):
     products = np.full(B, None, dtype=object)
     signs = (np.zeros if complex_ else np.ones)((B, n), dtype=np.int8)
     todo = np.arange(B)
-    for N in tiers(ar.prec, n):
+    # a tier that decided none of a batch of several points is not tried again for this
+    # plan while a next one remains: the proofs' batches all lie about roots, where the
+    # smallest pivot is tiny and the radii's growth along a long band leaves the words too
+    # few bits for it (the 50-level chain at 15 digits: two words decided none of 10 and
+    # then of 20 points, a fifth of its solve, before three decided all); points away from
+    # roots then take a word more than they need, at less cost than a tier that fails
+    failed = plan.__dict__.setdefault("_multiword_failed", set())
+    tried = tiers(ar.prec, n)
+    tried = [N for N in tried[:-1] if (N, complex_) not in failed] + tried[-1:]
+    for N in tried:
         if not todo.size or (complex_ and N > MAX_COMPLEX_WORDS):
             break
         done = _decided(plan, ar, lam2[todo], reverse, N,
@@ -500,6 +509,8 @@ def factor(plan, ar: Ball, lam2, reverse: bool = False, lam=None):
         if done is None:
             break
         ok, piv, det12 = done
+        if todo.size >= 3 and not ok.any():
+            failed.add((N, complex_))
         if ok.any():
             # (of a point decided here the callers read the count, from the signs, and
             # Delta, from the product: its pivots and det U12 stay None, as Factors says;
