@@ -238,6 +238,27 @@ class Arithmetic:
         raise NotImplementedError
 
 
+@functools.lru_cache(maxsize=64)
+def _mp_functions(prec: int) -> tuple:
+    """The elementwise functions of :class:`MP` at ``prec`` bits (its private context's),
+    once per precision."""
+    ctx = _mp_context(prec)
+    return (_ufunc(ctx.sqrt), _ufunc(ctx.cos), _ufunc(ctx.cosh), _ufunc(ctx.sin),
+            _ufunc(ctx.sinh), _ufunc(ctx.re), np.frompyfunc(lambda v: float(abs(v)), 1, 1))
+
+
+@functools.cache
+def _ball_functions(flint) -> tuple:
+    """The elementwise functions of :class:`Ball` (object arrays of Arb balls), once."""
+    return (_ufunc(lambda v: v.sqrt()), _ufunc(lambda v: v.cos()), _ufunc(lambda v: v.cosh()),
+            _ufunc(lambda v: v.sin()), _ufunc(lambda v: v.sinh()),
+            _ufunc(lambda v: v.real if isinstance(v, flint.acb) else v),
+            np.frompyfunc(lambda v: float(v.abs_upper()), 1, 1),
+            # both functions of a pair from one evaluation (half the time of two calls)
+            np.frompyfunc(lambda v: v.sinh_cosh()[::-1], 1, 2),
+            np.frompyfunc(lambda v: v.sin_cos()[::-1], 1, 2))
+
+
 def _ufunc(fn):
     """``fn`` applied elementwise to object arrays (numpy's frompyfunc, array in, array out)."""
     f = np.frompyfunc(fn, 1, 1)
@@ -364,14 +385,8 @@ class MP(Arithmetic):
         self.ctx = _mp_context(self.prec)
         # (half the digits beyond double's may go to growth: the rest still decides)
         self.growth_limit = 1e4 * 2.0 ** min((self.prec - 53) / 2, 900)
-        ctx = self.ctx
-        self.sqrt = _ufunc(ctx.sqrt)
-        self.cos = _ufunc(ctx.cos)
-        self.cosh = _ufunc(ctx.cosh)
-        self.sin = _ufunc(ctx.sin)
-        self.sinh = _ufunc(ctx.sinh)
-        self.real = _ufunc(ctx.re)
-        self._abs = np.frompyfunc(lambda v: float(abs(v)), 1, 1)
+        (self.sqrt, self.cos, self.cosh, self.sin, self.sinh, self.real,
+         self._abs) = _mp_functions(self.prec)
 
     @classmethod
     def from_digits(cls, digits: int) -> MP:
@@ -475,16 +490,10 @@ class Ball(Arithmetic):
         self.flint = flint
         self.prec = int(prec)
         self._saved: list = []
-        self.sqrt = _ufunc(lambda v: v.sqrt())
-        self.cos = _ufunc(lambda v: v.cos())
-        self.cosh = _ufunc(lambda v: v.cosh())
-        self.sin = _ufunc(lambda v: v.sin())
-        self.sinh = _ufunc(lambda v: v.sinh())
-        self.real = _ufunc(lambda v: v.real if isinstance(v, flint.acb) else v)
-        self._upper = np.frompyfunc(lambda v: float(v.abs_upper()), 1, 1)
-        # both functions of a pair from one evaluation (half the time of two calls)
-        self._cosh_sinh = np.frompyfunc(lambda v: v.sinh_cosh()[::-1], 1, 2)
-        self._cos_sin = np.frompyfunc(lambda v: v.sin_cos()[::-1], 1, 2)
+        # (the elementwise functions are the same for every precision: made once, where a
+        # ball arithmetic is made for nearly every batch)
+        (self.sqrt, self.cos, self.cosh, self.sin, self.sinh, self.real, self._upper,
+         self._cosh_sinh, self._cos_sin) = _ball_functions(flint)
 
     def cosh_sinh(self, x):
         return tuple(np.asarray(v, dtype=object) for v in self._cosh_sinh(x))
