@@ -350,9 +350,11 @@ def _fe(fe) -> list:
             "by removing dofs, joints by sharing them, springs added into K, "
             "`eigsh(K, k=10, M=M, sigma=-1, which='LM')`, on the coarsest uniform mesh "
             f"(elements per beam) within {fe['tolerance']:g} of the reference; its time is "
-            "mesh + assembly + eigsh, the best of "
-            f"{fe['repeat']} runs with the default BLAS threads and with one "
-            f"({', '.join(fe['blas_threads_env'])} = 1, child process), the faster."), ""]
+            "mesh + assembly + eigsh, the best of the runs with the default BLAS threads "
+            "(one after each of symtmm's solves, then "
+            f"{fe['repeat']} more: both sides of the ratio in the same minutes) and of "
+            f"{fe['repeat']} with one ({', '.join(fe['blas_threads_env'])} = 1, child "
+            "process), the faster."), ""]
     rows = []
     for c in fe["cases"]:
         s, f = c["symtmm"], c["fe"]
