@@ -90,8 +90,9 @@ MAX_DIGITS = 1500
 #: A rectangle smaller than this (relative to |lam|) that still holds several zeros is
 #: left to high precision: double precision cannot split it reliably.
 _TINY = 1e-6
-#: The undamped eigenvalues that start a damped search reach this far above its region
-#: (relative): the damping lowers a frequency into it.
+#: The undamped eigenvalues that start a damped search reach this far beyond its region
+#: (relative to its top, and to a rectangle's height): the damping lowers a frequency
+#: into it.
 _ESTIMATE_REACH = 0.2
 #: Split positions tried in turn when a split line passes too close to a zero.
 _SPLITS = (0.5, 0.4427, 0.5573, 0.3711, 0.6289, 0.3019, 0.6981)
@@ -249,7 +250,8 @@ class _Problem:
                     if not (mid.is_finite() and v.rad() < mid / 1024):
                         wide.append(i)
                         # the digits the ball lacks, where it says (a finite midpoint)
-                        ratio = float(v.rad() / mid) if mid.is_finite() and mid != 0 else math.inf
+                        ratio = float(v.rad() / mid) if mid.is_finite() and mid != 0 \
+                            else math.inf
                         short = max(short, math.log10(1024 * ratio) if ratio > 0 else 0.0)
                         continue
                 out[i] = _global(ar.to_mpmath(v))
@@ -459,8 +461,8 @@ class _Search:
         return s if 0.001 < s < 0.999 else _SPLITS[0]
 
     def _split_all(self, items) -> list:
-        """:meth:`_split` of every ``(rect, count, center)``: the first split of all of them counted
-        in one sampling of their contours; where that fails (a sample near a zero, counts
+        """:meth:`_split` of every ``(rect, count, center)``: the first split of all of them
+        counted in one sampling of their contours; where that fails (a sample near a zero, counts
         that do not add up), each alone with :meth:`_split`'s other splits.
 
         A rectangle holding three zeros or more is cut into quarters at once
@@ -469,8 +471,8 @@ class _Search:
         160 -> 146 ms; with two zeros the second line is often not needed)."""
         if not items:
             return []
-        first = [self._quarters(rect) if n >= 3 else self._children(rect, self._first_cut(rect, n, c))
-                 for rect, n, c in items]
+        first = [self._quarters(rect) if n >= 3 else
+                 self._children(rect, self._first_cut(rect, n, c)) for rect, n, c in items]
         try:
             found = iter(self.ap.counts_and_centers([kid for kids in first for kid, _ in kids]))
         except (NearZero, CountError):
@@ -498,16 +500,15 @@ class _Search:
             return None
         # (an estimate a little beyond the rectangle's ends starts just inside them: the
         # damping lowers a frequency, and may lift the count's last one in)
-        reach = 0.2 * rect.height
+        reach = _ESTIMATE_REACH * rect.height
         inside = [complex(0.0, min(max(g.imag, rect.y0), rect.y1)) + g.real
                   for g in map(complex, guesses)
                   if rect.y0 - reach <= g.imag <= rect.y1 + reach]
         if len(inside) < n:
             return None
-        # first in double precision, all at once and only so near the zeros that double
-        # precision still evaluates there (nearer, a point costs a ball evaluation):
-        # estimates that do not lead to ``n`` distinct zeros in ``rect`` cost little more
-        # (heavy damping: example 4's)
+        # first in double precision, all at once, and only to 1e-7: estimates that do not
+        # lead to ``n`` distinct zeros in ``rect`` cost little more (heavy damping:
+        # example 4's)
         near = [z for z in map(complex, self._double_secant(inside, 1e-7, 12))
                 if rect.contains(z)]
         start = []
