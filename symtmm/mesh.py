@@ -114,8 +114,8 @@ class Stretches:
             if s is not None:
                 # the plans' rule (piece_length) on an Euler-Bernoulli beam, whose largest
                 # wave number is the beam's: a segment per stretch cost most of a chain's cut
-                lf = exact_float(length)
-                return lf if s * lf <= key[1] else key[1] / s
+                from .numeric.plan import wave_piece
+                return wave_piece(s, exact_float(length), key[1])
             return piece(beam, beam.segment(length))
         # |X| of the coupled piece is at most that of a beam on the foundation
         # kw + 2 |k + c lam| <= kw + 2 k + 2 c |lam|: with the range |lam|**2 <= radius
@@ -148,12 +148,13 @@ class Stretches:
         (:func:`~symtmm.numeric.plan.wave_number_bound`), layers and the other theories'
         rules left out. One float per stretch: :meth:`subdivide` makes a segment per
         stretch, and tells the pieces exactly."""
-        from .numeric.plan import wave_number_bound
+        from .numeric.plan import wave_number_bound, wave_piece
         total = 0
         for beam, xs in zip(self.model.beams, self.xs_of):
-            s = wave_number_bound(beam.segment(beam.L), radius) / nu_max
-            total += sum(max(1, math.ceil(exact_float(b - a) * s - 1e-9))
-                         for a, b in itertools.pairwise(xs))
+            s = wave_number_bound(beam.segment(beam.L), radius)
+            for a, b in itertools.pairwise(xs):
+                length = exact_float(b - a)
+                total += max(1, math.ceil(length / wave_piece(s, length, nu_max) - 1e-9))
         return total
 
     def subdivide(self, piece) -> tuple:

@@ -46,7 +46,7 @@ from ..expr import exact_float
 from .arith import DOUBLE, Arithmetic
 from .segments import kind, kind_order, kind_size, kind_tables
 
-__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "generous_range", "rcm_order", "wave_number_bound",
+__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "wave_piece", "generous_range", "rcm_order", "wave_number_bound",
            "plan_for", "design_range", "design_below", "clear_plans", "PLAN_MODELS"]
 
 #: SymPy's one (a singleton): most coefficients of the scatter are it.
@@ -93,12 +93,23 @@ def piece_length(segment, radius: float, nu_max: float = NU_MAX) -> float:
     other than Euler–Bernoulli) its clamped-clamped natural frequencies lie above
     ``sqrt(radius)`` (:meth:`~symtmm.elements.theories.BeamSegment.safe_length`).
     """
-    s = wave_number_bound(segment, radius)
-    length = float(segment.l)
-    longest = length if s * length <= nu_max else nu_max / s
+    longest = wave_piece(wave_number_bound(segment, radius), float(segment.l), nu_max)
     if not isinstance(segment, EulerBernoulliSegment):
         longest = min(longest, segment.safe_length(radius))
     return longest
+
+
+def wave_piece(s: float, length: float, nu_max: float = NU_MAX) -> float:
+    """The longest piece of a stretch ``length`` long whose largest wave number is ``s``
+    (the rule of :func:`piece_length` for Euler–Bernoulli pieces): the stretch itself where
+    ``s length <= nu_max``, else ``nu_max / s``.
+
+    Examples
+    --------
+    >>> wave_piece(2.0, 1.0, 3.0), wave_piece(6.0, 1.0, 3.0)
+    (1.0, 0.5)
+    """
+    return length if s * length <= nu_max else nu_max / s
 
 
 def piece_rule(radius: float, nu_max: float = NU_MAX):
