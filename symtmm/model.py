@@ -828,7 +828,14 @@ class Link:
 
 def _nonzero(expr) -> bool:
     """An exact expression that is not identically zero (a symbol's may be: assume not)."""
-    return sp.simplify(sp.sympify(expr)) != 0
+    expr = sp.sympify(expr)
+    return expr != 0 if expr.is_Rational else sp.simplify(expr) != 0
+
+
+def _tidy(expr) -> sp.Expr:
+    """``expr`` expanded, a rational as it is (SymPy's expansion costs microseconds, and
+    the geometry of most models is rational)."""
+    return expr if isinstance(expr, sp.Rational) else sp.expand(expr)
 
 
 def body_frame(body: RigidBody, beams: dict, links=()) -> BodyFrame:
@@ -863,7 +870,7 @@ def body_frame(body: RigidBody, beams: dict, links=()) -> BodyFrame:
               points[0][1] if body.yc is None else body.yc)
     turns = tuple(not (a.hinged or a.elastic or beams[a.beam].is_rod) for a in atts)
     # the motion of the point P along d under a rotation Theta about C: Theta (d x (P - C))
-    arms = [sp.expand(d[1] * (p[0] - centre[0]) - d[0] * (p[1] - centre[1]))
+    arms = [_tidy(d[1] * (p[0] - centre[0]) - d[0] * (p[1] - centre[1]))
             for d, p in zip(dirs, points)]
     # (a J that nothing it holds feels is refused by the model: a free rotation)
     rotates = any(turns) or any(_nonzero(a) for a in arms)
@@ -871,8 +878,9 @@ def body_frame(body: RigidBody, beams: dict, links=()) -> BodyFrame:
     for d, arm in zip(dirs, arms):
         row = {}
         for label, e in directions.items():
-            coef = sp.nsimplify(sp.expand(d[0] * e[0] + d[1] * e[1])) \
-                if all(v.is_number for v in d + e) else sp.expand(d[0] * e[0] + d[1] * e[1])
+            coef = _tidy(d[0] * e[0] + d[1] * e[1])
+            if coef.is_number and not coef.is_Rational:
+                coef = sp.nsimplify(coef)
             if coef != 0:
                 row[label] = coef
         if rotates and arm != 0:
@@ -1263,10 +1271,11 @@ class Model:
 
     @cached_property
     def _frames(self) -> dict:
-        beams = {b.name: b for b in self.resolved().beams}
-        links = self.resolved().links
-        return {body.name: body_frame(self._resolved_body(body), beams, links)
-                for body in self.bodies}
+        resolved = self.resolved()
+        beams = {b.name: b for b in resolved.beams}
+        # (the resolved model's bodies, in the same order: resolved once, not again here)
+        return {body.name: body_frame(done, beams, resolved.links)
+                for body, done in zip(self.bodies, resolved.bodies)}
 
     def link_rows(self, link: Link) -> list:
         """``(body, {label: coefficient})`` of each body end of ``link``: ``t . q_a - t . q_b``

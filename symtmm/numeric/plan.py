@@ -41,7 +41,7 @@ import numpy as np
 import sympy as sp
 
 from ..elements import EulerBernoulliSegment
-from ..elements.base import LAM, lam_coefficients, stiffness_coefficients
+from ..elements.base import stiffness_coefficients
 from ..expr import exact_float
 from .arith import DOUBLE, Arithmetic
 from .segments import kind, kind_order, kind_size, kind_tables
@@ -275,8 +275,11 @@ class StiffnessPlan:
             scatter(places, lambda i, j, base=base, size=size: [(("D", base + size * i + j), 1)])
         points = [(places, stiffness_coefficients(element))
                   for places, element in mesh.point_places]
-        points += [(places, lam_coefficients(sp.ImmutableMatrix(
-            sp.diag(*[mass * LAM**2 for mass in masses])))) for places, masses in mesh.body_places]
+        # a body's masses: a diagonal of ``mass lam**2`` (its coefficients written out:
+        # SymPy's diag and polynomials cost a 20-span beam's supports a fifth of its plan)
+        points += [(places, [[[0, 0, sp.sympify(mass)] if i == j else [0]
+                              for j in range(len(masses))] for i, mass in enumerate(masses)])
+                   for places, masses in mesh.body_places]
         for places, polys in points:
             scatter(places, lambda i, j, polys=polys: [(("lam", p), cf) for p, cf in
                                                          enumerate(polys[i][j]) if cf != 0])
