@@ -12,6 +12,7 @@ from setuptools import Extension, setup
 setup(ext_modules=[
     Extension(
         "symtmm.numeric._band", ["symtmm/numeric/_band.c"],
+        depends=["symtmm/numeric/_band_core.h"],
         # a fused multiply-add would round differently from the numpy loop
         extra_compile_args=["-O2", "-ffp-contract=off"],
         optional=True),
@@ -21,7 +22,8 @@ setup(ext_modules=[
         depends=["symtmm/numeric/_multiword_double.h", "symtmm/numeric/_multiword_complex.h",
                  "symtmm/numeric/_multiword_instance.h", "symtmm/numeric/_multiword_words.h",
                  "symtmm/numeric/_multiword_nw.h", "symtmm/numeric/_multiword_dd.h",
-                 "symtmm/numeric/_multiword_limbs.h", "symtmm/numeric/_multiword_kernel.h"],
+                 "symtmm/numeric/_multiword_limbs.h", "symtmm/numeric/_multiword_kernel.h",
+                 "symtmm/numeric/_band_core.h"],
         extra_compile_args=["-O2", "-ffp-contract=off"],
         optional=True),
 ])

@@ -153,3 +153,92 @@ def test_a_batch_factorised_in_parts_is_the_batch_factorised_at_once(monkeypatch
                        np.array(whole.pivoted_delta(bad), dtype=complex), rtol=0, atol=0)
     with pytest.raises(KeyError, match="untrusted points only"):
         parts.K[[int(np.nonzero(whole.trusted)[0][0])]]
+
+
+@compiled_only
+@pytest.mark.parametrize("name, damped", [("paper_ex3_three_pp_coupled.toml", False),
+                                          ("paper_ex2_three_pp.toml", False),
+                                          ("tuned_mass_damper.toml", True)])
+def test_the_one_pass_summary_reads_the_factors_as_their_bookkeeping_does(
+        examples_dir, name, damped):
+    """``summary`` (one compiled pass: log|Delta| through one logarithm of the pivots'
+    running product, the phase, the count) against :class:`Factors` (a logarithm per
+    pivot, numpy): the same counts and decisions, log|Delta| and the phase to rounding,
+    at points far from and at roots (example 2's triple roots pi**2, 4 pi**2: pivots
+    that break down to tiny or zero values)."""
+    from symtmm.numeric.evaluator import Evaluator
+
+    model = api.load(examples_dir / name).require_numeric()
+    plan = Evaluator(model, 100.0).plan(100.0)
+    omega = np.concatenate([np.linspace(0.5, 95.0, 41), [np.pi**2, 4 * np.pi**2]])
+    lam = omega * (1j if not damped else (-0.05 + 1j))
+    lam2 = lam * lam if damped else (lam * lam).real
+    dash = lam if damped else None
+    logabs, phase, counts = stiffness.summary(plan, lam2, dash)
+    fa = stiffness.factor(plan, DOUBLE, lam2, lam=dash)
+    want_log, want_phase = fa.log_delta()
+    finite = np.isfinite(want_log)
+    assert finite.sum() >= 40
+    np.testing.assert_allclose(logabs[finite], want_log[finite], rtol=1e-13, atol=1e-12)
+    assert np.array_equal(np.isfinite(logabs), finite)
+    turn = np.angle(np.exp(1j * (phase[finite] - want_phase[finite])))
+    assert np.max(np.abs(turn)) < 1e-10
+    want_counts = np.where(fa.trusted, fa.counts(), -1) if not damped else \
+        np.where(fa.trusted, 0, -1)
+    assert np.array_equal(counts, want_counts)
+
+
+@compiled_only
+@pytest.mark.parametrize("dtype", [float, complex])
+def test_the_summary_logarithm_holds_pivots_of_any_size(dtype):
+    """Diagonal bands (no elimination: the pivots are the diagonal) whose running product
+    leaves the doubles' range many times over, and pivots beyond 2**-400..2**400, subnormal
+    among them: log|Delta| and the phase as the sums of each pivot's own."""
+    rng = np.random.default_rng(7)
+    B, n = 5, 300
+    exps = rng.choice([-1000.0, -450.0, -300.0, 0.0, 300.0, 450.0, 1000.0], size=(B, n))
+    exps[:, :40] = 450.0                       # runs far beyond the range, both ways
+    exps[:, 40:80] = -450.0
+    exps[1, 5] = -1070.0                       # subnormal
+    d = np.exp2(exps) * rng.uniform(0.5, 2.0, size=(B, n)) * rng.choice([-1, 1], size=(B, n))
+    if dtype is complex:
+        d = d * np.exp(1j * rng.uniform(-np.pi, np.pi, size=(B, n)))
+    K = np.ascontiguousarray(d[:, :, None].astype(dtype))
+    Kb = np.concatenate([K, np.zeros((B, 1, 1), dtype=dtype)], axis=1)
+    logabs, phase, counts = np.empty(B), np.empty(B), np.empty(B, dtype=np.int64)
+    stiffness._band.summary(Kb, K, np.zeros((B, 0), dtype=dtype), np.zeros(0, dtype=np.int64),
+                            logabs, phase, counts, B, n + 1, 1, n, 0, 0.0, np.inf, 0.0,
+                            dtype is complex)
+    want = np.log(np.abs(d)).sum(axis=1)
+    np.testing.assert_allclose(logabs, want, rtol=1e-14)
+    want_phase = np.angle(d).sum(axis=1) if dtype is complex else np.pi * (d < 0).sum(axis=1)
+    turn = np.angle(np.exp(1j * (phase - want_phase)))
+    assert np.max(np.abs(turn)) < 1e-11
+    if dtype is float:
+        assert np.array_equal(counts, (d < 0).sum(axis=1))
+
+
+@compiled_only
+@pytest.mark.parametrize("name, damped", [("paper_ex3_three_pp_coupled.toml", False),
+                                          ("paper_ex2_three_pp.toml", False),
+                                          ("tuned_mass_damper.toml", True)])
+def test_a_point_at_a_time_summary_is_the_batch_of_bands_summary(examples_dir, name, damped):
+    """The compiled kernel's summary a point at a time (each band built, factorised and read
+    in cache) and the one through a batch of bands: the same bits, and the points beyond
+    the series' reach (here a frequency of 1e5) taken the banded way."""
+    from symtmm.numeric import multiword
+    from symtmm.numeric.evaluator import Evaluator
+
+    model = api.load(examples_dir / name).require_numeric()
+    plan = Evaluator(model, 100.0).plan(100.0)
+    omega = np.concatenate([np.linspace(0.5, 95.0, 41), [np.pi**2, 1e5]])
+    lam = omega * (1j if not damped else (-0.05 + 1j))
+    lam2 = lam * lam if damped else (lam * lam).real
+    dash = lam if damped else None
+    assert multiword.serves_double(plan, lam2, dash)
+    fused = multiword.double_summary(plan, lam2, dash)
+    assert fused[3][:-1].all() and not fused[3][-1]
+    whole = stiffness.summary(plan, lam2, dash)
+    banded = stiffness._banded_summary(plan, lam2, dash)
+    for got, want in zip(whole, banded):
+        np.testing.assert_array_equal(got, want)

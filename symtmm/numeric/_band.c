@@ -1,23 +1,13 @@
 /*
  * The loops of symtmm.numeric.stiffness in C, for double and complex double batches:
  * the scatter of the element values into the band (assemble), LDL^T without pivoting
- * of B banded matrices at once (_ldl), and the diagonal of |L||D||L^T| that decides
- * which pivot signs are trusted.
- *
- * The band is stored as in stiffness.py: K[p, r, j] = K_p[r, r + j], rows padded with w
- * zero rows, shape (B, rows, w). Pivot k updates, for 1 <= i <= j < w,
- *
- *     K[p, k + i, j - i] -= (K[p, k, i] / K[p, k, 0]) * K[p, k, j],
- *
- * the operations of the numpy loop in the same order (products and quotients rounded
- * as numpy rounds them, complex quotients by Smith's method as numpy's), so both give
- * the same factors. Build with -ffp-contract=off: a fused multiply-add would round
- * differently.
+ * of B banded matrices at once (_ldl), the diagonal of |L||D||L^T| that decides which
+ * pivot signs are trusted, and summary(), which reads a factorised batch as the searches
+ * do. The per-point loops are those of _band_core.h (the elimination in the numpy loop's
+ * order of operations, its layout of the band).
  *
  * The scatter sums each entry's terms in the order of the plan a layer at a time, as
- * the numpy loop does; the bounds add, for j = 1 .. w - 1 in turn, |L D| of the
- * j-th row above, squared, over that pivot's |d| (hypot for complex magnitudes, as
- * numpy's abs). summary() reads a factorised batch as the searches do.
+ * the numpy loop does.
  *
  * No numpy headers: arrays come as buffers.
  */
@@ -26,70 +16,7 @@
 #include <math.h>
 #include <stdint.h>
 
-static void eliminate_real(double *K, Py_ssize_t B, Py_ssize_t rows, Py_ssize_t w,
-                           Py_ssize_t n)
-{
-    for (Py_ssize_t p = 0; p < B; p++) {
-        double *Kp = K + p * rows * w;
-        for (Py_ssize_t k = 0; k < n; k++) {
-            const double *row = Kp + k * w;
-            const double piv = row[0];
-            for (Py_ssize_t i = 1; i < w; i++) {
-                const double f = row[i] / piv;
-                double *target = Kp + (k + i) * w - i;
-                for (Py_ssize_t j = i; j < w; j++) {
-                    const double t = f * row[j];
-                    target[j] = target[j] - t;
-                }
-            }
-        }
-    }
-}
-
-/* (a / b) as numpy divides complex numbers (Smith's method). */
-static void cdiv(double ar, double ai, double br, double bi, double *qr, double *qi)
-{
-    const double abs_br = fabs(br), abs_bi = fabs(bi);
-    if (abs_br >= abs_bi) {
-        if (abs_br == 0 && abs_bi == 0) {
-            *qr = ar / abs_br;
-            *qi = ai / abs_bi;
-        } else {
-            const double rat = bi / br;
-            const double scl = 1.0 / (br + bi * rat);
-            *qr = (ar + ai * rat) * scl;
-            *qi = (ai - ar * rat) * scl;
-        }
-    } else {
-        const double rat = br / bi;
-        const double scl = 1.0 / (bi + br * rat);
-        *qr = (ar * rat + ai) * scl;
-        *qi = (ai * rat - ar) * scl;
-    }
-}
-
-static void eliminate_complex(double *K, Py_ssize_t B, Py_ssize_t rows, Py_ssize_t w,
-                              Py_ssize_t n)
-{
-    for (Py_ssize_t p = 0; p < B; p++) {
-        double *Kp = K + 2 * p * rows * w;
-        for (Py_ssize_t k = 0; k < n; k++) {
-            const double *row = Kp + 2 * k * w;
-            for (Py_ssize_t i = 1; i < w; i++) {
-                double fr, fi;
-                cdiv(row[2 * i], row[2 * i + 1], row[0], row[1], &fr, &fi);
-                double *target = Kp + 2 * ((k + i) * w - i);
-                for (Py_ssize_t j = i; j < w; j++) {
-                    const double xr = row[2 * j], xi = row[2 * j + 1];
-                    const double tr = fr * xr - fi * xi;
-                    const double ti = fr * xi + fi * xr;
-                    target[2 * j] = target[2 * j] - tr;
-                    target[2 * j + 1] = target[2 * j + 1] - ti;
-                }
-            }
-        }
-    }
-}
+#include "_band_core.h"
 
 static PyObject *eliminate(PyObject *self, PyObject *args)
 {
@@ -105,10 +32,13 @@ static PyObject *eliminate(PyObject *self, PyObject *args)
         return NULL;
     }
     Py_BEGIN_ALLOW_THREADS
-    if (is_complex)
-        eliminate_complex((double *)buf.buf, B, rows, w, n);
-    else
-        eliminate_real((double *)buf.buf, B, rows, w, n);
+    for (Py_ssize_t p = 0; p < B; p++) {
+        double *Kp = (double *)buf.buf + (is_complex ? 2 : 1) * p * rows * w;
+        if (is_complex)
+            band_eliminate_complex(Kp, w, n);
+        else
+            band_eliminate_real(Kp, w, n);
+    }
     Py_END_ALLOW_THREADS
     PyBuffer_Release(&buf);
     Py_RETURN_NONE;
@@ -175,29 +105,6 @@ static PyObject *scatter(PyObject *self, PyObject *args)
     Py_RETURN_NONE;
 }
 
-static double magnitude(const double *x, int is_complex)
-{
-    return is_complex ? hypot(x[0], x[1]) : fabs(x[0]);
-}
-
-/* The scale of each pivot as bounds() gives it, into scale (n doubles). */
-static void pivot_scales(const double *F, const double *K, Py_ssize_t w, Py_ssize_t n,
-                         int is_complex, double *scale)
-{
-    const Py_ssize_t c = is_complex ? 2 : 1;
-    for (Py_ssize_t m = 0; m < n; m++)
-        scale[m] = magnitude(K + c * m * w, is_complex);
-    for (Py_ssize_t j = 1; j < w && j < n; j++) {
-        for (Py_ssize_t m = j; m < n; m++) {
-            const double r = magnitude(F + c * ((m - j) * w + j), is_complex);
-            const double d = magnitude(F + c * (m - j) * w, is_complex);
-            /* np.maximum(d, 1e-300): a NaN stays NaN */
-            const double q = r * r / ((d != d || d > 1e-300) ? d : 1e-300);
-            scale[m] = scale[m] + q;
-        }
-    }
-}
-
 static PyObject *bounds(PyObject *self, PyObject *args)
 {
     Py_buffer kb, k0, out;
@@ -215,7 +122,7 @@ static PyObject *bounds(PyObject *self, PyObject *args)
     }
     Py_BEGIN_ALLOW_THREADS
     for (Py_ssize_t p = 0; p < B; p++)
-        pivot_scales((const double *)kb.buf + c * p * rows * w,
+        band_pivot_scales((const double *)kb.buf + c * p * rows * w,
                      (const double *)k0.buf + c * p * n * w, w, n, is_complex,
                      (double *)out.buf + p * n);
     Py_END_ALLOW_THREADS
@@ -258,42 +165,12 @@ static PyObject *summary(PyObject *self, PyObject *args)
     }
     const int64_t *mu = (const int64_t *)mult.buf;
     Py_BEGIN_ALLOW_THREADS
-    for (Py_ssize_t p = 0; p < B; p++) {
-        const double *F = (const double *)kb.buf + c * p * rows * w;
-        const double *K = (const double *)k0.buf + c * p * n * w;
-        const double *D = (const double *)d12.buf + c * p * S;
-        pivot_scales(F, K, w, n, is_complex, scale);
-        double base = 1e-300;
-        for (Py_ssize_t m = 0; m < n; m++) {
-            const double a = magnitude(K + c * m * w, is_complex);
-            if (a > base || a != a)
-                base = a;
-        }
-        int decided = 1;
-        int64_t negatives = 0;
-        double la = 0.0, ph = 0.0;
-        for (Py_ssize_t m = 0; m < n; m++) {
-            const double *d = F + c * m * w;
-            const double mag = magnitude(d, is_complex);
-            if (!(mag > trust * scale[m] && scale[m] <= growth * base))
-                decided = 0;
-            la += log(mag);
-            if (is_complex)
-                ph += atan2(d[1], d[0]);
-            else if (d[0] < 0) {
-                negatives++;
-                ph += M_PI;
-            }
-        }
-        for (Py_ssize_t j = 0; j < S; j++) {
-            const double *v = D + c * j;
-            la += (double)mu[j] * log(magnitude(v, is_complex));
-            ph += (double)mu[j] * (is_complex ? atan2(v[1], v[0]) : (v[0] < 0 ? M_PI : 0.0));
-        }
-        ((double *)la_out.buf)[p] = la + log_constant;
-        ((double *)ph_out.buf)[p] = atan2(sin(ph), cos(ph));
-        ((int64_t *)cnt_out.buf)[p] = decided ? (is_complex ? 0 : negatives) : -1;
-    }
+    for (Py_ssize_t p = 0; p < B; p++)
+        band_point_summary((const double *)kb.buf + c * p * rows * w,
+                           (const double *)k0.buf + c * p * n * w,
+                           (const double *)d12.buf + c * p * S, mu, w, n, S, trust, growth,
+                           log_constant, is_complex, scale, (double *)la_out.buf + p,
+                           (double *)ph_out.buf + p, (int64_t *)cnt_out.buf + p);
     Py_END_ALLOW_THREADS
     PyMem_Free(scale);
     PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&d12);

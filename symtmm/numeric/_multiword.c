@@ -36,6 +36,8 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "_band_core.h"
+
 /* The error-free transformations need every double operation rounded once, to double:
  * not through x87's extended registers (32-bit x86 without SSE2). Where that cannot be
  * had, the extension does not build and every proof runs in Arb. */
@@ -236,6 +238,96 @@ static PyObject *assemble(PyObject *self, PyObject *args)
     Py_RETURN_NONE;
 }
 
+/* summary(N, lam2, lam, kinds, families, coef, tails, K, tcoef, ttails, TK, targets,
+ *         source, bcoef, starts, n, w, mult, trust, growth, log_constant, logabs, phase,
+ *         count, ok)
+ *   N 1 (doubles) or 101 (complex doubles): per point the band of K(lam), as assemble()
+ *   builds it (the same tables; n freedoms, w the band's width), factorised and read as
+ *   _band.c's eliminate() and summary() do it, one point at a time: its band stays in
+ *   cache, and no batch of bands is written (for a 10-level chain, copying and first
+ *   touching the batch's bands cost as much as factorising them). logabs, phase (B,)
+ *   doubles and count (B,) int64 written where ok[p] = 1; ok[p] = 0 where a value is
+ *   not finite or beyond the series' reach (the caller takes those points in numpy). */
+static PyObject *fused_summary(PyObject *self, PyObject *args)
+{
+    Py_buffer lb, lmb, kb, fb, cb, tb, tcb, ttb, tgb, srcb, bcb, stb, mb, lab, phb, cnb, okb;
+    Py_ssize_t K, TK, n, w;
+    double trust, growth, log_constant;
+    int N;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "iy*y*y*y*y*y*ny*y*ny*y*y*y*nny*dddw*w*w*w*", &N, &lb, &lmb,
+                          &kb, &fb, &cb, &tb, &K, &tcb, &ttb, &TK, &tgb, &srcb, &bcb, &stb,
+                          &n, &w, &mb, &trust, &growth, &log_constant, &lab, &phb, &cnb,
+                          &okb))
+        return NULL;
+    const int is_complex = N == 101;
+    int good = N == 1 || N == 101;
+    const Py_ssize_t item = is_complex ? 16 : 8, c = is_complex ? 2 : 1;
+    const Py_ssize_t B = lb.len / item, S = fb.len / 8;
+    const Py_ssize_t T = tgb.len / 8, Q = stb.len / 8 - 1, nv = 16 * S + 3, nk = n * w;
+    good = good && n >= 1 && w >= 1 && K >= 2 && TK >= 2 && kb.len == 8 * S * item
+           && cb.len == 4 * K * item && tb.len == 4 * (K + 1) * 8
+           && tcb.len == (2 * TK + 2) * item && ttb.len == 16 && srcb.len == tgb.len
+           && bcb.len == T * item && Q >= 0 && mb.len == S * 8 && lab.len == B * 8
+           && phb.len == B * 8 && cnb.len == B * 8 && okb.len == B
+           && (lmb.len == 0 || lmb.len == lb.len) && lb.len % item == 0;
+    const long long *tg = tgb.buf, *src = srcb.buf, *st = stb.buf, *fam = fb.buf;
+    for (Py_ssize_t i = 0; good && i < S; i++)
+        good = fam[i] == 0 || fam[i] == 1;
+    for (Py_ssize_t i = 0; good && i < T; i++)
+        good = src[i] >= 0 && src[i] < nv && tg[i] >= 0 && tg[i] < nk;
+    for (Py_ssize_t q = 0; good && q <= Q; q++)
+        good = st[q] >= 0 && st[q] <= T && (q == 0 || st[q] >= st[q - 1]);
+    /* one point's band as built, padded for the elimination, det U12, V, the scales */
+    double *work = good ? PyMem_Malloc(sizeof(double) * (c * (nk + (n + w) * w + S + nv) + n))
+                        : NULL;
+    if (good && work) {
+        double *band = work, *fact = band + c * nk, *det = fact + c * (n + w) * w;
+        double *V = det + c * S, *scale = V + c * nv;
+        const int64_t *mu = mb.buf;
+        unsigned char *ok = okb.buf;
+        Py_BEGIN_ALLOW_THREADS
+        for (Py_ssize_t p = 0; p < B; p++) {
+            const uint64_t *lam2 = (const uint64_t *)lb.buf + c * p;
+            const uint64_t *lam = lmb.len ? (const uint64_t *)lmb.buf + c * p : NULL;
+            if (is_complex)
+                assemble_points_c1(lam2, lam, kb.buf, fam, S, cb.buf, tb.buf, K, tcb.buf,
+                                   ttb.buf, TK, tg, src, bcb.buf, st, Q, (uint64_t *)band,
+                                   nk, (uint64_t *)det, (uint64_t *)V, ok + p, 1);
+            else
+                assemble_points_1(lam2, lam, kb.buf, fam, S, cb.buf, tb.buf, K, tcb.buf,
+                                  ttb.buf, TK, tg, src, bcb.buf, st, Q, (uint64_t *)band, nk,
+                                  (uint64_t *)det, (uint64_t *)V, ok + p, 1);
+            if (!ok[p])
+                continue;
+            memcpy(fact, band, sizeof(double) * c * nk);
+            memset(fact + c * nk, 0, sizeof(double) * c * w * w);
+            if (is_complex)
+                band_eliminate_complex(fact, w, n);
+            else
+                band_eliminate_real(fact, w, n);
+            band_point_summary(fact, band, det, mu, w, n, S, trust, growth, log_constant,
+                               is_complex, scale, (double *)lab.buf + p,
+                               (double *)phb.buf + p, (int64_t *)cnb.buf + p);
+        }
+        Py_END_ALLOW_THREADS
+    }
+    PyBuffer_Release(&lb); PyBuffer_Release(&lmb); PyBuffer_Release(&kb);
+    PyBuffer_Release(&fb); PyBuffer_Release(&cb); PyBuffer_Release(&tb);
+    PyBuffer_Release(&tcb); PyBuffer_Release(&ttb); PyBuffer_Release(&tgb);
+    PyBuffer_Release(&srcb); PyBuffer_Release(&bcb); PyBuffer_Release(&stb);
+    PyBuffer_Release(&mb); PyBuffer_Release(&lab); PyBuffer_Release(&phb);
+    PyBuffer_Release(&cnb); PyBuffer_Release(&okb);
+    if (!good) {
+        PyErr_SetString(PyExc_ValueError, "summary: tables and buffers do not fit");
+        return NULL;
+    }
+    if (!work)
+        return PyErr_NoMemory();
+    PyMem_Free(work);
+    Py_RETURN_NONE;
+}
+
 /* eliminate(N, band, B, rows, w, n, ok): LDL^T without pivoting in place on (B, rows, w)
  * balls, as symtmm.numeric.stiffness.eliminate, but for the 2x2 blocks above; row k then
  * holds d_k first (the L factors are not kept). Exact zeros are skipped (the envelope).
@@ -343,6 +435,9 @@ static PyMethodDef methods[] = {
      "source, bcoef, starts, band, det12, V, ok): the band of K(lam) in balls of code N."},
     {"eliminate", eliminate, METH_VARARGS,
      "eliminate(N, band, B, rows, w, n, ok): LDL^T without pivoting of ball bands, in place."},
+    {"summary", fused_summary, METH_VARARGS,
+     "summary(N, lam2, lam, ..., n, w, mult, trust, growth, log_constant, logabs, phase, "
+     "count, ok): log|Delta|, arg Delta and the count of double batches, a point at a time."},
     {"power_product", power_product, METH_VARARGS,
      "power_product(N, x, k, out, ok): out[p] = prod_i x[p, i]**k[i] of balls."},
     {"ops", ops, METH_VARARGS, "ops(op, N, x, y, out): elementwise ball operations (tests)."},

@@ -108,6 +108,47 @@ def serves_double(plan, lam2, lam) -> bool:
             and _beams_only(plan))
 
 
+def double_summary(plan, lam2, lam=None):
+    """``(log|Delta|, arg Delta, counts, ok)`` of a double-precision batch, as
+    :func:`~symtmm.numeric.stiffness.summary` gives them, by the compiled kernel a point
+    at a time: each point's band built (:func:`double_band`'s series and scatter),
+    factorised and read while it is in cache, and no batch of bands written. ``ok`` false
+    where a value is not finite or beyond the series' reach (the caller takes those
+    points the banded way). None where the plan's numbers do not fit doubles.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> from symtmm.numeric.plan import StiffnessPlan
+    >>> plan = StiffnessPlan(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 1e4)
+    >>> logabs, phase, counts, ok = double_summary(plan, -np.array([5.0, 12.0, 50.0]) ** 2)
+    >>> counts.tolist(), ok.tolist()                  # roots (n pi)**2: 9.87, 39.5, 88.8
+    ([0, 1, 2], [True, True, True])
+    """
+    from .arith import DOUBLE
+
+    tabs = _double_tables(plan)
+    if tabs is None:
+        return None
+    complex_ = np.iscomplexobj(lam2) or (lam is not None and np.iscomplexobj(lam))
+    dtype, code = (np.complex128, COMPLEX + 1) if complex_ else (np.float64, 1)
+    if complex_:
+        tabs = _complex_tables(tabs, 1)
+    lam2 = np.ascontiguousarray(lam2, dtype=dtype)
+    lam = b"" if lam is None else np.ascontiguousarray(lam, dtype=dtype)
+    B = lam2.shape[0]
+    logabs, phase = np.empty(B), np.empty(B)
+    counts, ok = np.empty(B, dtype=np.int64), np.zeros(B, dtype=np.uint8)
+    _multiword.summary(code, lam2, lam, tabs["kinds"], tabs["families"], tabs["coef"],
+                       tabs["tails"], TERMS, tabs["tcoef"], tabs["ttails"], tabs["TK"],
+                       tabs["targets"], tabs["source"], tabs["bcoef"], tabs["starts"],
+                       plan.n, plan.width, np.ascontiguousarray(plan.multiplicity,
+                                                                dtype=np.int64),
+                       DOUBLE.TRUST, DOUBLE.growth_limit, float(plan.log_constant), logabs,
+                       phase, counts, ok)
+    return logabs, phase, counts, ok.astype(bool)
+
+
 def _beams_only(plan) -> bool:
     """Every segment kind of the plan one the compiled kernel holds (:data:`_FAMILIES`)."""
     return all(family in _FAMILIES for family, _ in plan.kinds)

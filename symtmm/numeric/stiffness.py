@@ -659,9 +659,31 @@ def summary(plan, lam2, lam=None):
     if not COMPILED:
         return None
     lam2 = np.asarray(lam2)
+    from . import multiword  # (it builds on this module)
+    fused = multiword.double_summary(plan, lam2, lam) \
+        if multiword.serves_double(plan, lam2, lam) else None
+    if fused is not None:
+        # a point at a time in the compiled kernel; the points beyond its series' reach
+        # (or not finite) the banded way, with numpy's closed forms
+        logabs, phase, counts, ok = fused
+        if not ok.all():
+            bad = np.nonzero(~ok)[0]
+            rest = _banded_summary(plan, lam2[bad], None if lam is None else
+                                   np.asarray(lam)[bad])
+            if rest is None:
+                return None
+            logabs[bad], phase[bad], counts[bad] = rest
+        return logabs, phase, counts
+    return _banded_summary(plan, lam2, lam)
+
+
+def _banded_summary(plan, lam2, lam=None):
+    """:func:`summary` by a batch of bands: built (the compiled kernel's, or numpy's closed
+    forms where it does not serve), factorised and read by the compiled loops."""
     step = max(1, BAND_ENTRIES // max(1, plan.n * plan.width))
     if lam2.shape[0] > step:
-        parts = [summary(plan, lam2[i:i + step], None if lam is None else lam[i:i + step])
+        parts = [_banded_summary(plan, lam2[i:i + step],
+                                 None if lam is None else lam[i:i + step])
                  for i in range(0, lam2.shape[0], step)]
         return None if any(p is None for p in parts) else \
             tuple(np.concatenate(x) for x in zip(*parts))
