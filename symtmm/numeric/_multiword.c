@@ -176,6 +176,31 @@ static inline Py_ssize_t ball_words(int N)
     return N > 100 ? 2 * ball_words(N - 100) : N == 1 ? 1 : N == 2 ? 3 : N + 3;
 }
 
+/* Whether the series and scatter tables of assemble() and summary() fit their lengths
+ * and one another, for balls of `item` bytes: S kinds (families 0 or 1), the series of
+ * K and TK terms, T scatter terms in layers (starts) into a band of nk entries per point,
+ * their sources inside V (16 S + 3). */
+static int tables_fit(Py_ssize_t item, const Py_buffer *kb, const Py_buffer *fb,
+                      const Py_buffer *cb, const Py_buffer *tb, Py_ssize_t K,
+                      const Py_buffer *tcb, const Py_buffer *ttb, Py_ssize_t TK,
+                      const Py_buffer *tgb, const Py_buffer *srcb, const Py_buffer *bcb,
+                      const Py_buffer *stb, Py_ssize_t nk)
+{
+    const Py_ssize_t S = fb->len / 8, T = tgb->len / 8, Q = stb->len / 8 - 1;
+    const Py_ssize_t nv = 16 * S + 3;
+    int good = K >= 2 && TK >= 2 && kb->len == 8 * S * item && cb->len == 4 * K * item
+               && tb->len == 4 * (K + 1) * 8 && tcb->len == (2 * TK + 2) * item
+               && ttb->len == 16 && srcb->len == tgb->len && bcb->len == T * item && Q >= 0;
+    const long long *tg = tgb->buf, *src = srcb->buf, *st = stb->buf, *fam = fb->buf;
+    for (Py_ssize_t i = 0; good && i < S; i++)
+        good = fam[i] == 0 || fam[i] == 1;
+    for (Py_ssize_t i = 0; good && i < T; i++)
+        good = src[i] >= 0 && src[i] < nv && tg[i] >= 0 && tg[i] < nk;
+    for (Py_ssize_t q = 0; good && q <= Q; q++)
+        good = st[q] >= 0 && st[q] <= T && (q == 0 || st[q] >= st[q - 1]);
+    return good;
+}
+
 /* assemble(N, lam2, lam, kinds, families, coef, tails, K, tcoef, ttails, TK, targets,
  *          source, bcoef, starts, band, det12, V, ok)
  *   balls of code N (ball_words(N) 64-bit words each): lam2 (B,); lam (B,), or empty
@@ -202,21 +227,13 @@ static PyObject *assemble(PyObject *self, PyObject *args)
         return NULL;
     int good = valid_words(N);
     const Py_ssize_t item = 8 * ball_words(N);
-    const Py_ssize_t B = good ? lb.len / item : 0, S = fb.len / 8;
-    const Py_ssize_t T = tgb.len / 8, Q = stb.len / 8 - 1, nv = 16 * S + 3;
+    const Py_ssize_t B = good ? lb.len / item : 0, S = fb.len / 8, Q = stb.len / 8 - 1;
     const Py_ssize_t nk = B ? bandb.len / item / B : 0;
-    good = good && K >= 2 && TK >= 2 && kb.len == 8 * S * item && cb.len == 4 * K * item
-           && tb.len == 4 * (K + 1) * 8 && tcb.len == (2 * TK + 2) * item && ttb.len == 16
-           && srcb.len == tgb.len && bcb.len == T * item && Q >= 0
-           && detb.len == B * S * item && vb.len == nv * item && okb.len == B
-           && (B == 0 || bandb.len == B * nk * item) && (lmb.len == 0 || lmb.len == lb.len);
+    good = good && detb.len == B * S * item && vb.len == (16 * S + 3) * item && okb.len == B
+           && (B == 0 || bandb.len == B * nk * item) && (lmb.len == 0 || lmb.len == lb.len)
+           && tables_fit(item, &kb, &fb, &cb, &tb, K, &tcb, &ttb, TK, &tgb, &srcb, &bcb,
+                         &stb, nk);
     const long long *tg = tgb.buf, *src = srcb.buf, *st = stb.buf, *fam = fb.buf;
-    for (Py_ssize_t i = 0; good && i < S; i++)
-        good = fam[i] == 0 || fam[i] == 1;
-    for (Py_ssize_t i = 0; good && i < T; i++)
-        good = src[i] >= 0 && src[i] < nv && tg[i] >= 0 && tg[i] < nk;
-    for (Py_ssize_t q = 0; good && q <= Q; q++)
-        good = st[q] >= 0 && st[q] <= T && (q == 0 || st[q] >= st[q - 1]);
     if (good) {
         Py_BEGIN_ALLOW_THREADS
         BY_WORDS(N, assemble_points, lb.buf, lmb.len ? lmb.buf : NULL, kb.buf, fam, S,
@@ -263,21 +280,14 @@ static PyObject *fused_summary(PyObject *self, PyObject *args)
     const int is_complex = N == 101;
     int good = N == 1 || N == 101;
     const Py_ssize_t item = is_complex ? 16 : 8, c = is_complex ? 2 : 1;
-    const Py_ssize_t B = lb.len / item, S = fb.len / 8;
-    const Py_ssize_t T = tgb.len / 8, Q = stb.len / 8 - 1, nv = 16 * S + 3, nk = n * w;
-    good = good && n >= 1 && w >= 1 && K >= 2 && TK >= 2 && kb.len == 8 * S * item
-           && cb.len == 4 * K * item && tb.len == 4 * (K + 1) * 8
-           && tcb.len == (2 * TK + 2) * item && ttb.len == 16 && srcb.len == tgb.len
-           && bcb.len == T * item && Q >= 0 && mb.len == S * 8 && lab.len == B * 8
+    const Py_ssize_t B = lb.len / item, S = fb.len / 8, Q = stb.len / 8 - 1;
+    const Py_ssize_t nv = 16 * S + 3, nk = n * w;
+    good = good && n >= 1 && w >= 1 && mb.len == S * 8 && lab.len == B * 8
            && phb.len == B * 8 && cnb.len == B * 8 && okb.len == B
-           && (lmb.len == 0 || lmb.len == lb.len) && lb.len % item == 0;
+           && (lmb.len == 0 || lmb.len == lb.len) && lb.len % item == 0
+           && tables_fit(item, &kb, &fb, &cb, &tb, K, &tcb, &ttb, TK, &tgb, &srcb, &bcb,
+                         &stb, nk);
     const long long *tg = tgb.buf, *src = srcb.buf, *st = stb.buf, *fam = fb.buf;
-    for (Py_ssize_t i = 0; good && i < S; i++)
-        good = fam[i] == 0 || fam[i] == 1;
-    for (Py_ssize_t i = 0; good && i < T; i++)
-        good = src[i] >= 0 && src[i] < nv && tg[i] >= 0 && tg[i] < nk;
-    for (Py_ssize_t q = 0; good && q <= Q; q++)
-        good = st[q] >= 0 && st[q] <= T && (q == 0 || st[q] >= st[q - 1]);
     /* one point's band as built, padded for the elimination, det U12, V, the scales */
     double *work = good ? PyMem_Malloc(sizeof(double) * (c * (nk + (n + w) * w + S + nv) + n))
                         : NULL;

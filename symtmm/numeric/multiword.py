@@ -127,6 +127,24 @@ def double_summary(plan, lam2, lam=None):
     """
     from .arith import DOUBLE
 
+    inputs = _double_inputs(plan, lam2, lam)
+    if inputs is None:
+        return None
+    code, tabs, lam2, lam = inputs
+    B = lam2.shape[0]
+    logabs, phase = np.empty(B), np.empty(B)
+    counts, ok = np.empty(B, dtype=np.int64), np.zeros(B, dtype=np.uint8)
+    _multiword.summary(code, lam2, lam, *_series_tables(tabs), plan.n, plan.width,
+                       np.ascontiguousarray(plan.multiplicity, dtype=np.int64), DOUBLE.TRUST,
+                       DOUBLE.growth_limit, float(plan.log_constant), logabs, phase, counts,
+                       ok)
+    return logabs, phase, counts, ok.astype(bool)
+
+
+def _double_inputs(plan, lam2, lam):
+    """``(code, tables, lam2, lam)`` of a double batch for the compiled kernel: complex
+    where ``lam2`` or ``lam`` is (``lam`` empty bytes without dashpots); None where the
+    plan's numbers do not fit doubles."""
     tabs = _double_tables(plan)
     if tabs is None:
         return None
@@ -134,19 +152,16 @@ def double_summary(plan, lam2, lam=None):
     dtype, code = (np.complex128, COMPLEX + 1) if complex_ else (np.float64, 1)
     if complex_:
         tabs = _complex_tables(tabs, 1)
-    lam2 = np.ascontiguousarray(lam2, dtype=dtype)
-    lam = b"" if lam is None else np.ascontiguousarray(lam, dtype=dtype)
-    B = lam2.shape[0]
-    logabs, phase = np.empty(B), np.empty(B)
-    counts, ok = np.empty(B, dtype=np.int64), np.zeros(B, dtype=np.uint8)
-    _multiword.summary(code, lam2, lam, tabs["kinds"], tabs["families"], tabs["coef"],
-                       tabs["tails"], TERMS, tabs["tcoef"], tabs["ttails"], tabs["TK"],
-                       tabs["targets"], tabs["source"], tabs["bcoef"], tabs["starts"],
-                       plan.n, plan.width, np.ascontiguousarray(plan.multiplicity,
-                                                                dtype=np.int64),
-                       DOUBLE.TRUST, DOUBLE.growth_limit, float(plan.log_constant), logabs,
-                       phase, counts, ok)
-    return logabs, phase, counts, ok.astype(bool)
+    return (code, tabs, np.ascontiguousarray(lam2, dtype=dtype),
+            b"" if lam is None else np.ascontiguousarray(lam, dtype=dtype))
+
+
+def _series_tables(tabs: dict) -> tuple:
+    """The kernel's tables in the order of its ``assemble`` and ``summary``: the kinds,
+    the c_j series and the general beams' series, the scatter."""
+    return (tabs["kinds"], tabs["families"], tabs["coef"], tabs["tails"], TERMS,
+            tabs["tcoef"], tabs["ttails"], tabs["TK"], tabs["targets"], tabs["source"],
+            tabs["bcoef"], tabs["starts"])
 
 
 def _beams_only(plan) -> bool:
@@ -189,24 +204,17 @@ def double_band(plan, lam2, lam=None):
     >>> bool(ok.all()), bool(np.allclose(K, K0, rtol=1e-12, atol=1e-12 * abs(K0).max()))
     (True, True)
     """
-    tabs = _double_tables(plan)
-    if tabs is None:
+    inputs = _double_inputs(plan, lam2, lam)
+    if inputs is None:
         return None
-    complex_ = np.iscomplexobj(lam2) or (lam is not None and np.iscomplexobj(lam))
-    dtype, code = (np.complex128, COMPLEX + 1) if complex_ else (np.float64, 1)
-    if complex_:
-        tabs = _complex_tables(tabs, 1)
-    lam2 = np.ascontiguousarray(lam2, dtype=dtype)
-    lam = b"" if lam is None else np.ascontiguousarray(lam, dtype=dtype)
-    B, n, w = lam2.shape[0], plan.n, plan.width
+    code, tabs, lam2, lam = inputs
+    B, n, w, dtype = lam2.shape[0], plan.n, plan.width, lam2.dtype
     S = tabs["families"].shape[0]
     band = np.empty((B, n * w), dtype=dtype)
     det12 = np.empty((B, S), dtype=dtype)
     ok = np.zeros(B, dtype=np.uint8)
-    _multiword.assemble(code, lam2, lam, tabs["kinds"], tabs["families"], tabs["coef"],
-                        tabs["tails"], TERMS, tabs["tcoef"], tabs["ttails"], tabs["TK"],
-                        tabs["targets"], tabs["source"], tabs["bcoef"], tabs["starts"],
-                        band, det12, np.empty(16 * S + 3, dtype=dtype), ok)
+    _multiword.assemble(code, lam2, lam, *_series_tables(tabs), band, det12,
+                        np.empty(16 * S + 3, dtype=dtype), ok)
     return band.reshape(B, n, w), det12, ok.astype(bool)
 
 
@@ -631,10 +639,8 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bo
     band = np.empty((B, n * w, W), dtype=np.uint64)
     det12 = np.empty((B, S, W), dtype=np.uint64)
     ok = np.zeros(B, dtype=np.uint8)
-    _multiword.assemble(code, points, lams, tabs["kinds"], tabs["families"], tabs["coef"],
-                        tabs["tails"], TERMS, tabs["tcoef"], tabs["ttails"], tabs["TK"],
-                        tabs["targets"], tabs["source"], tabs["bcoef"], tabs["starts"],
-                        band, det12, np.empty((16 * S + 3, W), dtype=np.uint64), ok)
+    _multiword.assemble(code, points, lams, *_series_tables(tabs), band, det12,
+                        np.empty((16 * S + 3, W), dtype=np.uint64), ok)
     band = band.reshape(B, n, w, W)
     built = ok.copy()
     Kb = _eliminated(band, reverse, ok, code)
