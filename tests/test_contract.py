@@ -286,3 +286,23 @@ def test_every_arithmetic_provides_the_kernels_functions(arith):
         got = ar.to_complex(v) if arith != "double" else np.asarray(v, dtype=complex)
         assert np.allclose(got, [1, 1] if v is one or v is hyp else [3 / 7, 2], rtol=1e-14)
     assert np.all(ar.upper(x) >= [3 / 7, 2])
+
+
+@pytest.mark.parametrize("arith", [a for a in ARITHMETICS if a != "double"])
+def test_points_are_squared_exactly(arith):
+    """``lam**2`` of the kernel's points: exact in mpmath and balls, whatever the working
+    bits (here 60, for points of 140 bits, real and complex, parts of different scales):
+    rounded, a point near a zero would carry an error of the size of ``Delta`` itself."""
+    ar = MP(60) if arith == "mp" else Ball(60)
+    big = mpmath.mpf(2) ** 70 + 1
+    points = [big, mpmath.mpc(big, 3), mpmath.mpc(-mpmath.mpf(2) ** -80 - 1, big)]
+    with ar:
+        got = ar.square(ar.array([ar.number(z) for z in points]))
+    with mpmath.workprec(1000):
+        want = [z * z for z in points]
+        for g, w in zip(got, want):
+            value = ar.to_mpmath(g) if arith == "ball" else g
+            assert value == w
+            if arith == "ball":
+                parts = (g.real, g.imag) if hasattr(g, "imag") else (g,)
+                assert all(p.rad() == 0 for p in parts)

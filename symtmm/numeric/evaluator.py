@@ -191,7 +191,7 @@ class Evaluator:
         def build(work, idx):
             chosen = points if idx is None else [points[i] for i in idx]
             values = work.array([work.number(z) for z in chosen])
-            return values * values, values
+            return work.square(values), values
         return self._factor(self.plan(top, len(points), ar), ar, build, retry)
 
     def _factor(self, plan, ar, build, retry: bool = True) -> Factors:

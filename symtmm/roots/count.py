@@ -102,8 +102,8 @@ class Counter(Evaluator):
 
         def build(work, idx):
             chosen = points if idx is None else [points[i] for i in idx]
-            pts = [work.number(v) for v in chosen]
-            return work.array([p * p if positive else -(p * p) for p in pts]), None
+            squares = work.square(work.array([work.number(v) for v in chosen]))
+            return squares if positive else -squares, None
         return self._factor(self.plan(max((float(v) for v in points), default=0.0),
                                       len(points), ar), ar, build)
 
