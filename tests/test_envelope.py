@@ -300,6 +300,26 @@ def test_a_crawling_bracket_shrinks_by_spread_points(growth, most):
     assert steps.max() <= most, steps
 
 
+def test_a_bracket_spanning_decades_is_spread_in_log_scale():
+    """A real zero of a damped model beside lam = 0: bracket (-220, -1.1), the zero at
+    -2.19 near its small end, the value growing like exp(|x|) toward the far end. Points
+    spread evenly in log|x| find it in 12 steps (evenly spaced ones took 20: -165, -110,
+    -55 all lie on the far side)."""
+    steps = [0]
+
+    def f(x):
+        return (x + 2.19) * np.exp(-x)
+
+    def probe(c, idx):
+        steps[0] += 1
+        v = f(c)
+        return v, np.where(v * f(b[idx]) > 0, 1, -1)
+    a, b = np.array([-220.0]), np.array([-1.1])
+    out = shrink(a, b, f(a), f(b), probe, 1e-13)
+    np.testing.assert_allclose(out, [-2.19], rtol=1e-12)
+    assert steps[0] <= 13, steps
+
+
 def test_a_string_like_beam_in_tension_builds_few_plans(monkeypatch):
     """A pinned-pinned beam in strong tension has modes like a string's (omega ~ n), so a
     first guess from the beam's largest (evanescent) wave number is low, and each count on

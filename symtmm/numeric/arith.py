@@ -553,21 +553,25 @@ class Ball(Arithmetic):
         return _filled(shape, self.flint.acb(0) if complex_ else self.flint.arb(0))
 
     def square(self, values):
-        # exact where the values are (points, exact balls): at the bits their square spans
+        # exact where the values are (points, exact balls): at the bits their squares span
         flint = self.flint
-        out = []
+        bits = self.prec
         for v in values:
-            parts = (v.real, v.imag) if isinstance(v, flint.acb) else (v,)
-            if all(p.rad() == 0 for p in parts):
-                spans = [(int(e), int(e) + int(m).bit_length()) for m, e in
-                         (p.mid().man_exp() for p in parts) if m != 0]
-                bits = 2 * (max(t for _, t in spans) - min(b for b, _ in spans)) + 8 \
-                    if spans else 2
-                with Ball(max(self.prec, bits)):
-                    out.append(v * v)
-            else:
-                with self:
-                    out.append(v * v)
+            for p in ((v.real, v.imag) if isinstance(v, flint.acb) else (v,)):
+                if p.rad() == 0 and p != 0:
+                    m = p.mid().man_exp()[0]
+                    bits = max(bits, 2 * int(m).bit_length() + 8)
+            if isinstance(v, flint.acb) and v.real != 0 and v.imag != 0:
+                # (a^2 - b^2: the span of both parts' bits)
+                (ma, ea), (mb, eb) = v.real.mid().man_exp(), v.imag.mid().man_exp()
+                top = max(int(ea) + int(ma).bit_length(), int(eb) + int(mb).bit_length())
+                bits = max(bits, 2 * (top - min(int(ea), int(eb))) + 8)
+        saved = flint.ctx.prec
+        flint.ctx.prec = bits
+        try:
+            out = [v * v for v in values]
+        finally:
+            flint.ctx.prec = saved
         return self.array(out, np.shape(values))
 
     def root4(self, x):

@@ -6,7 +6,8 @@ that stays twice in a row (so neither end sticks; after a step to the other side
 the two latest points bracket the root and the plain secant through them
 converges superlinearly) on a batch of brackets, one evaluation of all the
 active ones per step. A bracket that three steps together have not halved adds
-:data:`SPREAD` evenly spaced points to its next secant point, in the same batch:
+:data:`SPREAD` evenly spaced points to its next secant point, in the same batch (spaced
+evenly in ``log|x|`` where the bracket spans more than a factor of four on one side of 0):
 superlinear near a simple root, and where the secant crawls (a root near one end,
 the function there dominated by a neighbouring root) the bracket still shrinks
 fourfold a step. A batch costs little more for a few more points, so the slowest
@@ -129,8 +130,19 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
         # slow convergence would otherwise set the number of batches for all
         points, owner = [c], [np.arange(idx.size)]
         s_idx = np.nonzero(slow[idx])[0]
+        # (a bracket of one sign spanning more than a factor of four: the points spaced
+        # evenly in log|x|, for a root near its small end, where a real zero of a damped
+        # model lies beside lam = 0 and the function grows by orders of magnitude toward
+        # the far end: evenly spaced points found it only after twelve steps)
+        As, Bs = A[s_idx], B[s_idx]
+        with np.errstate(all="ignore"):
+            ratio = np.where(As * Bs > 0, np.abs(Bs / As), 1.0)
+        wide = (ratio > 4.0) | (ratio < 0.25)
         for q in range(1, SPREAD + 1):
-            points.append(A[s_idx] + (B[s_idx] - A[s_idx]) * q / (SPREAD + 1))
+            t = q / (SPREAD + 1)
+            with np.errstate(all="ignore"):
+                geometric = As * ratio ** t
+            points.append(np.where(wide, geometric, As + (Bs - As) * t))
             owner.append(s_idx)
         owner = np.concatenate(owner)
         x = np.clip(np.concatenate(points), A[owner] + guard[owner], B[owner] - guard[owner])

@@ -959,7 +959,11 @@ class _Search:
         fa, fb, ref = scaled_ends(la, np.where(np.cos(ph) < 0, -1.0, 1.0))
 
         def probe(c, idx):
-            lc, pc, okc = self.p.log_delta(c.astype(complex))
+            # (the double values alone: a point too near the zero for them stops its
+            # bracket there, and the pairs take it from that estimate; re-evaluated in
+            # balls, as the contour's values are, each cost a third of a millisecond
+            # and told the pairs nothing they do not find)
+            lc, pc, okc = self.p.kernel.log_delta(c.astype(complex))
             fc = scaled(lc, np.where(np.cos(pc) < 0, -1.0, 1.0), ref[idx])
             side = np.where(np.sign(fc) == np.sign(fb0[idx]), 1, -1)
             return fc, np.where(okc & (fc != 0) & np.isfinite(fc), side, 0)
