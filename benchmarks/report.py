@@ -117,7 +117,9 @@ def _machine(r) -> list:
     pk = ", ".join(f"{k} {v}" for k, v in m["packages"].items() if v)
     missing = [k for k, v in m["packages"].items() if not v]
     return ["## Machine and commands", "",
-            f"* {m['cpu']}, {m['cores']} cores, {m['platform']}, Python {m['python']}",
+            f"* {m['cpu']}, {m['cores']} cores, {m['platform']}, Python {m['python']}"
+            + (f"; symtmm's large compiled batches on {m['threads']} threads"
+               if m.get("threads", 1) > 1 else ""),
             f"* {pk}" + (f" (not installed: {', '.join(missing)})" if missing else "")
             + f"; mpmath backend `{m.get('mpmath_backend', '?')}`; proofs in "
             f"{'Arb balls (python-flint)' if m.get('certified') else 'mpmath at two precisions'}"

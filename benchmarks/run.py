@@ -89,8 +89,9 @@ def _mpmath_backend() -> str:
 def machine() -> dict:
     """What the numbers were measured on."""
     from benchmarks.kernel import internals
-
-    return dict(cpu=_cpu(), cores=os.cpu_count(), platform=platform.platform(),
+    from symtmm.numeric.parallel import WORKERS
+    return dict(cpu=_cpu(), cores=os.cpu_count(), threads=WORKERS,
+                platform=platform.platform(),
                 python=platform.python_version(),
                 packages={m: _version(m) for m in ("symtmm", "numpy", "scipy", "mpmath", "sympy",
                                                    "flint", "cxroots")},

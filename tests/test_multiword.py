@@ -540,3 +540,41 @@ def test_complex_delta_encloses_arb_at_400_bits(which, monkeypatch, arb_calls):
     slow = ev.factors(points, slow_ar)
     for a, b in zip(fast.delta(), slow.delta()):
         assert a.contains(b.mid()) and a.rad() < 1e-10 * abs(b.mid())
+
+
+@pytest.mark.parametrize("damped", [False, True])
+def test_batches_in_parts_on_threads_give_the_same_bits(monkeypatch, damped):
+    """A batch split over threads (every batch here: no work threshold, three threads)
+    gives the balls, counts and double summaries of one call, bit for bit: every point is
+    computed alone. Some points lie on roots (undecided) and one beyond the series' reach."""
+    from symtmm.numeric import parallel
+
+    name = "tuned_mass_damper.toml" if damped else "paper_ex3_three_pp_coupled.toml"
+    model = load(EXAMPLES / name).require_numeric()
+    ev = Evaluator(model, 160.0)
+    omegas = [1.0, 39.47841760435743, 61.7, 88.8, 120.25, 150.5, 157.91367041742973]
+    lam = [mpmath.mpc(-0.5 if damped else 0, w) for w in omegas]
+    lam_d = np.array([complex(z) for z in lam] + [1e5j])
+
+    def run():
+        fa = ev.factors(lam, Ball(200))
+        summary = stiffness.summary(ev.plan(160.0), lam_d * lam_d, lam_d if damped else None) \
+            if damped else stiffness.summary(ev.plan(160.0), (lam_d * lam_d).real)
+        return ([(v.mid().str(radius=False), v.rad()) if v is not None else None
+                 for v in fa.delta()], fa.trusted.tolist(), summary)
+    with monkeypatch.context() as m:
+        m.setattr(parallel, "WORKERS", 1)
+        whole = run()
+    with monkeypatch.context() as m:
+        m.setattr(parallel, "WORKERS", 3)
+        m.setattr(parallel, "SPLIT_SECONDS", 0.0)
+        calls = []
+        original = parallel.run_ranges
+        m.setattr(parallel, "run_ranges", lambda fn, count, work: calls.append(count)
+                  or original(fn, count, work))
+        m.setattr(multiword, "run_ranges", parallel.run_ranges)
+        parts = run()
+    assert calls and max(calls) >= 3                    # (split: three parts at least once)
+    assert parts[0] == whole[0] and parts[1] == whole[1]
+    for a, b in zip(parts[2], whole[2]):
+        np.testing.assert_array_equal(a, b)

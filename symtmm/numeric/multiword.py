@@ -54,6 +54,7 @@ import numpy as np
 
 from ..expr import exact_float
 from .arith import Ball
+from .parallel import run_ranges
 
 try:        # the compiled balls (setup.py); without a compiler every ball runs in Arb
     from . import _multiword
@@ -131,14 +132,26 @@ def double_summary(plan, lam2, lam=None):
     if inputs is None:
         return None
     code, tabs, lam2, lam = inputs
-    B = lam2.shape[0]
+    B, n, w = lam2.shape[0], plan.n, plan.width
     logabs, phase = np.empty(B), np.empty(B)
     counts, ok = np.empty(B, dtype=np.int64), np.zeros(B, dtype=np.uint8)
-    _multiword.summary(code, lam2, lam, *_series_tables(tabs), plan.n, plan.width,
-                       np.ascontiguousarray(plan.multiplicity, dtype=np.int64), DOUBLE.TRUST,
-                       DOUBLE.growth_limit, float(plan.log_constant), logabs, phase, counts,
-                       ok)
+    mult = np.ascontiguousarray(plan.multiplicity, dtype=np.int64)
+
+    def run(lo, hi):
+        # (each part writes its own range of the outputs)
+        _multiword.summary(code, lam2[lo:hi], lam[lo:hi] if len(lam) else lam,
+                           *_series_tables(tabs), n, w, mult, DOUBLE.TRUST,
+                           DOUBLE.growth_limit, float(plan.log_constant), logabs[lo:hi],
+                           phase[lo:hi], counts[lo:hi], ok[lo:hi])
+    run_ranges(run, B, B * _SECONDS_PER_ENTRY[1] * n * w * w * (2 if code > COMPLEX else 1))
     return logabs, phase, counts, ok.astype(bool)
+
+
+#: Seconds per entry of the band's elimination (freedoms times the squared width) of one
+#: point, by words (1: doubles, 2: double-double balls, 3: integer words, per word), as
+#: measured on the 20- and 50-level chains: what decides whether a batch runs in parts
+#: (:func:`symtmm.numeric.parallel.run_ranges`).
+_SECONDS_PER_ENTRY = {1: 0.55e-9, 2: 3.2e-9, 3: 3.5e-9}
 
 
 def _double_inputs(plan, lam2, lam):
@@ -636,23 +649,31 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bo
     except OverflowError:
         return None
     S = tabs["families"].shape[0]
-    band = np.empty((B, n * w, W), dtype=np.uint64)
-    det12 = np.empty((B, S, W), dtype=np.uint64)
-    ok = np.zeros(B, dtype=np.uint8)
-    _multiword.assemble(code, points, lams, *_series_tables(tabs), band, det12,
-                        np.empty((16 * S + 3, W), dtype=np.uint64), ok)
-    band = band.reshape(B, n, w, W)
-    built = ok.copy()
-    Kb = _eliminated(band, reverse, ok, code)
-    # where a pivot stayed undecided, the other order's leading minors (the same inertia
-    # and determinant) may keep their radii narrower
-    again = np.nonzero(built & (ok == 0))[0]
-    if again.size:
-        ok2 = built[again].copy()
-        Kb[again] = _eliminated(band[again], not reverse, ok2, code)
-        ok[again] = ok2
-    ok = ok.astype(bool)
-    return ok, Kb[ok, :n, 0, :], det12[ok]
+
+    def run(lo, hi):
+        # the points lo .. hi - 1, built and eliminated (the compiled calls release
+        # Python's lock: parts of a large batch run at once)
+        band = np.empty((hi - lo, n * w, W), dtype=np.uint64)
+        det12 = np.empty((hi - lo, S, W), dtype=np.uint64)
+        ok = np.zeros(hi - lo, dtype=np.uint8)
+        _multiword.assemble(code, points[lo:hi], lams[lo:hi] if len(lams) else lams,
+                            *_series_tables(tabs), band, det12,
+                            np.empty((16 * S + 3, W), dtype=np.uint64), ok)
+        band = band.reshape(hi - lo, n, w, W)
+        built = ok.copy()
+        Kb = _eliminated(band, reverse, ok, code)
+        # where a pivot stayed undecided, the other order's leading minors (the same
+        # inertia and determinant) may keep their radii narrower
+        again = np.nonzero(built & (ok == 0))[0]
+        if again.size:
+            ok2 = built[again].copy()
+            Kb[again] = _eliminated(band[again], not reverse, ok2, code)
+            ok[again] = ok2
+        ok = ok.astype(bool)
+        return ok, Kb[ok, :n, 0, :], det12[ok]
+
+    parts = run_ranges(run, B, B * _SECONDS_PER_ENTRY[min(N, 3)] * n * w * w * W)
+    return tuple(np.concatenate(x) for x in zip(*parts))
 
 
 def _eliminated(band, reverse: bool, ok, N: int) -> np.ndarray:
