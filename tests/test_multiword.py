@@ -578,3 +578,38 @@ def test_batches_in_parts_on_threads_give_the_same_bits(monkeypatch, damped):
     assert parts[0] == whole[0] and parts[1] == whole[1]
     for a, b in zip(parts[2], whole[2]):
         np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("N", [2, 3, 5, 8, 12])
+def test_dyadic_points_encode_as_rationals_do(N):
+    """Points (``man * 2**exp``, their squares' hundreds of bits among them) encoded by
+    shifts and the doubles' conversions: the same words as the exact rational encoding,
+    down to mantissas of one bit and up to the range's ends; and the words read back as
+    an arb (times a power of two) hold exactly the value :func:`decode` gives."""
+    import flint
+
+    rng = np.random.default_rng(N)
+    cases = [(1, 0), (-1, -5), (3, 900), (5, -1100), ((1 << 300) - 1, -310)]
+    for _ in range(300):
+        bits = int(rng.integers(1, 1200))
+        man = int(rng.integers(1, 1 << 62)) << max(0, bits - 62) | int(rng.integers(0, 1 << 30))
+        cases.append((man * int(rng.choice([-1, 1])), int(rng.integers(-1100, 900)) - bits))
+    for man, exp in cases:
+        ratio = (man << exp, 1) if exp >= 0 else (man, 1 << -exp)
+        try:
+            want = multiword._encode_ratio(*ratio, N)
+        except OverflowError:
+            with pytest.raises(OverflowError):
+                multiword._encode_dyadic(man, exp, N)
+            continue
+        assert multiword._encode_dyadic(man, exp, N) == want, (man, exp)
+        mid, r = multiword.decode(want)
+        for shift in (0, -700, 650):
+            ball = multiword._arb_of(np.array(want, dtype=np.uint64), flint, shift)
+            scale = Fraction(2) ** shift
+            exact_mid = mid * scale
+            got_mid = Fraction(*[int(v) for v in ball.mid().man_exp()][:1]) * \
+                Fraction(2) ** int(ball.mid().man_exp()[1])
+            assert got_mid == exact_mid
+            rm, re = (int(v) for v in ball.rad().mid().man_exp())
+            assert Fraction(rm) * Fraction(2) ** re >= r * scale

@@ -48,6 +48,7 @@ from __future__ import annotations
 
 import functools
 import math
+import struct
 from fractions import Fraction
 
 import numpy as np
@@ -256,17 +257,65 @@ def encode(v, flint, N: int) -> list:
     its midpoint, an exact dyadic rational, as :func:`encode_rational` writes it, the
     radius widened by the ball's own."""
     man, exp = (int(x) for x in v.mid().man_exp())
-    row = _encode_ratio(man << exp, 1, N) if exp >= 0 else _encode_ratio(man, 1 << -exp, N)
+    row = _encode_dyadic(man, exp, N)
     if N == 1:
         return row              # (a plain double keeps no radius)
-    radius = _up(v.rad())
-    if radius:
-        cut = float(np.uint64(row[-1]).view(np.float64))
-        r = math.nextafter(cut + radius, math.inf)
+    if v.rad() != 0:
+        rm, re = (int(x) for x in v.rad().mid().man_exp())
+        radius = _up(Fraction(rm << re) if re >= 0 else Fraction(rm, 1 << -re))
+        r = math.nextafter(_double(row[-1]) + radius, math.inf)
         if not math.isfinite(r):
             raise OverflowError("a ball beyond the range of the compiled balls")
-        row[-1] = int(np.float64(r).view(np.uint64))
+        row[-1] = _bits(r)
     return row
+
+
+def _double(bits: int) -> float:
+    """The double whose bits are ``bits`` (an unsigned 64-bit integer)."""
+    return _F64.unpack(_U64.pack(bits))[0]
+
+
+def _bits(x: float) -> int:
+    """The bits of the double ``x`` as an unsigned 64-bit integer."""
+    return _U64.unpack(_F64.pack(x))[0]
+
+
+_F64, _U64 = struct.Struct("<d"), struct.Struct("<Q")
+
+
+def _encode_dyadic(man: int, exp: int, N: int) -> list:
+    """:func:`encode_rational` of ``man * 2**exp`` by shifts and the doubles' own
+    conversions (a point's square: a batch's proofs encode every point), where the
+    result's doubles are normal; else by :func:`_encode_ratio`."""
+    a = abs(man)
+    bits = a.bit_length()
+    e = bits + exp                          # 2**(e-1) <= |x| < 2**e
+    if N == 2 and man and bits <= 1000 and -900 < e < 900:
+        hi = float(man)                     # (int to float rounds to nearest)
+        rest = man - int(hi)
+        lo = float(rest)
+        cut = abs(rest - int(lo))
+        r = float(cut)
+        if r < cut:                          # (Python compares an int and a float exactly)
+            r = math.nextafter(r, math.inf)
+        hi, lo, r = math.ldexp(hi, exp), math.ldexp(lo, exp), math.ldexp(r, exp)
+        # (scaled below the normal doubles their rounding would not be exact)
+        if (rest == 0 or abs(lo) >= _NORMAL) and (cut == 0 or r >= _NORMAL):
+            return list(_WORDS3.unpack(_DOUBLES3.pack(hi, lo, r)))
+    if man and N > 2:
+        if not -1000 <= e <= 1000:
+            raise OverflowError("a number beyond the range of the compiled balls")
+        shift = 64 * N - bits
+        top = a << shift if shift >= 0 else a >> -shift
+        cut = shift < 0 and a & ((1 << -shift) - 1)
+        r = math.ldexp(1.0, max(e - 64 * N, -1074)) if cut else 0.0
+        words = list(struct.unpack(f">{N}Q", top.to_bytes(8 * N, "big")))
+        return words + [e & _MASK, int(man < 0), _bits(r)]
+    return _encode_ratio(man << exp, 1, N) if exp >= 0 else _encode_ratio(man, 1 << -exp, N)
+
+
+_NORMAL = 2.0 ** -1000
+_DOUBLES3, _WORDS3 = struct.Struct("<3d"), struct.Struct("<3Q")
 
 
 def encode_rational(q: Fraction, N: int) -> list:
@@ -350,17 +399,17 @@ def _exact_balls(values, ar: Ball | None, N: int) -> list:
 def _parts(row) -> tuple:
     """``(mantissa, exponent, radius)`` of a ball of words: its midpoint is ``mantissa *
     2**exponent`` (integers; for a double-double the sum of its two doubles) exactly."""
-    row = np.asarray(row, dtype=np.uint64)
-    if len(row) == 3:
-        hi, lo, r = (float(x) for x in row.view(np.float64))
+    raw = np.ascontiguousarray(row, dtype=np.uint64).tobytes()
+    if len(raw) == 24:
+        hi, lo, r = _DOUBLES3.unpack(raw)
         (hn, hd), (ln, ld) = hi.as_integer_ratio(), lo.as_integer_ratio()
         d = max(hd, ld)                                 # (powers of two)
         return hn * (d // hd) + ln * (d // ld), -(d.bit_length() - 1), r
-    N = len(row) - 3
-    m = sum(int(row[k]) << (64 * (N - 1 - k)) for k in range(N))
-    e = int(row[N:N + 1].view(np.int64)[0])
-    r = float(row[N + 2:N + 3].view(np.float64)[0])
-    return (-m if int(row[N + 1]) else m), e - 64 * N, r
+    N = len(raw) // 8 - 3
+    words = struct.unpack(f"<{N}Qqqd", raw)
+    m = int.from_bytes(struct.pack(f">{N}Q", *words[:N]), "big")
+    e, sign, r = words[N:]
+    return (-m if sign else m), e - 64 * N, r
 
 
 def decode(row) -> tuple:
@@ -610,21 +659,24 @@ def _product(plan, piv, det12, flint, N: int, complex_: bool = False) -> np.ndar
     ok = np.zeros(B, dtype=np.uint8)
     _multiword.power_product(COMPLEX + N if complex_ else N, x, k, out, ok)
     products = np.full(B, None, dtype=object)
-    two = flint.arb(2)
-
-    def arb(words):
-        # (exact in Arb: an integer times a power of two, then the radius)
-        m, e, r = _parts(words)
-        return flint.arb(flint.fmpz(m)) * two ** e + flint.arb(0, r)
     for p in np.nonzero(ok)[0]:
         # (then the power of two the running product was rescaled by: Delta leaves the
-        # doubles' range)
-        shift = two ** int(out[p, W:].view(np.int64)[0])
+        # doubles' range; folded into the exponents, exactly)
+        shift = int(out[p, W:].view(np.int64)[0])
         if complex_:
-            products[p] = flint.acb(arb(out[p, :W // 2]), arb(out[p, W // 2:W])) * shift
+            products[p] = flint.acb(_arb_of(out[p, :W // 2], flint, shift),
+                                    _arb_of(out[p, W // 2:W], flint, shift))
         else:
-            products[p] = arb(out[p, :W]) * shift
+            products[p] = _arb_of(out[p, :W], flint, shift)
     return products
+
+
+def _arb_of(words, flint, shift: int = 0):
+    """The ball of words ``words`` times ``2**shift`` as an arb, exactly: its midpoint
+    from the mantissa and exponent, its radius from the double's."""
+    m, e, r = _parts(words)
+    rn, rd = r.as_integer_ratio()                       # (rd: a power of two)
+    return flint.arb((m, e + shift), (rn, shift - (rd.bit_length() - 1)))
 
 
 def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bool = False):
