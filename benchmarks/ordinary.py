@@ -506,17 +506,19 @@ def _failure(exc: Exception) -> str:
     return text[:300]
 
 
-def _symtmm(name: str, ref: dict, repeat: int) -> dict:
+def _symtmm(name: str, ref: dict, repeat: int, fe_once=None) -> dict:
     """Best time of ``repeat`` solves (no plan reused), evaluations, the printed values and
     their errors, and one more solve profiled (:mod:`benchmarks.profiling`); on a failure or
-    a solve past :data:`TIME_LIMIT` s, the message."""
+    a solve past :data:`TIME_LIMIT` s, the message. ``fe_once``: a function timing one FE
+    solve, run after each of symtmm's (both sides of the ratio in the same minutes: the
+    machine's speed drifts); the best of those is ``fe_seconds``."""
     from symtmm.solve import solve
 
     from .models import from_scratch
     from .profiling import solve_profile
 
     case, m, kw = CASES[name], model(name), _solve_kw(CASES[name])
-    best, spectrum = np.inf, None
+    best, best_fe, spectrum = np.inf, np.inf, None
     for _ in range(repeat):
         fresh = from_scratch(m)         # each solve as a user's first one
         start = time.perf_counter()
@@ -525,9 +527,12 @@ def _symtmm(name: str, ref: dict, repeat: int) -> dict:
         except (Exception, _Overtime) as exc:  # noqa: BLE001 - reported, the run goes on
             return dict(error=_failure(exc), seconds=time.perf_counter() - start)
         best = min(best, time.perf_counter() - start)
+        if fe_once is not None:
+            best_fe = min(best_fe, fe_once())
     printed = _printed(spectrum)
     out = dict(seconds=best, evaluations=spectrum.evaluations, digits=spectrum.digits,
-               found=len(printed), values=[e.to_dict() for e in spectrum])
+               found=len(printed), values=[e.to_dict() for e in spectrum],
+               fe_seconds=best_fe)
     if case.damped:
         out.update(match_errors(printed, ref["values"]))
     else:
@@ -649,8 +654,12 @@ def measure(name: str, quick: bool = False, progress=print) -> dict:
     ref_seconds = time.perf_counter() - start
     progress(f"ordinary: {name}: coarsest FE mesh within {TOLERANCE:g}")
     fe_row = _fe(name, fe, ref, repeat)
-    progress(f"ordinary: {name}: symtmm")
-    sym = _symtmm(name, ref, repeat)
+    progress(f"ordinary: {name}: symtmm, and the FE model in turns")
+    K, M, C = fe_system(fe, fe_row["elements_per_beam"])
+    sym = _symtmm(name, ref, repeat,
+                  lambda: fe_seconds(name, K, M, C, fe_row["k"], 1))
+    fe_row["seconds_default_threads"] = min(fe_row["seconds_default_threads"],
+                                            sym.pop("fe_seconds", np.inf))
     out = dict(name=name, title=case.title, damped=case.damped, beams=len(fe[0]),
                request={k: v for k, v in _solve_kw(case).items() if v is not None},
                reference=dict(ref, values=_jsonable(ref["values"]), seconds=ref_seconds),

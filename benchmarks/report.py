@@ -505,7 +505,8 @@ def _sweep(sw) -> list:
             f"{_g(s['seconds'])} s (best of two runs in the full benchmark). FE: one solve per "
             f"step on the coarsest mesh within 1e-6 at every step, {f['elements_per_beam']} "
             f"elements per beam: {_g(f['seconds_default_threads'])} s (default BLAS threads), "
-            f"{_g(f['seconds_one_thread'])} s (one thread), best of 3 loops."), "",
+            f"{_g(f['seconds_one_thread'])} s (one thread), best of 3 loops before and one "
+            "after each sweep (default threads)."), "",
            (f"Reference at each step: the {ref['exact']}; where roots are multiple or too close "
             f"for that (x1 = {', '.join(ref['extrapolated_at']) or 'none'}) the "
             f"{ref['extrapolated']}, which differs from the exact values by at most "
@@ -620,7 +621,9 @@ def _ordinary(o) -> list:
             "pencil A = [[0, I], [-K, -C]], B = [[I, 0], [0, M]] damped, with k = the "
             f"region's eigenvalues (conjugates counted) + {o['k_margin']}. FE s: the "
             "conversion and the eigensolver, the best of as many runs, with the default BLAS "
-            "threads and with one (a child process); the ratio takes the faster. Errors: the "
+            "threads (as many again, one after each of symtmm's solves: both sides of the "
+            "ratio in the same minutes) and with one (a child process); the ratio takes the "
+            "faster. Errors: the "
             "largest |value - reference| / |reference| over the wanted eigenvalues (symtmm: "
             "its printed values); a reference 0 (a rigid-body mode) counts relative to the "
             "largest |reference|."), ""]
