@@ -28,6 +28,7 @@ time per function) says where the time goes.
 
 from __future__ import annotations
 
+import contextlib
 import cProfile
 import math
 import pstats
@@ -69,6 +70,18 @@ def _min_seconds(fn, repeat: int, enough: float = 5.0) -> float:
     return best
 
 
+@contextlib.contextmanager
+def _threads(count: int):
+    """symtmm's compiled batches on ``count`` threads for the duration."""
+    from symtmm.numeric import parallel
+    saved = parallel.WORKERS
+    parallel.WORKERS = count
+    try:
+        yield
+    finally:
+        parallel.WORKERS = saved
+
+
 def _own_time(fn, top: int = 6, calls: int = 3) -> dict:
     """Own time of the functions of ``calls`` calls of ``fn`` (cProfile; several, so that
     one disturbed call weighs less), the largest ``top``."""
@@ -103,7 +116,11 @@ def measure(model, quick: bool, baselines: bool) -> dict:
     omegas = np.linspace(1.0, OMEGA_MAX, BATCH)
     kernel.delta(omegas)                       # plan and tables built once, outside the timing
     size = kernel.size(OMEGA_MAX)
-    per = {"delta": _min_seconds(lambda: kernel.delta(omegas), repeat) / BATCH}
+    # on one thread, as numpy's transcendental functions run: the target compares work with
+    # work; the batch in parts on the machine's threads (symtmm.numeric.parallel) beside it
+    with _threads(1):
+        per = {"delta": _min_seconds(lambda: kernel.delta(omegas), repeat) / BATCH}
+    per["delta_threads"] = _min_seconds(lambda: kernel.delta(omegas), repeat) / BATCH
     x = 3.0 * np.random.default_rng(0).random(BATCH * size["kinds"])
     per["transcendental"] = _min_seconds(lambda: (np.cos(x), np.cosh(x), np.sin(x), np.sinh(x)),
                                          repeat) / BATCH
@@ -124,7 +141,13 @@ def measure(model, quick: bool, baselines: bool) -> dict:
                 elimination_to_transcendental=per["elimination"] / per["transcendental"],
                 ratio_to_floor=per["delta"] / (per["transcendental"] + per["elimination"]),
                 log_delta_error=_accuracy(kernel, omegas[::BATCH // ACCURACY]),
+                threads=_thread_count(),
                 profile=_own_time(lambda: kernel.delta(omegas)))
+
+
+def _thread_count() -> int:
+    from symtmm.numeric import parallel
+    return parallel.WORKERS
 
 
 def run(quick: bool = False, progress=print) -> dict:

@@ -310,9 +310,12 @@ def _why_evaluator(ev) -> list:
                      + (" (the target lies below what the elimination alone costs)"
                         if m["elimination_to_transcendental"] > 5 else "")
                      + f"; Delta / (transcendental + elimination) {_g(m['ratio_to_floor'])}")
+        threads = (f" ({_g(per['delta_threads'] * 1e6)} us on {m['threads']} threads)"
+                   if per.get("delta_threads") is not None and m.get("threads", 1) > 1 else "")
         out.append(f"{name}: {m['kinds']} distinct segment kinds ({m['pieces']} pieces, "
                    f"{m['freedoms']} freedoms, half-bandwidth {m['band']}): Delta "
-                   f"{_g(per['delta'] * 1e6)} us per point, its transcendental functions "
+                   f"{_g(per['delta'] * 1e6)} us per point on one thread{threads}, its "
+                   "transcendental functions "
                    f"{_g(per['transcendental'] * 1e6)} us, ratio {_g(m['ratio_to_transcendental'])}"
                    + floor
                    + (". Own time in batch calls (cProfile): " + top if m["ratio_to_transcendental"] > 5
@@ -520,9 +523,12 @@ def _sweep(sw) -> list:
 
 
 def _evaluator(ev) -> list:
+    threads = next(iter(ev["models"].values())).get("threads", 1)
     out = ["## 6. The batched double-precision Delta", "",
            (f"A batch of {ev['batch']} frequencies in [1, {ev['omega_max']:g}] rad/s. `Delta`: "
-            "the kernel's double-precision Delta and count (one factorization). "
+            "the kernel's double-precision Delta and count (one factorization), on one thread "
+            "as numpy's transcendental functions run (the ratios; `Delta us, "
+            f"{threads} threads`: the batch in parts on the machine's threads). "
             "`transcendental`: numpy cos, cosh, sin, sinh on one argument per distinct segment "
             "kind and point. `elimination`: the kernel's band elimination alone (its compiled "
             "loop) on K at the same points; `floor`: transcendental + elimination, the two "
@@ -537,14 +543,15 @@ def _evaluator(ev) -> list:
         per = m["seconds_per_point"]
         rows.append([name, m["kinds"], m["pieces"], m["freedoms"], m["band"]]
                     + [_g(per[k] * 1e6 if per.get(k) is not None else None)
-                       for k in ("delta", "transcendental", "elimination", "naive_numpy",
-                                 "generated_c")]
+                       for k in ("delta", "delta_threads", "transcendental", "elimination",
+                                 "naive_numpy", "generated_c")]
                     + [f"**{_g(m['ratio_to_transcendental'])}**",
                        _g(m.get("ratio_to_floor")),
                        (f"{_g(m['log_delta_error']['median'], 2)} / "
                         f"{_g(m['log_delta_error']['max'], 2)}")])
     out += _table(["model", "kinds", "pieces", "freedoms", "band", "Delta us",
-                   "transcendental us", "elimination us", "naive numpy us", "generated C us",
+                   f"Delta us, {threads} threads", "transcendental us", "elimination us",
+                   "naive numpy us", "generated C us",
                    "Delta / transcendental", "Delta / floor", "accuracy"], rows)
     return out
 
