@@ -689,3 +689,38 @@ def test_zeros_beside_a_side_are_not_counted_through_it(method):
     assert abs(near[0].lam.imag - b3) < 1e-11 * b3
     # its two neighbours on the axis and the damped modes: every eigenvalue once
     assert sum(e.multiplicity for e in found if 11.4 < float(e.lam.imag) < 11.8) == 3
+
+
+def test_a_damped_model_is_counted_without_its_dashpots_on_its_own_plans(monkeypatch):
+    """The undamped estimates of a damped search count the model without its dashpots on
+    the damped model's plans (the dashpots' column set to 0): the same counts as the model
+    with its dashpots removed, in double precision and in the proof arithmetic, about the
+    closed-form (n pi)**2 of the pinned-pinned beam a pure dashpot leaves undamped, and
+    no plan of a model of its own."""
+    from symtmm.numeric import plan as plan_module
+    from symtmm.numeric.arith import MP, Ball
+    from symtmm.roots.count import Counter
+
+    damped = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                   (Spring("b", "ground", x="1/4", k=0, c="1/2"),))
+    bare = damped.with_dashpots_scaled(0)
+    omegas = [1.0, 9.8, 10.0, 39.4, 39.6, 88.0, 89.0, 150.0]
+    arithmetics = [MP(120)] + ([Ball(120)] if ball_available() else [])
+    pts = [mpmath.mpf(w) for w in omegas]
+    want = Counter(bare, 160.0)
+    expected = [want.counts(omegas).tolist()] + [want.factors(pts, ar).counts().tolist()
+                                                 for ar in arithmetics]
+    plan_module.clear_plans()
+    built = []
+    original = plan_module.StiffnessPlan.__init__
+
+    def counting(self, model, *args, **kwargs):
+        built.append(model.damped)
+        original(self, model, *args, **kwargs)
+    monkeypatch.setattr(plan_module.StiffnessPlan, "__init__", counting)
+    got = Counter(damped, 160.0)
+    counted = [got.counts(omegas).tolist()] + [got.factors(pts, ar).counts().tolist()
+                                               for ar in arithmetics]
+    assert counted == expected
+    assert expected[0] == [0, 0, 1, 1, 2, 2, 3, 3]
+    assert built and all(built), built          # (its plans are the damped model's)

@@ -596,7 +596,10 @@ def factor(plan, ar: Ball, lam2, reverse: bool = False, lam=None):
     flint = ar.flint
     lam2 = np.asarray(lam2, dtype=object)
     lam = None if lam is None else np.asarray(lam, dtype=object)
-    complex_ = any(isinstance(v, flint.acb) for v in lam2) or lam is not None
+    # (complex where a point or a dashpot's lam is: a damped model counted without its
+    # dashpots passes real zeros)
+    complex_ = any(isinstance(v, flint.acb) for v in lam2) or \
+        (lam is not None and any(isinstance(v, flint.acb) for v in lam))
     B, n = lam2.shape[0], plan.n
     pivots = np.empty((B, n), dtype=object)
     dets = np.empty((B, len(plan.multiplicity)), dtype=object)

@@ -60,7 +60,8 @@ class Counter(Evaluator):
     Parameters
     ----------
     model : Model
-        Numeric; dashpots are ignored (the count of the model without them).
+        Numeric; dashpots are ignored (the count of the model without them, on the
+        model's own plans).
     omega_design : float
         Highest frequency expected; a higher one gets a plan of its own.
 
@@ -79,9 +80,17 @@ class Counter(Evaluator):
 
     def __init__(self, model, omega_design: float):
         model = model.require_numeric()
-        if model.damped:
-            model = model.with_dashpots_scaled(0)
         super().__init__(model, omega_design)
+        # a damped model is counted on its own plans, its dashpots still: their column of
+        # the stiffness (lam) set to 0, as the model without them would have it (a model of
+        # its own built its own plans: a third of a damped search's estimates)
+        self._still = model.damped
+
+    def _lam(self, count: int, ar: Arithmetic = DOUBLE):
+        """The dashpots' ``lam`` at ``count`` points: zeros for a damped model, else None."""
+        if not self._still:
+            return None
+        return np.zeros(count) if ar is DOUBLE else ar.zeros(count)
 
     # -- batches ------------------------------------------------------------------------
     def factors(self, omegas, ar: Arithmetic = DOUBLE, positive: bool = False):
@@ -96,14 +105,14 @@ class Counter(Evaluator):
             w = np.asarray(omegas, dtype=float)
             self.evaluations += w.size
             return factor(self.plan(float(np.max(w, initial=0.0)), w.size), ar,
-                          w * w if positive else -(w * w))
+                          w * w if positive else -(w * w), lam=self._lam(w.size))
         points = [exact_mpf(v) for v in omegas]
         self.evaluations += len(points)
 
         def build(work, idx):
             chosen = points if idx is None else [points[i] for i in idx]
             squares = work.square(work.array([work.number(v) for v in chosen]))
-            return squares if positive else -squares, None
+            return squares if positive else -squares, self._lam(len(chosen), work)
         return self._factor(self.plan(max((float(v) for v in points), default=0.0),
                                       len(points), ar), ar, build)
 
@@ -112,7 +121,7 @@ class Counter(Evaluator):
         and so the count, is that of the unscaled one)."""
         from ..numeric.stiffness import assemble, dense
         w = float(omega)
-        K, _ = assemble(self.plan(w), DOUBLE, np.array([-w * w]))
+        K, _ = assemble(self.plan(w), DOUBLE, np.array([-w * w]), self._lam(1))
         return dense(self.plan(w), K)[0].real
 
     def counts(self, omegas, ar: Arithmetic = DOUBLE) -> np.ndarray:
@@ -130,7 +139,8 @@ class Counter(Evaluator):
         counted as evaluations; None where the compiled kernel does not serve."""
         check_time()
         w = np.asarray(omegas, dtype=float)
-        got = summary(self.plan(float(np.max(w, initial=0.0)), w.size), -(w * w))
+        got = summary(self.plan(float(np.max(w, initial=0.0)), w.size), -(w * w),
+                      self._lam(w.size))
         if got is not None:
             self.evaluations += w.size
         return got
