@@ -165,7 +165,11 @@ def _double_inputs(plan, lam2, lam):
     complex_ = np.iscomplexobj(lam2) or (lam is not None and np.iscomplexobj(lam))
     dtype, code = (np.complex128, COMPLEX + 1) if complex_ else (np.float64, 1)
     if complex_:
-        tabs = _complex_tables(tabs, 1)
+        # (once per plan: a damped search's batches are mostly complex)
+        cache = plan.__dict__["_multiword_tables"]
+        if ("complex", 1) not in cache:
+            cache[("complex", 1)] = _complex_tables(tabs, 1)
+        tabs = cache[("complex", 1)]
     return (code, tabs, np.ascontiguousarray(lam2, dtype=dtype),
             b"" if lam is None else np.ascontiguousarray(lam, dtype=dtype))
 
