@@ -77,18 +77,19 @@ def _samples(model, plan, points: int):
     return out
 
 
-def _null_vectors(A, mult: int):
+def _null_vectors(A, mult: int, eig=None):
     """The ``(n, mult)`` null space of the dense ``A`` ``(n, n)``, or ``None`` where the
     singular values do not separate it. (Not :func:`~symtmm.numeric.linalg.null_space`:
     its inverse iteration runs in Python in any arithmetic, and it does not say whether
-    the null space is separated, which decides here whether the walk takes over.)"""
+    the null space is separated, which decides here whether the walk takes over.)
+    ``eig``: ``A``'s symmetric eigendecomposition where already made (a batch's)."""
     n = A.shape[0]
     if mult > n:
         return None
     if not np.iscomplexobj(A):
         # (real and symmetric, an undamped mode's: the singular values are the moduli of
         # the eigenvalues, and the symmetric eigensolver costs two thirds of the SVD)
-        w, V = np.linalg.eigh(A)
+        w, V = np.linalg.eigh(A) if eig is None else eig
         order = np.argsort(-np.abs(w), kind="stable")
         s, Vh = np.abs(w)[order], V[:, order].T
     else:
@@ -199,14 +200,26 @@ def nodal_displacements(model, eigenvalues, points: int) -> list:
             rows[:, list(ts)] = U[k][:, list(qs), 0]
     scale = np.array([2.0 ** e for e in plan.exponent])
     position = np.array(plan.position)
+    eigs: dict = {}
+    finite = [p for p in range(len(eigenvalues))
+              if np.isfinite(Kd[p]).all() and np.isfinite(full[p]).all()]
+    if real and finite:
+        # (every mode's symmetric eigendecomposition in one stacked call: numpy's call
+        # cost more than a 28x28 decomposition's work)
+        try:
+            w, V = np.linalg.eigh(Kd[finite])
+            eigs = {p: (w[j], V[j]) for j, p in enumerate(finite)}
+        except np.linalg.LinAlgError:
+            eigs = {}
+    usable = set(finite)
     for p, e in enumerate(eigenvalues):
         if not real and e.lam.real == 0:
             continue        # (an undamped mode of a damped model: its real shape, walked)
         mult = int(e.multiplicity)
-        if not (np.isfinite(Kd[p]).all() and np.isfinite(full[p]).all()):
+        if p not in usable:
             continue
         try:
-            basis = _null_vectors(Kd[p], mult)
+            basis = _null_vectors(Kd[p], mult, eigs.get(p))
             if basis is None:
                 continue
             x = (scale[:, None] * basis)[position]               # (mesh freedoms, mult)
