@@ -53,3 +53,35 @@ def test_a_solve_reports_the_rigid_modes_it_counts_on_its_plans():
     assert spec.eigenvalues[0].multiplicity == rigid
     assert spec.eigenvalues[0].proof == PROOFS["exact"]
     assert float(spec.eigenvalues[1].omega) > 0.1
+
+
+def test_a_solve_without_rigid_modes_proves_it_by_one_ball_factorisation(monkeypatch):
+    """Where one ball factorisation of K(0) decides every pivot, the model has no
+    rigid-body mode and the exact static null space is not computed; where a pivot holds
+    0 (a free-free beam: two rigid motions) the exact null space counts them, and the
+    solve reports them (omega = 0 twice) beside the closed-form free-free frequencies."""
+    import mpmath
+
+    from symtmm.mesh import static_nullity as exact
+    from symtmm.model import Beam, Model, Spring
+    from symtmm.numeric.arith import ball_available
+    from symtmm.roots import undamped
+    from symtmm.solve import solve
+
+    calls = []
+
+    def counted(model, mesh=None):
+        calls.append(model)
+        return exact(model, mesh)
+    monkeypatch.setattr(undamped, "static_nullity", counted)
+    ff = dict(EI=1, m=1, L=1, left="free", right="free")
+    held = Model((Beam("b", **ff),), (Spring("b", "ground", "1/4", 1), Spring("b", "ground",
+                                                                             "3/4", 1)))
+    solve(held, count=3, digits=15)
+    assert len(calls) == (0 if ball_available() else 1)     # (without flint: exactly)
+    before = len(calls)
+    spectrum = solve(Model((Beam("b", **ff),)), count=4, digits=15)
+    assert len(calls) == before + 1
+    assert spectrum[0].multiplicity == 2 and spectrum[0].omega == 0
+    beta = mpmath.findroot(lambda x: mpmath.cos(x) * mpmath.cosh(x) - 1, 4.73)
+    assert mpmath.almosteq(spectrum[1].omega, beta**2, rel_eps=1e-14)

@@ -145,6 +145,31 @@ class Counter(Evaluator):
             self.evaluations += w.size
         return got
 
+    def nonsingular_static(self, plan) -> bool:
+        """Whether ``K(0)`` of ``plan`` is proved nonsingular: one ball factorisation at
+        ``lam = 0`` with every pivot decided, so the model has no rigid-body mode. False
+        where python-flint is missing or a pivot stays undecided (a rigid-body mode, or
+        too few bits): the exact static null space decides then
+        (:func:`~symtmm.mesh.static_nullity`, a few milliseconds of SymPy on a chain).
+
+        Examples
+        --------
+        >>> from symtmm.model import Beam, Model
+        >>> pf = Counter(Model((Beam("b", 1, 1, 1, left="pinned", right="free"),)), 10.0)
+        >>> pp = Counter(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 10.0)
+        >>> [c.nonsingular_static(c.plan(10.0)) for c in (pf, pp)] == [False,
+        ...                                                            ball_available()]
+        True
+        """
+        if not ball_available() or plan.n == 0:
+            return False
+        # (two words and the quarter bit per freedom the radii's growth takes)
+        ar = Ball(128 + plan.n // 4)
+        with ar:
+            lam2 = ar.array([ar.exact(0)])
+        self.evaluations += 1
+        return bool(factor(plan, ar, lam2, self._lam(1, ar)).trusted[0])
+
     # -- one point, decided ---------------------------------------------------------------
     def count(self, omega, digits: int | None = None, positive: bool = False) -> int:
         """``J(omega)``: double precision unless a pivot is too small to trust; then (or with

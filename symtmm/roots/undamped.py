@@ -105,6 +105,14 @@ def rigid_body_modes(model: Model, mesh=None) -> int:
     return static_nullity(model, mesh)
 
 
+def _rigid_modes(model: Model, counter: Counter, size: float) -> int:
+    """:func:`rigid_body_modes` on the coarsest plan the search has built: 0 where one ball
+    factorisation there proves ``K(0)`` nonsingular (most models: no rigid-body mode),
+    else exactly from the static null space on its mesh."""
+    plan = counter.coarsest_plan(size)
+    return 0 if counter.nonsingular_static(plan) else rigid_body_modes(model, plan.mesh)
+
+
 def check_stable(model: Model, rigid: int, counter: Counter | None = None) -> int:
     """Raise :class:`ComputationError` if an axial compression has buckled the model.
 
@@ -926,7 +934,7 @@ def estimates(model: Model, omega_max: float, rigid: int | None = None) -> tuple
     search = _Search(model, 15, max(float(omega_max), 1e-300))
     try:
         search.rigid = rigid if rigid is not None else \
-            rigid_body_modes(model, search.counter.coarsest_plan(omega_max).mesh)
+            _rigid_modes(model, search.counter, omega_max)
         top, c_top = search.count_off(float(omega_max), 2.0 * float(omega_max))
         brackets = search.isolate(top, c_top)
         simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
@@ -996,7 +1004,7 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         guided = search.guided(guesses, count) if guesses else None
         counted, cuts = guided or (search.top_for(count), [])
         hi = counted[0]
-    rigid = search.rigid = rigid_body_modes(model, search.counter.coarsest_plan(hi).mesh)
+    rigid = search.rigid = _rigid_modes(model, search.counter, hi)
     check_stable(model, rigid, search.counter)
     eigen = []
     if rigid:
