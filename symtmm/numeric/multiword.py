@@ -303,7 +303,7 @@ def _encode_dyadic(man: int, exp: int, N: int) -> list:
         if r < cut:                          # (Python compares an int and a float exactly)
             r = math.nextafter(r, math.inf)
         hi, lo, r = math.ldexp(hi, exp), math.ldexp(lo, exp), math.ldexp(r, exp)
-        # (scaled below the normal doubles their rounding would not be exact)
+        # (scaled below the normal doubles, their rounding would not be exact)
         if (rest == 0 or abs(lo) >= _NORMAL) and (cut == 0 or r >= _NORMAL):
             return list(_WORDS3.unpack(_DOUBLES3.pack(hi, lo, r)))
     if man and N > 2:
