@@ -144,15 +144,21 @@ def double_summary(plan, lam2, lam=None):
                            *_series_tables(tabs), n, w, mult, DOUBLE.TRUST,
                            DOUBLE.growth_limit, float(plan.log_constant), logabs[lo:hi],
                            phase[lo:hi], counts[lo:hi], ok[lo:hi])
-    run_ranges(run, B, B * _SECONDS_PER_ENTRY[1] * n * w * w * (2 if code > COMPLEX else 1))
+    run_ranges(run, B, _batch_seconds(plan, B, 1, 2 if code > COMPLEX else 1))
     return logabs, phase, counts, ok.astype(bool)
 
 
-#: Seconds per entry of the band's elimination (freedoms times the squared width) of one
-#: point, by words (1: doubles, 2: double-double balls, 3: integer words, per word), as
-#: measured on the 20- and 50-level chains: what decides whether a batch runs in parts
-#: (:func:`symtmm.numeric.parallel.run_ranges`).
+#: Seconds per entry of a point's band elimination (freedoms times the squared width) and
+#: 64-bit word of its numbers, by words per real ball (1: doubles, 2: double-doubles, 3 or
+#: more: integer words), as measured on the 20- and 50-level chains.
 _SECONDS_PER_ENTRY = {1: 0.55e-9, 2: 3.2e-9, 3: 3.5e-9}
+
+
+def _batch_seconds(plan, B: int, N: int, W: int) -> float:
+    """The estimated seconds of ``B`` points of ``plan`` in balls of ``N`` words of ``W``
+    64-bit words each (complex: both parts'): what decides whether a batch runs in parts
+    (:func:`symtmm.numeric.parallel.run_ranges`)."""
+    return B * _SECONDS_PER_ENTRY[min(N, 3)] * plan.n * plan.width ** 2 * W
 
 
 def _double_inputs(plan, lam2, lam):
@@ -731,7 +737,7 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bo
         ok = ok.astype(bool)
         return ok, Kb[ok, :n, 0, :], det12[ok]
 
-    parts = run_ranges(run, B, B * _SECONDS_PER_ENTRY[min(N, 3)] * n * w * w * W)
+    parts = run_ranges(run, B, _batch_seconds(plan, B, N, W))
     return tuple(np.concatenate(x) for x in zip(*parts))
 
 

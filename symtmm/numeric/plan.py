@@ -46,8 +46,9 @@ from ..expr import exact_float
 from .arith import DOUBLE, Arithmetic
 from .segments import kind, kind_order, kind_size, kind_tables
 
-__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "wave_piece", "generous_range", "rcm_order", "wave_number_bound",
-           "plan_for", "design_range", "design_below", "clear_plans", "PLAN_MODELS"]
+__all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "wave_piece", "generous_range",
+           "rcm_order", "wave_number_bound", "plan_for", "design_range", "design_below",
+           "clear_plans", "PLAN_MODELS"]
 
 #: SymPy's one (a singleton): most coefficients of the scatter are it.
 ONE = sp.S.One

@@ -662,24 +662,23 @@ def summary(plan, lam2, lam=None):
     from . import multiword  # (it builds on this module)
     fused = multiword.double_summary(plan, lam2, lam) \
         if multiword.serves_double(plan, lam2, lam) else None
-    if fused is not None:
-        # a point at a time in the compiled kernel; the points beyond its series' reach
-        # (or not finite) the banded way, with numpy's closed forms
-        logabs, phase, counts, ok = fused
-        if not ok.all():
-            bad = np.nonzero(~ok)[0]
-            rest = _banded_summary(plan, lam2[bad], None if lam is None else
-                                   np.asarray(lam)[bad])
-            if rest is None:
-                return None
-            logabs[bad], phase[bad], counts[bad] = rest
-        return logabs, phase, counts
-    return _banded_summary(plan, lam2, lam)
+    if fused is None:
+        return None         # (the compiled kernel does not build this plan's band)
+    # a point at a time in the compiled kernel; the points beyond its series' reach (or
+    # not finite) the banded way, with numpy's closed forms
+    logabs, phase, counts, ok = fused
+    if not ok.all():
+        bad = np.nonzero(~ok)[0]
+        rest = _banded_summary(plan, lam2[bad], None if lam is None else np.asarray(lam)[bad])
+        if rest is None:
+            return None
+        logabs[bad], phase[bad], counts[bad] = rest
+    return logabs, phase, counts
 
 
 def _banded_summary(plan, lam2, lam=None):
     """:func:`summary` by a batch of bands: built (the compiled kernel's, or numpy's closed
-    forms where it does not serve), factorised and read by the compiled loops."""
+    forms at the points beyond its reach), factorised and read by the compiled loops."""
     step = max(1, BAND_ENTRIES // max(1, plan.n * plan.width))
     if lam2.shape[0] > step:
         parts = [_banded_summary(plan, lam2[i:i + step],
