@@ -12,7 +12,7 @@ from setuptools import Extension, setup
 setup(ext_modules=[
     Extension(
         "symtmm.numeric._band", ["symtmm/numeric/_band.c"],
-        depends=["symtmm/numeric/_band_core.h"],
+        depends=["symtmm/numeric/_band_core.h", "symtmm/numeric/_buffers.h"],
         # a fused multiply-add would round differently from the numpy loop; Python's own
         # -fwrapv (signed overflow defined) kept the elimination's index arithmetic from
         # being optimised: 40 % of its time
@@ -25,7 +25,7 @@ setup(ext_modules=[
                  "symtmm/numeric/_multiword_instance.h", "symtmm/numeric/_multiword_words.h",
                  "symtmm/numeric/_multiword_nw.h", "symtmm/numeric/_multiword_dd.h",
                  "symtmm/numeric/_multiword_limbs.h", "symtmm/numeric/_multiword_kernel.h",
-                 "symtmm/numeric/_band_core.h"],
+                 "symtmm/numeric/_band_core.h", "symtmm/numeric/_buffers.h"],
         extra_compile_args=["-O2", "-ffp-contract=off", "-fno-wrapv"],
         optional=True),
 ])

@@ -613,3 +613,30 @@ def test_dyadic_points_encode_as_rationals_do(N):
             assert got_mid == exact_mid
             rm, re = (int(v) for v in ball.rad().mid().man_exp())
             assert Fraction(rm) * Fraction(2) ** re >= r * scale
+
+
+def test_every_entry_point_refuses_buffers_that_do_not_fit():
+    """Each call of the extension checks its buffers against each other and raises a
+    ValueError naming itself (its buffers released: a second call succeeds)."""
+    mw = multiword._multiword
+    u64 = lambda *shape: np.zeros(shape, dtype=np.uint64)
+    W = multiword.width(2)
+    calls = [
+        ("multi-word band", lambda: mw.eliminate(2, u64(1, 4, 1, W - 1), 1, 4, 1, 3,
+                                                 np.zeros(1, dtype=np.uint8))),
+        ("power_product", lambda: mw.power_product(2, u64(2, 3, W), np.ones(2, dtype=np.int64),
+                                                   u64(2, W + 1), np.zeros(2, dtype=np.uint8))),
+        ("power_product", lambda: mw.power_product(2, u64(2, 2, W), -np.ones(2, dtype=np.int64),
+                                                   u64(2, W + 1), np.zeros(2, dtype=np.uint8))),
+        ("ops", lambda: mw.ops(4, 2, u64(3, W), u64(3, W), u64(3, W))),
+        ("ops", lambda: mw.ops(0, 2, u64(3, W), u64(2, W), u64(3, W))),
+        ("krylov", lambda: mw.krylov(2, u64(3, W), u64(4, 1, W), np.zeros((4, 2)), 1,
+                                     u64(3, 4, W))),
+    ]
+    for name, call in calls:
+        with pytest.raises(ValueError, match=name):
+            call()
+    x = np.array([_row(Fraction(3, 2), 2), _row(Fraction(5, 4), 2)], dtype=np.uint64)
+    out = u64(2, W)
+    mw.ops(2, 2, x, x, out)                 # (the same buffers, after the refusals)
+    assert multiword.decode(out[0])[0] == Fraction(9, 4)

@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "_band_core.h"
+#include "_buffers.h"
 
 static PyObject *eliminate(PyObject *self, PyObject *args)
 {
@@ -26,11 +27,8 @@ static PyObject *eliminate(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "w*nnnnp", &buf, &B, &rows, &w, &n, &is_complex))
         return NULL;
     const Py_ssize_t item = is_complex ? 16 : 8;
-    if (B < 0 || w < 1 || n < 0 || rows < n + w || buf.len != B * rows * w * item) {
-        PyBuffer_Release(&buf);
-        PyErr_SetString(PyExc_ValueError, "band buffer of the wrong size");
-        return NULL;
-    }
+    if (B < 0 || w < 1 || n < 0 || rows < n + w || buf.len != B * rows * w * item)
+        return RELEASED(CALL_MISFIT, "band buffer of the wrong size", &buf);
     Py_BEGIN_ALLOW_THREADS
     for (Py_ssize_t p = 0; p < B; p++) {
         double *Kp = (double *)buf.buf + (is_complex ? 2 : 1) * p * rows * w;
@@ -40,8 +38,7 @@ static PyObject *eliminate(PyObject *self, PyObject *args)
             band_eliminate_real(Kp, w, n);
     }
     Py_END_ALLOW_THREADS
-    PyBuffer_Release(&buf);
-    Py_RETURN_NONE;
+    return RELEASED(CALL_DONE, NULL, &buf);
 }
 
 /* K[p, targets[i]] (+)= V[p, source[i]] * coef[i]: one layer of the band's sums (each
@@ -96,13 +93,8 @@ static PyObject *scatter(PyObject *self, PyObject *args)
                       is_complex);
         Py_END_ALLOW_THREADS
     }
-    PyBuffer_Release(&v); PyBuffer_Release(&k); PyBuffer_Release(&tg);
-    PyBuffer_Release(&src); PyBuffer_Release(&cf);
-    if (!ok) {
-        PyErr_SetString(PyExc_ValueError, "scatter tables and buffers do not fit");
-        return NULL;
-    }
-    Py_RETURN_NONE;
+    return RELEASED(ok ? CALL_DONE : CALL_MISFIT, "scatter tables and buffers do not fit",
+                    &v, &k, &tg, &src, &cf);
 }
 
 static PyObject *bounds(PyObject *self, PyObject *args)
@@ -115,19 +107,15 @@ static PyObject *bounds(PyObject *self, PyObject *args)
         return NULL;
     const Py_ssize_t item = is_complex ? 16 : 8, c = is_complex ? 2 : 1;
     if (B < 0 || w < 1 || n < 0 || rows < n + w || kb.len != B * rows * w * item
-            || k0.len != B * n * w * item || out.len != B * n * 8) {
-        PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&out);
-        PyErr_SetString(PyExc_ValueError, "bounds buffers of the wrong size");
-        return NULL;
-    }
+            || k0.len != B * n * w * item || out.len != B * n * 8)
+        return RELEASED(CALL_MISFIT, "bounds buffers of the wrong size", &kb, &k0, &out);
     Py_BEGIN_ALLOW_THREADS
     for (Py_ssize_t p = 0; p < B; p++)
         band_pivot_scales((const double *)kb.buf + c * p * rows * w,
                      (const double *)k0.buf + c * p * n * w, w, n, is_complex,
                      (double *)out.buf + p * n);
     Py_END_ALLOW_THREADS
-    PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&out);
-    Py_RETURN_NONE;
+    return RELEASED(CALL_DONE, NULL, &kb, &k0, &out);
 }
 
 /* summary(factored, band, det12, mult, logabs, phase, count, B, rows, w, n, S, trust,
@@ -153,16 +141,9 @@ static PyObject *summary(PyObject *self, PyObject *args)
         && d12.len == B * S * item && mult.len == S * 8 && la_out.len == B * 8
         && ph_out.len == B * 8 && cnt_out.len == B * 8;
     double *scale = sizes ? PyMem_Malloc((n > 0 ? n : 1) * sizeof(double)) : NULL;
-    if (scale == NULL) {
-        PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&d12);
-        PyBuffer_Release(&mult); PyBuffer_Release(&la_out); PyBuffer_Release(&ph_out);
-        PyBuffer_Release(&cnt_out);
-        if (!sizes) {
-            PyErr_SetString(PyExc_ValueError, "summary buffers of the wrong size");
-            return NULL;
-        }
-        return PyErr_NoMemory();
-    }
+    if (scale == NULL)
+        return RELEASED(sizes ? CALL_NO_MEMORY : CALL_MISFIT, "summary buffers of the wrong size",
+                        &kb, &k0, &d12, &mult, &la_out, &ph_out, &cnt_out);
     const int64_t *mu = (const int64_t *)mult.buf;
     Py_BEGIN_ALLOW_THREADS
     for (Py_ssize_t p = 0; p < B; p++)
@@ -173,10 +154,7 @@ static PyObject *summary(PyObject *self, PyObject *args)
                            (double *)ph_out.buf + p, (int64_t *)cnt_out.buf + p);
     Py_END_ALLOW_THREADS
     PyMem_Free(scale);
-    PyBuffer_Release(&kb); PyBuffer_Release(&k0); PyBuffer_Release(&d12);
-    PyBuffer_Release(&mult); PyBuffer_Release(&la_out); PyBuffer_Release(&ph_out);
-    PyBuffer_Release(&cnt_out);
-    Py_RETURN_NONE;
+    return RELEASED(CALL_DONE, NULL, &kb, &k0, &d12, &mult, &la_out, &ph_out, &cnt_out);
 }
 
 static PyMethodDef methods[] = {

@@ -37,6 +37,7 @@
 #include <string.h>
 
 #include "_band_core.h"
+#include "_buffers.h"
 
 /* The error-free transformations need every double operation rounded once, to double:
  * not through x87's extended registers (32-bit x86 without SSE2). Where that cannot be
@@ -242,17 +243,9 @@ static PyObject *assemble(PyObject *self, PyObject *args)
                  okb.buf, B)
         Py_END_ALLOW_THREADS
     }
-    PyBuffer_Release(&lb); PyBuffer_Release(&lmb); PyBuffer_Release(&kb);
-    PyBuffer_Release(&fb);
-    PyBuffer_Release(&cb); PyBuffer_Release(&tb); PyBuffer_Release(&tcb);
-    PyBuffer_Release(&ttb); PyBuffer_Release(&tgb); PyBuffer_Release(&srcb);
-    PyBuffer_Release(&bcb); PyBuffer_Release(&stb); PyBuffer_Release(&bandb);
-    PyBuffer_Release(&detb); PyBuffer_Release(&vb); PyBuffer_Release(&okb);
-    if (!good) {
-        PyErr_SetString(PyExc_ValueError, "multi-word tables and buffers do not fit");
-        return NULL;
-    }
-    Py_RETURN_NONE;
+    return RELEASED(good ? CALL_DONE : CALL_MISFIT, "multi-word tables and buffers do not fit",
+                    &lb, &lmb, &kb, &fb, &cb, &tb, &tcb, &ttb, &tgb, &srcb, &bcb, &stb, &bandb,
+                    &detb, &vb, &okb);
 }
 
 /* summary(N, lam2, lam, kinds, families, coef, tails, K, tcoef, ttails, TK, targets,
@@ -322,20 +315,10 @@ static PyObject *fused_summary(PyObject *self, PyObject *args)
         }
         Py_END_ALLOW_THREADS
     }
-    PyBuffer_Release(&lb); PyBuffer_Release(&lmb); PyBuffer_Release(&kb);
-    PyBuffer_Release(&fb); PyBuffer_Release(&cb); PyBuffer_Release(&tb);
-    PyBuffer_Release(&tcb); PyBuffer_Release(&ttb); PyBuffer_Release(&tgb);
-    PyBuffer_Release(&srcb); PyBuffer_Release(&bcb); PyBuffer_Release(&stb);
-    PyBuffer_Release(&mb); PyBuffer_Release(&lab); PyBuffer_Release(&phb);
-    PyBuffer_Release(&cnb); PyBuffer_Release(&okb);
-    if (!good) {
-        PyErr_SetString(PyExc_ValueError, "summary: tables and buffers do not fit");
-        return NULL;
-    }
-    if (!work)
-        return PyErr_NoMemory();
-    PyMem_Free(work);
-    Py_RETURN_NONE;
+    PyMem_Free(work);            /* (NULL where it was not allocated) */
+    return RELEASED(!good ? CALL_MISFIT : work ? CALL_DONE : CALL_NO_MEMORY,
+                    "summary: tables and buffers do not fit", &lb, &lmb, &kb, &fb, &cb, &tb,
+                    &tcb, &ttb, &tgb, &srcb, &bcb, &stb, &mb, &lab, &phb, &cnb, &okb);
 }
 
 /* eliminate(N, band, B, rows, w, n, ok): LDL^T without pivoting in place on (B, rows, w)
@@ -351,16 +334,12 @@ static PyObject *eliminate(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "iw*nnnnw*", &N, &buf, &B, &rows, &w, &n, &okb))
         return NULL;
     if (!valid_words(N) || B < 0 || w < 1 || n < 0 || rows < n + w
-            || buf.len != B * rows * w * 8 * ball_words(N) || okb.len != B) {
-        PyBuffer_Release(&buf); PyBuffer_Release(&okb);
-        PyErr_SetString(PyExc_ValueError, "multi-word band of the wrong size");
-        return NULL;
-    }
+            || buf.len != B * rows * w * 8 * ball_words(N) || okb.len != B)
+        return RELEASED(CALL_MISFIT, "multi-word band of the wrong size", &buf, &okb);
     Py_BEGIN_ALLOW_THREADS
     BY_WORDS(N, eliminate_points, buf.buf, B, rows, w, n, okb.buf)
     Py_END_ALLOW_THREADS
-    PyBuffer_Release(&buf); PyBuffer_Release(&okb);
-    Py_RETURN_NONE;
+    return RELEASED(CALL_DONE, NULL, &buf, &okb);
 }
 
 /* power_product(N, x, k, out, ok): out (B,) = prod_i x[:, i]^k[i] of balls x (B, count),
@@ -381,13 +360,8 @@ static PyObject *power_product(PyObject *self, PyObject *args)
     if (good) {
         BY_WORDS(N, power_product_points, xb.buf, count, kb.buf, ob.buf, okb.buf, B)
     }
-    PyBuffer_Release(&xb); PyBuffer_Release(&kb); PyBuffer_Release(&ob);
-    PyBuffer_Release(&okb);
-    if (!good) {
-        PyErr_SetString(PyExc_ValueError, "power_product: buffers of the wrong size");
-        return NULL;
-    }
-    Py_RETURN_NONE;
+    return RELEASED(good ? CALL_DONE : CALL_MISFIT, "power_product: buffers of the wrong size",
+                    &xb, &kb, &ob, &okb);
 }
 
 /* ops(op, N, x, y, out): elementwise on (M, N + 3) balls, op 0 add, 1 sub, 2 mul,
@@ -401,15 +375,11 @@ static PyObject *ops(PyObject *self, PyObject *args)
         return NULL;
     const Py_ssize_t item = 8 * ball_words(N);
     if (op < 0 || op > 3 || !valid_words(N) || yb.len != xb.len
-            || ob.len != xb.len || xb.len % item) {
-        PyBuffer_Release(&xb); PyBuffer_Release(&yb); PyBuffer_Release(&ob);
-        PyErr_SetString(PyExc_ValueError, "ops: bad operation or buffers");
-        return NULL;
-    }
+            || ob.len != xb.len || xb.len % item)
+        return RELEASED(CALL_MISFIT, "ops: bad operation or buffers", &xb, &yb, &ob);
     const Py_ssize_t M = xb.len / item;
     BY_WORDS(N, ops_points, op, xb.buf, yb.buf, ob.buf, M)
-    PyBuffer_Release(&xb); PyBuffer_Release(&yb); PyBuffer_Release(&ob);
-    Py_RETURN_NONE;
+    return RELEASED(CALL_DONE, NULL, &xb, &yb, &ob);
 }
 
 /* krylov(N, x, coef, tails, K, out): out (M, 4, N + 3) the c_j of the balls x (M, N + 3)
@@ -430,13 +400,8 @@ static PyObject *kry(PyObject *self, PyObject *args)
         const Py_ssize_t M = xb.len / item;
         BY_WORDS(N, krylov_points, xb.buf, cb.buf, tb.buf, K, ob.buf, M)
     }
-    PyBuffer_Release(&xb); PyBuffer_Release(&cb); PyBuffer_Release(&tb);
-    PyBuffer_Release(&ob);
-    if (!good) {
-        PyErr_SetString(PyExc_ValueError, "krylov: buffers of the wrong size");
-        return NULL;
-    }
-    Py_RETURN_NONE;
+    return RELEASED(good ? CALL_DONE : CALL_MISFIT, "krylov: buffers of the wrong size",
+                    &xb, &cb, &tb, &ob);
 }
 
 static PyMethodDef methods[] = {

@@ -10,6 +10,22 @@
 #define ADD(a, b) F(add)(&(a), &(b))
 #define SUB(a, b) F(sub)(&(a), &(b))
 
+/* p q + r s, the products first (the order every caller had written out) */
+static inline BALL F(dot2)(const BALL *p, const BALL *q, const BALL *r, const BALL *s)
+{
+    const BALL x = F(mul)(p, q), y = F(mul)(r, s);
+    return F(add)(&x, &y);
+}
+#define DOT2(p, q, r, s) F(dot2)(&(p), &(q), &(r), &(s))
+
+/* a + b c, the product first */
+static inline BALL F(plus_product)(const BALL *a, const BALL *b, const BALL *c)
+{
+    const BALL x = F(mul)(b, c);
+    return F(add)(a, &x);
+}
+#define PLUS_PRODUCT(a, b, c) F(plus_product)(&(a), &(b), &(c))
+
 /* c_j(x) = sum_k x^k / (4k + j)!, j = 0..3, each with the fewest terms (at most K) whose
  * tail is below 2^-PREC_BITS: coef (4, K, W_) the balls of 1/(4k + j)!, tails (4, K + 1)
  * upper bounds of 1/(4k + j)!. The tail beyond k terms is at most twice the first omitted
@@ -169,36 +185,23 @@ static int F(theory_kind)(const BALL *lam2, const uint64_t *kc, const uint64_t *
     const BALL v00 = MUL(b1, g00), v01 = MUL(b1, g01), v10 = MUL(b1, g10), v11 = MUL(b1, g11);
     const BALL k00 = ADD(a1, v00), k01 = v01, k10 = v10, k11 = ADD(a1, v11);
     BALL U[4][4];
-    {
-        const BALL x = MUL(b0, g00), ah00 = MUL(a, h00), bh10 = MUL(b, h10),
-                   ah01 = MUL(a, h01), bh11 = MUL(b, h11);
-        U[0][0] = ADD(a0, x);
-        U[0][1] = ADD(ah00, bh10);
-        U[0][2] = MUL(b0, g01);
-        U[0][3] = ADD(ah01, bh11);
-    }
-    {
-        const BALL x = MUL(b0, p00);
-        U[1][0] = MUL(k10, iEI);
-        U[1][1] = ADD(a0, x);
-        U[1][2] = MUL(k11, iEI);
-        U[1][3] = MUL(b0, p01);
-    }
-    {
-        const BALL ch00 = MUL(c, h00), ah10 = MUL(a, h10), x = MUL(b0, g11),
-                   ch01 = MUL(c, h01), ah11 = MUL(a, h11);
-        U[2][0] = MUL(b0, g10);
-        U[2][1] = ADD(ch00, ah10);
-        U[2][2] = ADD(a0, x);
-        U[2][3] = ADD(ch01, ah11);
-    }
-    {
-        const BALL mk00 = MUL(mu, k00), mk01 = MUL(mu, k01), x = MUL(b0, p11);
-        U[3][0] = F(neg)(mk00);
-        U[3][1] = MUL(b0, p10);
-        U[3][2] = F(neg)(mk01);
-        U[3][3] = ADD(a0, x);
-    }
+    const BALL mk00 = MUL(mu, k00), mk01 = MUL(mu, k01);
+    U[0][0] = PLUS_PRODUCT(a0, b0, g00);
+    U[0][1] = DOT2(a, h00, b, h10);
+    U[0][2] = MUL(b0, g01);
+    U[0][3] = DOT2(a, h01, b, h11);
+    U[1][0] = MUL(k10, iEI);
+    U[1][1] = PLUS_PRODUCT(a0, b0, p00);
+    U[1][2] = MUL(k11, iEI);
+    U[1][3] = MUL(b0, p01);
+    U[2][0] = MUL(b0, g10);
+    U[2][1] = DOT2(c, h00, a, h10);
+    U[2][2] = PLUS_PRODUCT(a0, b0, g11);
+    U[2][3] = DOT2(c, h01, a, h11);
+    U[3][0] = F(neg)(mk00);
+    U[3][1] = MUL(b0, p10);
+    U[3][2] = F(neg)(mk01);
+    U[3][3] = PLUS_PRODUCT(a0, b0, p11);
     /* the stiffness of one beam (stiffness.coupled_stiffness): f0 = A d0 + inv d1,
      * f1 = C d0 + E d1 with inv = U12^-1, A = -inv U11, C = U21 + U22 A, E = U22 inv */
     const BALL u00 = MUL(U[0][2], U[1][3]), u11 = MUL(U[0][3], U[1][2]), det = SUB(u00, u11);
