@@ -1,5 +1,7 @@
 """Digits on demand, close and multiple roots, and the count that cannot miss."""
 
+from fractions import Fraction
+
 import mpmath
 import numpy as np
 import pytest
@@ -267,3 +269,33 @@ def test_springs_1e_12_apart_at_30_and_50_digits():
         for e, ref, e15 in zip(high, merged, low):
             assert abs(e.omega - ref.omega) < 1e-10 * ref.omega
             assert decimal_string(e.omega, 15) == decimal_string(e15.omega, 15)
+
+
+def _prints_alike_by_strings(a, b, digits):
+    return decimal_string(a, digits) == decimal_string(b, digits)
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.integers(-(1 << 200), 1 << 200).filter(bool), st.integers(-400, 300),
+       st.integers(1, 40), st.integers(-3, 3), st.sampled_from([1, 3, 8, 12, 15, 20, 30]))
+def test_prints_alike_agrees_with_the_printed_strings(man, exp, ulps, tie_offset, digits):
+    """The integer rounding of :func:`prints_alike` against mpmath's strings, on pairs a
+    few units of the last digit apart, about decimal ties and decade boundaries."""
+    from symtmm.results import _rounded, prints_alike
+    ctx = mpmath.MPContext()
+    ctx.prec = 700
+    a = ctx.mpf(man) * ctx.mpf(2) ** exp
+    # b: a moved by a few units of its last digit, or a itself placed on or next to a tie
+    # (q + 1/2 units exactly, or a hair off it) and a decade's end
+    e = int(ctx.floor(ctx.log10(abs(a))))
+    unit = ctx.mpf(10) ** (e - digits + 1)
+    tie = (ctx.floor(a / unit) + ctx.mpf(1) / 2) * unit + tie_offset * unit * ctx.mpf(10) ** -6
+    top = ctx.mpf(10) ** (e + 1) * (1 - ctx.mpf(10) ** -(digits + 1) * ulps / 8)
+    for x, y in ((a, a + ulps * unit / 7), (tie, a), (tie, tie + unit / 3), (top, a),
+                 (-a, -(a - unit / 9)), (top, ctx.mpf(10) ** (e + 1))):
+        assert prints_alike(x, y, digits) == _prints_alike_by_strings(x, y, digits)
+        r = _rounded(x, digits)
+        if r is not None:          # (the tuple, where given, is the string's number)
+            sign, q, k = r
+            assert Fraction(decimal_string(x, digits)) == (-1) ** sign * q * \
+                Fraction(10) ** (k - digits + 1)
