@@ -453,3 +453,45 @@ def test_fe_input_reads_every_field():
     np.testing.assert_allclose(T[node_a[1]] - T[tc], 0, atol=1e-14)
     np.testing.assert_allclose(T[node_b[0]] - T[yc] + 0.4 * T[tc], 0, atol=1e-14)
     assert np.all(scipy.linalg.eigvalsh(M) > 0)
+
+
+@pytest.mark.parametrize("EI, m, L, kw, N, rhoI, kGA", [
+    (1.0, 1.0, 1.0, 0.0, 0.0, 0.01, 7e8),          # stiff in shear (an SI kGA): eps near 1
+    (1e4, 500.0, 3.0, 0.0, 0.0, 5.0, 1e6),
+    (2.0, 1.0, 1.0, 0.0, 0.0, 0.05, 3.0),          # soft in shear: eps near 0
+    (1.0, 2.0, 0.5, 10.0, 4.0, 0.0, 50.0),         # no rotary inertia, a foundation, tension
+    (1.0, 1.0, 1.0, 0.0, -3.0, 0.02, 400.0),       # compression
+])
+def test_the_clamped_piece_bound_is_below_the_piece_and_as_high_as_its_eps_allow(
+        EI, m, L, kw, N, rhoI, kGA):
+    """``clamped_frequency_bound`` lies below the clamped-clamped fundamental of the piece
+    (the finite-element one, above the exact one), and is the best ``min(coef_y / m,
+    coef_psi / rhoI)`` over the splitting ``eps`` (against a scan of eps in [1e-12, 1])."""
+    seg = BeamSegment(EI, m, L, kw=kw, N=N, rhoI=rhoI, kGA=kGA)
+    bound = seg.clamped_frequency_bound(L)
+    beam = dict(name="b", EI=EI, m=m, L=L, x0=0.0, left="clamped", right="clamped", kw=kw,
+                N=N, rhoI=rhoI, kGA=kGA)
+    fe = fe_frequencies([beam], [], 40, count=1)[0]
+    assert 0 < bound <= fe ** 2
+    # the scan, written from the inequality itself (its kp and extra as for N >= 0, or
+    # N < 0 as in the method)
+    q = (math.pi / L) ** 2
+    if N >= 0:
+        kp, extra = kGA, 0.0
+    else:
+        eta = 1.0 if kGA + 2 * N > 0 else (-kGA / N - 1) / 2
+        kp, extra = kGA + N * (1 + eta), N * (1 + 1 / eta)
+    def best(eps):
+        y = ((kp * (1 - eps) + max(N, 0.0)) * q + kw) / m
+        p = EI * q - kp * (1 / eps - 1) + extra
+        return np.where(p >= 0, y, 0.0) if rhoI == 0 else np.minimum(y, p / rhoI)
+
+    # a grid in eps and in 1 - eps, then zooms about its best point
+    eps = np.concatenate([np.logspace(-12, np.log10(0.5), 4001), 1 - np.logspace(-15, np.log10(0.5), 4001)])
+    for _ in range(12):
+        values = best(eps)
+        i = int(np.argmax(values))
+        scan = values[i]
+        lo, hi = eps[max(i - 1, 0)], eps[min(i + 1, eps.size - 1)]
+        eps = np.linspace(lo, hi, 2001)
+    assert bound == pytest.approx(scan, rel=1e-7)

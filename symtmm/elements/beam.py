@@ -21,6 +21,8 @@ and no cancellation for short segments.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import sympy as sp
 
@@ -111,6 +113,11 @@ class EulerBernoulliSegment(FieldElement):
 
     def constants(self) -> tuple:
         """``(EI, m, l, kw)`` as floats (wave-number bounds and piece lengths)."""
+        return self._constants
+
+    @functools.cached_property
+    def _constants(self) -> tuple:
+        # (once per segment: its constants never change)
         return (exact_float(self.EI), exact_float(self.m), exact_float(self.l),
                 exact_float(self.kw))
 

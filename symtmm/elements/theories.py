@@ -45,6 +45,7 @@ where the two wave numbers meet).
 
 from __future__ import annotations
 
+import functools
 import math
 
 import mpmath
@@ -182,6 +183,12 @@ class BeamSegment(FieldElement):
     # -- numbers ----------------------------------------------------------------------------
     def constants(self) -> tuple:
         """``(EI, m, l, kw, N, rhoI, kGA)`` as floats (``kGA`` infinite when rigid in shear)."""
+        return self._constants
+
+    @functools.cached_property
+    def _constants(self) -> tuple:
+        # (once per segment: a piece length asks for them at forty lengths, and the
+        # constants of a segment never change)
         return (exact_float(self.EI), exact_float(self.m), exact_float(self.l),
                 exact_float(self.kw), exact_float(self.N), exact_float(self.rhoI),
                 math.inf if self.kGA is None else exact_float(self.kGA))
@@ -254,34 +261,56 @@ class BeamSegment(FieldElement):
         # min(coef_y / m, coef_psi / rhoI), coef_y falling and coef_psi rising with eps, so
         # the best eps balances them (a stiff shear, kGA >> EI q, then gives about the
         # Euler-Bernoulli EI q**2 / m, where eps = 1/2 would ask for pieces pi sqrt(EI/kGA)
-        # long)
+        # long). Any eps gives a bound. The balance is found in closed form (a bisection
+        # took 60 evaluations a bound, and a piece length 40 bounds), twice: in eps and in
+        # delta = 1 - eps, each accurate where the other cancels (eps near 0: a soft shear;
+        # near 1: a stiff one); the bound is the best at either and its neighbours
+        E = EI * q + extra
+        ny = max(N, 0.0) * q + kw
 
-        def coefs(eps):
-            return ((kp * (1 - eps) + max(N, 0.0)) * q + kw) / m, EI * q - kp * (1 / eps - 1) + extra
+        def by_eps(eps):
+            return (kp * (1 - eps) * q + ny) / m, E - kp * (1 / eps - 1)
 
+        def by_delta(delta):
+            return (kp * delta * q + ny) / m, E - kp * delta / (1 - delta)
+
+        lo, hi = 1e-300, 1.0 - 2.0 ** -53     # (either variable: inside (0, 1))
         if rhoI <= 0:
-            # no rotary inertia: psi carries no kinetic energy, coef_psi need only be >= 0
-            lo, hi = 1e-12, 1.0 - 1e-15
-            if coefs(hi)[1] < 0:
+            # no rotary inertia: psi carries no kinetic energy, coef_psi need only be >= 0:
+            # from eps = kp / (E + kp) on, up to delta = E / (E + kp) (coef_y is best there)
+            if not E > 0:
                 return 0.0
-            for _ in range(200):
-                mid = 0.5 * (lo + hi)
-                if mid in (lo, hi):
-                    break           # (adjacent doubles: no step moves them again)
-                lo, hi = (lo, mid) if coefs(mid)[1] >= 0 else (mid, hi)
-            return coefs(hi)[0]
-        lo, hi = 1e-12, 1.0 - 1e-15
-        for _ in range(200):
-            mid = 0.5 * (lo + hi)
-            if mid in (lo, hi):
-                break               # (adjacent doubles: no step moves them again)
-            y, p = coefs(mid)
-            if y > p / rhoI:
-                lo = mid
-            else:
-                hi = mid
-        best = max((min(coefs(e)[0], coefs(e)[1] / rhoI) for e in (lo, hi)), default=0.0)
-        return max(best, 0.0)
+            best = 0.0
+            for coefs, x, toward in ((by_eps, kp / (E + kp), 1.0), (by_delta, E / (E + kp), 0.0)):
+                x = min(max(x, lo), hi)
+                while coefs(x)[1] < 0 and lo < x < hi:          # (rounding: the next double)
+                    x = math.nextafter(x, toward)
+                if coefs(x)[1] >= 0:
+                    best = max(best, coefs(x)[0])
+            return best
+        # coef_y / m against coef_psi / rhoI, times eps (or 1 - eps): equal at a root of a
+        # quadratic, taken by the formula that does not cancel
+        B, A0 = kp * q / m, ny / m              # coef_y / m = A0 + B - B eps = A0 + B delta
+
+        def inside(x):
+            return min(max(x, lo), hi) if math.isfinite(x) else lo
+
+        # in eps: B eps**2 - b eps - k = 0, its positive root
+        b, k = A0 + B - (E + kp) / rhoI, kp / rhoI
+        disc = math.sqrt(b * b + 4 * B * k)
+        eps = (b + disc) / (2 * B) if b > 0 else 2 * k / (disc - b)
+        # in delta: a delta**2 - b delta + c = 0, its smaller root (c > 0: in (0, 1))
+        a, b, c = rhoI * B, rhoI * (B - A0) + E + kp, E - rhoI * A0
+        disc = math.sqrt(max(b * b - 4 * a * c, 0.0))
+        delta = 2 * c / (b + disc) if b > 0 else (b - disc) / (2 * a)
+        candidates = ((by_eps, inside(eps)), (by_delta, inside(delta)))
+        best = 0.0
+        for coefs, x in candidates:
+            for t in (math.nextafter(x, 0.0), x, math.nextafter(x, 1.0)):
+                if lo <= t <= hi:
+                    y, p = coefs(t)
+                    best = max(best, min(y, p / rhoI))
+        return best
 
     def safe_length(self, omega2: float) -> float:
         """A piece length whose clamped-clamped modes all lie above ``omega2`` (x 1.1 margin).
