@@ -671,3 +671,22 @@ def _kernel_stiffness(seg, lam2):
     from symtmm.numeric.segments import segment_matrix
     U = segment_matrix(DOUBLE, seg, np.array([lam2], dtype=float))[0]
     return segment_stiffness(U)[0].real
+
+
+def test_a_timoshenko_beam_1e20_long():
+    """A pinned-pinned Timoshenko beam 1e20 long with kGA = 1 (its pieces once had to be
+    shorter than 1e-12 of it: the bound of their clamped-clamped modes was searched over
+    too narrow a range of its splitting): the closed form, the smaller root of
+    ``m rhoI w**4 - (m (EI k**2 + kGA) + rhoI kGA k**2) w**2 + EI kGA k**4 = 0`` with
+    ``k = n pi / L``."""
+    model = Model((Beam("a", EI=1, m=1, L="1e20", rhoI=1, kGA=1, theory="timoshenko",
+                        left="pinned", right="pinned"),))
+    got = solve(model, count=2, digits=15)
+    ctx = mpmath.MPContext()
+    ctx.dps = 60
+    for n, e in enumerate(got, 1):
+        k = n * ctx.pi / ctx.mpf(10) ** 20
+        b, c = (k * k + 1) + k * k, k ** 4
+        w2 = 2 * c / (b + ctx.sqrt(b * b - 4 * c))
+        assert e.multiplicity == 1
+        assert abs(e.omega - ctx.sqrt(w2)) <= ctx.mpf(10) ** -15 * ctx.sqrt(w2)
