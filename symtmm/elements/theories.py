@@ -295,6 +295,10 @@ class BeamSegment(FieldElement):
         def inside(x):
             return min(max(x, lo), hi) if math.isfinite(x) else lo
 
+        if not (B > 0 and kp > 0):
+            # (no shear term to split, a rod's kGA = 0: every eps gives the same bound)
+            y, p = by_eps(0.5)
+            return max(min(y, p / rhoI), 0.0)
         # in eps: B eps**2 - b eps - k = 0, its positive root
         b, k = A0 + B - (E + kp) / rhoI, kp / rhoI
         disc = math.sqrt(b * b + 4 * B * k)
@@ -302,7 +306,7 @@ class BeamSegment(FieldElement):
         # in delta: a delta**2 - b delta + c = 0, its smaller root (c > 0: in (0, 1))
         a, b, c = rhoI * B, rhoI * (B - A0) + E + kp, E - rhoI * A0
         disc = math.sqrt(max(b * b - 4 * a * c, 0.0))
-        delta = 2 * c / (b + disc) if b > 0 else (b - disc) / (2 * a)
+        delta = 2 * c / (b + disc) if b > 0 else (b - disc) / (2 * a) if a > 0 else lo
         candidates = ((by_eps, inside(eps)), (by_delta, inside(delta)))
         best = 0.0
         for coefs, x in candidates:
