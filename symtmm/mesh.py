@@ -17,6 +17,7 @@ import bisect
 import functools
 import itertools
 import math
+from fractions import Fraction
 
 import sympy as sp
 from sympy.polys.domains import QQ
@@ -458,13 +459,17 @@ class Mesh:
         ``det R`` vanishes for every ``lam``; that model is refused.
         """
         constraints = self._constraints()
+        # (in Python's integers and fractions where the coefficients are rational, as
+        # mostly they are, 1 and -1: SymPy's arithmetic cost a 20-span beam's supports
+        # 0.9 ms of its 2.6 ms mesh; back to SymPy numbers at the end)
+        constraints = [(name, {v: _fast(c) for v, c in c_.items()}) for name, c_ in constraints]
         subs: dict = {}
         users: dict = {}        # freedom -> the eliminated ones whose expressions hold it
-        self.pivot_product = sp.Integer(1)
+        pivot_product = 1
         for name, constraint in constraints:
             expr: dict = {}
             for v, c in constraint.items():
-                for w, cw in (subs[v] if v in subs else {v: sp.Integer(1)}).items():
+                for w, cw in subs.get(v, {v: 1}).items():
                     expr[w] = expr.get(w, 0) + c * cw
             expr = {w: c for w, c in expr.items() if c != 0}
             if not expr:
@@ -478,8 +483,8 @@ class Mesh:
             # a node's freedom first, then a body's translations, then its rotation
             pivot = min(expr, key=lambda v: (v[0] == "b", v[2] == 1, v[2], v[1]))
             cp = expr.pop(pivot)
-            self.pivot_product *= cp**2
-            value = {w: -c / cp for w, c in expr.items()}
+            pivot_product *= cp**2
+            value = {w: -_ratio(c, cp) for w, c in expr.items()}
             # (only the expressions that hold the pivot: scanning all of them made this
             # quadratic in the constraints, 1.2 ms of a 20-span beam's 3 ms mesh)
             for held in users.pop(pivot, ()):
@@ -496,7 +501,36 @@ class Mesh:
             subs[pivot] = value
             for w in value:
                 users.setdefault(w, set()).add(pivot)
-        return subs
+        self.pivot_product = _sympy(pivot_product)
+        return {v: {w: _sympy(c) for w, c in ex.items()} for v, ex in subs.items()}
+
+
+def _fast(c):
+    """A SymPy rational as a Python integer or Fraction (exact, and a hundred times
+    faster to add and multiply); any other number as it is."""
+    if isinstance(c, sp.Integer):
+        return int(c)
+    if isinstance(c, sp.Rational):
+        return Fraction(int(c.p), int(c.q))
+    return c
+
+
+def _ratio(c, cp):
+    """``c / cp`` exactly: a fraction of integers (an integer where it divides)."""
+    if isinstance(c, int) and isinstance(cp, int):
+        q = Fraction(c, cp)
+        return int(q) if q.denominator == 1 else q
+    return c / cp
+
+
+def _sympy(c):
+    """The SymPy number of a :func:`_fast` one (SymPy's own ``1`` for 1: callers test
+    ``is S.One``)."""
+    if isinstance(c, int):
+        return sp.Integer(c)
+    if isinstance(c, Fraction):
+        return sp.Rational(c.numerator, c.denominator)
+    return c
 
 
 def _segment_null_rows(beam, length) -> list:
