@@ -230,6 +230,14 @@ def _against_arb(monkeypatch, model, size, omegas, relative, bits=150, arb_bits=
     assert fast.counts().tolist() == slow.counts().tolist()
     for a, b in zip(fast.delta(), slow.delta()):
         assert a.contains(b.mid()) and a.rad() < relative * abs(b.mid())
+    # the midpoints read from the words (a proof's secant steps): the balls' own midpoints,
+    # within their radius of Arb's value at more bits
+    ctx = mpmath.MPContext()
+    ctx.prec = bits + 64
+    values, radii = fast.midpoints(ctx)
+    for v, r, a, b in zip(values, radii, fast.delta(), slow.delta()):
+        assert v == ctx.mpf(Ball(bits).to_mpmath(a))
+        assert abs(v - ctx.mpf(Ball(arb_bits).to_mpmath(b))) <= r
     return fast
 
 
@@ -640,3 +648,25 @@ def test_every_entry_point_refuses_buffers_that_do_not_fit():
     out = u64(2, W)
     mw.ops(2, 2, x, x, out)                 # (the same buffers, after the refusals)
     assert multiword.decode(out[0])[0] == Fraction(9, 4)
+
+
+def test_midpoints_of_products_far_beyond_the_doubles():
+    """A product of the words scaled far below and above the doubles' range: its midpoint
+    read directly is its arb's, its radius a bound of the arb's (0 and inf as floats
+    where the arb's is beyond them, never a smaller number)."""
+    plan = Counter(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 100.0).plan(
+        100.0)
+    ar = Ball(200)
+    ctx = mpmath.MPContext()
+    ctx.prec = 264
+    n, kinds = plan.n, len(plan.multiplicity)
+    for shift in (-5000, -1100, 0, 900, 4000):
+        w = multiword.WordProduct((3 << 150) | 12345, -150, 2.0 ** -120, shift)
+        fa = stiffness.Factors(plan, ar, np.full((1, n), None, dtype=object),
+                               np.ones((1, n), dtype=np.int8), np.ones((1, n), dtype=bool),
+                               np.full((1, kinds), None, dtype=object), None,
+                               np.array([w], dtype=object))
+        (v,), (r,) = fa.midpoints(ctx)
+        ball = fa.delta()[0]
+        assert v == ctx.mpf(ar.to_mpmath(ball))
+        assert r >= float(ball.rad()) * (1 - 1e-8) and r > 0

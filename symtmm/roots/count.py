@@ -244,6 +244,14 @@ class Counter(Evaluator):
         fa = self.factors(omegas, ar)
         return fa.delta(), fa.counts()
 
+    def midpoints(self, omegas, ar: Arithmetic, ctx):
+        """``(Delta(i omega), counts, radii)``: ``Delta`` evaluated in ``ar`` as numbers of
+        the mpmath context ``ctx`` (None where the count is undecided) and bounds of their
+        errors (:meth:`~symtmm.numeric.stiffness.Factors.midpoints`)."""
+        fa = self.factors(omegas, ar)
+        values, radii = fa.midpoints(ctx)
+        return values, fa.counts(), radii
+
 
 def digits_for(digits: int) -> int:
     """Working digits of the high-precision stage for ``digits`` correct digits.

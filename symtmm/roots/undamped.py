@@ -464,12 +464,7 @@ class _Search:
         the count is undecided (its ball may have no finite midpoint). Also per point a
         bound of the value's error where balls give one (floats; 0 otherwise). ``ar``: an
         arithmetic other than the proofs' (fewer bits)."""
-        ar = ar or self.hp
-        values, counts = self.counter.delta(points, ar)
-        radii = [float(v.rad()) if ar.rigorous and c >= 0 else 0.0
-                 for v, c in zip(values, counts)]
-        return [ctx.mpf(mpmath.re(ar.to_mpmath(v))) if c >= 0 else None
-                for v, c in zip(values, counts)], counts, radii
+        return self.counter.midpoints(points, ar or self.hp, ctx)
 
     def _evaluate(self, points, ctx):
         """``(Delta(i w) in ctx, J(w), proved, radii)`` at mpmath points (:meth:`_values`).
