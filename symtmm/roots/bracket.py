@@ -91,92 +91,93 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
     >>> [round(x, 12) for x in shrink(a, b, f(a), f(b), probe, 1e-13)]
     [1.414213562373, -1.414213562373]
     """
-    a, b = np.array(a, dtype=float), np.array(b, dtype=float)
-    fa, fb = np.array(fa, dtype=float), np.array(fb, dtype=float)
-    R = a.size
-    previous = b - a
-    active = (b - a) > width * np.maximum(np.abs(a), np.abs(b))
-    slow = np.zeros(R, dtype=bool)
-    earlier = b - a
-    last = np.zeros(R, dtype=int)          # the side each bracket's last point fell on
-    best = 0.5 * (a + b)
-    best_f = np.full(R, np.inf)
+    # (the brackets' state as Python lists, and each step's arithmetic on Python floats:
+    # a step works on ten brackets or so, where a numpy call costs what forty float
+    # operations do; the same IEEE operations in the same order as numpy's, the same bits)
+    a, b = [float(x) for x in a], [float(x) for x in b]
+    fa, fb = [float(x) for x in fa], [float(x) for x in fb]
+    R = len(a)
+    previous = [q - p for p, q in zip(a, b)]
+    earlier = list(previous)
+    active = [q - p > width * max(abs(p), abs(q)) for p, q in zip(a, b)]
+    slow = [False] * R
+    last = [0] * R                          # the side each bracket's last point fell on
+    best = [0.5 * (p + q) for p, q in zip(a, b)]
+    best_f = [math.inf] * R
+    tops = list(range(1, SPREAD + 1))
     for _ in range(steps):
-        idx = np.nonzero(active)[0]
-        if idx.size == 0:
+        idx = [j for j in range(R) if active[j]]
+        if not idx:
             break
-        A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-        with np.errstate(all="ignore"):
-            c = B - FB * (B - A) / (FB - FA)
-        if settle:
-            # the step from the latest point is below the width: that point is the root
-            # as far as the secant tells (the other end's value, scaled down, only ever
-            # lengthens the step)
-            latest = np.where(last[idx] > 0, B, A)
-            near = (last[idx] != 0) & (np.abs(c - latest) <= 0.5 * width * np.abs(latest))
-            if near.any():
-                active[idx[near]] = False
-                keep = ~near
-                idx, A, B, FA, FB, c = idx[keep], A[keep], B[keep], FA[keep], FB[keep], c[keep]
-                if idx.size == 0:
-                    break
-        # (a step that rounds onto an end is not bad: the root is next to it, and the
-        # guard below puts the point just inside, which closes the bracket)
-        bad = ~np.isfinite(c) | (c < A) | (c > B) | (FA * FB > 0)
-        c = np.where(bad, 0.5 * (A + B), c)
-        guard = np.minimum(0.25 * width * np.maximum(np.abs(A), np.abs(B)), (B - A) / 4)
+        cs = []
+        for j in idx:
+            A, B, FA, FB = a[j], b[j], fa[j], fb[j]
+            d = FB - FA
+            c = B - FB * (B - A) / d if d != 0 else math.nan
+            if settle and last[j] != 0:
+                # the step from the latest point is below the width: that point is the
+                # root as far as the secant tells (the other end's value, scaled down, only
+                # ever lengthens the step)
+                latest = B if last[j] > 0 else A
+                if abs(c - latest) <= 0.5 * width * abs(latest):
+                    active[j] = False
+                    continue
+            cs.append((j, c))
+        if not cs:
+            break
+        xs, owners = [], []
+        spread = []
+        for j, c in cs:
+            A, B = a[j], b[j]
+            # (a step that rounds onto an end is not bad: the root is next to it, and the
+            # guard below puts the point just inside, which closes the bracket)
+            if not math.isfinite(c) or c < A or c > B or fa[j] * fb[j] > 0:
+                c = 0.5 * (A + B)
+            guard = min(0.25 * width * max(abs(A), abs(B)), (B - A) / 4)
+            lo, hi = A + guard, B - guard
+            xs.append(min(max(c, lo), hi))
+            owners.append(j)
+            if slow[j]:
+                spread.append((j, lo, hi))
         # a slow bracket gets SPREAD evenly spaced points beside its secant point, in the
         # same batch: a batch costs little more for a few more points, and one bracket's
-        # slow convergence would otherwise set the number of batches for all
-        points, owner = [c], [np.arange(idx.size)]
-        s_idx = np.nonzero(slow[idx])[0]
-        # (a bracket of one sign spanning more than a factor of four: the points spaced
-        # evenly in log|x|, for a root near its small end, where a real zero of a damped
-        # model lies beside lam = 0 and the function grows by orders of magnitude toward
-        # the far end: evenly spaced points found it only after twelve steps)
-        As, Bs = A[s_idx], B[s_idx]
-        with np.errstate(all="ignore"):
-            ratio = np.where(As * Bs > 0, np.abs(Bs / As), 1.0)
-        wide = (ratio > 4.0) | (ratio < 0.25)
-        for q in range(1, SPREAD + 1):
+        # slow convergence would otherwise set the number of batches for all. (A bracket
+        # of one sign spanning more than a factor of four: the points spaced evenly in
+        # log|x|, for a root near its small end, where a real zero of a damped model lies
+        # beside lam = 0 and the function grows by orders of magnitude toward the far
+        # end: evenly spaced points found it only after twelve steps)
+        for q in tops:
             t = q / (SPREAD + 1)
-            with np.errstate(all="ignore"):
-                geometric = As * ratio ** t
-            points.append(np.where(wide, geometric, As + (Bs - As) * t))
-            owner.append(s_idx)
-        owner = np.concatenate(owner)
-        x = np.clip(np.concatenate(points), A[owner] + guard[owner], B[owner] - guard[owner])
-        fx, side = probe(x, idx[owner])
-        width_before = B - A
-        # (the points' numbers as Python floats, grouped by bracket in one pass: numpy's
-        # scalar access cost a third of this loop's time)
-        fxl, sidel, xl = np.asarray(fx, dtype=float).tolist(), np.asarray(side).tolist(), x.tolist()
-        groups: list = [[] for _ in range(idx.size)]
-        for m, o in enumerate(owner.tolist()):
+            for j, lo, hi in spread:
+                A, B = a[j], b[j]
+                ratio = abs(B / A) if A * B > 0 else 1.0
+                x = A * ratio ** t if (ratio > 4.0 or ratio < 0.25) else A + (B - A) * t
+                xs.append(min(max(x, lo), hi))
+                owners.append(j)
+        fx, side = probe(np.array(xs), np.array(owners, dtype=np.intp))
+        # (the points' numbers as Python floats, grouped by bracket in one pass)
+        fxl, sidel = np.asarray(fx, dtype=float).tolist(), np.asarray(side).tolist()
+        groups: dict = {j: [] for j, _ in cs}
+        for m, o in enumerate(owners):
             groups[o].append(m)
-        # (the brackets' state as Python lists for the loop, written back at its end: numpy
-        # scalar reads and writes cost three times as much)
-        Al, Bl, FAl, FBl = A.tolist(), B.tolist(), FA.tolist(), FB.tolist()
-        lastl, slowl, actl = last[idx].tolist(), slow[idx].tolist(), active[idx].tolist()
-        bestl, bestfl = best[idx].tolist(), best_f[idx].tolist()
-        prevl, earll, wbl = previous[idx].tolist(), earlier[idx].tolist(), width_before.tolist()
-        for j in range(idx.size):
+        for j, members in groups.items():
+            width_before = b[j] - a[j]
             left = right = None
             stop = False
-            for m in groups[j]:
+            for m in members:
                 f_m = fxl[m]
-                if not abs(f_m) >= bestfl[j]:          # (also f = 0: at the root)
-                    bestl[j], bestfl[j] = xl[m], abs(f_m)
+                if not abs(f_m) >= best_f[j]:          # (also f = 0: at the root)
+                    best[j], best_f[j] = xs[m], abs(f_m)
                 if sidel[m] == 0 or not math.isfinite(f_m) or f_m == 0:
                     # (f = 0: the point is the root as far as f can tell; bisecting toward
                     # it from the other end would cost a step per bit)
                     stop = True
-                elif sidel[m] > 0 and (right is None or xl[m] < xl[right]):
+                elif sidel[m] > 0 and (right is None or xs[m] < xs[right]):
                     right = m
-                elif sidel[m] < 0 and (left is None or xl[m] > xl[left]):
+                elif sidel[m] < 0 and (left is None or xs[m] > xs[left]):
                     left = m
-            if stop or (left is not None and right is not None and xl[left] >= xl[right]):
-                actl[j] = False
+            if stop or (left is not None and right is not None and xs[left] >= xs[right]):
+                active[j] = False
                 continue
             # the end that stays is scaled only when it stayed the step before too: after
             # a step to the other side the two latest points bracket the root, and the
@@ -184,25 +185,21 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
             # slowed the refinement to a constant factor per step wherever the steps
             # alternate)
             if right is not None and left is None:
-                if lastl[j] > 0:
+                if last[j] > 0:
                     # (an end's value may have underflowed to 0 in the scaling: halve)
-                    m = 1 - fxl[right] / FBl[j] if FBl[j] != 0 else 0.0
-                    FAl[j] *= m if m > 0 else 0.5
-                Bl[j], FBl[j], lastl[j] = xl[right], fxl[right], 1
+                    m = 1 - fxl[right] / fb[j] if fb[j] != 0 else 0.0
+                    fa[j] *= m if m > 0 else 0.5
+                b[j], fb[j], last[j] = xs[right], fxl[right], 1
             elif left is not None and right is None:
-                if lastl[j] < 0:
-                    m = 1 - fxl[left] / FAl[j] if FAl[j] != 0 else 0.0
-                    FBl[j] *= m if m > 0 else 0.5
-                Al[j], FAl[j], lastl[j] = xl[left], fxl[left], -1
+                if last[j] < 0:
+                    m = 1 - fxl[left] / fa[j] if fa[j] != 0 else 0.0
+                    fb[j] *= m if m > 0 else 0.5
+                a[j], fa[j], last[j] = xs[left], fxl[left], -1
             else:                   # both ends new: a fresh bracket, nothing to scale
-                Al[j], FAl[j], Bl[j], FBl[j], lastl[j] = xl[left], fxl[left], xl[right], \
+                a[j], fa[j], b[j], fb[j], last[j] = xs[left], fxl[left], xs[right], \
                     fxl[right], 0
             # spread points next time when three steps together have not halved the bracket
-            slowl[j] = (Bl[j] - Al[j]) > 0.5 * prevl[j]
-            prevl[j], earll[j] = earll[j], wbl[j]
-            actl[j] = (Bl[j] - Al[j]) > width * max(abs(Al[j]), abs(Bl[j]))
-        a[idx], b[idx], fa[idx], fb[idx] = Al, Bl, FAl, FBl
-        last[idx], slow[idx], active[idx] = lastl, slowl, actl
-        best[idx], best_f[idx] = bestl, bestfl
-        previous[idx], earlier[idx] = prevl, earll
-    return best.tolist()
+            slow[j] = (b[j] - a[j]) > 0.5 * previous[j]
+            previous[j], earlier[j] = earlier[j], width_before
+            active[j] = (b[j] - a[j]) > width * max(abs(a[j]), abs(b[j]))
+    return best
