@@ -395,9 +395,17 @@ class StiffnessPlan:
         cached = self.__dict__.get("_distinct")
         if cached is None:
             places: dict = {}
-            index = np.array([places.setdefault(c, len(places)) for c in self.coefficients],
-                             dtype=np.int64)
-            cached = self.__dict__["_distinct"] = (list(places), index)
+            # (most coefficients are the same few objects, the powers of two the plan
+            # scaled by: looked up by identity first, as a SymPy number's hash costs a
+            # microsecond)
+            seen: dict = {}
+            index = []
+            for c in self.coefficients:
+                at = seen.get(id(c))
+                if at is None:
+                    at = seen[id(c)] = places.setdefault(c, len(places))
+                index.append(at)
+            cached = self.__dict__["_distinct"] = (list(places), np.array(index, dtype=np.int64))
         return cached
 
     @property
