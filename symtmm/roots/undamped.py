@@ -290,9 +290,17 @@ class _Search:
         (1.5 to 4 times). The plan is then cut for a range close to the one needed.
         """
         target = count + len(self.model.beams)
-        segments = [b.segment(b.L) for b in self.model.beams]
-        # (the constants as floats once: the bisection below asks for them 40 times)
-        waves = [(seg, seg.constants(), float(b.L)) for seg, b in zip(segments, self.model.beams)]
+        # (the constants as floats once: the bisection below asks for them 40 times; beams
+        # alike in all but their length once, with their lengths summed: the spans of a
+        # continuous beam are)
+        waves: dict = {}
+        for b in self.model.beams:
+            seg = b.segment(b.L)
+            consts = tuple(seg.constants())
+            key = (type(seg), consts[:2], consts[3:])
+            _, consts, L = waves.get(key, (seg, seg.constants(), 0.0))
+            waves[key] = (seg, consts, L + float(b.L))
+        waves = list(waves.values())
 
         def weyl(w):
             # the travelling waves count the modes (under a tension or on a foundation
