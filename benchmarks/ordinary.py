@@ -79,8 +79,9 @@ COUNT = 10
 DIGITS = 15
 DAMPED_DIGITS = 12
 TOLERANCE = 1e-6
-#: Timed runs per measurement (``--quick``: :data:`QUICK_REPEAT`); the best counts.
-REPEAT = 5
+#: Timed runs per measurement (``--quick``: :data:`QUICK_REPEAT`); the best counts (as
+#: :data:`benchmarks.fe_compare.REPEAT`).
+REPEAT = 10
 QUICK_REPEAT = 2
 #: Seconds a single symtmm solve may take before it is recorded as a failure.
 TIME_LIMIT = 60.0
