@@ -253,8 +253,8 @@ def test_delta_in_eight_words_encloses_arb_at_1000_bits(monkeypatch):
     words = []
     decided = multiword._decided
 
-    def spy(plan, ar, lam2, reverse, N, *rest):
-        out = decided(plan, ar, lam2, reverse, N, *rest)
+    def spy(plan, ar, lam2, reverse, N, *rest, **options):
+        out = decided(plan, ar, lam2, reverse, N, *rest, **options)
         words.append((N, None if out is None else int(out[0].sum())))
         return out
     monkeypatch.setattr(multiword, "_decided", spy)
@@ -270,8 +270,8 @@ def test_a_tier_that_decides_nothing_is_not_tried_again_for_the_plan(monkeypatch
     words = []
     decided = multiword._decided
 
-    def spy(plan, ar, lam2, reverse, N, *rest):
-        out = decided(plan, ar, lam2, reverse, N, *rest)
+    def spy(plan, ar, lam2, reverse, N, *rest, **options):
+        out = decided(plan, ar, lam2, reverse, N, *rest, **options)
         if N == 2 and out is not None:          # two words decide nothing here
             out = (np.zeros_like(out[0]),) + out[1:]
         words.append((N, len(lam2), None if out is None else int(out[0].sum())))
@@ -670,3 +670,28 @@ def test_midpoints_of_products_far_beyond_the_doubles():
         ball = fa.delta()[0]
         assert v == ctx.mpf(ar.to_mpmath(ball))
         assert r >= float(ball.rad()) * (1 - 1e-8) and r > 0
+
+
+def test_the_other_order_is_tried_in_the_last_tier_only(monkeypatch):
+    """A point two words cannot decide (1e-30 from a root of a pinned-pinned beam) goes on
+    to three words as it is: the freedoms the other way round are tried in the last tier
+    alone (a point no tier decides, 1e-70 from the root, is tried so there)."""
+    calls = []
+    eliminated = multiword._eliminated
+
+    def spy(band, reverse, ok, N):
+        calls.append((N, reverse))
+        return eliminated(band, reverse, ok, N)
+    monkeypatch.setattr(multiword, "_eliminated", spy)
+    c = Counter(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 100.0)
+    assert multiword.tiers(150, c.plan(100.0).n) == [2, 3]
+    with mpmath.workdps(100):
+        root = mpmath.pi ** 2
+        near = [root * (1 + s * mpmath.mpf(10) ** -30) for s in (-1, 1)]
+        nearer = [root * (1 + mpmath.mpf(10) ** -70)]
+    assert c.counts(near, Ball(150)).tolist() == [0, 1]
+    assert calls == [(2, False), (3, False)]
+    calls.clear()
+    c.factors(nearer, Ball(150))
+    # (then more bits, as Evaluator._ball retries an undecided point)
+    assert calls[:3] == [(2, False), (3, False), (3, True)]

@@ -21,8 +21,8 @@ ball holds zero (the radii grow along the band, by up to ``2**40`` on example 1 
 on long chains; or the point lies closer to a root than the words resolve). A tiny pivot
 beside a large coupling (a leading sub-structure near one of its eigenvalues) is
 eliminated as a 2x2 block with the next freedom, whose inverse does not multiply the
-radii by the square of their ratio; a point still undecided is tried with the freedoms
-the other way round, then with one word more.
+radii by the square of their ratio; a point still undecided is tried with one word more,
+and in the last tier also with the freedoms the other way round.
 
 The results are balls of the arithmetic asked for (:class:`~symtmm.numeric.arith.Ball`),
 as rigorous as Arb's: each pivot about its leading double, widened by the rest (its
@@ -629,7 +629,8 @@ def factor(plan, ar: Ball, lam2, reverse: bool = False, lam=None):
         if not todo.size or (complex_ and N > MAX_COMPLEX_WORDS):
             break
         done = _decided(plan, ar, lam2[todo], reverse, N,
-                        None if lam is None else lam[todo], complex_)
+                        None if lam is None else lam[todo], complex_,
+                        other_order=(N == tried[-1]))
         if done is None:
             break
         ok, piv, det12 = done
@@ -719,11 +720,15 @@ def _arb_of(words, flint, shift: int = 0):
     return WordProduct(*_parts(words), shift).arb(flint)
 
 
-def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bool = False):
+def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bool = False,
+             other_order: bool = True):
     """``(ok, pivots, det U12)`` of the points ``lam2`` (``lam``: the dashpots') in balls
     of ``N`` words, complex ones if asked: ``ok`` per point whether every pivot was
     decided, the pivot and ``det U12`` balls of those points ``(..., words)``; None where
-    the plan's numbers do not fit the compiled balls."""
+    the plan's numbers do not fit the compiled balls. ``other_order``: a point left
+    undecided is eliminated again with its freedoms the other way round (the last tier's
+    call: before it, the next tier decides more of them for less, as the other order
+    eliminates the whole band where the first stopped at the undecided pivot)."""
     tabs = _tables(plan, N)
     if tabs is None:
         return None
@@ -756,8 +761,8 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bo
         Kb = _eliminated(band, reverse, ok, code)
         # where a pivot stayed undecided, the other order's leading minors (the same
         # inertia and determinant) may keep their radii narrower
-        again = np.nonzero(built & (ok == 0))[0]
-        if again.size:
+        again = np.nonzero(built & (ok == 0))[0] if other_order else ()
+        if len(again):
             ok2 = built[again].copy()
             Kb[again] = _eliminated(band[again], not reverse, ok2, code)
             ok[again] = ok2
