@@ -77,3 +77,21 @@ def test_paper_example_3_decouples(examples_dir):
     # Omega = 4 pi: sin(4 pi x) vanishes at both springs, so all three families share it
     triple = [e for e in spectrum if e.multiplicity == 3]
     assert triple and abs(triple[0].omega - (4 * mpmath.pi) ** 2) < 1e-13
+
+
+@pytest.mark.parametrize("certified", [True, False])
+def test_paper_example_3_triple_root_with_and_without_balls(examples_dir, certified):
+    """The triple root (4 pi)**2 of example 3 at 30 digits, its cluster's ends counted in
+    the zoom's first ball batch (balls) or at two precisions first (mpmath): one
+    eigenvalue of multiplicity 3, to every digit of the closed form."""
+    from symtmm.modelfile import load
+    from symtmm.roots.undamped import solve_undamped
+
+    spectrum = solve_undamped(load(examples_dir / "paper_ex3_three_pp_coupled.toml"),
+                              count=15, digits=30, certified=certified)
+    from symtmm.results import decimal_string
+
+    [triple] = [e for e in spectrum if e.multiplicity == 3]
+    with mpmath.workdps(50):
+        exact = (4 * mpmath.pi) ** 2
+    assert decimal_string(triple.omega, 30) == decimal_string(exact, 30)
