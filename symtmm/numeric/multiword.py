@@ -705,14 +705,6 @@ class WordProduct:
         return flint.arb((self.mantissa, self.exponent),
                          (rn, self.shift - (rd.bit_length() - 1)))
 
-    def radius_float(self) -> float:
-        """The radius as a float, rounded up (inf beyond the doubles)."""
-        try:
-            r = math.ldexp(self.radius, self.shift)
-        except OverflowError:
-            return math.inf
-        return math.nextafter(r, math.inf) if self.radius else 0.0
-
 
 def _arb_of(words, flint, shift: int = 0):
     """The ball of words ``words`` times ``2**shift`` as an arb, exactly: its midpoint

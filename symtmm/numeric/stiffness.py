@@ -446,7 +446,6 @@ class Factors:
                 out.append(value)
         return ar.array(out)
 
-
     def midpoints(self, ctx) -> tuple:
         """``(values, radii)`` per point: ``Delta`` as a number of the mpmath context
         ``ctx`` (a ball's midpoint; None where the count is undecided) and a float bound
@@ -490,13 +489,13 @@ class Factors:
                     terms.append(_join(_times(_split(mid), c_rad)))
                 radii[p] = math.fsum(terms) * (1 + 2.0 ** -50)
         if rest:
-            got = self.replaced_delta(rest)
+            got = self.delta_at(rest)
             for p, v in zip(rest, got):
                 values[p] = ctx.mpf(mpmath.re(ar.to_mpmath(v)))
                 radii[p] = float(v.rad()) if ar.rigorous else 0.0
         return values, radii
 
-    def replaced_delta(self, points) -> list:
+    def delta_at(self, points) -> list:
         """:meth:`delta` at the given point indices only."""
         sub = Factors(self.plan, self.ar, self.pivots[points], self.signs[points],
                       self.decided[points], self.det12[points], None,
