@@ -69,9 +69,9 @@ _TIE = 100
 def _rounded(value, digits: int):
     """``(sign, q, e)``: ``value`` rounded to ``digits`` significant digits, ``q * 10**(e -
     digits + 1)`` with ``10**(digits - 1) <= q < 10**digits``, in integer arithmetic on its
-    exact binary value; None for 0, infinities and values within :data:`_TIE` of a unit of
-    the last digit from a tie, where :func:`decimal_string` (mpmath's rounding of its
-    guard digits) decides. Where not None, two values print alike exactly when these agree
+    exact binary value; None for 0, infinities and values within ``1 / _TIE`` of a unit of
+    the last digit from a tie (:data:`_TIE`), where :func:`decimal_string` (mpmath's
+    rounding of its guard digits) decides. Where not None, two values print alike exactly when these agree
     (a proof stage asks this of about twenty brackets per solve: the strings cost 30 us a
     pair, this a few).
 
