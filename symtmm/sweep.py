@@ -368,9 +368,9 @@ def _match(refs, bases, threshold, new_id):
     pairs = []
     if ids and bases:
         V = np.stack([refs[bid] for bid in ids], axis=1)              # (N, branches)
-        Q = np.concatenate(bases, axis=1)                             # (N, columns)
+        columns = np.concatenate(bases, axis=1)                       # (N, columns)
         starts = np.cumsum([0] + [q.shape[1] for q in bases[:-1]])
-        power = np.add.reduceat(np.abs(Q.conj().T @ V) ** 2, starts, axis=0)
+        power = np.add.reduceat(np.abs(columns.conj().T @ V) ** 2, starts, axis=0)
         scores = power / np.sum(np.abs(V) ** 2, axis=0)
         pairs = [(float(scores[j, r]), bid, j) for r, bid in enumerate(ids)
                  for j in range(len(bases))]

@@ -44,7 +44,8 @@ from mpmath import libmp
 from ..errors import ComputationError
 from ..expr import exact_float
 
-__all__ = ["Arithmetic", "Batch", "MP", "Ball", "ball_available", "memo", "DOUBLE"]
+__all__ = ["Arithmetic", "Batch", "MP", "Ball", "ball_available", "memo", "DOUBLE",
+           "magnitude_parts"]
 
 
 # Tables of :meth:`Arithmetic.cached`, keyed by arithmetic, precision and table. A
@@ -664,6 +665,24 @@ def _filled(shape, value) -> np.ndarray:
     out = np.empty(shape, dtype=object)
     out.fill(value)
     return out
+
+
+def magnitude_parts(x) -> tuple:
+    """``(m, e)`` with ``|x| <= m 2**e`` (``m`` a float in ``[0.5, 1]``, its leading 53
+    bits rounded up; ``(0.0, 0)`` for 0) of an mpmath number of any size: where ``x`` alone
+    may leave the doubles' range, a product or quotient of such parts does not.
+
+    Examples
+    --------
+    >>> magnitude_parts(mpmath.mpf(3)), magnitude_parts(mpmath.mpf(2) ** -5000)
+    ((0.75, 2), (0.5, -4999))
+    """
+    _, man, exp, bc = x._mpf_
+    if not man:
+        return 0.0, 0
+    if bc <= 53:
+        return math.ldexp(float(man), -bc), exp + bc
+    return math.ldexp(float((int(man) >> (bc - 53)) + 1), -53), exp + bc
 
 
 def _mpf_of(exact_arb):

@@ -342,7 +342,7 @@ def _encode_ratio(p: int, d: int, N: int) -> list:
         value = p / d
         if not math.isfinite(value):
             raise OverflowError("a number beyond the range of doubles")
-        return [int(np.float64(value).view(np.uint64))]
+        return [_bits(value)]
     if N == 2:
         hi = p / d
         hn, hd = hi.as_integer_ratio()
@@ -356,7 +356,7 @@ def _encode_ratio(p: int, d: int, N: int) -> list:
             r = math.nextafter(r, math.inf)
         if not (math.isfinite(hi) and abs(hi) < 2.0 ** 1000 and math.isfinite(r)):
             raise OverflowError("a number beyond the range of the compiled balls")
-        return [int(x) for x in np.array([hi, lo, r]).view(np.uint64)]
+        return [_bits(hi), _bits(lo), _bits(r)]
     if p == 0:
         return [0] * (N + 3)
     a = abs(p)
@@ -370,7 +370,7 @@ def _encode_ratio(p: int, d: int, N: int) -> list:
     top, rem = divmod(num, den)
     r = math.ldexp(1.0, max(e - 64 * N, -1074)) if rem else 0.0
     words = [(top >> (64 * (N - 1 - k))) & _MASK for k in range(N)]
-    return words + [e & _MASK, int(p < 0), int(np.float64(r).view(np.uint64))]
+    return words + [e & _MASK, int(p < 0), _bits(r)]
 
 
 #: Exact numbers already encoded, by ``(number, words)``: a model's plans, and a sweep's
@@ -395,7 +395,7 @@ def _exact_balls(values, ar: Ball | None, N: int) -> list:
                 value = exact_float(v_)
                 if not math.isfinite(value):
                     raise OverflowError("a number beyond the range of doubles")
-                hit = [int(np.float64(value).view(np.uint64))]
+                hit = [_bits(value)]
             else:
                 with ar:
                     hit = encode(ar.exact(v_), ar.flint, N)

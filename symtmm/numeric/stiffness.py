@@ -44,7 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..deadline import check as check_time
-from .arith import DOUBLE, Arithmetic
+from .arith import DOUBLE, Arithmetic, magnitude_parts
 from .segments import _matmul, family_matrices, stack_matrix
 
 __all__ = ["segment_stiffness", "coupled_stiffness", "eb_stiffness", "stiffness_values",
@@ -473,8 +473,8 @@ class Factors:
             with ar:
                 const = self._constant()
             c_mid = ctx.mpf(ar.to_mpmath(const))
-            c_rad = _split(ar.to_mpmath(const.rad())) if ar.rigorous else (0.0, 0)
-            c_abs = _split(c_mid)
+            c_rad = magnitude_parts(ar.to_mpmath(const.rad())) if ar.rigorous else (0.0, 0)
+            c_abs = magnitude_parts(c_mid)
             ulp = (1.0, 2 - ctx.prec)
             for p in fast:
                 w = self.products[p]
@@ -484,9 +484,9 @@ class Factors:
                 # mantissa and binary exponent (either factor alone may leave the doubles)
                 r_m, r_e = math.frexp(w.radius)
                 terms = [_join((c_abs[0] * r_m, c_abs[1] + r_e + w.shift)),
-                         _join(_times(_split(value), ulp))]
+                         _join(_times(magnitude_parts(value), ulp))]
                 if c_rad[0]:
-                    terms.append(_join(_times(_split(mid), c_rad)))
+                    terms.append(_join(_times(magnitude_parts(mid), c_rad)))
                 radii[p] = math.fsum(terms) * (1 + 2.0 ** -50)
         if rest:
             got = self.delta_at(rest)
@@ -501,17 +501,6 @@ class Factors:
                       self.decided[points], self.det12[points], None,
                       None if self.products is None else self.products[points])
         return list(sub.delta())
-
-
-def _split(x) -> tuple:
-    """``(m, e)`` with ``|x| <= m 2**e`` (``m`` a float in [0.5, 1]; 0 for 0) of an mpmath
-    number of any size: its leading 53 bits, rounded up."""
-    _, man, exp, bc = x._mpf_
-    if not man:
-        return 0.0, 0
-    if bc <= 53:
-        return math.ldexp(float(man), -bc), exp + bc
-    return math.ldexp(float((int(man) >> (bc - 53)) + 1), -53), exp + bc
 
 
 def _times(a: tuple, b: tuple) -> tuple:

@@ -54,7 +54,7 @@ from ..budget import checked_request
 from ..errors import ComputationError
 from ..mesh import static_nullity
 from ..model import Model
-from ..numeric.arith import MP
+from ..numeric.arith import MP, magnitude_parts
 from ..numeric.evaluator import exact_mpf as _exact_mpf
 from ..numeric.plan import design_below
 from ..results import Eigenvalue, Spectrum, first, print_apart, prints_alike
@@ -759,7 +759,7 @@ class _Search:
         # expected, that is one ball batch fewer (example 3's triple root: 0.7 ms of 12)
         target, ends = ca, None
         if self.hp.rigorous and k * resolution + 20 <= MAX_DPS:
-            values, counts = self._deltas([a, b], k * resolution + 20, counts=True)
+            values, counts = self._deltas([a, b], k * resolution + 20)
             if [int(c) for c in counts] == [target, target + k]:
                 ends, cb = values, target + k
         if ends is None:
@@ -795,15 +795,14 @@ class _Search:
             stack.append((a, ca, mid, cm))
         return out
 
-    def _deltas(self, ws, dps: int, counts: bool = False):
-        """``Delta(i w)`` at each of ``ws`` at ``dps`` digits, as global mpmath numbers (the
-        midpoints of balls where python-flint is installed: a ball costs a seventh of an
-        mpmath number in the elimination, and these values only guide); with ``counts``,
-        ``(values, J(w))`` (-1 where undecided)."""
+    def _deltas(self, ws, dps: int) -> tuple:
+        """``(Delta(i w), J(w))`` at each of ``ws`` at ``dps`` digits: the values as global
+        mpmath numbers (the midpoints of balls where python-flint is installed: a ball costs
+        a seventh of an mpmath number in the elimination, and these values only guide), the
+        counts -1 where undecided."""
         ar = proof_arithmetic(dps, self.certified)
-        values, got = self.counter.delta(list(ws), ar)
-        values = [mpmath.re(ar.to_mpmath(v)) for v in values]
-        return (values, got) if counts else values
+        values, counts = self.counter.delta(list(ws), ar)
+        return [mpmath.re(ar.to_mpmath(v)) for v in values], counts
 
     def _zoom(self, a, b, k, resolution, ends=None):
         """A guess for an exact ``k``-fold root in ``(a, b)``, or None (``ends``: ``Delta``
@@ -826,7 +825,7 @@ class _Search:
         power = ctx.mpf(1) / k
 
         def v(*ws):      # the V: |Delta|**(1/k)
-            return [abs(ctx.mpf(d)) ** power for d in self._deltas(ws, dps)]
+            return [abs(ctx.mpf(d)) ** power for d in self._deltas(ws, dps)[0]]
 
         a, b = ctx.mpf(a), ctx.mpf(b)
         lo, hi = a, b
@@ -894,15 +893,13 @@ def _tighten(i, t, f, k, ca, a, b, fa, fb):
 def _scaled_float(x, ref: float) -> float:
     """``x * exp(-ref)`` as a float, for an mpmath number ``x`` of any size: its leading
     53 bits and its binary exponent apart (``x`` alone may pass the doubles' range)."""
-    sign, man, exp, bc = x._mpf_
-    if not man:
+    m, e = magnitude_parts(x)
+    power = e * _LN2 - ref
+    if not m or power < -745:
         return 0.0
-    cut = max(bc - 53, 0)
-    lead = float(int(man) >> cut)
-    power = (exp + cut) * _LN2 - ref
     if power > 700:
         return math.inf
-    return (-lead if sign else lead) * math.exp(power) if power > -745 else 0.0
+    return (-m if x._mpf_[0] else m) * math.exp(power)
 
 
 _LN2 = math.log(2.0)
