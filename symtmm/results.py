@@ -5,6 +5,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass, field, replace
+from fractions import Fraction
 from functools import cached_property
 
 import mpmath
@@ -14,7 +15,7 @@ from .jsonout import dumps, header
 from .tables import Tabular
 
 __all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string", "prints_alike", "print_apart",
-           "enclosed_string"]
+           "enclosed_string", "rounding_room"]
 
 
 def decimal_string(value, digits: int) -> str:
@@ -80,6 +81,48 @@ def _rounded(value, digits: int):
     >>> _rounded(mpmath.mpf("9.99996"), 5), _rounded(1.25, 2) is None
     ((0, 10000, 1), True)
     """
+    parts = _digits_of(value, digits)
+    if parts is None:
+        return None
+    sign, q, r, den, e = parts
+    if abs(2 * r - den) * _TIE < den:
+        return None
+    if 2 * r > den:
+        q += 1
+        if q == 10 ** digits:
+            q, e = q // 10, e + 1
+    return sign, q, e
+
+
+def rounding_room(value, digits: int) -> float:
+    """How far (a float, absolute) ``value`` may move and still print as it does with
+    ``digits`` significant digits: its distance from the nearest tie (half a unit of the
+    last digit), less the margin :func:`_rounded` leaves to the strings; 0.0 for 0,
+    infinities and values within that margin of a tie. A proof stage places the two
+    points that bracket a root that far from its estimate at most: where they bracket it,
+    they print alike and prove the digits, and the farther from the root, the fewer bits
+    their counts need.
+
+    Examples
+    --------
+    >>> # prints 1.234 up to the tie at 1.2345, less the margin (half a hundredth of a unit)
+    >>> round(rounding_room(mpmath.mpf("1.2344"), 4), 12)
+    9.5e-05
+    >>> rounding_room(mpmath.mpf("1.23449999"), 4)      # a tie 1e-8 above
+    0.0
+    """
+    parts = _digits_of(value, digits)
+    if parts is None:
+        return 0.0
+    _, _, r, den, e = parts
+    room = Fraction(abs(2 * r - den), 2 * den) - Fraction(1, 2 * _TIE)
+    return float(room * Fraction(10) ** (e - digits + 1)) if room > 0 else 0.0
+
+
+def _digits_of(value, digits: int):
+    """``(sign, q, r, den, e)``: ``|value| = (q + r / den) * 10**(e - digits + 1)`` with
+    ``10**(digits - 1) <= q < 10**digits`` and ``0 <= r < den``, exactly, in integer
+    arithmetic on its binary value; None for 0 and infinities."""
     m = getattr(value, "_mpf_", None)
     if m is None:
         m = mpmath.mpf(float(value))._mpf_          # (a float: exact)
@@ -103,16 +146,8 @@ def _rounded(value, digits: int):
         elif q >= 10 ** digits:
             e += 1
         else:
-            break
-    else:
-        return None
-    if abs(2 * r - den) * _TIE < den:
-        return None
-    if 2 * r > den:
-        q += 1
-        if q == 10 ** digits:
-            q, e = q // 10, e + 1
-    return sign, q, e
+            return sign, q, r, den, e
+    return None
 
 
 def print_apart(a, b, digits: int) -> bool:
