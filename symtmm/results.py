@@ -114,8 +114,12 @@ def rounding_room(value, digits: int) -> float:
     parts = _digits_of(value, digits)
     if parts is None:
         return 0.0
-    _, _, r, den, e = parts
-    room = Fraction(abs(2 * r - den), 2 * den) - Fraction(1, 2 * _TIE)
+    _, q, r, den, e = parts
+    room = Fraction(abs(2 * r - den), 2 * den)
+    if q == 10 ** (digits - 1):
+        # (at a decade's start the tie below is the decade's below: a tenth of the unit)
+        room = min(room, Fraction(r, den) + Fraction(1, 20))
+    room -= Fraction(1, 2 * _TIE)
     return float(room * Fraction(10) ** (e - digits + 1)) if room > 0 else 0.0
 
 

@@ -299,3 +299,29 @@ def test_prints_alike_agrees_with_the_printed_strings(man, exp, ulps, tie_offset
             sign, q, k = r
             assert Fraction(decimal_string(x, digits)) == (-1) ** sign * q * \
                 Fraction(10) ** (k - digits + 1)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.integers(1, 1 << 200), st.integers(-400, 300), st.sampled_from([1, 3, 8, 12, 15, 30]),
+       st.booleans())
+def test_rounding_room_is_the_distance_to_the_nearest_tie(man, exp, digits, negative):
+    """A value moved by up to its room prints as it does; moved a little more than the
+    room and the margin toward its nearest tie, it prints otherwise (the room is the
+    distance to that tie, not a bound far below it)."""
+    from symtmm.results import _TIE, rounding_room
+    ctx = mpmath.MPContext()
+    ctx.prec = 900
+    x = ctx.mpf(man) * ctx.mpf(2) ** exp * (-1 if negative else 1)
+    room = rounding_room(x, digits)
+    assert room >= 0
+    printed = decimal_string(x, digits)
+    e = int(ctx.floor(ctx.log10(abs(x))))
+    unit = ctx.mpf(10) ** (e - digits + 1)
+    if room == 0:
+        return                      # (within the margin of a tie)
+    for move in (room, -room, room / 3):
+        assert decimal_string(x + ctx.mpf(move), digits) == printed
+    # past the tie: the room plus twice the margin, toward the nearer tie
+    past = ctx.mpf(room) * (1 + 1e-12) + unit / _TIE
+    assert printed != decimal_string(x + past, digits) or \
+        printed != decimal_string(x - past, digits)
