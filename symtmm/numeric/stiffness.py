@@ -689,7 +689,7 @@ def eliminate(plan, ar: Arithmetic, Kb, n: int, reverse: bool = False) -> None:
             piv = Kb[:, k, 0]
             if w > 1:
                 row = Kb[:, k, 1:]
-                f = row / piv[:, None]
+                f = row * (1.0 / piv)[:, None]
                 Kb[:, k + rows, cols] = Kb[:, k + rows, cols] - f[:, fi] * row[:, fj]
 
 
