@@ -5,7 +5,6 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass, field, replace
-from fractions import Fraction
 from functools import cached_property
 
 import mpmath
@@ -115,12 +114,16 @@ def rounding_room(value, digits: int) -> float:
     if parts is None:
         return 0.0
     _, q, r, den, e = parts
-    room = Fraction(abs(2 * r - den), 2 * den)
+    # (in units of the last digit, as floats: the margin is far above their rounding)
+    room = abs(2 * r - den) / (2 * den)
     if q == 10 ** (digits - 1):
         # (at a decade's start the tie below is the decade's below: a tenth of the unit)
-        room = min(room, Fraction(r, den) + Fraction(1, 20))
-    room -= Fraction(1, 2 * _TIE)
-    return float(room * Fraction(10) ** (e - digits + 1)) if room > 0 else 0.0
+        room = min(room, r / den + 0.05)
+    room -= 1 / (2 * _TIE)
+    try:
+        return room * 10.0 ** (e - digits + 1) if room > 0 else 0.0
+    except OverflowError:               # (beyond the doubles' range: no room told)
+        return 0.0
 
 
 def _digits_of(value, digits: int):
