@@ -176,7 +176,10 @@ class Counter(Evaluator):
         ``digits``) in the proof arithmetic (balls where python-flint is installed, else
         mpmath) from ``digits`` (default 30) digits, doubled until decided."""
         if digits is None:
-            c = self.factors([float(omega)], DOUBLE, positive).counts()[0]
+            # (the compiled summary where it serves: the factors' numpy bookkeeping costs a
+            # single point ten times its elimination)
+            c = self.factors([float(omega)], DOUBLE, positive).counts()[0] if positive \
+                else self.counts([float(omega)])[0]
             if c >= 0:
                 return int(c)
             digits = 30
