@@ -20,13 +20,12 @@
 static void band_eliminate_real(double *Kp, Py_ssize_t w, Py_ssize_t n)
 {
     for (Py_ssize_t k = 0; k < n; k++) {
-        const double *restrict row = Kp + k * w;
+        const double *row = Kp + k * w;
         /* one division per pivot, not one per multiplier: they cost a third of the loop */
         const double inv = 1.0 / row[0];
         for (Py_ssize_t i = 1; i < w; i++) {
             const double f = row[i] * inv;
-            /* (row k+i, never row k: restrict lets the update run in vector registers) */
-            double *restrict target = Kp + (k + i) * w - i;
+            double *target = Kp + (k + i) * w - i;
             for (Py_ssize_t j = i; j < w; j++) {
                 const double t = f * row[j];
                 target[j] = target[j] - t;
@@ -60,14 +59,14 @@ static void band_cdiv(double ar, double ai, double br, double bi, double *qr, do
 static void band_eliminate_complex(double *Kp, Py_ssize_t w, Py_ssize_t n)
 {
     for (Py_ssize_t k = 0; k < n; k++) {
-        const double *restrict row = Kp + 2 * k * w;
+        const double *row = Kp + 2 * k * w;
         double vr, vi;
         band_cdiv(1.0, 0.0, row[0], row[1], &vr, &vi);
         for (Py_ssize_t i = 1; i < w; i++) {
             /* the multiplier row[i] (1 / pivot), as numpy multiplies complex numbers */
             const double fr = row[2 * i] * vr - row[2 * i + 1] * vi;
             const double fi = row[2 * i] * vi + row[2 * i + 1] * vr;
-            double *restrict target = Kp + 2 * ((k + i) * w - i);
+            double *target = Kp + 2 * ((k + i) * w - i);
             for (Py_ssize_t j = i; j < w; j++) {
                 const double xr = row[2 * j], xi = row[2 * j + 1];
                 const double tr = fr * xr - fi * xi;
