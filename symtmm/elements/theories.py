@@ -55,7 +55,27 @@ import sympy as sp
 from ..expr import exact_float
 from .base import LAM, FieldElement
 
-__all__ = ["BeamSegment", "THEORIES"]
+__all__ = ["BeamSegment", "THEORIES", "static_coefficients"]
+
+
+@functools.lru_cache(maxsize=256)
+def static_coefficients(N, kGA) -> tuple:
+    """``(a, b, c)`` of :meth:`BeamSegment.coefficients` at ``lam = 0``, exact: they hold
+    the axial force ``N`` and the shear stiffness ``kGA`` alone (``kGA`` None: rigid in
+    shear), so every piece of a beam shares them (SymPy's arithmetic once per beam, not
+    per piece: a tenth of a theory model's plan).
+
+    Examples
+    --------
+    >>> static_coefficients(sp.Integer(0), None)
+    (1, 0, 0)
+    >>> static_coefficients(sp.Integer(2), sp.Integer(8))
+    (4/5, -1/10, 8/5)
+    """
+    if kGA is None:
+        return sp.Integer(1), sp.Integer(0), N
+    a = kGA / (kGA + N)
+    return a, -1 / (kGA + N), N * a
 
 #: Beam theories and the fields they need beyond EI, m, L (model file: ``theory``).
 THEORIES = {
@@ -128,11 +148,8 @@ class BeamSegment(FieldElement):
     # -- the field equations --------------------------------------------------------------
     def coefficients(self, lam2):
         """``(a, b, c, mu)`` of the first-order system at ``lam**2`` (exact)."""
-        mu = self.m * lam2 + self.kw
-        if self.kGA is None:
-            return sp.Integer(1), sp.Integer(0), self.N + self.rhoI * lam2, mu
-        a = self.kGA / (self.kGA + self.N)
-        return a, -1 / (self.kGA + self.N), self.N * a + self.rhoI * lam2, mu
+        a, b, c0 = static_coefficients(self.N, self.kGA)
+        return a, b, c0 + self.rhoI * lam2, self.m * lam2 + self.kw
 
     def system_matrix(self, lam=LAM) -> sp.Matrix:
         """``A(lam)`` of ``z' = A z``, ``z = [Y, Theta, M, Q]`` (exact)."""

@@ -549,19 +549,9 @@ def kind(seg) -> tuple:
     if seg.kGA is not None and seg.kGA == 0:
         # a rod (symtmm.model.rod): its two motions by their own closed forms
         return ("rod", (seg.N, seg.EI, seg.m, seg.kw, seg.rhoI, seg.l))
-    a, b, cN = _static_coefficients(seg.N, seg.kGA)
+    from ..elements.theories import static_coefficients
+    a, b, cN = static_coefficients(seg.N, seg.kGA)
     return ("theory", (seg.EI, a, b, cN, seg.rhoI, seg.m, seg.kw, seg.l))
-
-
-@functools.lru_cache(maxsize=256)
-def _static_coefficients(N, kGA) -> tuple:
-    """``(a, b, c)`` of :meth:`~symtmm.elements.theories.BeamSegment.coefficients` at ``lam
-    = 0`` (they hold ``N`` and ``kGA`` alone): once per beam, not per piece (SymPy's
-    arithmetic, a tenth of a theory model's plan)."""
-    if kGA is None:
-        return sp.Integer(1), sp.Integer(0), N
-    a = kGA / (kGA + N)
-    return a, -1 / (kGA + N), N * a
 
 
 def kind_order(kind_) -> tuple:

@@ -504,6 +504,7 @@ class Factors:
 
 
 def _times(a: tuple, b: tuple) -> tuple:
+    """The product of two ``(mantissa, binary exponent)`` magnitudes (:func:`magnitude_parts`)."""
     return a[0] * b[0], a[1] + b[1]
 
 
