@@ -13,7 +13,6 @@ Nothing here is numeric: coordinates and coefficients stay exact.
 
 from __future__ import annotations
 
-import bisect
 import functools
 import itertools
 import math
@@ -68,11 +67,14 @@ class Stretches:
         points_el = point_elements(model)
         layers = [(index[la.a], index[la.b], _canonical(la.x0), _canonical(la.x1), la)
                   for la in model.layers]
-        required = []
-        for beam in model.beams:
-            xs = [beam.x0, beam.x1] + [x for x, el in points_el if beam.name in el.beams]
-            xs += [a.x for body in model.bodies for a in body.attachments if a.beam == beam.name]
-            required.append({_canonical(x) for x in xs})
+        at: dict = {b.name: [b.x0, b.x1] for b in model.beams}     # beam -> its points
+        for x, el in points_el:
+            for name in el.beams:
+                at[name].append(x)
+        for body in model.bodies:
+            for a in body.attachments:
+                at[a.beam].append(a.x)
+        required = [{_canonical(x) for x in at[beam.name]} for beam in model.beams]
         for a, b, x0, x1, _ in layers:
             required[a] |= {x0, x1}
             required[b] |= {x0, x1}
@@ -89,8 +91,27 @@ class Stretches:
         #: per beam, its required points ascending (exact)
         self.xs_of = [sorted(r, key=exact_float) for r in required]
         self._layers, self._index = layers, index
+        # per beam and stretch its length as a float, and its group (members, layers):
+        # neither depends on the piece rule, and the exact subtraction and the layers'
+        # cover cost a 20-level chain's every subdivision (two more a plan than the
+        # plan's own, generous_range's) 0.6 ms of SymPy
+        self._lengths = [[exact_float(xb - xa) for xa, xb in itertools.pairwise(xs)]
+                         for xs in self.xs_of]
+        self._groups = [[self.group(i, xa, xb) for xa, xb in itertools.pairwise(xs)]
+                        for i, xs in enumerate(self.xs_of)]
+        # per beam and stretch, the stretch of each member of its group that starts there
+        # too (a layer's points are its beams' alike): (beam, stretch index) pairs
+        self._slots = [[[(i, k)] if len(members) == 1 else
+                        [(j, self.xs_of[j].index(xs[k])) for j in members]
+                        for k, (members, _) in enumerate(groups)]
+                       for i, (xs, groups) in enumerate(zip(self.xs_of, self._groups))]
         self._memory: dict = {}         # piece rule's key -> subdivide's answer
         self._waves: dict = {}          # (beam, radius) -> its largest wave number
+
+    @functools.cached_property
+    def _whole(self) -> list:
+        """Per beam, the beam as one segment (its constants as floats are kept on it)."""
+        return [beam.segment(beam.L) for beam in self.model.beams]
 
     def group(self, i, xa, xb):
         """The beams joined to ``i`` over ``[xa, xb]`` through layers, and those layers."""
@@ -103,26 +124,28 @@ class Stretches:
                                self._index)[i]
         return list(members), [la for la in cover if la[4] in used]
 
-    def _longest(self, piece, i, length, used):
+    def _longest(self, piece, i, xa, xb, used, size, s):
+        """The longest piece ``piece`` allows of beam ``i`` over the stretch ``[xa, xb]``
+        (``size`` long) under the layers ``used``; ``s`` the beam's largest wave number
+        for the rule's range (:meth:`_wave_number`) or None."""
         beam = self.model.beams[i]
         k = c = 0
         if used:
             k = sum((la[4].k for la in used if i in la[:2]), sp.Integer(0))
             c = sum((la[4].c for la in used if i in la[:2]), sp.Integer(0))
         if k == 0 and c == 0:
-            key = getattr(piece, "key", None)
-            s = None if key is None else self._wave_number(i, key[0])
             if s is not None:
-                # the plans' rule (piece_length) on an Euler-Bernoulli beam, whose largest
+                # the plans' rule (wave_piece) on an Euler-Bernoulli beam, whose largest
                 # wave number is the beam's: a segment per stretch cost most of a chain's cut
-                from .numeric.plan import wave_piece
-                return wave_piece(s, exact_float(length), key[1])
-            return piece(beam, beam.segment(length))
+                nu_max = piece.key[1]
+                return size if s * size <= nu_max else nu_max / s
+            return piece(beam, beam.segment(xb - xa))
         # |X| of the coupled piece is at most that of a beam on the foundation
         # kw + 2 |k + c lam| <= kw + 2 k + 2 c |lam|: with the range |lam|**2 <= radius
         # the piece rule knows (plans tell it), else through 2 c |lam| <= m |lam|**2 +
         # c**2 / m (a beam of mass 2 m)
         from .elements import EulerBernoulliSegment
+        length = xb - xa
         radius = getattr(piece, "radius", None)
         if radius is not None:
             lam = sp.Rational(math.sqrt(max(float(radius), 0.0))) * (1 + sp.Rational(1, 10**9))
@@ -135,10 +158,10 @@ class Stretches:
     def _wave_number(self, i: int, radius: float):
         """The largest wave number of beam ``i`` for ``|lam|**2 <= radius`` if it is an
         Euler-Bernoulli beam (:func:`~symtmm.numeric.plan.wave_number_bound`), else None."""
-        from .elements import EulerBernoulliSegment
-        from .numeric.plan import wave_number_bound
         if (i, radius) not in self._waves:
-            seg = self.model.beams[i].segment(self.model.beams[i].L)
+            from .elements import EulerBernoulliSegment
+            from .numeric.plan import wave_number_bound
+            seg = self._whole[i]
             self._waves[(i, radius)] = wave_number_bound(seg, radius) \
                 if isinstance(seg, EulerBernoulliSegment) else None
         return self._waves[(i, radius)]
@@ -151,17 +174,17 @@ class Stretches:
         stretch, and tells the pieces exactly."""
         from .numeric.plan import wave_number_bound, wave_piece
         total = 0
-        for beam, xs in zip(self.model.beams, self.xs_of):
-            s = wave_number_bound(beam.segment(beam.L), radius)
-            for a, b in itertools.pairwise(xs):
-                length = exact_float(b - a)
+        for whole, lengths in zip(self._whole, self._lengths):
+            s = wave_number_bound(whole, radius)
+            for length in lengths:
                 total += max(1, math.ceil(length / wave_piece(s, length, nu_max) - 1e-9))
         return total
 
     def subdivide(self, piece) -> tuple:
         """``(subdivisions, groups, ratios)`` for the length rule ``piece(beam, segment)``:
-        the pieces per ``(beam, start of a stretch)``; per coupled stretch ``(beam, start)``
-        of its group's first beam, ``(beams, layers)``; and per stretch (a group's once
+        the pieces per ``(beam, stretch)`` (the stretch's index along the beam); per coupled
+        stretch ``(beam, stretch)`` of its group's first beam, ``(beams, layers)``; and per
+        stretch (a group's once
         per beam) its length over the longest piece the rule allows (the pieces are
         ``ceil`` of it), in the order of the beams and their stretches. Remembered per
         rule that has a ``key`` (:func:`~symtmm.numeric.plan.piece_rule`)."""
@@ -169,14 +192,16 @@ class Stretches:
         if key is not None and key in self._memory:
             return self._memory[key]
         model = self.model
-        subdivisions: dict = {}          # (beam, xa) -> number of pieces
-        groups: dict = {}                # (beam, xa) -> (beams, layers) of a coupled stretch
+        subdivisions: dict = {}          # (beam, stretch) -> number of pieces
+        groups: dict = {}                # (beam, stretch) -> (beams, layers), coupled ones
         ratios = []
         total = 0
+        waves = [None if key is None else self._wave_number(i, key[0])
+                 for i in range(len(model.beams))]
         for i, xs in enumerate(self.xs_of):
-            for xa, xb in itertools.pairwise(xs):
-                members, used = self.group(i, xa, xb)
-                ratio = max(exact_float(xb - xa) / self._longest(piece, j, xb - xa, used)
+            for k, ((xa, xb), size, (members, used)) in enumerate(
+                    zip(itertools.pairwise(xs), self._lengths[i], self._groups[i])):
+                ratio = max(size / self._longest(piece, j, xa, xb, used, size, waves[j])
                             for j in members)
                 ratios.append(ratio)
                 total += ratio
@@ -188,10 +213,10 @@ class Stretches:
                         "(a foundation kw or a layer k far stiffer than its EI / L**4, or a "
                         "range far above its first modes); soften them or lower the range")
                 n_sub = max(1, math.ceil(ratio - 1e-9))
-                for j in members:
-                    subdivisions[(j, xa)] = max(subdivisions.get((j, xa), 1), n_sub)
+                for slot in self._slots[i][k]:
+                    subdivisions[slot] = max(subdivisions.get(slot, 1), n_sub)
                 if len(members) > 1:
-                    groups[(i, xa)] = (members, used)
+                    groups[(i, k)] = (members, used)
         if key is not None:
             self._memory[key] = (subdivisions, groups, ratios)
         return subdivisions, groups, ratios
@@ -343,39 +368,52 @@ class Mesh:
         stretches = stretches or Stretches(model)
         xs_of = stretches.xs_of
         subdivisions, groups, self.stretch_ratios = stretches.subdivide(piece)
+        first_of = []                    # per beam, per stretch its first node (in points)
         for b_idx, beam in enumerate(model.beams):
             xs = xs_of[b_idx]
-            points = [xs[0]]
-            for xa, xb in itertools.pairwise(xs):
-                n_sub = subdivisions[(b_idx, xa)]
-                points += [xa + (xb - xa) * sp.Rational(k, n_sub) for k in range(1, n_sub + 1)]
+            points, first = [xs[0]], []
+            for k, (xa, xb) in enumerate(itertools.pairwise(xs)):
+                n_sub = subdivisions[(b_idx, k)]
+                first.append(len(points) - 1)
+                if n_sub > 1:
+                    step = xb - xa
+                    points += [xa + step * sp.Rational(j, n_sub) for j in range(1, n_sub)]
+                points.append(xb)           # (the stretch's end as it is: most have one piece)
+            first.append(len(points) - 1)
+            first_of.append(first)
             ids = list(range(len(self._nodes), len(self._nodes) + len(points)))
             self._nodes += [(exact_float(x), b_idx) for x in points]
             self.node_x += points
             self._node_length += [0.0] * len(points)
             self._beam_nodes.append(dict(zip(points, ids)))
+        base = 0
         for b_idx, beam in enumerate(model.beams):
-            xs = xs_of[b_idx]
-            nodes = self._beam_nodes[b_idx]
-            points = sorted(nodes, key=exact_float)
-            starts = [exact_float(x) for x in xs[:-1]]
-            for xa_node, xb_node in itertools.pairwise(points):
-                # the stretch between required points this piece lies in
-                k = bisect.bisect_right(starts, exact_float(xa_node)) - 1
-                members, used = groups.get((b_idx, xs[k]), ([b_idx], []))
+            first = first_of[b_idx]
+            points = self.node_x[base:base + first[-1] + 1]
+            for k in range(len(first) - 1):
+                members, used = groups.get((b_idx, k), ([b_idx], []))
                 if members[0] != b_idx:
                     continue                # the group's first beam makes the coupled piece
-                length = xb_node - xa_node
-                ia = tuple(self._beam_nodes[j][xa_node] for j in members)
-                ib = tuple(self._beam_nodes[j][xb_node] for j in members)
-                if len(members) == 1:
-                    self.segments.append((b_idx, beam.segment(length), ia[0], ib[0]))
-                else:
-                    seg = member(model.beams, tuple(members), [la[4] for la in used], self._index,
-                                 length)
-                    self.segments.append((tuple(members), seg, ia, ib))
-                for i in ia + ib:
-                    self._node_length[i] = max(self._node_length[i], exact_float(length))
+                seg = seg_length = None
+                for p in range(first[k], first[k + 1]):
+                    xa_node, xb_node = points[p], points[p + 1]
+                    length = xb_node - xa_node
+                    # (a stretch's pieces are alike: one segment serves them all)
+                    if seg is None or length != seg_length:
+                        seg_length, size = length, exact_float(length)
+                        seg = beam.segment(length) if len(members) == 1 else \
+                            member(model.beams, tuple(members), [la[4] for la in used],
+                                   self._index, length)
+                    if len(members) == 1:
+                        ia, ib = (base + p,), (base + p + 1,)
+                        self.segments.append((b_idx, seg, base + p, base + p + 1))
+                    else:
+                        ia = tuple(self._beam_nodes[j][xa_node] for j in members)
+                        ib = tuple(self._beam_nodes[j][xb_node] for j in members)
+                        self.segments.append((tuple(members), seg, ia, ib))
+                    for i in ia + ib:
+                        self._node_length[i] = max(self._node_length[i], size)
+            base += first[-1] + 1
 
     def _number(self, subs) -> dict:
         """Number the free freedoms along ``x``; a body's next to its first attachment's node.
