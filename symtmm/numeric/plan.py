@@ -172,8 +172,14 @@ def rcm_order(size: int, cliques) -> list:
     return order
 
 
-def _bandwidth(pairs, position) -> int:
-    return max((abs(position[a] - position[b]) for a, b in pairs), default=0)
+def _bandwidth(cliques, position) -> int:
+    """The half-bandwidth of freedoms coupled within each clique, numbered ``position``."""
+    width = 0
+    for clique in cliques:
+        if clique:
+            at = [position[g] for g in clique]
+            width = max(width, max(at) - min(at))
+    return width
 
 
 class StiffnessPlan:
@@ -227,15 +233,14 @@ class StiffnessPlan:
         cliques = ([[g for c in places for g, _ in c] for places in mesh.segment_places]
                    + [[g for c in places for g, _ in c] for places, _ in mesh.point_places]
                    + [[g for c in places for g, _ in c] for places, _ in mesh.body_places])
-        pairs = [(a, b) for cl in cliques for a in cl for b in cl if a < b]
         order = rcm_order(n, cliques)
         position = [0] * n
         for new, old in enumerate(order):
             position[old] = new
-        if _bandwidth(pairs, position) >= _bandwidth(pairs, list(range(n))):
+        if _bandwidth(cliques, position) >= _bandwidth(cliques, range(n)):
             position = list(range(n))       # along x is as narrow already
         self.position = position
-        b = self.band = _bandwidth(pairs, position)
+        b = self.band = _bandwidth(cliques, position)
         self.width = w = b + 1
 
         # segment kinds: "eb" first, then "theory", then "coupled" (kind_order)
@@ -244,9 +249,14 @@ class StiffnessPlan:
         kinds: dict = {}
         member_kind = []
         first = []
-        for _, seg, _, _ in mesh.segments:
-            k = kind(seg)
-            first.append(kinds.setdefault(k, len(kinds)))
+        seen: dict = {}             # id(segment) -> (kind, first-seen number): a stretch's
+        for _, seg, _, _ in mesh.segments:      # pieces share their segment (Mesh)
+            k, f = seen.get(id(seg), (None, None))
+            if k is None:
+                k = kind(seg)
+                f = seen[id(seg)] = (k, kinds.setdefault(k, len(kinds)))
+                f = f[1]
+            first.append(f)
             member_kind.append(k)
         ordered = sorted(kinds, key=kind_order)
         index = [0] * len(ordered)                  # first-seen number -> kind index
@@ -279,6 +289,16 @@ class StiffnessPlan:
 
         for k, i, places in zip(member_kind, member_index, mesh.segment_places):
             base, size = offsets[i], kind_size(k)
+            if all(len(c) == 1 and c[0][1] is ONE for c in places):
+                # each end freedom a free one of its own (most pieces): the scatter's
+                # entries straight, without its products (a third of a chain's plan)
+                at = [position[c[0][0]] for c in places]
+                for i_, r in enumerate(at):
+                    row = base + size * i_
+                    for j_, c in enumerate(at):
+                        if r <= c:
+                            triples.append((r * w + c - r, ("D", row + j_), 1))
+                continue
             scatter(places, lambda i, j, base=base, size=size: [(("D", base + size * i + j), 1)])
         points = [(places, stiffness_coefficients(element))
                   for places, element in mesh.point_places]
