@@ -385,7 +385,9 @@ def _exact_balls(values, ar: Ball | None, N: int) -> list:
     import sympy as sp
     out = []
     for v in values:
-        key = (v, N)
+        # (a rational by its integers: a SymPy number's hash costs a microsecond, and a
+        # 20-level chain's tables look up 800 of them per number of words)
+        key = (v.p, v.q, N) if isinstance(v, sp.Rational) else (v, N)
         hit = _ENCODED.get(key)
         if hit is None:
             v_ = sp.sympify(v)
