@@ -441,8 +441,11 @@ def _encoded(values, flint, N: int, complex_: bool = False) -> np.ndarray:
         parts = [(z.real, z.imag) for z in (flint.acb(v) for v in values)]
         return np.array([encode(re, flint, N) + encode(im, flint, N) for re, im in parts],
                         dtype=np.uint64).reshape(len(values), 2 * width(N))
-    return np.array([encode(v, flint, N) for v in values], dtype=np.uint64).reshape(
-        len(values), width(N))
+    # (an exact square keeps its mantissa and exponent: Arb's midpoint of it costs more
+    # than the encoding itself, Ball.negated_squares)
+    return np.array([encode(v, flint, N) if getattr(v, "dyadic", None) is None else
+                     _encode_dyadic(*v.dyadic, N) for v in values],
+                    dtype=np.uint64).reshape(len(values), width(N))
 
 
 @functools.cache

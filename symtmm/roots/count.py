@@ -111,8 +111,10 @@ class Counter(Evaluator):
 
         def build(work, idx):
             chosen = points if idx is None else [points[i] for i in idx]
-            squares = work.square(work.array([work.number(v) for v in chosen]))
-            return squares if positive else -squares, self._lam(len(chosen), work)
+            if not positive:
+                return work.negated_squares(chosen), self._lam(len(chosen), work)
+            return work.square(work.array([work.number(v) for v in chosen])), \
+                self._lam(len(chosen), work)
         return self._factor(self.plan(max((float(v) for v in points), default=0.0),
                                       len(points), ar), ar, build)
 
