@@ -54,7 +54,7 @@ from ..budget import checked_request
 from ..errors import ComputationError
 from ..mesh import static_nullity
 from ..model import Model
-from ..numeric.arith import MP, magnitude_parts
+from ..numeric.arith import MP, Ball, magnitude_parts
 from ..numeric.evaluator import exact_mpf as _exact_mpf
 from ..numeric.plan import design_below
 from ..results import Eigenvalue, Spectrum, first, print_apart, prints_alike, rounding_room
@@ -474,15 +474,16 @@ class _Search:
         arithmetic other than the proofs' (fewer bits)."""
         return self.counter.midpoints(points, ar or self.hp, ctx)
 
-    def _evaluate(self, points, ctx):
-        """``(Delta(i w) in ctx, J(w), proved, radii)`` at mpmath points (:meth:`_values`).
+    def _evaluate(self, points, ctx, ar=None):
+        """``(Delta(i w) in ctx, J(w), proved, radii)`` at mpmath points (:meth:`_values`;
+        ``ar``: balls of fewer bits than the proofs', :meth:`_estimating`).
 
         A point whose ball count stays undecided (at high modes the ball elimination can
         widen its radii beyond any precision while the factorisation itself is sound) is
         counted again in mpmath at two precisions, and if both agree that count is used,
         not proved (``proved`` False there).
         """
-        out, counts, radii = self._values(points, ctx)
+        out, counts, radii = self._values(points, ctx, ar)
         proved = np.full(len(points), self.hp.rigorous)
         bad = [j for j, c in enumerate(counts) if c < 0]
         if bad and self.hp.rigorous:
@@ -562,6 +563,8 @@ class _Search:
         self._newton_start(items, a, b, c, fa, fb, h, ca, target, ctx, older)
         for _ in range(60):
             tests, owner = [], []               # owner: (root, points it evaluates)
+            # per root whose pair is wider than the room its digits leave: its h
+            wide: list = []
             for i in range(R):
                 if done[i] is None:
                     far = self._beyond(older[i], a[i], b[i], c[i], ca[i], D)
@@ -574,13 +577,17 @@ class _Search:
                         # the root then proves its digits all the same, and a pair farther
                         # from the root has larger pivots, decided in fewer words (example
                         # 1 at 15 digits: 8 of 19 points took three words at 1e-18)
-                        e = max(h[i] * c[i], rounding_room(c[i], D) / 2)
+                        room = rounding_room(c[i], D) / 2
+                        e = max(h[i] * c[i], room)
                         tests += [max(c[i] - e, (a[i] + c[i]) / 2),
                                   min(c[i] + e, (c[i] + b[i]) / 2)]
                         owner.append((i, 2))
+                        if e > 2 * room:
+                            wide.append(h[i])
             if not owner:
                 break
-            values, counts, proved, radii = self._evaluate(tests, ctx)
+            values, counts, proved, radii = self._evaluate(
+                tests, ctx, self._estimating(wide, target) if len(wide) == len(owner) else None)
             at = 0
             for i, n in owner:
                 new = [_Point(tests[j], values[j], counts[j], bool(proved[j]), radii[j])
@@ -643,6 +650,25 @@ class _Search:
             proof = self.proof if balls else PROOFS["mp"]
             out.append(Eigenvalue(_exact_mpc_imag(value), 1, D, bracket, proof))
         return out
+
+    def _estimating(self, widths, target):
+        """Balls for a round of pairs none of which can prove its digits (each wider than
+        twice the room they leave, at 30 and 50 digits the first pairs after the Newton
+        start): their values serve the next estimate alone, which errs by about the
+        values' relative error times the pairs' distance from the roots, ``h``. So they
+        need ``log2(h / target)`` bits and a guard, not the proofs' (their counts are
+        proved all the same, where decided); the words of those, or None where no fewer
+        than the proofs'. (Example 1 at 50 digits: three words for these twenty points,
+        not four.)
+        """
+        if not widths or not self.hp.rigorous:
+            return None
+        bits = math.log2(float(max(widths)) / float(target)) + _ESTIMATE_GUARD
+        # (at least three: the double-doubles' 106 bits left most of such pairs undecided,
+        # example 1 at 30 digits 14 of 20, as their pivots hold the pairs' distance from the
+        # roots besides the radii's growth along the band)
+        words = max(3, math.ceil(bits / 64))
+        return Ball(64 * words) if 64 * words < self.hp.prec else None
 
     def _beyond(self, kept, a, b, c, ca: int, D: int):
         """The point beyond the root from ``kept`` (a root's last :class:`_Point`) as far
@@ -939,6 +965,10 @@ def _key(w):
     """A point as a dictionary key, exactly (mpmath numbers by their ``_mpf_``)."""
     return w._mpf_ if hasattr(w, "_mpf_") else float(w)
 
+
+#: Bits beyond ``log2(h / target)`` that a round of estimating pairs is evaluated with
+#: (:meth:`_Search._estimating`): the secant's division and a margin for the values' rounding.
+_ESTIMATE_GUARD = 24
 
 #: The digits whose working precision evaluates the Newton start's point at most
 #: (:meth:`_Search._newton_start`): its step from a double estimate errs by about the
