@@ -28,6 +28,7 @@ from functools import cached_property
 
 import sympy as sp
 
+from .elements import BeamSegment, EulerBernoulliSegment
 from .elements.theories import THEORIES
 from .errors import ModelError
 from .expr import (
@@ -361,7 +362,6 @@ class Beam:
         :class:`~symtmm.elements.beam.EulerBernoulliSegment` for a plain beam,
         :class:`~symtmm.elements.theories.BeamSegment` otherwise.
         """
-        from .elements import BeamSegment, EulerBernoulliSegment
         if self.plain:
             return EulerBernoulliSegment(self.EI, self.m, length, self.kw)
         return BeamSegment(self.EI, self.m, length, self.kw, self.N, self.rhoI, self.kGA)

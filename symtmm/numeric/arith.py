@@ -112,14 +112,9 @@ class Arithmetic:
     # -- numbers ---------------------------------------------------------------------
     def exact(self, value):
         """An exact real SymPy value as a number of this arithmetic (converted once)."""
-        if isinstance(value, sp.Rational):
-            # (keyed by its integers: hashing a SymPy number, and sympify, cost more than
-            # the lookup; a plan's tables convert thousands of them)
-            key = ("q", value.p, value.q)
-        else:
+        if not isinstance(value, sp.Rational):
             value = sp.sympify(value)
-            key = ("exact", value)
-        return self.cached(key, lambda: self._convert(value))
+        return self.cached(("exact", exact_key(value)), lambda: self._convert(value))
 
     def _convert(self, value):
         raise NotImplementedError
@@ -724,6 +719,19 @@ def _mpf_of(exact_arb):
     if man == 0:
         return libmp.fzero
     return libmp.from_man_exp(man, int(exp))
+
+
+def exact_key(value):
+    """A dictionary key of an exact number: a rational by its integers, anything else as
+    it is. (Hashing a SymPy number costs a microsecond, and a plan's tables look up
+    thousands of them; equal keys, equal numbers.)
+
+    Examples
+    --------
+    >>> exact_key(sp.Rational(3, 4)), exact_key(sp.sqrt(2))
+    ((3, 4), sqrt(2))
+    """
+    return (value.p, value.q) if isinstance(value, sp.Rational) else value
 
 
 _EXACT_SQUARE: dict = {}

@@ -54,7 +54,7 @@ from fractions import Fraction
 import numpy as np
 
 from ..expr import exact_float
-from .arith import Ball
+from .arith import Ball, exact_key
 from .parallel import run_ranges
 
 try:        # the compiled balls (setup.py); without a compiler every ball runs in Arb
@@ -385,9 +385,8 @@ def _exact_balls(values, ar: Ball | None, N: int) -> list:
     import sympy as sp
     out = []
     for v in values:
-        # (a rational by its integers: a SymPy number's hash costs a microsecond, and a
-        # 20-level chain's tables look up 800 of them per number of words)
-        key = (v.p, v.q, N) if isinstance(v, sp.Rational) else (v, N)
+        # (a 20-level chain's tables look up 800 numbers per number of words)
+        key = (exact_key(v), N)
         hit = _ENCODED.get(key)
         if hit is None:
             v_ = sp.sympify(v)

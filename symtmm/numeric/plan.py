@@ -43,7 +43,7 @@ import sympy as sp
 from ..elements import EulerBernoulliSegment
 from ..elements.base import stiffness_coefficients
 from ..expr import exact_float
-from .arith import DOUBLE, Arithmetic
+from .arith import DOUBLE, Arithmetic, exact_key
 from .segments import kind, kind_order, kind_size, kind_tables
 
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "wave_piece", "generous_range",
@@ -246,7 +246,8 @@ class StiffnessPlan:
         # segment kinds: "eb" first, then "theory", then "coupled" (kind_order)
         # (a kind is a tuple of SymPy numbers, whose hashes are Python calls that a tuple
         # does not keep: each segment's is looked up once, its kind's index kept)
-        kinds: dict = {}
+        kinds: dict = {}            # a kind's key -> its first-seen number
+        distinct: list = []         # the kinds, first seen first
         member_kind = []
         first = []
         seen: dict = {}             # id(segment) -> (kind, first-seen number): a stretch's
@@ -254,14 +255,21 @@ class StiffnessPlan:
             k, f = seen.get(id(seg), (None, None))
             if k is None:
                 k = kind(seg)
-                f = seen[id(seg)] = (k, kinds.setdefault(k, len(kinds)))
-                f = f[1]
+                # (a kind's numbers keyed by their integers where rational: a SymPy
+                # number's hash costs a microsecond, four a kind)
+                key = (k[0],) + tuple(exact_key(v) for v in k[1]) if k[0] == "eb" else k
+                f = kinds.get(key)
+                if f is None:
+                    f = kinds[key] = len(distinct)
+                    distinct.append(k)
+                seen[id(seg)] = (k, f)
             first.append(f)
             member_kind.append(k)
-        ordered = sorted(kinds, key=kind_order)
+        order = sorted(range(len(distinct)), key=lambda j: kind_order(distinct[j]))
+        ordered = [distinct[j] for j in order]
         index = [0] * len(ordered)                  # first-seen number -> kind index
-        for i, k in enumerate(ordered):
-            index[kinds[k]] = i
+        for i, j in enumerate(order):
+            index[j] = i
         member_index = [index[f] for f in first]
         # where each kind's flattened stiffness starts in the concatenation of them all
         offsets = np.cumsum([0] + [kind_size(k) ** 2 for k in ordered]).tolist()
@@ -444,12 +452,17 @@ class StiffnessPlan:
             # microsecond)
             seen: dict = {}
             index = []
+            first: list = []                # the distinct values, in the order first met
             for c in self.coefficients:
                 at = seen.get(id(c))
                 if at is None:
-                    at = seen[id(c)] = places.setdefault(c, len(places))
+                    at = places.get(exact_key(c))
+                    if at is None:
+                        at = places[exact_key(c)] = len(first)
+                        first.append(c)
+                    seen[id(c)] = at
                 index.append(at)
-            cached = self.__dict__["_distinct"] = (list(places), np.array(index, dtype=np.int64))
+            cached = self.__dict__["_distinct"] = (first, np.array(index, dtype=np.int64))
         return cached
 
     @property

@@ -40,7 +40,10 @@ import math
 import numpy as np
 import sympy as sp
 
-from .arith import Arithmetic
+from ..elements import EulerBernoulliSegment
+from ..elements.layer import CoupledSegment
+from ..elements.theories import static_coefficients
+from .arith import Arithmetic, exact_key
 
 __all__ = ["eb_exact", "eb_constants", "eb_matrices", "theory_constants", "theory_matrices", "rod_constants",
            "rod_matrices", "f_functions", "kind_inertia",
@@ -94,7 +97,8 @@ def eb_constants(ar: Arithmetic, segments) -> dict:
         return tuple(ar.exact(v) for v in eb_exact(*seg))
     # (each segment's numbers once per arithmetic: a chain's plans for two ranges share
     # most of their segments, and SymPy's products cost tens of microseconds)
-    rows = [ar.cached(("eb", *seg), lambda seg=seg: build(*seg)) for seg in segments]
+    rows = [ar.cached(("eb",) + tuple(exact_key(v) for v in seg), lambda seg=seg: build(*seg))
+            for seg in segments]
     return {k: ar.array([r[j] for r in rows]) for j, k in enumerate(("EI", "l", "A", "F"))}
 
 
@@ -540,8 +544,6 @@ def kind(seg) -> tuple:
     ``"eb"``: ``(EI, m, l, kw)``; ``"theory"``: ``(EI, a, b, cN, rhoI, m, kw, l)`` (see
     :func:`theory_constants`); ``"rod"``: ``(EA, GJ, m, kw, rhoIp, l)``.
     """
-    from ..elements import EulerBernoulliSegment
-    from ..elements.layer import CoupledSegment
     if isinstance(seg, EulerBernoulliSegment):
         return ("eb", (seg.EI, seg.m, seg.l, seg.kw))
     if isinstance(seg, CoupledSegment):
@@ -549,7 +551,6 @@ def kind(seg) -> tuple:
     if seg.kGA is not None and seg.kGA == 0:
         # a rod (symtmm.model.rod): its two motions by their own closed forms
         return ("rod", (seg.N, seg.EI, seg.m, seg.kw, seg.rhoI, seg.l))
-    from ..elements.theories import static_coefficients
     a, b, cN = static_coefficients(seg.N, seg.kGA)
     return ("theory", (seg.EI, a, b, cN, seg.rhoI, seg.m, seg.kw, seg.l))
 
