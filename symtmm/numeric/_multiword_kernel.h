@@ -30,25 +30,55 @@ static inline BALL F(plus_product)(const BALL *a, const BALL *b, const BALL *c)
  * tail is below 2^-PREC_BITS: coef (4, K, W_) the balls of 1/(4k + j)!, tails (4, K + 1)
  * upper bounds of 1/(4k + j)!. The tail beyond k terms is at most twice the first omitted
  * term where consecutive terms shrink at least twofold, |x| <= (4k+j+1)..(4k+j+4) / 2. */
+/* Whether k terms of c_j serve at X (XK the bound of X^k): the terms shrink at least
+ * twofold beyond them, and their tail, *tail, is below goal (or k is the last). */
+static inline int F(enough)(double X, double XK, const double *tails, Py_ssize_t K, int j,
+                            Py_ssize_t k, double goal, double *tail)
+{
+    const double q = (double)(4 * k + j + 1) * (4 * k + j + 2) * (4 * k + j + 3)
+                     * (4 * k + j + 4);
+    if (!(X <= 0.5 * q * DEFLATE))
+        return 0;
+    *tail = up(2.0 * XK * tails[(K + 1) * j + k]);
+    return *tail <= goal || k == K;
+}
+
+#define KRYLOV_POWERS 128
+
 static int F(krylov)(const BALL *x, const uint64_t *coef, const double *tails, Py_ssize_t K,
                      BALL c[4])
 {
     const double X = F(mag)(x);
     const double goal = ldexp(1.0, -PREC_BITS);
+    /* the bounds of X^k, kept from c_0's search: c_1..c_3 need no more terms than c_0
+     * (larger denominators, smaller tails; the rule holds from some k on), so theirs is
+     * found from c_0's count downward, a check or two each where the upward search from
+     * k = 1 took one per term (in doubles, that search cost four times the series) */
+    double XKs[KRYLOV_POWERS];
+    Py_ssize_t first = 0;
     for (int j = 0; j < 4; j++) {
-        double XK = 1.0, tail = INFINITY;
+        double XK = 1.0, tail = INFINITY, t;
         Py_ssize_t terms = 0;
-        for (Py_ssize_t k = 1; k <= K && !terms; k++) {
-            XK = up(XK * X);
-            const double q = (double)(4 * k + j + 1) * (4 * k + j + 2) * (4 * k + j + 3)
-                             * (4 * k + j + 4);
-            if (X <= 0.5 * q * DEFLATE) {
-                const double bound = up(2.0 * XK * tails[(K + 1) * j + k]);
-                if (bound <= goal || k == K) {
+        if (j > 0 && first) {
+            terms = first;
+            if (!F(enough)(X, XKs[terms], tails, K, j, terms, goal, &tail))
+                return 0;               /* (cannot happen: the rule holds for c_j there) */
+            while (terms > 1 && F(enough)(X, XKs[terms - 1], tails, K, j, terms - 1, goal, &t)) {
+                terms--;
+                tail = t;
+            }
+        } else {
+            for (Py_ssize_t k = 1; k <= K && !terms; k++) {
+                XK = up(XK * X);
+                if (k < KRYLOV_POWERS)
+                    XKs[k] = XK;
+                if (F(enough)(X, XK, tails, K, j, k, goal, &t)) {
                     terms = k;
-                    tail = bound;
+                    tail = t;
                 }
             }
+            if (j == 0 && terms < KRYLOV_POWERS)
+                first = terms;
         }
         if (!terms)
             return 0;
