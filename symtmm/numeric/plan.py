@@ -172,6 +172,13 @@ def rcm_order(size: int, cliques) -> list:
     return order
 
 
+def _nonzero(c) -> bool:
+    """Whether a coefficient (a SymPy number or a Python integer) is not zero: SymPy's
+    ``!=`` with a Python 0 sympifies it, a few microseconds (the points' scatter of a
+    50-level chain asks it 300 times a plan)."""
+    return c != 0 if isinstance(c, int) else not c.is_zero
+
+
 def _bandwidth(cliques, position) -> int:
     """The half-bandwidth of freedoms coupled within each clique, numbered ``position``."""
     width = 0
@@ -317,7 +324,7 @@ class StiffnessPlan:
                    for places, masses in mesh.body_places]
         for places, polys in points:
             scatter(places, lambda i, j, polys=polys: [(("lam", p), cf) for p, cf in
-                                                         enumerate(polys[i][j]) if cf != 0])
+                                                         enumerate(polys[i][j]) if _nonzero(cf)])
         # scaling by powers of two: a static diagonal near 1 (units of any size)
         diag = self._static_diagonal(triples, ordered, offsets)
         self.exponent = [0 if not (d > 0 and math.isfinite(d)) else -round(math.log2(d) / 2)
@@ -330,7 +337,9 @@ class StiffnessPlan:
             c = r + target % w
             k = e[r] + e[c]
             if k not in powers:
-                powers[k] = sp.Integer(2) ** k
+                # (from Python's integers: SymPy's power of a negative exponent costs
+                # tens of microseconds, thirty of them a 50-level chain's plan)
+                powers[k] = sp.Integer(1 << k) if k >= 0 else sp.Rational(1, 1 << -k)
             if type(coef) is int and coef == 1:
                 coef = powers[k]        # (most entries: a segment's own, SymPy's product costs)
             else:
