@@ -101,8 +101,14 @@ class Stretches:
                         for i, xs in enumerate(self.xs_of)]
         # per beam and stretch, the stretch of each member of its group that starts there
         # too (a layer's points are its beams' alike): (beam, stretch index) pairs
+        starts = [None] * len(self.xs_of)     # per beam of a group, start -> its stretch
+
+        def slot(j, x):
+            if starts[j] is None:
+                starts[j] = {v: k for k, v in enumerate(self.xs_of[j][:-1])}
+            return (j, starts[j][x]) if x in starts[j] else None
         self._slots = [[[(i, k)] if len(members) == 1 else
-                        [(j, self.xs_of[j].index(xs[k])) for j in members]
+                        [sl for sl in (slot(j, xs[k]) for j in members) if sl is not None]
                         for k, (members, _) in enumerate(groups)]
                        for i, (xs, groups) in enumerate(zip(self.xs_of, self._groups))]
         self._memory: dict = {}         # piece rule's key -> subdivide's answer
