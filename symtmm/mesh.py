@@ -23,13 +23,14 @@ from sympy.polys.domains import QQ
 from sympy.polys.polyerrors import CoercionFailed
 
 from .assembly import point_elements
-from .elements import Coupling, GroundSpring
+from .elements import Coupling, EulerBernoulliSegment, GroundSpring
 from .elements.base import stiffness_coefficients
 from .elements.layer import joined, member
 from .errors import ComputationError, ModelError
 from .expr import exact_float
 from .limits import MAX_PIECES
 from .model import FREEDOM_INDEX, GROUND, Model
+from .numeric.plan import wave_number_bound, wave_piece
 
 __all__ = ["Mesh", "Stretches", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
 
@@ -141,16 +142,14 @@ class Stretches:
             c = sum((la[4].c for la in used if i in la[:2]), sp.Integer(0))
         if k == 0 and c == 0:
             if s is not None:
-                # the plans' rule (wave_piece) on an Euler-Bernoulli beam, whose largest
-                # wave number is the beam's: a segment per stretch cost most of a chain's cut
-                nu_max = piece.key[1]
-                return size if s * size <= nu_max else nu_max / s
+                # the plans' rule on an Euler-Bernoulli beam, whose largest wave number is
+                # the beam's: a segment per stretch cost most of a chain's cut
+                return wave_piece(s, size, piece.key[1])
             return piece(beam, beam.segment(xb - xa))
         # |X| of the coupled piece is at most that of a beam on the foundation
         # kw + 2 |k + c lam| <= kw + 2 k + 2 c |lam|: with the range |lam|**2 <= radius
         # the piece rule knows (plans tell it), else through 2 c |lam| <= m |lam|**2 +
         # c**2 / m (a beam of mass 2 m)
-        from .elements import EulerBernoulliSegment
         length = xb - xa
         radius = getattr(piece, "radius", None)
         if radius is not None:
@@ -165,8 +164,6 @@ class Stretches:
         """The largest wave number of beam ``i`` for ``|lam|**2 <= radius`` if it is an
         Euler-Bernoulli beam (:func:`~symtmm.numeric.plan.wave_number_bound`), else None."""
         if (i, radius) not in self._waves:
-            from .elements import EulerBernoulliSegment
-            from .numeric.plan import wave_number_bound
             seg = self._whole[i]
             self._waves[(i, radius)] = wave_number_bound(seg, radius) \
                 if isinstance(seg, EulerBernoulliSegment) else None
@@ -178,7 +175,6 @@ class Stretches:
         (:func:`~symtmm.numeric.plan.wave_number_bound`), layers and the other theories'
         rules left out. One float per stretch: :meth:`subdivide` makes a segment per
         stretch, and tells the pieces exactly."""
-        from .numeric.plan import wave_number_bound, wave_piece
         total = 0
         for whole, lengths in zip(self._whole, self._lengths):
             s = wave_number_bound(whole, radius)

@@ -26,10 +26,6 @@ static inline BALL F(plus_product)(const BALL *a, const BALL *b, const BALL *c)
 }
 #define PLUS_PRODUCT(a, b, c) F(plus_product)(&(a), &(b), &(c))
 
-/* c_j(x) = sum_k x^k / (4k + j)!, j = 0..3, each with the fewest terms (at most K) whose
- * tail is below 2^-PREC_BITS: coef (4, K, W_) the balls of 1/(4k + j)!, tails (4, K + 1)
- * upper bounds of 1/(4k + j)!. The tail beyond k terms is at most twice the first omitted
- * term where consecutive terms shrink at least twofold, |x| <= (4k+j+1)..(4k+j+4) / 2. */
 /* Whether k terms of c_j serve at X (XK the bound of X^k): the terms shrink at least
  * twofold beyond them, and their tail, *tail, is below goal (or k is the last). */
 static inline int F(enough)(double X, double XK, const double *tails, Py_ssize_t K, int j,
@@ -45,6 +41,10 @@ static inline int F(enough)(double X, double XK, const double *tails, Py_ssize_t
 
 #define KRYLOV_POWERS 128
 
+/* c_j(x) = sum_k x^k / (4k + j)!, j = 0..3, each with the fewest terms (at most K) whose
+ * tail is below 2^-PREC_BITS: coef (4, K, W_) the balls of 1/(4k + j)!, tails (4, K + 1)
+ * upper bounds of 1/(4k + j)!. The tail beyond k terms is at most twice the first omitted
+ * term where consecutive terms shrink at least twofold, |x| <= (4k+j+1)..(4k+j+4) / 2. */
 static int F(krylov)(const BALL *x, const uint64_t *coef, const double *tails, Py_ssize_t K,
                      BALL c[4])
 {

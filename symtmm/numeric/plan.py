@@ -44,7 +44,7 @@ from ..elements import EulerBernoulliSegment
 from ..elements.base import stiffness_coefficients
 from ..expr import exact_float
 from .arith import DOUBLE, Arithmetic, exact_key
-from .segments import kind, kind_order, kind_size, kind_tables
+from .segments import kind, kind_key, kind_order, kind_size, kind_tables
 
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "wave_piece", "generous_range",
            "rcm_order", "wave_number_bound", "plan_for", "design_range", "design_below",
@@ -262,9 +262,7 @@ class StiffnessPlan:
             k, f = seen.get(id(seg), (None, None))
             if k is None:
                 k = kind(seg)
-                # (a kind's numbers keyed by their integers where rational: a SymPy
-                # number's hash costs a microsecond, four a kind)
-                key = (k[0],) + tuple(exact_key(v) for v in k[1]) if k[0] == "eb" else k
+                key = kind_key(k)
                 f = kinds.get(key)
                 if f is None:
                     f = kinds[key] = len(distinct)
@@ -287,34 +285,32 @@ class StiffnessPlan:
 
         triples: list = []          # (target, source, coefficient); source: see tables()
 
-        def scatter(places, local):
-            # local(i, j) -> list of (source, exact coefficient) for K[i, j] of the element
+        def entries(places):
+            # (i, j, target, coefficient) of every upper-band entry (K is symmetric) that an
+            # element's K[i, j] reaches through its places' combinations
+            if all(len(c) == 1 and c[0][1] is ONE for c in places):
+                # each end freedom a free one of its own (most pieces): the entries
+                # straight, without the products of combinations (a third of a chain's plan)
+                at = [position[c[0][0]] for c in places]
+                for i, r in enumerate(at):
+                    for j, c in enumerate(at):
+                        if r <= c:
+                            yield i, j, r * w + c - r, ONE
+                return
             for i, ci in enumerate(places):
                 for j, cj in enumerate(places):
                     for gi, ai in ci:
                         for gj, aj in cj:
                             r, c = position[gi], position[gj]
-                            if r > c:
-                                continue            # the upper band only (K is symmetric)
-                            # (most coefficients are 1: SymPy's products cost microseconds)
-                            both = ai if aj is ONE else aj if ai is ONE else ai * aj
-                            for source, coef in local(i, j):
-                                triples.append((r * w + c - r, source,
-                                                coef if both is ONE else both * coef))
+                            if r <= c:
+                                # (most coefficients are 1: SymPy's products cost microseconds)
+                                yield i, j, r * w + c - r, \
+                                    ai if aj is ONE else aj if ai is ONE else ai * aj
 
         for k, i, places in zip(member_kind, member_index, mesh.segment_places):
             base, size = offsets[i], kind_size(k)
-            if all(len(c) == 1 and c[0][1] is ONE for c in places):
-                # each end freedom a free one of its own (most pieces): the scatter's
-                # entries straight, without its products (a third of a chain's plan)
-                at = [position[c[0][0]] for c in places]
-                for i_, r in enumerate(at):
-                    row = base + size * i_
-                    for j_, c in enumerate(at):
-                        if r <= c:
-                            triples.append((r * w + c - r, ("D", row + j_), 1))
-                continue
-            scatter(places, lambda i, j, base=base, size=size: [(("D", base + size * i + j), 1)])
+            for i_, j_, target, both in entries(places):
+                triples.append((target, ("D", base + size * i_ + j_), 1 if both is ONE else both))
         points = [(places, stiffness_coefficients(element))
                   for places, element in mesh.point_places]
         # a body's masses: a diagonal of ``mass lam**2`` (its coefficients written out:
@@ -323,8 +319,9 @@ class StiffnessPlan:
                               for j in range(len(masses))] for i, mass in enumerate(masses)])
                    for places, masses in mesh.body_places]
         for places, polys in points:
-            scatter(places, lambda i, j, polys=polys: [(("lam", p), cf) for p, cf in
-                                                         enumerate(polys[i][j]) if _nonzero(cf)])
+            for i_, j_, target, both in entries(places):
+                triples += [(target, ("lam", p), cf if both is ONE else both * cf)
+                            for p, cf in enumerate(polys[i_][j_]) if _nonzero(cf)]
         # scaling by powers of two: a static diagonal near 1 (units of any size)
         diag = self._static_diagonal(triples, ordered, offsets)
         self.exponent = [0 if not (d > 0 and math.isfinite(d)) else -round(math.log2(d) / 2)

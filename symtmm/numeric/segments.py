@@ -48,7 +48,8 @@ from .arith import Arithmetic, exact_key
 __all__ = ["eb_exact", "eb_constants", "eb_matrices", "theory_constants", "theory_matrices", "rod_constants",
            "rod_matrices", "f_functions", "kind_inertia",
            "coupled_constants", "coupled_matrices", "transfer_matrices", "family_matrices", "cut_tables",
-           "stack_matrix", "kind", "kind_order", "kind_size", "kind_tables", "segment_matrix"]
+           "stack_matrix", "kind", "kind_key", "kind_order", "kind_size", "kind_tables",
+           "segment_matrix"]
 
 
 def stack_matrix(rows) -> np.ndarray:
@@ -97,8 +98,7 @@ def eb_constants(ar: Arithmetic, segments) -> dict:
         return tuple(ar.exact(v) for v in eb_exact(*seg))
     # (each segment's numbers once per arithmetic: a chain's plans for two ranges share
     # most of their segments, and SymPy's products cost tens of microseconds)
-    rows = [ar.cached(("eb",) + tuple(exact_key(v) for v in seg), lambda seg=seg: build(*seg))
-            for seg in segments]
+    rows = [ar.cached(kind_key(("eb", seg)), lambda seg=seg: build(*seg)) for seg in segments]
     return {k: ar.array([r[j] for r in rows]) for j, k in enumerate(("EI", "l", "A", "F"))}
 
 
@@ -553,6 +553,21 @@ def kind(seg) -> tuple:
         return ("rod", (seg.N, seg.EI, seg.m, seg.kw, seg.rhoI, seg.l))
     a, b, cN = static_coefficients(seg.N, seg.kGA)
     return ("theory", (seg.EI, a, b, cN, seg.rhoI, seg.m, seg.kw, seg.l))
+
+
+def kind_key(kind_) -> tuple:
+    """A dictionary key of a segment kind: equal keys, equal kinds. An Euler–Bernoulli
+    kind's rational constants by their integers (:func:`~symtmm.numeric.arith.exact_key`:
+    a SymPy number's hash costs a microsecond, four a kind, and a chain's plan looks up a
+    kind per piece); the other kinds as they are.
+
+    Examples
+    --------
+    >>> kind_key(("eb", (sp.Integer(2), sp.Rational(1, 2), sp.Integer(1), sp.Integer(0))))
+    ('eb', (2, 1), (1, 2), (1, 1), (0, 1))
+    """
+    family, consts = kind_
+    return (family,) + tuple(exact_key(v) for v in consts) if family == "eb" else kind_
 
 
 def kind_order(kind_) -> tuple:

@@ -296,17 +296,16 @@ class _Search:
         waves: dict = {}
         for b in self.model.beams:
             seg = b.segment(b.L)
-            consts = tuple(seg.constants())
-            key = (type(seg), consts[:2], consts[3:])
-            _, consts, L = waves.get(key, (seg, seg.constants(), 0.0))
-            waves[key] = (seg, consts, L + float(b.L))
-        waves = list(waves.values())
+            consts = seg.constants()
+            # (the length apart: a segment's constants are EI, m, l, then the rest)
+            waves.setdefault((type(seg), consts[:2], consts[3:]), [seg, consts, 0.0])[2] += \
+                float(b.L)
 
         def weyl(w):
             # the travelling waves count the modes (under a tension or on a foundation
             # not the largest wave number)
             return sum(seg.propagating_wave_number(w, consts) * L
-                       for seg, consts, L in waves) / math.pi
+                       for seg, consts, L in waves.values()) / math.pi
 
         lo = hi = max(_first_guess(self.model), 1e-300)
         while weyl(hi) < target and hi < 1e150:
