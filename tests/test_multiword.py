@@ -632,6 +632,11 @@ def test_every_entry_point_refuses_buffers_that_do_not_fit():
     calls = [
         ("multi-word band", lambda: mw.eliminate(2, u64(1, 4, 1, W - 1), 1, 4, 1, 3,
                                                  np.zeros(1, dtype=np.uint8))),
+        ("multi-word band", lambda: mw.eliminate_twisted(
+            2, u64(1, 4, 1, W), 1, 4, 1, 3, np.zeros(2, dtype=np.int64),
+            np.zeros(1, dtype=np.uint8))),
+        ("peaks", lambda: multiword._band.peaks(np.zeros((1, 4, 1)), np.zeros(2, dtype=np.int64),
+                                                1, 4, 1, 3)),
         ("power_product", lambda: mw.power_product(2, u64(2, 3, W), np.ones(2, dtype=np.int64),
                                                    u64(2, W + 1), np.zeros(2, dtype=np.uint8))),
         ("power_product", lambda: mw.power_product(2, u64(2, 2, W), -np.ones(2, dtype=np.int64),
@@ -695,3 +700,143 @@ def test_the_other_order_is_tried_in_the_last_tier_only(monkeypatch):
     c.factors(nearer, Ball(150))
     # (then more bits, as Evaluator._ball retries an undecided point)
     assert calls[:3] == [(2, False), (3, False), (3, True)]
+
+
+def _fraction_band(n: int, w: int, rng) -> list:
+    """A random symmetric band (rows of ``w`` entries, ``K[r][j] = K(r, r + j)``) of
+    dyadic numbers, with a few tiny diagonal entries (sub-structures near singular)."""
+    rows = []
+    for r in range(n):
+        row = [Fraction(int(rng.integers(-64, 65)), 16) if r + j < n else Fraction(0)
+               for j in range(w)]
+        if rng.random() < 0.2:
+            row[0] = Fraction(int(rng.integers(1, 4)), 1 << 30)
+        rows.append(row)
+    return rows
+
+
+def _dense(rows) -> list:
+    n, w = len(rows), len(rows[0])
+    A = [[Fraction(0)] * n for _ in range(n)]
+    for r in range(n):
+        for j in range(w):
+            if r + j < n:
+                A[r][r + j] = A[r + j][r] = rows[r][j]
+    return A
+
+
+def _exact_det(A) -> Fraction:
+    A = [row[:] for row in A]
+    n, det = len(A), Fraction(1)
+    for k in range(n):
+        p = next((i for i in range(k, n) if A[i][k] != 0), None)
+        if p is None:
+            return Fraction(0)
+        if p != k:
+            A[k], A[p] = A[p], A[k]
+            det = -det
+        det *= A[k][k]
+        for i in range(k + 1, n):
+            f = A[i][k] / A[k][k]
+            for j in range(k, n):
+                A[i][j] -= f * A[k][j]
+    return det
+
+
+@pytest.mark.parametrize("N", [2, 3])
+def test_twisted_elimination_keeps_the_inertia_and_the_determinant(N):
+    """Eliminated from both ends toward any freedom, a band keeps the inertia (against
+    numpy's eigenvalues) and the determinant (exact, in rationals) of the matrix: the
+    pivots' signs count its negative eigenvalues and their product's ball holds det K."""
+    rng = np.random.default_rng(7)
+    W = multiword.width(N)
+    for _ in range(6):
+        n, w = int(rng.integers(4, 9)), int(rng.integers(2, 5))
+        rows = _fraction_band(n, w, rng)
+        A = _dense(rows)
+        det = _exact_det(A)
+        negative = int((np.linalg.eigvalsh(np.array(A, dtype=float)) < 0).sum())
+        for t in range(n):
+            band = np.zeros((1, n, w, W), dtype=np.uint64)
+            for r in range(n):
+                for j in range(w):
+                    band[0, r, j] = _row(rows[r][j], N)
+            ok = np.ones(1, dtype=np.uint8)
+            Kb = multiword._twisted(band, np.array([t]), ok, N)
+            assert ok[0] == 1
+            pivots = [multiword.decode(row) for row in Kb[0, :n, 0]]
+            assert sum(mid < 0 for mid, _ in pivots) == negative
+            product, radius = Fraction(1), Fraction(0)
+            for mid, r in pivots:
+                radius = abs(product) * r + abs(mid) * radius + radius * r
+                product *= mid
+            assert abs(det - product) <= radius
+
+
+def test_twisted_elimination_stops_at_a_zero_pivot():
+    rows = [[Fraction(1), Fraction(1)], [Fraction(1), Fraction(0)]]   # singular
+    band = np.array([[[_row(x, 2) for x in row] for row in rows]], dtype=np.uint64)
+    for t in (0, 1):
+        ok = np.ones(1, dtype=np.uint8)
+        multiword._twisted(band, np.array([t]), ok, 2)
+        assert ok[0] == 0
+
+
+def test_peaks_are_the_largest_freedom_of_the_null_vector():
+    """Shifted by one of its eigenvalues, a band is singular: the freedom where its
+    double-precision L^-T e_(n-1) peaks is where numpy's eigenvector does."""
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        n, w = int(rng.integers(6, 40)), int(rng.integers(2, 6))
+        A = np.zeros((n, n))
+        for j in range(w):
+            v = rng.normal(size=n - j)
+            A += np.diag(v, j) + (np.diag(v, -j) if j else 0)
+        values, vectors = np.linalg.eigh(A)
+        k = int(rng.integers(0, n))
+        S = A - values[k] * np.eye(n)
+        top = np.sort(np.abs(vectors[:, k]))[-2:]
+        if top[1] < 1.01 * top[0]:
+            continue                    # (two freedoms nearly alike: either may win)
+        Kb = np.zeros((1, n + w, w))
+        for j in range(w):
+            Kb[0, :n - j, j] = np.diag(S, j)
+        multiword._band.eliminate(Kb, 1, n + w, w, n, False)
+        out = np.empty(1, dtype=np.int64)
+        multiword._band.peaks(Kb, out, 1, n + w, w, n)
+        assert out[0] == int(np.argmax(np.abs(vectors[:, k])))
+
+
+def test_points_by_a_chain_root_are_decided_in_two_words_from_both_ends(monkeypatch):
+    """About a root of a 10-level chain whose mode is small at both ends of the band,
+    neither order's last pivot is decided in two words at 150 bits (three words are
+    tried); eliminated from both ends toward the mode's largest freedom, two words decide
+    it, and the counts are those of Arb alone at 400 bits."""
+    from benchmarks.models import chain
+    model = chain(10, 2)
+    root = next(e for e in solve(model, count=8, digits=20)
+                if abs(float(e.lam.imag) - 32.739010) < 1e-5).lam.imag
+    near = [root * (1 + s * mpmath.mpf(10) ** -15) for s in (-1, 1)]
+    ar = Ball(150)
+    with ar:
+        lam2 = np.array([-(ar.number(x) ** 2) for x in near], dtype=object)
+    plan = Counter(model, 60.0).plan(40.0)
+    words = []
+    decided = multiword._decided
+
+    def spy(plan, ar, lam2, reverse, N, *args, **kwargs):
+        words.append(N)
+        return decided(plan, ar, lam2, reverse, N, *args, **kwargs)
+    monkeypatch.setattr(multiword, "_decided", spy)
+    fa = multiword.factor(plan, ar, lam2)
+    assert words == [2]
+    with monkeypatch.context() as m:        # (from one end only: three words)
+        m.setattr(multiword, "_splits", lambda plan, lam2: None)
+        words.clear()
+        plan.__dict__.pop("_multiword_failed", None)
+        assert multiword.factor(plan, ar, lam2).counts().tolist() == fa.counts().tolist()
+        assert words[:2] == [2, 3]
+    monkeypatch.setattr(multiword, "ENABLED", False)
+    exact = Counter(model, 60.0).counts(near, Ball(400))
+    assert fa.counts().tolist() == exact.tolist()
+    assert exact[1] == exact[0] + 1

@@ -15,6 +15,7 @@
 #include <Python.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 
 #include "_band_core.h"
 #include "_buffers.h"
@@ -97,6 +98,60 @@ static PyObject *scatter(PyObject *self, PyObject *args)
                     &v, &k, &tg, &src, &cf);
 }
 
+/* peaks(factored, out, B, rows, w, n): per point of a factorised real batch the freedom
+ * where phi = L^-T e_(n-1) is largest in modulus. K phi = d_(n-1) e_(n-1): near an
+ * eigenvalue phi is its mode, and the twisted factorisation that ends at the mode's
+ * largest freedom has its smallest pivot there (the pivot at t is 1 / (K^-1)_tt).
+ * phi is rescaled as it grows (it may grow by orders of magnitude along the band); a
+ * zero pivot leaves its freedom at 0. */
+static PyObject *peaks(PyObject *self, PyObject *args)
+{
+    Py_buffer kb, out;
+    Py_ssize_t B, rows, w, n;
+    if (!PyArg_ParseTuple(args, "y*w*nnnn", &kb, &out, &B, &rows, &w, &n))
+        return NULL;
+    if (B < 0 || w < 1 || n < 1 || rows < n + w || kb.len != B * rows * w * 8
+            || out.len != B * 8)
+        return RELEASED(CALL_MISFIT, "peaks buffers of the wrong size", &kb, &out);
+    double *phi = malloc((size_t)(n + w) * sizeof(double));
+    if (!phi) {
+        PyBuffer_Release(&kb);
+        PyBuffer_Release(&out);
+        return PyErr_NoMemory();
+    }
+    Py_BEGIN_ALLOW_THREADS
+    for (Py_ssize_t p = 0; p < B; p++) {
+        const double *K = (const double *)kb.buf + p * rows * w;
+        for (Py_ssize_t i = 0; i < n + w; i++)
+            phi[i] = 0.0;
+        phi[n - 1] = 1.0;
+        Py_ssize_t best = n - 1;
+        double top = 1.0;
+        for (Py_ssize_t i = n - 2; i >= 0; i--) {
+            const double d = K[i * w];
+            double v = 0.0;
+            if (d != 0.0 && isfinite(d)) {
+                for (Py_ssize_t j = 1; j < w; j++)
+                    v -= (K[i * w + j] / d) * phi[i + j];
+            }
+            phi[i] = isfinite(v) ? v : 0.0;
+            if (fabs(phi[i]) > 0x1p500) {
+                for (Py_ssize_t j = 0; j < w && i + j < n; j++)
+                    phi[i + j] *= 0x1p-500;
+                top *= 0x1p-500;
+            }
+            if (fabs(phi[i]) > top) {
+                top = fabs(phi[i]);
+                best = i;
+            }
+        }
+        ((long long *)out.buf)[p] = (long long)best;
+    }
+    Py_END_ALLOW_THREADS
+    free(phi);
+    return RELEASED(CALL_DONE, NULL, &kb, &out);
+}
+
 static PyObject *bounds(PyObject *self, PyObject *args)
 {
     Py_buffer kb, k0, out;
@@ -166,6 +221,9 @@ static PyMethodDef methods[] = {
     {"bounds", bounds, METH_VARARGS,
      "bounds(factored, band, out, B, rows, w, n, is_complex): the diagonal of "
      "|L||D||L^T| per freedom."},
+    {"peaks", peaks, METH_VARARGS,
+     "peaks(factored, out, B, rows, w, n): per point the freedom where L^-T e_(n-1) is "
+     "largest."},
     {"summary", summary, METH_VARARGS,
      "summary(factored, band, det12, mult, logabs, phase, count, B, rows, w, n, S, trust, "
      "growth, log_constant, is_complex): log|Delta|, arg Delta and the count per point."},

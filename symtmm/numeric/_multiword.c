@@ -342,6 +342,30 @@ static PyObject *eliminate(PyObject *self, PyObject *args)
     return RELEASED(CALL_DONE, NULL, &buf, &okb);
 }
 
+/* eliminate_twisted(N, band, B, rows, w, n, splits, ok): as eliminate(), the freedoms
+ * of point p eliminated from both ends toward splits[p] (int64, 0 <= t < n), whose pivot
+ * is the last: the same inertia and determinant (Haynsworth), and where a mode is small
+ * at both ends of the band (the pivot at either end is then the Schur complement of the
+ * whole band, and its radius the growth of all of it) a pivot whose radius grew over
+ * each side's part alone. */
+static PyObject *eliminate_twisted(PyObject *self, PyObject *args)
+{
+    Py_buffer buf, sb, okb;
+    Py_ssize_t B, rows, w, n;
+    int N;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "iw*nnnny*w*", &N, &buf, &B, &rows, &w, &n, &sb, &okb))
+        return NULL;
+    if (!valid_words(N) || B < 0 || w < 1 || n < 1 || rows < n + w
+            || buf.len != B * rows * w * 8 * ball_words(N) || okb.len != B
+            || sb.len != B * 8)
+        return RELEASED(CALL_MISFIT, "multi-word band of the wrong size", &buf, &sb, &okb);
+    Py_BEGIN_ALLOW_THREADS
+    BY_WORDS(N, eliminate_twisted_points, buf.buf, B, rows, w, n, sb.buf, okb.buf)
+    Py_END_ALLOW_THREADS
+    return RELEASED(CALL_DONE, NULL, &buf, &sb, &okb);
+}
+
 /* power_product(N, x, k, out, ok): out (B,) = prod_i x[:, i]^k[i] of balls x (B, count),
  * k (count,) int64 >= 0, each as a ball and one more word, the power of two (int64) it is
  * to be multiplied by; ok (B,) uint8 written (0: not finite). */
@@ -413,6 +437,9 @@ static PyMethodDef methods[] = {
     {"summary", fused_summary, METH_VARARGS,
      "summary(N, lam2, lam, ..., n, w, mult, trust, growth, log_constant, logabs, phase, "
      "count, ok): log|Delta|, arg Delta and the count of double batches, a point at a time."},
+    {"eliminate_twisted", eliminate_twisted, METH_VARARGS,
+     "eliminate_twisted(N, band, B, rows, w, n, splits, ok): LDL^T from both ends of ball "
+     "bands toward splits[p], in place."},
     {"power_product", power_product, METH_VARARGS,
      "power_product(N, x, k, out, ok): out[p] = prod_i x[p, i]**k[i] of balls."},
     {"ops", ops, METH_VARARGS, "ops(op, N, x, y, out): elementwise ball operations (tests)."},

@@ -447,6 +447,67 @@ static void F(eliminate_points)(uint64_t *buf, Py_ssize_t B, Py_ssize_t rows, Py
     }
 }
 
+/* One 1x1 pivot at row s eliminated upward, over the active rows lo .. s - 1 (a twisted
+ * factorisation's lower part): K(s - j, s - i) -= K(s - i, s) K(s - j, s) / K(s, s) for
+ * 1 <= i <= j, the mirror of pivot1; 0 where the pivot's ball holds 0. */
+static int F(pivot1_up)(uint64_t *Kp, Py_ssize_t s, Py_ssize_t w, Py_ssize_t lo)
+{
+    const BALL piv = F(load)(Kp + W_ * s * w);
+    if (!F(nonzero)(&piv))
+        return 0;
+    const Py_ssize_t m = s - lo < w - 1 ? s - lo : w - 1;
+    if (m < 1)
+        return 1;
+    const BALL inv = F(inv)(&piv);
+    for (Py_ssize_t i = 1; i <= m; i++) {
+        const BALL ri = F(load)(Kp + W_ * ((s - i) * w + i));
+        if (F(is_zero)(&ri))
+            continue;
+        const BALL f = MUL(ri, inv);
+        for (Py_ssize_t j = i; j <= m; j++) {
+            const BALL rj = F(load)(Kp + W_ * ((s - j) * w + j));
+            if (F(is_zero)(&rj))
+                continue;
+            uint64_t *target = Kp + W_ * ((s - j) * w + (j - i));
+            const BALL old = F(load)(target), u = MUL(f, rj), z = SUB(old, u);
+            F(store)(target, &z);
+        }
+    }
+    return 1;
+}
+
+/* The twisted LDL^T of every point's band (see eliminate_twisted in _multiword.c): the
+ * freedoms 0 .. t - 1 eliminated downward (as eliminate_points, 2x2 blocks within them),
+ * then n - 1 .. t + 1 upward (1x1 pivots), then t, t = splits[p]; every pivot d_k left at
+ * row k. */
+static void F(eliminate_twisted_points)(uint64_t *buf, Py_ssize_t B, Py_ssize_t rows,
+                                        Py_ssize_t w, Py_ssize_t n, const long long *splits,
+                                        unsigned char *ok)
+{
+    for (Py_ssize_t p = 0; p < B; p++) {
+        if (!ok[p])
+            continue;
+        uint64_t *Kp = buf + W_ * p * rows * w;
+        const Py_ssize_t t = splits[p];
+        Py_ssize_t k = 0;
+        int fine = t >= 0 && t < n;
+        while (fine && k < t) {
+            const BALL a = F(load)(Kp + W_ * k * w);
+            int pair = 0;
+            if (k + 1 < t && w > 1) {
+                const BALL next = F(load)(Kp + W_ * k * w + W_);
+                pair = !F(nonzero)(&a)
+                       || ldexp(fabs(F(head)(&a)), PAIR_BITS) < fabs(F(head)(&next));
+            }
+            fine = pair ? F(pivot2)(Kp, k, w) : F(pivot1)(Kp, k, w);
+            k += pair ? 2 : 1;
+        }
+        for (Py_ssize_t s = n - 1; fine && s >= t; s--)
+            fine = F(pivot1_up)(Kp, s, w, t);
+        ok[p] = (unsigned char)fine;
+    }
+}
+
 /* out[p] = prod_i x[p, i]^k[i] (k >= 0), by squaring: a ball (W_ words) and a power of two
  * it is to be multiplied by (a product such as Delta leaves the doubles' range: the
  * running product is rescaled as it goes), W_ + 1 words; ok[p] = 0 where not finite. */

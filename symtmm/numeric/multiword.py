@@ -58,9 +58,9 @@ from .arith import Ball, exact_key
 from .parallel import run_ranges
 
 try:        # the compiled balls (setup.py); without a compiler every ball runs in Arb
-    from . import _multiword
+    from . import _band, _multiword
 except ImportError:  # pragma: no cover - tested by switching it off
-    _multiword = None
+    _band = _multiword = None
 
 #: Whether ball factorisations are tried in multi-word balls first; tests switch it off
 #: to run Arb alone.
@@ -624,12 +624,13 @@ def factor(plan, ar: Ball, lam2, reverse: bool = False, lam=None):
     products = np.full(B, None, dtype=object)
     signs = (np.zeros if complex_ else np.ones)((B, n), dtype=np.int8)
     todo = np.arange(B)
-    # a tier that decided none of a batch of several points is not tried again for this
-    # plan while a next one remains: the proofs' batches all lie about roots, where the
-    # smallest pivot is tiny and the radii's growth along a long band leaves the words too
-    # few bits for it (the 50-level chain at 15 digits: two words decided none of 10 and
-    # then of 20 points, a fifth of its solve, before three decided all); points away from
-    # roots then take a word more than they need, at less cost than a tier that fails
+    # a tier that decided under half of a batch of several points is not tried again for
+    # this plan while a next one remains: the proofs' batches all lie about roots, where
+    # the smallest pivot is tiny and the radii's growth along a long band leaves the words
+    # too few bits for it (the 50-level chain at 15 digits: two words, eliminating from
+    # both ends, decided 4 of its first 10 points and would decide 2 of the next 20, the
+    # narrower pairs); points away from roots then take a word more than they need, at
+    # less cost than a tier that fails
     failed = plan.__dict__.setdefault("_multiword_failed", set())
     tried = tiers(ar.prec, n)
     tried = [N for N in tried[:-1] if (N, complex_) not in failed] + tried[-1:]
@@ -642,7 +643,7 @@ def factor(plan, ar: Ball, lam2, reverse: bool = False, lam=None):
         if done is None:
             break
         ok, piv, det12 = done
-        if todo.size >= 3 and not ok.any():
+        if todo.size >= 3 and 2 * ok.sum() < todo.size:
             failed.add((N, complex_))
         if ok.any():
             # (of a point decided here the callers read the count, from the signs, and
@@ -761,19 +762,46 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bo
                             np.empty((16 * S + 3, W), dtype=np.uint64), ok)
         band = band.reshape(hi - lo, n, w, W)
         built = ok.copy()
-        Kb = _eliminated(band, reverse, ok, code)
-        # where a pivot stayed undecided, the other order's leading minors (the same
-        # inertia and determinant) may keep their radii narrower
-        again = np.nonzero(built & (ok == 0))[0] if other_order else ()
-        if len(again):
-            ok2 = built[again].copy()
-            Kb[again] = _eliminated(band[again], not reverse, ok2, code)
-            ok[again] = ok2
-        ok = ok.astype(bool)
-        return ok, Kb[ok, :n, 0, :], det12[ok]
+        return ok, built, _eliminated(band, reverse, ok, code), band, det12
 
     parts = run_ranges(run, B, _batch_seconds(plan, B, N, W))
-    return tuple(np.concatenate(x) for x in zip(*parts))
+    ok, built, Kb, band, det12 = parts[0] if len(parts) == 1 else \
+        tuple(np.concatenate(x) for x in zip(*parts))
+    again = np.nonzero(built & (ok == 0))[0]
+    if len(again) and not complex_:
+        # a point near an eigenvalue whose mode is small at both ends of the band: the
+        # last pivot of either order carries the radii grown along all of it; eliminated
+        # from both ends toward the mode's largest freedom, each side's growth only (a
+        # 10-level chain at 15 digits: 6 of its 30 proof points, which took three words)
+        splits = _splits(plan, lam2[again])
+        if splits is not None:
+            twist = splits < n - 1                  # (n - 1: the order that failed)
+            again, rest = again[twist], again[~twist]
+            _redo(again, ok, Kb, lambda lo, hi, okp: _twisted(
+                band[again[lo:hi]], splits[twist][lo:hi], okp, code), plan, N, W)
+            again = np.concatenate([again[ok[again] == 0], rest])
+    if other_order and len(again):
+        # where a pivot stayed undecided, the other order's leading minors (the same
+        # inertia and determinant) may keep their radii narrower
+        _redo(again, ok, Kb, lambda lo, hi, okp: _eliminated(
+            band[again[lo:hi]], not reverse, okp, code), plan, N, W)
+    ok = ok.astype(bool)
+    return ok, Kb[ok, :n, 0, :], det12[ok]
+
+
+def _redo(points, ok, Kb, eliminate, plan, N: int, W: int) -> None:
+    """The factorisation of ``points`` (indices into the batch's ``ok`` and ``Kb``) again,
+    by ``eliminate(lo, hi, ok)`` over their parts (in threads as a first batch)."""
+    okr = np.ones(len(points), dtype=np.uint8)
+
+    def part(lo, hi):
+        okp = okr[lo:hi].copy()
+        out = eliminate(lo, hi, okp)
+        okr[lo:hi] = okp
+        return out
+    Kb[points] = np.concatenate(run_ranges(part, len(points),
+                                           _batch_seconds(plan, len(points), N, W) / 2))
+    ok[points] = okr
 
 
 def _eliminated(band, reverse: bool, ok, N: int) -> np.ndarray:
@@ -787,6 +815,38 @@ def _eliminated(band, reverse: bool, ok, N: int) -> np.ndarray:
                                              axis=1))
     _multiword.eliminate(N, Kb, B, n + w, w, n, ok)
     return Kb
+
+
+def _twisted(band, splits, ok, N: int) -> np.ndarray:
+    """The band ``(B, n, w, width)`` of balls of ``N`` words padded and eliminated from both
+    ends toward the freedoms ``splits`` (one per point; every pivot ``d_k`` left at row
+    ``k``); ``ok`` cleared where a pivot ball holds 0."""
+    B, n, w, W = band.shape
+    Kb = np.ascontiguousarray(np.concatenate([band, np.zeros((B, w, w, W), dtype=np.uint64)],
+                                             axis=1))
+    _multiword.eliminate_twisted(N, Kb, B, n + w, w, n,
+                                 np.ascontiguousarray(splits, dtype=np.int64), ok)
+    return Kb
+
+
+def _splits(plan, lam2) -> np.ndarray | None:
+    """Per real point (balls) the freedom its twisted elimination ends at: where ``L^-T
+    e_(n-1)`` of its double-precision factorisation peaks (:func:`_band.peaks`: near an
+    eigenvalue, its mode's largest freedom); None where no double band is built."""
+    from .stiffness import _compiled_band
+    mids = np.array([float(v.mid()) for v in lam2])
+    if not np.isfinite(mids).all():
+        return None
+    built = _compiled_band(plan, mids, None)
+    if built is None:
+        return None
+    K = built[0]
+    B, n, w = K.shape
+    Kb = np.ascontiguousarray(np.concatenate([K, np.zeros((B, w, w))], axis=1))
+    _band.eliminate(Kb, B, n + w, w, n, False)
+    out = np.empty(B, dtype=np.int64)
+    _band.peaks(Kb, out, B, n + w, w, n)
+    return out
 
 
 def _signs(balls) -> np.ndarray:
