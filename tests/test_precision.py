@@ -95,6 +95,41 @@ def test_exact_multiple_roots_come_with_a_bracket_narrower_than_the_separation(c
             assert (hi - lo) / hi <= mpmath.mpf(10) ** -37
 
 
+@pytest.mark.parametrize("accuracy", [1e-6, 0.0])
+def test_a_zoom_onto_a_triple_root_guided_by_fewer_digits(monkeypatch, accuracy):
+    """A triple root as example 3's, 16 pi**2 (the pinned-pinned mode with nodes at both
+    springs): the zoom's values of Delta, which would keep their digits 10**-37 from it
+    at 131 digits, are taken at 67 in balls and accepted by their radii; where the radii
+    are refused (``accuracy`` 0), at 131 as before. Either way the printed value and the
+    bracket are the closed form's."""
+    pytest.importorskip("flint")
+    from symtmm.roots import undamped
+    monkeypatch.setattr(undamped, "_GUIDE_ACCURACY", accuracy)
+    asked = []
+    deltas = undamped._Search._deltas
+
+    def spy(self, ws, dps, fewer=None):
+        made = undamped.proof_arithmetic
+
+        def recorded(digits, certified):
+            asked.append(digits)
+            return made(digits, certified)
+        monkeypatch.setattr(undamped, "proof_arithmetic", recorded)
+        try:
+            return deltas(self, ws, dps, fewer)
+        finally:
+            monkeypatch.setattr(undamped, "proof_arithmetic", made)
+    monkeypatch.setattr(undamped._Search, "_deltas", spy)
+    spectrum = solve(_chain("25"), count=12, digits=15)
+    triple = [e for e in spectrum if e.multiplicity == 3]
+    with mpmath.workdps(60):
+        exact = 16 * mpmath.pi ** 2
+        assert [e.to_dict()["imag"] for e in triple] == [_rounded(exact, 15)]
+        lo, hi = (mpmath.mpf(v) for v in triple[0].bracket)
+        assert lo < exact <= hi and (hi - lo) / hi <= 1.01 * mpmath.mpf(10) ** -37
+    assert asked and set(asked) == ({67} if accuracy else {67, 131})
+
+
 def test_a_count_exactly_at_an_eigenvalue_moves_off_it():
     # EI = 1/pi**4 puts the first pinned-pinned frequency at 1.0 rad/s exactly, where
     # the search counts first; the count is not defined there

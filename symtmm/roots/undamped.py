@@ -789,7 +789,8 @@ class _Search:
         # expected, that is one ball batch fewer (example 3's triple root: 0.7 ms of 12)
         target, ends = ca, None
         if self.hp.rigorous and k * resolution + 20 <= MAX_DPS:
-            values, counts = self._deltas([a, b], k * resolution + 20)
+            values, counts = self._deltas([a, b], k * resolution + 20,
+                                          resolution + _GUIDE_DIGITS)
             if [int(c) for c in counts] == [target, target + k]:
                 ends, cb = values, target + k
         if ends is None:
@@ -825,11 +826,29 @@ class _Search:
             stack.append((a, ca, mid, cm))
         return out
 
-    def _deltas(self, ws, dps: int) -> tuple:
+    def _deltas(self, ws, dps: int, fewer: int | None = None) -> tuple:
         """``(Delta(i w), J(w))`` at each of ``ws`` at ``dps`` digits: the values as global
         mpmath numbers (the midpoints of balls where python-flint is installed: a ball costs
         a seventh of an mpmath number in the elimination, and these values only guide), the
-        counts -1 where undecided."""
+        counts -1 where undecided.
+
+        ``fewer``: where the proofs are balls, the digits tried first. Near a ``k``-fold
+        root ``Delta`` is about the ``k``-th power of the distance, but it is the product
+        of the pivots, of which each of the ``k`` small ones is about the distance itself:
+        the digits that resolve the distance, and a guard, give ``Delta`` to many digits
+        where ``k`` times as many were asked for (example 3's triple root, ``1e-40`` from
+        it: 67 digits give ``Delta``, about ``1e-122``, to 13 digits; 131 were taken). A
+        batch whose balls do not give every value to :data:`_GUIDE_ACCURACY` or leave a
+        count undecided is evaluated at ``dps``.
+        """
+        if fewer is not None and fewer < dps and self.hp.rigorous:
+            ar = proof_arithmetic(fewer, self.certified)
+            values, counts = self.counter.delta(list(ws), ar)
+            with ar:
+                known = all(c >= 0 and v.mid() != 0 and v.rad() <= _GUIDE_ACCURACY * abs(v.mid())
+                            for v, c in zip(values, counts))
+            if known:
+                return [mpmath.re(ar.to_mpmath(v)) for v in values], counts
         ar = proof_arithmetic(dps, self.certified)
         values, counts = self.counter.delta(list(ws), ar)
         return [mpmath.re(ar.to_mpmath(v)) for v in values], counts
@@ -855,7 +874,8 @@ class _Search:
         power = ctx.mpf(1) / k
 
         def v(*ws):      # the V: |Delta|**(1/k)
-            return [abs(ctx.mpf(d)) ** power for d in self._deltas(ws, dps)[0]]
+            return [abs(ctx.mpf(d)) ** power
+                    for d in self._deltas(ws, dps, resolution + _GUIDE_DIGITS)[0]]
 
         a, b = ctx.mpf(a), ctx.mpf(b)
         lo, hi = a, b
@@ -973,6 +993,10 @@ _ESTIMATE_GUARD = 24
 #: (:meth:`_Search._newton_start`): its step from a double estimate errs by about the
 #: estimate's error squared.
 _START_DIGITS = 30
+#: Digits beyond a zoom's resolution its values of ``Delta`` are tried in first
+#: (:meth:`_Search._deltas`), and the relative accuracy they must reach there.
+_GUIDE_DIGITS = 30
+_GUIDE_ACCURACY = 1e-6
 
 
 class _MorePrecision(Exception):
