@@ -5,6 +5,7 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
+import sympy as sp
 from damped_reference import pp_root_above
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -304,6 +305,42 @@ def test_springs_1e_12_apart_at_30_and_50_digits():
         for e, ref, e15 in zip(high, merged, low):
             assert abs(e.omega - ref.omega) < 1e-10 * ref.omega
             assert decimal_string(e.omega, 15) == decimal_string(e15.omega, 15)
+
+
+def _sliding_pair(gap):
+    """A sliding-sliding beam held to a pinned-free one by two springs of 39, ``gap`` apart
+    (a fuzzed model): only the springs' distance resists the pair's rigid turning, so the
+    lowest frequency is about proportional to it; and the piece between them costs the
+    band some 9 to 36 digits, which leaves double precision no digit near some roots."""
+    return Model((Beam("a", 1, 1, 2, left="sliding", right="sliding"),
+                  Beam("b", 1, 1, 2, left="pinned", right="free")),
+                 (Spring("b", "a", "1.171875", 39), Spring("b", "a", f"1.171875 + {gap}", 39)))
+
+
+@pytest.mark.parametrize("gap", ["10**-9", "10**-12"])
+def test_springs_that_alone_hold_a_rigid_turning_close_together(gap):
+    # The double-precision estimates here lie far from the roots (3.47 for 3.24), and the
+    # proof stage asked ever more digits of pairs that did not straddle them: one end of
+    # a pair was the Newton start's point, kept at its fewer digits, or the pair lay at a
+    # rounding tie, where its balls had a fixed number of bits whatever the retry. (Both
+    # gave "cannot reach 15 digits within 3000 working digits".) References: the finite
+    # elements of the two springs as one of 78 (the springs move by the gap), the lowest
+    # frequency's proportion to the gap across the two gaps, and the 30-digit solve.
+    pytest.importorskip("scipy")
+    from symtmm.fe import fe_frequencies
+    model = _sliding_pair(gap)
+    low, high = (solve(model, count=7, digits=d) for d in (15, 30))
+    assert [e.multiplicity for e in low] == [1] * 7
+    assert [e.to_dict()["imag"] for e in low] == [decimal_string(e.omega, 15) for e in high]
+    beams, springs = _plain(Model(model.beams, (Spring("b", "a", "1.171875", 78),)))
+    fe40, fe80 = (fe_frequencies(beams, springs, n, count=7) for n in (40, 80))
+    fe = (16 * fe80 - fe40) / 15
+    tmm = np.array([float(e.omega) for e in low])
+    assert fe[0] == 0 and 0 < tmm[0] < 1e-6
+    assert np.all(np.abs(fe[1:] - tmm[1:]) <= 1e-6 * tmm[1:])
+    ratio = float(low[0].omega) / float(sp.sympify(gap))
+    other = solve(_sliding_pair("10**-6"), count=1, digits=6)
+    assert abs(ratio / (float(other[0].omega) / 1e-6) - 1) < 1e-3
 
 
 def _prints_alike_by_strings(a, b, digits):

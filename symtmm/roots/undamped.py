@@ -245,6 +245,7 @@ class _Search:
         self.counter = Counter(model, omega_hi)
         self._proved: dict = {}         # (point, digits) -> count proved in balls
         self._set_precision(digits_for(digits))
+        self._first_prec = self.hp.prec          # (the bits before any retry with more)
 
     def _set_precision(self, work_digits: int):
         if work_digits > MAX_DPS:
@@ -617,10 +618,12 @@ class _Search:
                     abs(f2 - f1) > 8 * (p1.r + p2.r)
                 if resolved and f1 != f2:
                     step = t2 - f2 * (t2 - t1) / (f2 - f1)
-                elif f1 is not None and f2 is not None and h[i] <= target:
+                elif f1 is not None and f2 is not None and h[i] <= target and n == 2:
                     # the pair as narrow as the digits need, and its values do not tell
                     # it apart: the band loses more digits than the precision keeps (a
-                    # piece 1e-12 long beside pieces of 0.3: 38 digits)
+                    # piece 1e-12 long beside pieces of 0.3: 38 digits). (Not a point
+                    # beside the kept one, whose value came from fewer digits, which more
+                    # would not change: the next round takes a pair.)
                     raise _MorePrecision()
                 if step is None or not a[i] < step < b[i]:
                     width = b[i] - a[i]
@@ -662,7 +665,10 @@ class _Search:
         """
         if not widths or not self.hp.rigorous:
             return None
-        bits = math.log2(float(max(widths)) / float(target)) + _ESTIMATE_GUARD
+        # (and the bits a retry added to the proofs': the band of a model with a piece far
+        # shorter than the others loses digits to it, in these balls as in the proofs')
+        bits = math.log2(float(max(widths)) / float(target)) + _ESTIMATE_GUARD + \
+            (self.hp.prec - self._first_prec)
         # (at least three: the double-doubles' 106 bits left most of such pairs undecided,
         # example 1 at 30 digits 14 of 20, as their pivots hold the pairs' distance from the
         # roots besides the radii's growth along the band)
