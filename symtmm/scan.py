@@ -22,8 +22,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .deadline import time_budget
 from .errors import ComputationError, ModelError
 from .jsonout import dumps, header
+from .limits import SEARCH_SECONDS
 from .model import Model
 from .numeric import transfer
 from .results import Spectrum
@@ -162,7 +164,8 @@ def _log10_abs(plan: transfer.TransferPlan, lam):
 
 def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=None,
          map_points: tuple = (241, 361), eigenvalues: bool = True, digits: int = 10,
-         method: str = "default", spacing: str = "Omega") -> Scan:
+         method: str = "default", spacing: str = "Omega",
+         max_seconds: float | None = SEARCH_SECONDS) -> Scan:
     """``log10|Delta|`` on ``points`` frequencies in ``[omega_min, omega_max]``.
 
     Parameters
@@ -188,6 +191,10 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
         Grid equally spaced in the first beam's frequency parameter
         ``Omega ~ sqrt(omega)`` (default: roots are about evenly spaced in it, so
         every dip gets the same resolution) or in ``omega``.
+    max_seconds : float or None
+        Wall-clock budget of the whole scan, the eigenvalues' search included
+        (:mod:`symtmm.deadline`): past it, a
+        :class:`~symtmm.errors.ComputationError`. None: no limit.
 
     Returns
     -------
@@ -203,6 +210,13 @@ def scan(model: Model, omega_max, points: int = 2000, omega_min=0.0, sigma_max=N
     >>> [str(e) for e in s.spectrum]
     ['9.869604401i', '39.47841760i', '88.82643961i']
     """
+    with time_budget(max_seconds):
+        return _scan(model, omega_max, points, omega_min, sigma_max, map_points, eigenvalues,
+                     digits, method, spacing)
+
+
+def _scan(model, omega_max, points, omega_min, sigma_max, map_points, eigenvalues, digits,
+          method, spacing) -> Scan:
     from .budget import check_search
     from .roots.undamped import omega_scale
     from .solve import solve

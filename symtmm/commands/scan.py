@@ -14,6 +14,7 @@ from pathlib import Path
 from ..cli import (
     add_csv_argument,
     add_model_arguments,
+    add_time_argument,
     check_csv_path,
     load_model_arg,
     nonnegative,
@@ -54,6 +55,7 @@ def add_arguments(parser):
     parser.add_argument("--method", default="default", metavar="NAME",
                         help="root search for the marks (see symtmm solve)")
     parser.add_argument("--json", action="store_true", help="JSON output")
+    add_time_argument(parser, "the scan (the eigenvalues' search included)")
     add_csv_argument(parser)
     parser.add_argument("--title", metavar="TEXT",
                         help="title of the figure (default: the model's title)")
@@ -83,7 +85,8 @@ def run(args) -> int:
     try:
         result = scan(model, args.omega_max, points=args.points, omega_min=args.omega_min,
                       sigma_max=args.sigma_max, eigenvalues=not args.no_eigenvalues,
-                      digits=args.digits, method=args.method, spacing=args.spacing)
+                      digits=args.digits, method=args.method, spacing=args.spacing,
+                      max_seconds=args.max_seconds)
     except ModelError as exc:
         raise exc.with_source(args.model) from None
     written = []

@@ -611,6 +611,7 @@ def log_delta(plan: TransferPlan, lam) -> tuple:
     for i, key in enumerate(map(tuple, steps)):
         groups.setdefault(key, []).append(i)
     for key, idx in groups.items():
+        check_time()    # (between groups: a scan of a model whose points take many steps)
         idx = np.array(idx)
         # (a segment's series overflows at a point far beyond its pieces' reach, as in a
         # scan of an extreme model: that point's value is not finite, and says so; numpy's
