@@ -18,7 +18,11 @@ __all__ = ["first", "Eigenvalue", "Spectrum", "decimal_string", "prints_alike", 
 
 
 def decimal_string(value, digits: int) -> str:
-    """``value`` as a plain decimal string with ``digits`` significant digits.
+    """``value`` as a decimal string with ``digits`` significant digits, every one printed
+    of them significant: positional, but with an exponent where the integer part would
+    need zeros beyond the digits (``3.58069963539574e+30``, not thirty-one digits of
+    which the last sixteen would be padding; ``1.2e+2`` for 122.07 at two digits, not
+    ``120.``, whose point says the units are known).
 
     Examples
     --------
@@ -28,12 +32,14 @@ def decimal_string(value, digits: int) -> str:
     '0'
     >>> decimal_string(mpmath.mpf("1.5e-7"), 3)
     '0.000000150'
+    >>> decimal_string(mpmath.mpf("122.07"), 2), decimal_string(mpmath.mpf("122.07"), 3)
+    ('1.2e+2', '122.')
     """
     if value == 0:
         return "0"
     ctx = _context(digits + 10)
     return ctx.nstr(ctx.mpf(value), digits, strip_zeros=False, min_fixed=-ctx.inf,
-                    max_fixed=ctx.inf)
+                    max_fixed=digits)
 
 
 def prints_alike(a, b, digits: int) -> bool:

@@ -343,6 +343,27 @@ def test_springs_that_alone_hold_a_rigid_turning_close_together(gap):
     assert abs(ratio / (float(other[0].omega) / 1e-6) - 1) < 1e-3
 
 
+@settings(max_examples=300, deadline=None)
+@given(st.integers(1, 1 << 200), st.integers(-400, 300), st.integers(1, 40), st.booleans())
+def test_decimal_strings_print_only_significant_digits(man, exp, digits, negative):
+    """Every digit a decimal string prints is one of the ``digits`` significant ones,
+    correctly rounded (Python's decimal module, from the exact value, is the reference):
+    a value of 3.58e30 at 15 digits printed thirty-one digits, the last sixteen zeros of
+    padding, and 122.07 at two digits ``120.``, whose point claims the units."""
+    from decimal import ROUND_HALF_DOWN, ROUND_HALF_UP, Context, Decimal
+    ctx = mpmath.MPContext()
+    ctx.prec = 800
+    x = (-1) ** negative * ctx.mpf(man) * ctx.mpf(2) ** exp
+    text = decimal_string(x, digits)
+    assert len(text.split("e")[0].lstrip("-").replace(".", "").lstrip("0")) == digits
+    exact = Fraction((-1) ** negative * man) * Fraction(2) ** exp
+    wide = Context(prec=1200)           # (exact: 2**-400 has 400 decimals)
+    value = wide.divide(Decimal(exact.numerator), Decimal(exact.denominator))
+    # (an exact tie may go either way)
+    assert Decimal(text) in {Context(prec=digits, rounding=r).plus(value)
+                             for r in (ROUND_HALF_UP, ROUND_HALF_DOWN)}
+
+
 def _prints_alike_by_strings(a, b, digits):
     return decimal_string(a, digits) == decimal_string(b, digits)
 
