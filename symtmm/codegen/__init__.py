@@ -40,7 +40,10 @@ generated code instead
 Without steps 2 and 3 the columns become parallel to working precision and the
 value loses ``sum |beta| L / ln 10`` digits (all of them by ``beta L = 36``);
 with them it keeps about 13 significant digits at any mode, like the Python
-evaluator, and overflows only where ``|Delta|`` itself exceeds the double range.
+evaluator (less about ``log10(k L / EI)`` beside a rotational spring far stiffer
+than its beams, ``log10(k L**3 / EI)`` beside a translational one: every double
+evaluation of ``Delta`` loses those), and overflows only where ``|Delta|`` itself
+exceeds the double range.
 Common subexpressions of the parameters are computed once (:func:`sympy.cse`),
 identical segments share one matrix, and constants are printed with 17
 significant digits (exact to double precision).

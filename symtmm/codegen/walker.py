@@ -275,7 +275,9 @@ def header_lines(plan, lang: str) -> list:
         f"Segments applied in steps of |beta| l <= {NU_STEP:g}; states in units of each",
         "beam's wave number; the unknown columns re-orthonormalised whenever they may have",
         f"grown by exp({NU_STEP:g}) (Godunov), Delta = det(E[rows]) * exp(sum of log norms):",
-        "about 13 significant digits at any mode, as symtmm.compile.Evaluator.log_delta.",
+        "about 13 significant digits at any mode, as symtmm.compile.Evaluator.log_delta",
+        "(less about log10(k L/EI) beside a rotational spring far stiffer than its beams,",
+        "log10(k L^3/EI) beside a translational one).",
     ]
     return [piece for line in lines for piece in comment_lines(line)]
 

@@ -19,7 +19,9 @@ its columns (entries grow like ``exp(|beta| l)``): high precision absorbs that.
 In double precision :func:`log_delta` walks in steps of ``|beta| l <=``
 :data:`NU_STEP` with the state in wave-number units and re-orthonormalises the
 columns as they grow (Godunov's method for stiff boundary-value problems), which
-keeps about 13 significant digits at any mode.
+keeps about 13 significant digits at any mode (less about ``log10(k L / EI)``
+beside a rotational spring far stiffer than its beams, ``log10(k L**3 / EI)``
+beside a translational one).
 
 Examples
 --------
