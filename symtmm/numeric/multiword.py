@@ -729,10 +729,11 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bo
     """``(ok, pivots, det U12)`` of the points ``lam2`` (``lam``: the dashpots') in balls
     of ``N`` words, complex ones if asked: ``ok`` per point whether every pivot was
     decided, the pivot and ``det U12`` balls of those points ``(..., words)``; None where
-    the plan's numbers do not fit the compiled balls. ``other_order``: a point left
-    undecided is eliminated again with its freedoms the other way round (the last tier's
-    call: before it, the next tier decides more of them for less, as the other order
-    eliminates the whole band where the first stopped at the undecided pivot)."""
+    the plan's numbers do not fit the compiled balls. A real point left undecided is
+    eliminated again from both ends toward its mode's peak (:func:`_twisted`);
+    ``other_order``: one still undecided, with its freedoms the other way round (the last
+    tier's call: before it, the next tier decides more of them for less, as the other
+    order eliminates the whole band where the first stopped at the undecided pivot)."""
     tabs = _tables(plan, N)
     if tabs is None:
         return None
@@ -753,7 +754,8 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bo
 
     def run(lo, hi):
         # the points lo .. hi - 1, built and eliminated (the compiled calls release
-        # Python's lock: parts of a large batch run at once)
+        # Python's lock: parts of a large batch run at once); their pivots, and the bands
+        # of those left undecided, for the retries below
         band = np.empty((hi - lo, n * w, W), dtype=np.uint64)
         det12 = np.empty((hi - lo, S, W), dtype=np.uint64)
         ok = np.zeros(hi - lo, dtype=np.uint8)
@@ -762,12 +764,13 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bo
                             np.empty((16 * S + 3, W), dtype=np.uint64), ok)
         band = band.reshape(hi - lo, n, w, W)
         built = ok.copy()
-        return ok, built, _eliminated(band, reverse, ok, code), band, det12
+        pivots = _eliminated(band, reverse, ok, code)[:, :n, 0, :]
+        failed = np.nonzero(built & (ok == 0))[0]
+        return ok, pivots, det12, failed + lo, band[failed]
 
     parts = run_ranges(run, B, _batch_seconds(plan, B, N, W))
-    ok, built, Kb, band, det12 = parts[0] if len(parts) == 1 else \
+    ok, pivots, det12, again, bands = parts[0] if len(parts) == 1 else \
         tuple(np.concatenate(x) for x in zip(*parts))
-    again = np.nonzero(built & (ok == 0))[0]
     if len(again) and not complex_:
         # a point near an eigenvalue whose mode is small at both ends of the band: the
         # last pivot of either order carries the radii grown along all of it; eliminated
@@ -775,44 +778,52 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bo
         # 10-level chain at 15 digits: 6 of its 30 proof points, which took three words)
         splits = _splits(plan, lam2[again])
         if splits is not None:
-            twist = splits < n - 1                  # (n - 1: the order that failed)
-            again, rest = again[twist], again[~twist]
-            _redo(again, ok, Kb, lambda lo, hi, okp: _twisted(
-                band[again[lo:hi]], splits[twist][lo:hi], okp, code), plan, N, W)
-            again = np.concatenate([again[ok[again] == 0], rest])
+            sel = np.nonzero(splits < n - 1)[0]         # (n - 1: the order that failed)
+            _redo(again[sel], ok, pivots, lambda lo, hi, okp: _twisted(
+                bands[sel[lo:hi]], splits[sel[lo:hi]], okp, code), plan, N, W)
+            keep = np.concatenate([sel[ok[again[sel]] == 0],
+                                   np.nonzero(splits >= n - 1)[0]])
+            again, bands = again[keep], bands[keep]
     if other_order and len(again):
         # where a pivot stayed undecided, the other order's leading minors (the same
         # inertia and determinant) may keep their radii narrower
-        _redo(again, ok, Kb, lambda lo, hi, okp: _eliminated(
-            band[again[lo:hi]], not reverse, okp, code), plan, N, W)
+        _redo(again, ok, pivots, lambda lo, hi, okp: _eliminated(
+            bands[lo:hi], not reverse, okp, code), plan, N, W)
     ok = ok.astype(bool)
-    return ok, Kb[ok, :n, 0, :], det12[ok]
+    return ok, pivots[ok], det12[ok]
 
 
-def _redo(points, ok, Kb, eliminate, plan, N: int, W: int) -> None:
-    """The factorisation of ``points`` (indices into the batch's ``ok`` and ``Kb``) again,
-    by ``eliminate(lo, hi, ok)`` over their parts (in threads as a first batch)."""
+def _redo(points, ok, pivots, eliminate, plan, N: int, W: int) -> None:
+    """The factorisation of ``points`` (indices into the batch's ``ok`` and ``pivots``)
+    again, by ``eliminate(lo, hi, ok)`` (the eliminated bands of the points ``lo .. hi -
+    1`` of them) over their parts, in threads as a first batch would be."""
     okr = np.ones(len(points), dtype=np.uint8)
+    n = pivots.shape[1]
 
     def part(lo, hi):
         okp = okr[lo:hi].copy()
-        out = eliminate(lo, hi, okp)
+        out = eliminate(lo, hi, okp)[:, :n, 0, :]
         okr[lo:hi] = okp
         return out
-    Kb[points] = np.concatenate(run_ranges(part, len(points),
-                                           _batch_seconds(plan, len(points), N, W) / 2))
+    pivots[points] = np.concatenate(run_ranges(part, len(points),
+                                               _batch_seconds(plan, len(points), N, W) / 2))
     ok[points] = okr
+
+
+def _padded(band) -> np.ndarray:
+    """The band ``(B, n, w, ...)`` with the ``w`` zero rows the eliminations run over, in
+    one contiguous array."""
+    B, w = band.shape[0], band.shape[2]
+    return np.ascontiguousarray(np.concatenate(
+        [band, np.zeros((B, w) + band.shape[2:], dtype=band.dtype)], axis=1))
 
 
 def _eliminated(band, reverse: bool, ok, N: int) -> np.ndarray:
     """The band ``(B, n, w, width)`` of balls of ``N`` words (its freedoms reversed if
     asked) padded and eliminated; ``ok`` cleared where a pivot ball holds 0."""
     from .stiffness import reversed_band
-    B, n, w, W = band.shape
-    if reverse:
-        band = reversed_band(band)
-    Kb = np.ascontiguousarray(np.concatenate([band, np.zeros((B, w, w, W), dtype=np.uint64)],
-                                             axis=1))
+    B, n, w = band.shape[:3]
+    Kb = _padded(reversed_band(band) if reverse else band)
     _multiword.eliminate(N, Kb, B, n + w, w, n, ok)
     return Kb
 
@@ -821,9 +832,8 @@ def _twisted(band, splits, ok, N: int) -> np.ndarray:
     """The band ``(B, n, w, width)`` of balls of ``N`` words padded and eliminated from both
     ends toward the freedoms ``splits`` (one per point; every pivot ``d_k`` left at row
     ``k``); ``ok`` cleared where a pivot ball holds 0."""
-    B, n, w, W = band.shape
-    Kb = np.ascontiguousarray(np.concatenate([band, np.zeros((B, w, w, W), dtype=np.uint64)],
-                                             axis=1))
+    B, n, w = band.shape[:3]
+    Kb = _padded(band)
     _multiword.eliminate_twisted(N, Kb, B, n + w, w, n,
                                  np.ascontiguousarray(splits, dtype=np.int64), ok)
     return Kb
@@ -840,12 +850,12 @@ def _splits(plan, lam2) -> np.ndarray | None:
     built = _compiled_band(plan, mids, None)
     if built is None:
         return None
-    K = built[0]
-    B, n, w = K.shape
-    Kb = np.ascontiguousarray(np.concatenate([K, np.zeros((B, w, w))], axis=1))
-    _band.eliminate(Kb, B, n + w, w, n, False)
+    Kb = _padded(built[0])
+    B, rows, w = Kb.shape
+    n = rows - w
+    _band.eliminate(Kb, B, rows, w, n, False)
     out = np.empty(B, dtype=np.int64)
-    _band.peaks(Kb, out, B, n + w, w, n)
+    _band.peaks(Kb, out, B, rows, w, n)
     return out
 
 
