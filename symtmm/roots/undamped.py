@@ -847,17 +847,16 @@ class _Search:
         batch whose balls do not give every value to :data:`_GUIDE_ACCURACY` or leave a
         count undecided is evaluated at ``dps``.
         """
-        if fewer is not None and fewer < dps and self.hp.rigorous:
-            ar = proof_arithmetic(fewer, self.certified)
+        tried = [fewer] if fewer is not None and fewer < dps and self.hp.rigorous else []
+        for digits in tried + [dps]:
+            ar = proof_arithmetic(digits, self.certified)
             values, counts = self.counter.delta(list(ws), ar)
             with ar:
-                known = all(c >= 0 and v.mid() != 0 and v.rad() <= _GUIDE_ACCURACY * abs(v.mid())
-                            for v, c in zip(values, counts))
+                known = digits == dps or all(
+                    c >= 0 and v.mid() != 0 and v.rad() <= _GUIDE_ACCURACY * abs(v.mid())
+                    for v, c in zip(values, counts))
             if known:
                 return [mpmath.re(ar.to_mpmath(v)) for v in values], counts
-        ar = proof_arithmetic(dps, self.certified)
-        values, counts = self.counter.delta(list(ws), ar)
-        return [mpmath.re(ar.to_mpmath(v)) for v in values], counts
 
     def _zoom(self, a, b, k, resolution, ends=None):
         """A guess for an exact ``k``-fold root in ``(a, b)``, or None (``ends``: ``Delta``
