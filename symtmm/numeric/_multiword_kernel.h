@@ -421,30 +421,33 @@ static int F(pivot2)(uint64_t *Kp, Py_ssize_t k, Py_ssize_t w)
     return 1;
 }
 
+/* The freedoms 0 .. end - 1 of one band eliminated downward, a tiny pivot with the next
+ * freedom as a 2x2 block (within them): 0 where a pivot or block is not decided. */
+static int F(downward)(uint64_t *Kp, Py_ssize_t w, Py_ssize_t end)
+{
+    Py_ssize_t k = 0;
+    while (k < end) {
+        const BALL a = F(load)(Kp + W_ * k * w);
+        int pair = 0;
+        if (k + 1 < end && w > 1) {
+            const BALL next = F(load)(Kp + W_ * k * w + W_);
+            pair = !F(nonzero)(&a)
+                   || ldexp(fabs(F(head)(&a)), PAIR_BITS) < fabs(F(head)(&next));
+        }
+        if (pair ? !F(pivot2)(Kp, k, w) : !F(pivot1)(Kp, k, w))
+            return 0;
+        k += pair ? 2 : 1;
+    }
+    return 1;
+}
+
 /* LDL^T of every point's band (see eliminate in _multiword.c). */
 static void F(eliminate_points)(uint64_t *buf, Py_ssize_t B, Py_ssize_t rows, Py_ssize_t w,
                                 Py_ssize_t n, unsigned char *ok)
 {
-    for (Py_ssize_t p = 0; p < B; p++) {
-        if (!ok[p])
-            continue;
-        uint64_t *Kp = buf + W_ * p * rows * w;
-        Py_ssize_t k = 0;
-        while (k < n) {
-            const BALL a = F(load)(Kp + W_ * k * w);
-            int pair = 0;
-            if (k + 1 < n && w > 1) {
-                const BALL next = F(load)(Kp + W_ * k * w + W_);
-                pair = !F(nonzero)(&a)
-                       || ldexp(fabs(F(head)(&a)), PAIR_BITS) < fabs(F(head)(&next));
-            }
-            if (pair ? !F(pivot2)(Kp, k, w) : !F(pivot1)(Kp, k, w)) {
-                ok[p] = 0;
-                break;
-            }
-            k += pair ? 2 : 1;
-        }
-    }
+    for (Py_ssize_t p = 0; p < B; p++)
+        if (ok[p])
+            ok[p] = (unsigned char)F(downward)(buf + W_ * p * rows * w, w, n);
 }
 
 /* One 1x1 pivot at row s eliminated upward, over the active rows lo .. s - 1 (a twisted
@@ -489,19 +492,7 @@ static void F(eliminate_twisted_points)(uint64_t *buf, Py_ssize_t B, Py_ssize_t 
             continue;
         uint64_t *Kp = buf + W_ * p * rows * w;
         const Py_ssize_t t = splits[p];
-        Py_ssize_t k = 0;
-        int fine = t >= 0 && t < n;
-        while (fine && k < t) {
-            const BALL a = F(load)(Kp + W_ * k * w);
-            int pair = 0;
-            if (k + 1 < t && w > 1) {
-                const BALL next = F(load)(Kp + W_ * k * w + W_);
-                pair = !F(nonzero)(&a)
-                       || ldexp(fabs(F(head)(&a)), PAIR_BITS) < fabs(F(head)(&next));
-            }
-            fine = pair ? F(pivot2)(Kp, k, w) : F(pivot1)(Kp, k, w);
-            k += pair ? 2 : 1;
-        }
+        int fine = t >= 0 && t < n && F(downward)(Kp, w, t);
         for (Py_ssize_t s = n - 1; fine && s >= t; s--)
             fine = F(pivot1_up)(Kp, s, w, t);
         ok[p] = (unsigned char)fine;
