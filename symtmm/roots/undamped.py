@@ -246,6 +246,9 @@ class _Search:
         self._proved: dict = {}         # (point, digits) -> count proved in balls
         self._set_precision(digits_for(digits))
         self._first_prec = self.hp.prec          # (the bits before any retry with more)
+        # whether the isolation counts its cut points in balls (the double counts misled
+        # the proofs once: solve_undamped)
+        self.proved_cuts = False
 
     def _set_precision(self, work_digits: int):
         if work_digits > MAX_DPS:
@@ -403,7 +406,8 @@ class _Search:
                 split.append((a, ca, b, cb))
             if not points:
                 break
-            counts = self.counter.counts(np.array(points))
+            counts = self.counter.counts(np.array(points)) if not self.proved_cuts else \
+                np.full(len(points), -1)
             # points double precision leaves undecided (a pivot too small to trust), in one
             # batch of the proof arithmetic (one call each cost 67 calls at a step of a
             # sweep where a rigid-body mode meets double roots)
@@ -642,7 +646,7 @@ class _Search:
                     older[i] = min((p1, p2), key=lambda q: abs(q.f))
                 c[i] = step
         if any(d is None for d in done):
-            raise ComputationError(f"the refinement to {D} digits did not converge")
+            raise _Misled(f"the refinement to {D} digits did not converge")
         if not self._checked([x for d in done for x in d],
                              [k for i in range(R) for k in (ca[i], ca[i] + 1)]):
             raise _MorePrecision()
@@ -942,7 +946,7 @@ def _tighten(i, t, f, k, ca, a, b, fa, fb):
     elif k == ca[i] + 1 and t < b[i]:
         b[i], fb[i] = t, f
     elif k >= 0 and k not in (ca[i], ca[i] + 1):
-        raise ComputationError(f"inconsistent counts near {float(t):.17g} rad/s")
+        raise _Misled(f"inconsistent counts near {float(t):.17g} rad/s")
 
 
 def _scaled_float(x, ref: float) -> float:
@@ -1004,6 +1008,13 @@ _GUIDE_DIGITS = 30
 _GUIDE_ACCURACY = 1e-6
 
 
+class _Misled(ComputationError):
+    """The proofs found a bracket of the isolation not to hold the one root it was to hold
+    (a count outside ``J(a), J(a) + 1``, or no pair straddling a root there): the double
+    counts the isolation trusted were wrong. :func:`solve_undamped` isolates again on
+    counts proved in balls."""
+
+
 class _MorePrecision(Exception):
     """A count in the proof arithmetic is undecided: raise its precision."""
 
@@ -1040,6 +1051,27 @@ def estimates(model: Model, omega_max: float, rigid: int | None = None) -> tuple
         check()                 # (a spent time budget ends the search, as elsewhere)
         return None, search.evaluations
     return sorted(out), search.evaluations
+
+
+def _isolated_and_proved(search: _Search, top, c_top: int, wanted, cuts, next_stage) -> list:
+    """The eigenvalues below ``top`` (``J(top) = c_top``): isolated, refined in double
+    precision, multiple ones split and proved, the rest proved by pairs."""
+    brackets = search.isolate(top, c_top, wanted, cuts)
+    simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
+    clusters = [(a, ca, b, cb - ca) for a, ca, b, cb in brackets if cb - ca > 1]
+    next_stage("refining")
+    items = [(guess, ca, (a, b)) for (a, ca, b), guess in
+             zip(simple, search.refine_double(simple))]
+    next_stage("multiple roots")
+    eigen = []
+    for a, ca, b, k in clusters:
+        for lo, hi_, cl, m in search.split_cluster(a, ca, b, k):
+            if m == 1:
+                items.append((None, cl, (lo, hi_)))     # (its midpoint, exactly)
+            else:
+                eigen.append(search.prove_cluster(lo, hi_, cl, m))
+    next_stage("proving the digits")
+    return eigen + search.refine_high(items)
 
 
 def solve_undamped(model: Model, count: int | None = None, omega_max=None,
@@ -1110,21 +1142,15 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
             # include a root sitting exactly on omega_max (a top the search chose is
             # counted already: no root there matters)
             top, c_top = counted or search.count_off(hi * (1 + 4e-16), 2 * hi)
-            brackets = search.isolate(top, c_top, wanted, cuts)
-            simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
-            clusters = [(a, ca, b, cb - ca) for a, ca, b, cb in brackets if cb - ca > 1]
-            next_stage("refining")
-            items = [(guess, ca, (a, b)) for (a, ca, b), guess in
-                     zip(simple, search.refine_double(simple))]
-            next_stage("multiple roots")
-            for a, ca, b, k in clusters:
-                for lo, hi_, cl, m in search.split_cluster(a, ca, b, k):
-                    if m == 1:
-                        items.append((None, cl, (lo, hi_)))     # (its midpoint, exactly)
-                    else:
-                        eigen.append(search.prove_cluster(lo, hi_, cl, m))
-            next_stage("proving the digits")
-            eigen += search.refine_high(items)
+            try:
+                eigen += _isolated_and_proved(search, top, c_top, wanted, cuts, next_stage)
+            except _Misled:
+                # a double count the isolation trusted was wrong (near-rigid motions held by
+                # weak springs, roots 1e-7 apart on uncoupled beams: fuzzed models): the
+                # top and every cut point again, counted in balls
+                search.proved_cuts = True
+                (top, c_top), = search.counts_off([top], [2 * top], 30)
+                eigen += _isolated_and_proved(search, top, c_top, wanted, (), next_stage)
         if omega_max is not None:
             # nothing above the last bracket and below omega_max: the count there, proved
             got = search.counter.counts([top], search.hp)
