@@ -5,6 +5,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass, field, replace
+from decimal import Decimal
 from functools import cached_property
 
 import mpmath
@@ -215,8 +216,9 @@ def _printed_interval(ctx, text: str):
     (widened by a millionth of that for the rounding on the way)."""
     if text == "0":
         return ctx.mpf(0)
-    places = len(text.split(".", 1)[1]) if "." in text else 0
-    half = ctx.mpf(10) ** -places * ctx.mpf("0.500001")
+    # (the last digit's place, positional or with an exponent: "122." 0, "1.2e+2" 1)
+    unit = Decimal(text).as_tuple().exponent
+    half = ctx.mpf(10) ** unit * ctx.mpf("0.500001")
     value = ctx.mpf(text)
     return ctx.mpf([(value - half).a, (value + half).b])
 

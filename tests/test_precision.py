@@ -408,6 +408,45 @@ def test_uncoupled_beams_with_close_spring_pairs_are_their_beams_together():
     assert [e.to_dict()["imag"] for e in got] == [e.to_dict()["imag"] for e in alone]
 
 
+@pytest.mark.parametrize("value, digits", [("3580699635395739338327446766780", 15),
+                                            ("122.0703125", 2), ("0.000000150243", 3)])
+def test_quantities_of_values_printed_with_an_exponent_hold_the_value(value, digits):
+    """An eigenvalue's Hz and |lam| come from the numbers its printed digits stand for:
+    with an exponent (3.58069963539574e+30) the last digit's place is the exponent's,
+    not the count of characters after the point. Each digit shown must hold the exact
+    value divided by 2 pi (mpmath at 80 digits), with the proved bracket and without."""
+    from decimal import Decimal
+
+    from symtmm.results import Eigenvalue
+    with mpmath.workdps(80):
+        w = mpmath.mpf(value)
+        hz = w / (2 * mpmath.pi)
+        for bracket in ((w * (1 - mpmath.mpf(10) ** -40), w * (1 + mpmath.mpf(10) ** -40)),
+                        None):
+            got = Eigenvalue(mpmath.mpc(0, w), digits=digits, bracket=bracket).quantities()
+            text = got["hz"]
+            exponent = Decimal(text).as_tuple().exponent
+            assert abs(mpmath.mpf(text) - hz) <= mpmath.mpf(10) ** exponent / 2
+            if bracket is not None:
+                assert text == decimal_string(hz, digits)
+
+
+@pytest.mark.parametrize("text, unit", [("122.", 0), ("1.2e+2", 1),
+                                        ("3.58069963539574e+30", 16), ("0.000000150", -9)])
+def test_printed_intervals_are_half_a_unit_of_the_last_digit(text, unit):
+    """The numbers a decimal string stands for: itself plus or minus half a unit of its
+    last digit, whose place an exponent sets (it was read as the count of characters
+    after the point: 1e-18 for 3.58069963539574e+30, whose unit is 1e16)."""
+    from symtmm.results import _interval_context, _printed_interval
+    iv = _interval_context(300)
+    x = _printed_interval(iv, text)
+    with mpmath.workdps(100):
+        half = mpmath.mpf(10) ** unit / 2
+        lo, hi = (mpmath.mp.make_mpf(e) for e in x._mpi_)
+        assert abs(lo - (mpmath.mpf(text) - half)) < half * 1e-5
+        assert abs(hi - (mpmath.mpf(text) + half)) < half * 1e-5
+
+
 def _prints_alike_by_strings(a, b, digits):
     return decimal_string(a, digits) == decimal_string(b, digits)
 
