@@ -335,8 +335,9 @@ class Eigenvalue:
         return dict(self._quantities)
 
     @cached_property
-    def _quantities(self) -> dict:
-        # (once per eigenvalue: a table, its JSON and its CSV each ask)
+    def _enclosure(self) -> tuple:
+        """``(iv, Re lam, Im lam)``: the intervals the printed digits stand for, narrowed
+        to the proved bracket where there is one, in a private interval context."""
         iv = _interval_context(int(3.33 * self.digits) + 40)
         d = self.to_dict()
         re, im = _printed_interval(iv, d["real"]), _printed_interval(iv, d["imag"])
@@ -345,6 +346,29 @@ class Eigenvalue:
             box = ((0, 0), box) if d["real"] == "0" else None      # an undamped bracket
         if box is not None:
             re, im = (_meet(iv, x, ends) for x, ends in ((re, box[0]), (im, box[1])))
+        return iv, re, im
+
+    def frequency_parameter(self, scale) -> str:
+        """``Omega = sqrt(Im lam / scale)`` (``scale``: ``sqrt(EI / (m L**4))`` of the
+        reference beam, good to ``digits + 10`` digits) to the digits its enclosure
+        gives, as :meth:`quantities` gives its own: a digit fewer where the enclosure
+        straddles a rounding boundary.
+
+        Examples
+        --------
+        >>> Eigenvalue(mpmath.mpc(0, 4), digits=6, bracket=(4, 4)).frequency_parameter(1)
+        '2.00000'
+        """
+        iv, _, im = self._enclosure
+        s = iv.mpf(scale)
+        s = s * iv.mpf([1 - iv.mpf(10) ** -(self.digits + 9), 1 + iv.mpf(10) ** -(self.digits + 9)])
+        return enclosed_string(iv.sqrt(im / s), self.digits)
+
+    @cached_property
+    def _quantities(self) -> dict:
+        # (once per eigenvalue: a table, its JSON and its CSV each ask)
+        iv, re, im = self._enclosure
+        d = self.to_dict()
         size = iv.sqrt(re * re + im * im)
         out = {"hz": enclosed_string(im / (2 * iv.pi), self.digits),
                "abs": enclosed_string(size, self.digits)}
@@ -471,7 +495,7 @@ class Spectrum(Tabular):
             d, q = e.to_dict(), e.quantities()
             row = [i, d["real"], d["imag"], e.multiplicity, q["hz"]]
             row += [q["abs"], q["zeta"]] if damped else []
-            row += [decimal_string(self._Omega(e.omega), self.digits)] if omega_column else []
+            row += [e.frequency_parameter(self.omega_scale[1])] if omega_column else []
             rows.append(row + [e.proof])
         return columns, rows
 
@@ -503,7 +527,7 @@ class Spectrum(Tabular):
             if hz:
                 row.append(q["hz"])
             if ref:
-                row.append(decimal_string(self._Omega(e.omega), self.digits))
+                row.append(e.frequency_parameter(self.omega_scale[1]))
             rows.append(row + [str(e.multiplicity)])
         return head, rows
 
