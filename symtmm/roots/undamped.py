@@ -249,6 +249,34 @@ class _Search:
         # whether the isolation counts its cut points in balls (the double counts misled
         # the proofs once: solve_undamped)
         self.proved_cuts = False
+        # the reference beam's scale: a proved bracket prints Omega = sqrt(omega / scale)
+        # alike at its ends too (the spectrum's Omega column: Eigenvalue.frequency_parameter)
+        ref = omega_scale(model, digits + 10)
+        self._scale = None if ref is None else mpmath.mpf(ref[1])
+        self._widen = mpmath.mpf(10) ** -(digits + 8)
+
+    def _prints(self, lo, hi) -> bool:
+        """Whether a bracket ``[lo, hi]`` proves the digits: both ends print alike, and so
+        do those of ``Omega`` over it (widened for the scale's rounding)."""
+        if not prints_alike(lo, hi, self.digits):
+            return False
+        if self._scale is None:
+            return True
+        ctx = lo.context if hasattr(lo, "context") else mpmath.mp
+        s = ctx.mpf(self._scale)
+        return prints_alike(ctx.sqrt(lo / s) * (1 - self._widen),
+                            ctx.sqrt(hi / s) * (1 + self._widen), self.digits)
+
+    def _room(self, c) -> float:
+        """Half of how far ``c`` may move and print as it does, its ``Omega`` too."""
+        room = rounding_room(c, self.digits)
+        if self._scale is not None and room > 0:
+            ctx = c.context if hasattr(c, "context") else mpmath.mp
+            big = ctx.sqrt(c / ctx.mpf(self._scale))
+            room_big = rounding_room(big, self.digits) - float(big) * float(self._widen)
+            # (d omega = 2 Omega scale d Omega)
+            room = min(room, max(0.0, 2 * float(big) * float(self._scale) * room_big))
+        return room / 2
 
     def _set_precision(self, work_digits: int):
         if work_digits > MAX_DPS:
@@ -581,7 +609,7 @@ class _Search:
                         # the root then proves its digits all the same, and a pair farther
                         # from the root has larger pivots, decided in fewer words (example
                         # 1 at 15 digits: 8 of 19 points took three words at 1e-18)
-                        room = rounding_room(c[i], D) / 2
+                        room = self._room(c[i])
                         e = max(h[i] * c[i], room)
                         tests += [max(c[i] - e, (a[i] + c[i]) / 2),
                                   min(c[i] + e, (c[i] + b[i]) / 2)]
@@ -603,7 +631,7 @@ class _Search:
                 by_balls[i] = p1.ball and p2.ball
                 for t, f, k in ((t1, f1, k1), (t2, f2, k2)):
                     _tighten(i, t, f, k, ca, a, b, fa, fb)
-                if (k1, k2) == (ca[i], ca[i] + 1) and prints_alike(t1, t2, D):
+                if (k1, k2) == (ca[i], ca[i] + 1) and self._prints(t1, t2):
                     done[i] = (t1, t2)          # (whatever h: both ends print alike)
                     # the value: the estimate the points were placed about, which prints
                     # as they do and carries the digits beyond (a bracket of one point and
@@ -697,7 +725,8 @@ class _Search:
         if (kept.t < c) != (kept.k == ca):
             return None                 # (the estimate is on the far side of the root)
         far = c + 2 * (c - kept.t)
-        return far if a < far < b and prints_alike(kept.t, far, D) else None
+        return far if a < far < b and self._prints(min(kept.t, far), max(kept.t, far)) \
+            else None
 
     def _newton_start(self, items, a, b, c, fa, fb, h, ca, target, ctx, older):
         """One point per root, not a pair, before the proving pairs (in place).
