@@ -251,8 +251,9 @@ class _Search:
         self.proved_cuts = False
         # the reference beam's scale: a proved bracket prints Omega = sqrt(omega / scale)
         # alike at its ends too (the spectrum's Omega column: Eigenvalue.frequency_parameter)
-        ref = omega_scale(model, digits + 10)
-        self._scale = None if ref is None else mpmath.mpf(ref[1])
+        self.omega_scale = omega_scale(model, digits + 10)    # (the spectrum's as well)
+        # (the number as made, every bit kept: mpmath.mpf would round it to the ambient 53)
+        self._scale = None if self.omega_scale is None else self.omega_scale[1]
         self._widen = mpmath.mpf(10) ** -(digits + 8)
 
     def _prints(self, lo, hi) -> bool:
@@ -262,7 +263,7 @@ class _Search:
             return False
         if self._scale is None:
             return True
-        ctx = lo.context if hasattr(lo, "context") else mpmath.mp
+        ctx = _context_of(lo)
         s = ctx.mpf(self._scale)
         return prints_alike(ctx.sqrt(lo / s) * (1 - self._widen),
                             ctx.sqrt(hi / s) * (1 + self._widen), self.digits)
@@ -271,7 +272,7 @@ class _Search:
         """Half of how far ``c`` may move and print as it does, its ``Omega`` too."""
         room = rounding_room(c, self.digits)
         if self._scale is not None and room > 0:
-            ctx = c.context if hasattr(c, "context") else mpmath.mp
+            ctx = _context_of(c)
             big = ctx.sqrt(c / ctx.mpf(self._scale))
             room_big = rounding_room(big, self.digits) - float(big) * float(self._widen)
             # (d omega = 2 Omega scale d Omega)
@@ -978,6 +979,11 @@ def _tighten(i, t, f, k, ca, a, b, fa, fb):
         raise _Misled(f"inconsistent counts near {float(t):.17g} rad/s")
 
 
+def _context_of(x):
+    """The mpmath context of a number of the bookkeeping's (a float: the global one)."""
+    return getattr(x, "context", mpmath.mp)
+
+
 def _scaled_float(x, ref: float) -> float:
     """``x * exp(-ref)`` as a float, for an mpmath number ``x`` of any size: its leading
     53 bits and its binary exponent apart (``x`` alone may pass the doubles' range)."""
@@ -1192,7 +1198,7 @@ def solve_undamped(model: Model, count: int | None = None, omega_max=None,
         top = _exact_mpf(float(omega_max) * (1 + 4e-16))
         eigen = [e for e in eigen if e.omega <= top]
     return Spectrum(tuple(eigen), digits, "default", search.evaluations,
-                    time.perf_counter() - start, model.source or "", omega_scale(model, digits + 10),
+                    time.perf_counter() - start, model.source or "", search.omega_scale,
                     _notes(eigen, digits), title=model.title)
 
 
