@@ -78,3 +78,33 @@ def test_hz_column_every_digit_right(tmp_path):
                                    (n + mpmath.mpf(1) / 2) * mpmath.pi)
             digits = len(text.replace(".", "").lstrip("0"))
             assert text == mpmath.nstr(beta**2 / (2 * mpmath.pi), digits, strip_zeros=False)
+
+
+def _documented_solves():
+    """The ``symtmm solve examples/...`` commands the examples' headers tell a reader to run."""
+    import re
+    from pathlib import Path
+    here = Path(__file__).resolve().parent.parent / "examples"
+    found = []
+    for path in sorted(here.glob("*.toml")):
+        for line in path.read_text().splitlines():
+            if not line.startswith("#"):
+                continue
+            for match in re.finditer(r"symtmm (solve examples/\S+\.toml(?: --[-\w]+ \S+)*)", line):
+                found.append(match.group(1).split())
+    return found
+
+
+@pytest.mark.parametrize("argv", _documented_solves(), ids=" ".join)
+def test_every_documented_example_command_solves(argv):
+    """Each ``Solve with:`` line of an example's header runs as printed: exit 0, the table,
+    nothing on stderr (the double cross's ``--count 16`` once failed on its five-fold
+    roots, where the files' own tests ran ``--count 2``)."""
+    from pathlib import Path
+
+    from cli_contract import contract_violations, run_cli
+    root = Path(__file__).resolve().parent.parent
+    argv = [argv[0], str(root / argv[1])] + argv[2:]
+    run = run_cli(argv, limit=60)
+    assert run.code == 0 and not contract_violations(run, 60), (run.stderr, run.warnings)
+    assert "eigenvalue(s)" in run.stdout

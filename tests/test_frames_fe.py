@@ -47,7 +47,7 @@ from frame_reference import (
 )
 
 from symtmm import api
-from symtmm.fe import fe_converged, fe_frame_frequencies
+from symtmm.fe import fe_converged, fe_frame_converged, fe_frame_frequencies
 from symtmm.frame import frame
 
 # symtmm against the converged FE: |exact - fe| <= REL * fe + 2 * (the FE's error estimate)
@@ -289,3 +289,39 @@ def test_sliding_support_against_fe():
     """The L-frame's beam end on a sliding support along x (held in y and in rotation)."""
     nodes = [dict(at=(0, 0), support=CLAMPED), dict(at=(4, 3), support="sliding-x")]
     assert_matches_fe(L_FRAME, nodes, 6)
+
+
+@pytest.mark.parametrize("certified", [True, False], ids=["balls", "two-precisions"])
+def test_double_cross_example_solves_as_its_header_says(certified, examples_dir):
+    """``examples/double_cross_frame.toml`` (the layout of NAFEMS FV2: eight pinned arms
+    at 45 degrees from a rigid centre) with ``--count 16``, as its header says, with and
+    without balls. Closed forms: every arm pinned-pinned (the centre turning freely) at
+    ``beta L = pi, 2 pi``, and the five-fold roots of arms clamped at a centre that
+    neither turns nor moves (``tan x = tanh x``; eight arms less the centre's three
+    freedoms); the two doubles (the centre translating, the arms along it stretching)
+    against the converged FE. Five-fold roots this close to a double left the counts at
+    the cluster's ends undecided at the proof's first precision without balls."""
+    if certified:
+        pytest.importorskip("flint")
+    from symtmm.modelfile import load
+    from symtmm.roots.undamped import solve_undamped
+
+    model = load(examples_dir / "double_cross_frame.toml")
+    result = solve_undamped(model, count=16, certified=certified)
+    assert [e.multiplicity for e in result] == [1, 2, 5, 1, 2, 5]
+    L, a, E, rho = 5.0, 0.125, 200e9, 8000.0
+    EI, EA, m = E * a**4 / 12, E * a**2, rho * a**2
+    cp = beam_omegas(clamped_pinned(2), EI, m, L)
+    pp = beam_omegas([np.pi, 2 * np.pi], EI, m, L)
+    got = [float(e.omega) for e in result]
+    np.testing.assert_allclose([got[0], got[3]], pp, rtol=1e-13)
+    np.testing.assert_allclose([got[2], got[5]], cp, rtol=1e-13)
+    arms = [dict(name=f"arm{k}", start=(0.0, 0.0),
+                 end=(L * np.cos(k * np.pi / 4), L * np.sin(k * np.pi / 4)), EI=EI, EA=EA, m=m)
+            for k in range(8)]
+    nodes = [dict(at=arm["end"], support="pinned") for arm in arms]
+    out = fe_frame_converged(arms, nodes, 16, count=16)
+    fe, error = out["omega"], out["error"]
+    assert np.all(error <= BOUND * fe)
+    for i, j in ((1, 1), (4, 9)):                 # the doubles: FE modes 2-3 and 10-11
+        assert np.all(np.abs(got[i] - fe[j:j + 2]) <= REL * fe[j:j + 2] + 2 * error[j:j + 2])

@@ -944,6 +944,14 @@ class _Search:
         known = [self._proved.get((_key(w), digits)) for w in (lo, hi)]
         # (counts the cluster's split proved in balls at these digits stand)
         counts = known if ar.rigorous and None not in known else self.counter.counts([lo, hi], ar)
+        for more in (30, 90):
+            # an m-fold root's m pivots are about as small as the bracket is narrow, and a
+            # stiff model's scale leaves fewer digits to decide them (the NAFEMS double
+            # cross: undecided at 45 digits without balls): more digits where undecided
+            if -1 not in counts:
+                break
+            ar = proof_arithmetic(digits + more, self.certified)
+            counts = self.counter.counts([lo, hi], ar)
         if list(counts) != [ca, ca + m] or not (
                 ar.rigorous or list(self.counter.counts([lo, hi], MP(ar.prec + 64)))
                 == [ca, ca + m]):
