@@ -300,3 +300,57 @@ def test_localised_shapes_stay_mass_orthonormal_to_their_digits(examples_dir):
             for j in range(3):
                 inner = sum(A[i][b] * A[j][b] for b in range(3)) / 2
                 assert abs(inner - (i == j)) < mpmath.mpf(10) ** -25, (i, j, inner)
+
+
+# -- eigenvalues closer than their printed digits ------------------------------------------
+
+
+@pytest.mark.parametrize("k", ["1e-10", "1e-25"])
+def test_identical_beams_weakly_coupled_have_in_and_anti_phase_shapes(k):
+    """Two equal pinned-pinned beams joined by one weak spring at x = 0.3: each pair of
+    eigenvalues splits by about ``k`` (1e-12 and 1e-27 relative, the latter inside the
+    15 printed digits). By symmetry one shape of each pair moves both beams alike, the
+    spring unstretched, so it is exactly ``sin(n pi x)`` on each (mass-normalised over the
+    two beams); the other moves them opposite (``Y_b = -Y_a``). The null space at the
+    15-digit estimate held 20 % of the neighbour's shape at k = 1e-25."""
+    beams = (Beam("a", 1, 1, 1, left="pinned", right="pinned"),
+             Beam("b", 1, 1, 1, left="pinned", right="pinned"))
+    model = Model(beams, (Spring("a", "b", "3/10", k),))
+    modes = mode_shapes(model, count=4, points=21)
+    x = np.linspace(0, 1, 21)
+    assert [m.eigenvalue.multiplicity for m in modes] == [1, 1, 1, 1]
+    for pair in (modes[0:2], modes[2:4]):
+        phases = sorted(pair, key=lambda m: float(m.omega))
+        n = round(math.sqrt(float(phases[0].omega)) / math.pi)
+        Ya, Yb = phases[0].beams["a"].Y, phases[0].beams["b"].Y
+        np.testing.assert_allclose(np.abs(Ya), np.abs(np.sin(n * np.pi * x)), atol=1e-13)
+        np.testing.assert_allclose(Yb, Ya, atol=1e-13)
+        Ya, Yb = phases[1].beams["a"].Y, phases[1].beams["b"].Y
+        np.testing.assert_allclose(Yb, -Ya, atol=1e-13)
+
+
+def test_nearly_equal_uncoupled_beams_each_move_alone():
+    """Two free-free beams, EI 1 and 1 + 1e-10, each held at mid-span by a spring of 1e-8 to
+    the ground: no coupling, so every shape moves one beam and is that beam's shape solved
+    alone; their eigenvalues lie 2e-20 (the translations) and 5e-11 apart, and the
+    neighbour's shape leaked into the other's (a mode spread 0.99/0.15 over both)."""
+    def spring(b):
+        return Spring(b, "ground", "1/2", "1e-8")
+
+    a = Beam("a", 1, 1, 1, left="free", right="free")
+    b = Beam("b", "1 + 1e-10", 1, 1, left="free", right="free")
+    modes = mode_shapes(Model((a, b), (spring("a"), spring("b"))), count=6, points=21)
+    alone = {name: mode_shapes(Model((beam,), (spring(name),)), count=3, points=21)
+             for name, beam in (("a", a), ("b", b))}
+    seen = {"a": 0, "b": 0}
+    for mode in modes:
+        sizes = {name: np.max(np.abs(mode.beams[name].Y)) for name in "ab"}
+        name = max(sizes, key=sizes.get)
+        other = "b" if name == "a" else "a"
+        assert sizes[other] < 1e-12 * sizes[name]
+        if mode.eigenvalue.multiplicity == 1 and float(mode.omega) > 0:
+            ref = [m for m in alone[name] if float(m.omega) > 0][seen[name]]
+            seen[name] += 1
+            np.testing.assert_allclose(float(mode.omega), float(ref.omega), rtol=1e-14)
+            np.testing.assert_allclose(mode.beams[name].Y, ref.beams[name].Y, atol=1e-12)
+    assert seen == {"a": 2, "b": 2}

@@ -16,6 +16,7 @@ At an eigenvalue the work is done in a private mpmath context
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import time
@@ -39,6 +40,7 @@ from .localise import localising_rotation
 from .modeset import BeamShape, ModeSet, ModeShape
 from .nodal import nodal_displacements
 from .normalise import Energy, Inertia, complex_scaler, mass_orthonormaliser
+from .separate import null_space_apart
 
 __all__ = ["ShapePlan", "displacements", "evaluate_mode", "mode_shapes", "shapes_at",
            "working_digits"]
@@ -143,12 +145,13 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
     tp = shape_plan.plan
     real = not model.damped and eigenvalue.lam.real == 0
     digits = eigenvalue.digits if digits is None else digits
-    dps = working_digits(tp, eigenvalue.lam, digits)
-    ar = MP.from_digits(dps)
     mult = eigenvalue.multiplicity
-    lam, lam2 = transfer.point(ar, eigenvalue.lam, real)
+    # (the eigenvalue refined where a close neighbour would leak into its null space)
+    dps, ar, lam, lam2, V, value = null_space_apart(tp, eigenvalue, digits, real,
+                                                    working_digits)
+    if value is not eigenvalue.lam:
+        eigenvalue = dataclasses.replace(eigenvalue, lam=_global(value))
     with ar:
-        V = null_space(ar, transfer.boundary(tp, ar, lam, lam2)[0], mult)
         E0 = ar.zeros((tp.size, mult), like=V)
         E0[tp.columns, :] = V
     grid, xs = shape_plan.grid(points)
@@ -179,6 +182,11 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
         shapes.append(ModeShape(eigenvalue, beams, left, dps, number + c,
                                 _body_motion(tp.layout, left, real)))
     return shapes
+
+
+def _global(z) -> mpmath.mpc:
+    """A complex number of a private mpmath context as a global one, every bit kept."""
+    return mpmath.mp.make_mpc((z.real._mpf_, z.imag._mpf_))
 
 
 def _localised(ar, T, parts):
