@@ -217,3 +217,30 @@ def beam_char(lam, EI, m, L, left, right, supports):
             A[r, 4 * (pieces - 1) + j] = end[k][j]
         r += 1
     return mpmath.det(A)
+
+
+def pp_roots_from_modes(modes, supports, steps=16, dps=40):
+    """Roots of a pinned-pinned beam (EI = m = L = 1) with grounded ``(x, k, c)``: each
+    followed from the bare beam's ``n``-th mode, ``i (n pi)**2``, as the supports grow from
+    ``1/steps`` of their values, started at the modal first-order shift ``-(c + k/lam)
+    phi(x)**2 / 2`` (``phi = sqrt(2) sin(n pi x)``); on ``sin(beta) det(...)``, which has no
+    poles where the bare beam's modes sit."""
+    out = []
+    with mpmath.workdps(dps):
+        sup = [(_mp(x), _mp(k), _mp(c)) for x, k, c in supports]
+        for n in modes:
+            w = (n * mpmath.pi) ** 2
+            z = mpmath.mpc(0, w)
+            for s in range(1, steps + 1):
+                part = [(x, k * mpmath.mpf(s) / steps, c * mpmath.mpf(s) / steps)
+                        for x, k, c in sup]
+                if s == 1:
+                    z = z - sum((c + k / z) * 2 * mpmath.sin(n * mpmath.pi * x) ** 2 / 2
+                                for x, k, c in part)
+
+                def f(q, part=part):
+                    beta = mpmath.root(-q**2, 4)
+                    return mpmath.sin(beta) * pp_char(q, 1, 1, 1, part)
+                z = mpmath.findroot(f, (z, z + mpmath.mpc(1e-6, 1e-6)))
+            out.append(z)
+    return out

@@ -34,7 +34,7 @@ import mpmath
 import numpy as np
 import pytest
 import scipy.linalg
-from damped_reference import beam_char, pp_char, pp_damped_roots
+from damped_reference import beam_char, pp_char, pp_damped_roots, pp_roots_from_modes
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -724,3 +724,36 @@ def test_a_damped_model_is_counted_without_its_dashpots_on_its_own_plans(monkeyp
     assert counted == expected
     assert expected[0] == [0, 0, 1, 1, 2, 2, 3, 3]
     assert built and all(built), built          # (its plans are the damped model's)
+
+
+def test_damped_pair_closer_than_double_precision_is_split_and_shaped():
+    """Two equal pinned-pinned beams, each with a dashpot (c = 0.1) to the ground at x =
+    0.7, joined by a spring of 1e-25 at x = 0.3: each pair of eigenvalues lies about 1e-27
+    apart (relative). Decoupled (``damped_reference``): the in-phase ones are the single
+    beam's with its dashpot, the anti-phase ones those with a grounded spring of 2e-25
+    added; all print alike at 15 digits. The pair's rectangle, cut in floats about its
+    centre, had no cut between the two zeros (``cannot split the search rectangle``),
+    and each shape must then move the beams alike or opposite."""
+    from symtmm.modes import mode_shapes
+
+    beams = (Beam("a", 1, 1, 1, left="pinned", right="pinned"),
+             Beam("b", 1, 1, 1, left="pinned", right="pinned"))
+    model = Model(beams, (Spring("a", "b", "3/10", "1e-25"),
+                          Spring("a", "ground", "7/10", 0, c="1/10"),
+                          Spring("b", "ground", "7/10", 0, c="1/10")))
+    modes = mode_shapes(model, count=4, points=11)
+    got = [m.eigenvalue for m in modes]
+    assert [e.multiplicity for e in got] == [1, 1, 1, 1]
+    inphase = pp_roots_from_modes([1, 2], [("0.7", 0, "0.1")])
+    anti = pp_roots_from_modes([1, 2], [("0.7", 0, "0.1"), ("0.3", "2e-25", 0)])
+    for pair, a, b in zip((got[0:2], got[2:4]), inphase, anti):
+        for e in pair:
+            for ref in (a, b):
+                assert decimal_string(e.lam.imag, 15) == decimal_string(ref.imag, 15)
+                assert decimal_string(e.lam.real, 15) == decimal_string(ref.real, 15)
+    for pair in (modes[0:2], modes[2:4]):
+        ratios = sorted(complex(m.beams["b"].Y[3] / m.beams["a"].Y[3]).real for m in pair)
+        np.testing.assert_allclose(ratios, [-1, 1], atol=1e-12)
+        for m in pair:
+            np.testing.assert_allclose(np.abs(m.beams["b"].Y), np.abs(m.beams["a"].Y),
+                                       atol=1e-12)

@@ -331,6 +331,8 @@ class _Search:
         self.idle = 0
         #: the order of the zero of Delta at lam = 0 (rigid-body modes), known exactly
         self.zero_order = 0
+        #: the fewest digits a refinement works at (a cluster's zeros: what tells them apart)
+        self.floor = 0
 
     def _at(self, u, ctx=None):
         """The global point ``origin + u`` (in ``ctx``, default the global context)."""
@@ -583,7 +585,7 @@ class _Search:
         extra = 0
         if small is not None and small > 0:
             extra = max(0, math.ceil(math.log10(abs(z) / small)))
-        return self.digits + _GUARD + extra
+        return max(self.digits + _GUARD + extra, self.floor)
 
     def _secants(self, starts, digits, tols, kernel=None, maxsteps=60):
         """High-precision secant steps from ``starts`` (global mpmath numbers) at
@@ -649,6 +651,12 @@ class _Search:
             return []
         if estimated:
             estimates = [c for _, c in items]
+        elif self.origin is not None:
+            # a cluster's zeros: closer than double precision tells apart, so no double
+            # secant; the high-precision steps start at the rectangles' centres
+            ctx = MP.from_digits(self.floor + 10).ctx
+            estimates = [_global(self._at(c if c is not None and r.contains(c) else r.center,
+                                          ctx)) for r, c in items]
         else:
             estimates = self._double_secant([self._at(c if c is not None and r.contains(c)
                                                       else r.center) for r, c in items])
@@ -912,20 +920,27 @@ class _Search:
                 return False
         return True
 
-    def _newton_multiple(self, z, digits, tol, m, kernel=None, maxsteps=60):
+    def _newton_multiple(self, z, digits, tol, m, kernel=None, maxsteps=60, best=False):
         """Newton on ``f**(1/m)``: ``z - m f/f'``, quadratic at an ``m``-fold zero.
 
-        ``f'`` is a forward difference with a step of half the working digits.
+        ``f'`` is a forward difference with a step of half the working digits. Returns
+        ``(z, last step)``, or ``(None, None)`` where it does not converge; with ``best``,
+        then ``(z, None)`` with the iterate of smallest ``|f|``: about ``m`` distinct zeros
+        closer than the start, the iterates jump about their mean (two zeros ``c +- d``:
+        ``w -> d**2 / w`` about ``c``), and the smallest ``|f|`` lies nearest it.
         """
         ctx = MP.from_digits(digits + 10).ctx
         z = ctx.mpc(z)
+        nearest = (None, None)
         for _ in range(maxsteps):
             h = max(abs(z), ctx.mpf(self.p.lam_ref)) * ctx.mpf(10) ** (-(digits // 2))
             f0, f1 = self.p.values([_global(z), _global(z + h)], digits, kernel)
             if f0 is None or f1 is None:
-                return None, None
+                return nearest if best and nearest[0] is not None else (None, None)
             if f0 == 0:
                 return _global(z), mpmath.mpf(0)
+            if best and (nearest[1] is None or abs(ctx.mpc(f0)) < nearest[1]):
+                nearest = (_global(z), abs(ctx.mpc(f0)))
             deriv = (ctx.mpc(f1) - ctx.mpc(f0)) / h
             if deriv == 0:
                 return None, None
@@ -935,7 +950,7 @@ class _Search:
                 return None, None
             if abs(step) <= tol:
                 return _global(z), _global(abs(step)).real
-        return None, None
+        return (nearest[0], None) if best else (None, None)
 
     # -- refinement: real zeros, all at once ----------------------------------------------------
     def refine_real(self, rects) -> list:
@@ -1079,7 +1094,7 @@ class _Search:
         ctx = MP.from_digits(digits + 10).ctx
         z0 = self._at(u, ctx)
         tol = ctx.mpf(10) ** (-(res + 4)) * max(abs(z0), ctx.mpf(self.p.lam_ref))
-        z, _ = self._newton_multiple(_global(z0), digits, tol, m)
+        z, _ = self._newton_multiple(_global(z0), digits, tol, m, best=True)
         if rect.symmetric and z is not None:
             z = _real(z)   # the cluster is closed under conjugation
         if z is not None and rect.contains(self._local(z), 1e-9 * rect.size):
@@ -1100,20 +1115,30 @@ class _Search:
                 k = -1
             if k == m:
                 return [self._cluster_eigenvalue(z, m, rect.symmetric, digits, r)]
-        # the cluster separates: isolate its zeros at high precision, around a local origin
-        origin = self._at(rect.center, ctx)
-        if rect.symmetric:
-            origin = ctx.mpc(origin.real, 0)
-        shift = self._local(_global(origin))
-        local = Rectangle(rect.x0 - shift.real, rect.x1 - shift.real,
-                          rect.y0 if rect.symmetric else rect.y0 - shift.imag,
-                          rect.y1 if rect.symmetric else rect.y1 - shift.imag, rect.symmetric)
+            # the cluster separates: its zeros lie about the estimate z, nearer it than to
+            # the rectangle's centre by as much as they are closer than the rectangle is
+            # small; local coordinates about z (floats) resolve them however close
+            local = self._around(z, m, r, extra, rect)
+            origin = ctx.mpc(z)
+        else:
+            local = None
+        if local is None:
+            # isolate the zeros at high precision, around the rectangle's centre
+            origin = self._at(rect.center, ctx)
+            if rect.symmetric:
+                origin = ctx.mpc(origin.real, 0)
+            shift = self._local(_global(origin))
+            local = Rectangle(rect.x0 - shift.real, rect.x1 - shift.real,
+                              rect.y0 if rect.symmetric else rect.y0 - shift.imag,
+                              rect.y1 if rect.symmetric else rect.y1 - shift.imag,
+                              rect.symmetric)
         r_min = 10.0 ** (-res) * abs(zf)
         sub = _Search(self.p, self.digits,
                       ArgumentPrinciple(_LocalFunction(self.p, extra, _global(origin)),
                                         spacing=lambda _u: local.size / 8,
                                         min_step=lambda _u: 1e-6 * r_min),
                       _global(origin))
+        sub.floor = extra
         singles, clusters = sub.isolate([(local, m, None)], 10.0 ** -res)
         out = sub.refine_all(singles)
         for r, k, _ in clusters:
@@ -1121,6 +1146,30 @@ class _Search:
                                                r.size))
         self.idle += sub.idle
         return out
+
+    def _around(self, z, m: int, r: float, digits: int, rect: Rectangle):
+        """A square about ``z`` (local coordinates about it) holding the cluster's ``m``
+        zeros, wider than ``r`` by powers of 1000 up to ``rect``'s size; None if none does.
+
+        Two zeros 1e-27 apart (relative) in a rectangle 1e-7 wide, whose centre is no
+        nearer them than that: in floats about the centre, no cut falls between them
+        (the contour passes within rounding of a zero), about ``z`` the first does.
+        """
+        rho = r
+        while True:
+            rho *= 1000.0
+            if rho > rect.size:
+                return None
+            box = (Rectangle(-rho, rho, -rho, rho, True) if rect.symmetric
+                   else Rectangle(-rho, rho, -rho, rho))
+            ap = ArgumentPrinciple(_LocalFunction(self.p, digits, z),
+                                   spacing=lambda _u, h=rho: h,
+                                   min_step=lambda _u, h=rho: h * 1e-6)
+            try:
+                if ap.count(box) == m:
+                    return box
+            except (NearZero, CountError):
+                continue
 
     def _cluster_eigenvalue(self, z, m, symmetric, digits, radius) -> Eigenvalue:
         """An ``m``-fold eigenvalue at ``z``, known to within ``radius``."""
