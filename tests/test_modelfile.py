@@ -247,3 +247,20 @@ def test_a_position_just_past_its_beam_says_how_far(tmp_path):
     with pytest.raises(ModelError, match=r"lies outside beam 'b' \[17/50, 87/100\], "
                                          r"1\.00000e-16 beyond its end"):
         load(path)
+
+
+def test_model_hash_is_kept_and_not_pickled(examples_dir):
+    """A model keys the caches of plans and tables; its hash is taken once, equal models
+    hash alike, and an unpickled model (another process: another hash of its strings)
+    takes its own rather than the one it was pickled with."""
+    import pickle
+
+    a = load(examples_dir / "paper_ex1_ff_cc.toml")
+    b = load(examples_dir / "paper_ex1_ff_cc.toml")
+    assert a == b and a is not b and hash(a) == hash(b)
+    assert "_hash" not in pickle.loads(pickle.dumps(a)).__dict__
+    code = ("import pickle, sys; m = pickle.loads(sys.stdin.buffer.read()); "
+            "import dataclasses; print(hash(m) == hash(dataclasses.replace(m)))")
+    out = subprocess.run([sys.executable, "-c", code], input=pickle.dumps(a),
+                         capture_output=True, check=True)
+    assert out.stdout.strip() == b"True"
