@@ -240,3 +240,39 @@ def test_gauss_legendre_integrates_polynomials_to_working_precision():
     nodes_d, weights_d = gauss_legendre(DOUBLE, n)
     assert nodes_d == pytest.approx((x + 1) / 2, abs=1e-15)
     assert weights_d == pytest.approx(w / 2, abs=1e-15)
+
+
+def test_energy_of_short_segments_closed_form_against_quadrature(monkeypatch):
+    """The kinetic-energy Gram of an Euler–Bernoulli piece with ``|kappa| l**4`` far below
+    1e-2 (a piece 1/100 long between two springs at omega = 10: 1e-6), where the closed
+    form ``[F]/(4 kappa)`` loses about six digits: in a walk that holds them (60 digits
+    for 20), the closed form is used and agrees with Gauss–Legendre quadrature of the
+    same states (the second formulation) to the digits asked; in one that does not,
+    quadrature is used."""
+    from symtmm.modes import normalise
+
+    model = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),),
+                  (Spring("b", "ground", "1/2", 3), Spring("b", "ground", "51/100", 5)))
+    tp = TransferPlan(model)
+    short = [k for k, seg in enumerate(tp.kind_segments) if abs(float(seg.l) - 0.01) < 1e-12]
+    assert short
+    k = short[0]
+    quadrature, calls = normalise._quadrature, []
+
+    def counted(*args):
+        calls.append(args)
+        return quadrature(*args)
+    monkeypatch.setattr(normalise, "_quadrature", counted)
+    for digits, spare, closed in ((20, 60, True), (20, 25, False)):
+        calls.clear()
+        ar = MP.from_digits(spare)
+        with ar:
+            lam2 = ar.array([ar.number(-100)])
+            Z0 = ar.array([ar.number(v) for v in (1, -2, "0.5", 3, "0.25", 1, -1, 2)], (4, 2))
+            U = tp.piece_matrices(ar, k, lam2, ar.array([tp.kind_segments[k].l]))[0][0]
+            Z1 = U @ Z0
+            got = normalise.segment_gram(tp, ar, k, lam2, -100.0, Z0, Z1, digits)
+            assert (not calls) == closed
+            ref = quadrature(tp, ar, k, lam2, -100.0, Z0, ar.exact(1), None, digits)
+            error = float(abs(got - ref).max() / abs(ref).max())
+        assert error < 10.0 ** -digits, (spare, error)

@@ -43,8 +43,13 @@ from ..numeric.transfer import block
 
 __all__ = ["Inertia", "Energy", "mass_orthonormaliser", "complex_scaler"]
 
-#: Below this ``|kappa| l**4`` the closed-form integral would cancel; use quadrature.
+#: Below this ``|kappa| l**4`` the closed-form integral would cancel; use quadrature (unless
+#: the arithmetic holds the digits the cancellation costs: :func:`segment_gram`).
 CLOSED_FORM_MIN = 1e-2
+
+#: Digits kept beyond the cancellation of the closed form where it is used below
+#: :data:`CLOSED_FORM_MIN`.
+_CLOSED_FORM_GUARD = 10
 
 
 class Inertia:
@@ -190,7 +195,13 @@ def segment_gram(plan, ar: Arithmetic, k: int, lam2, lam2_c: complex, Z0, Z1, di
         EI, m, length, kw = (ar.exact(v) for v in consts)
         kappa = -(lam2[0] * m + kw) / EI
         l4 = length ** 4
-        if float(ar.upper(ar.array([kappa * l4]))[0]) >= CLOSED_FORM_MIN:
+        size = float(ar.upper(ar.array([kappa * l4]))[0])
+        # the closed form loses about log10(1 / |kappa| l**4) digits: where the walk's
+        # arithmetic holds that many beyond the integrals' own (the digits of a shape's
+        # walk are its cancellation's, two to five times the shape's), it is still right,
+        # and quadrature on the short pieces of a chain cost two thirds of its shapes
+        spare = ar.digits - digits - _CLOSED_FORM_GUARD
+        if size > 0 and size >= min(CLOSED_FORM_MIN, 10.0 ** -max(spare, 0)):
             F1 = _bilinear_F(ar, length, kappa, EI, Z1)
             F0 = _bilinear_F(ar, None, kappa, EI, Z0)
             return (F1 - F0) * (m / (4 * kappa))
