@@ -276,3 +276,45 @@ def test_energy_of_short_segments_closed_form_against_quadrature(monkeypatch):
             ref = quadrature(tp, ar, k, lam2, -100.0, Z0, ar.exact(1), None, digits)
             error = float(abs(got - ref).max() / abs(ref).max())
         assert error < 10.0 ** -digits, (spare, error)
+
+
+@pytest.mark.parametrize("complex_", [False, True], ids=["real", "complex"])
+def test_solver_in_arb_and_in_mpmath_agree_with_the_exact_solve(complex_, monkeypatch):
+    """``linalg.solver`` on a 20 x 20 matrix of Gaussian rationals (Arb's LU where
+    python-flint is installed, mpmath's without): the exact solution from SymPy's
+    elimination over QQ or QQ<I> to 55 digits either way; an exactly singular matrix
+    (Arb: NaN) falls back to the guarded LU, whose solves stay finite."""
+    import random
+    import sys
+
+    from sympy.polys.matrices import DomainMatrix
+    rng = random.Random(5)
+    n = 20
+    unit = sp.I if complex_ else 0
+    A = sp.Matrix(n, n, lambda i, j: R(rng.randint(-50, 50), rng.randint(1, 9))
+                  + unit * R(rng.randint(-5, 5), 3) + (10 if i == j else 0))
+    B = sp.Matrix(n, 2, lambda i, j: R(rng.randint(-9, 9), 2))
+    domain = sp.QQ_I if complex_ else sp.QQ
+    exact = DomainMatrix.from_Matrix(A).convert_to(domain).lu_solve(
+        DomainMatrix.from_Matrix(B).convert_to(domain)).to_Matrix()
+    ar = MP(200)
+
+    def as_mp(M):
+        if not complex_:
+            return _mp_matrix(ar, M)
+        return np.array([[ar.ctx.mpc(ar.exact(sp.re(v)), ar.exact(sp.im(v))) for v in row]
+                         for row in M.tolist()], dtype=object)
+
+    for without_flint in (False, True):
+        if without_flint:
+            monkeypatch.setitem(sys.modules, "flint", None)
+        X = linalg.solver(ar, as_mp(A))(as_mp(B))
+        with mpmath.workdps(70):
+            for got, want in zip(X.reshape(-1), exact):
+                want = mpmath.mpc(sp.N(sp.re(want), 70), sp.N(sp.im(want), 70))
+                assert abs(mpmath.mpc(got) - want) < mpmath.mpf(10) ** -55 * abs(want)
+    monkeypatch.undo()
+    # (i j + 1: rank 2, exact zero pivots in any elimination)
+    singular = as_mp(sp.Matrix(n, n, lambda i, j: i * j + 1))
+    X = linalg.solver(ar, singular)(as_mp(B))
+    assert all(ar.ctx.isfinite(v) for v in X.reshape(-1))
