@@ -318,3 +318,28 @@ def test_solver_in_arb_and_in_mpmath_agree_with_the_exact_solve(complex_, monkey
     singular = as_mp(sp.Matrix(n, n, lambda i, j: i * j + 1))
     X = linalg.solver(ar, singular)(as_mp(B))
     assert all(ar.ctx.isfinite(v) for v in X.reshape(-1))
+
+
+@pytest.mark.skipif(not ball_available(), reason="needs python-flint")
+@pytest.mark.parametrize("value", [mpmath.mpc(0, 61.5), mpmath.mpc(-0.5, 61.5)],
+                         ids=["undamped", "damped"])
+def test_boundary_walked_in_balls_is_the_mpmath_walk(value, monkeypatch):
+    """``transfer.boundary_at`` walks an mpmath arithmetic's ``R`` in Arb balls (midpoints,
+    the same rounding): the same matrix to the working precision, relative to its
+    largest entry, as the walk in mpmath itself."""
+    from symtmm.numeric import transfer
+    real = value.real == 0
+    model = Model((Beam("a", 1, 1, 1, left="clamped", right="free"),
+                   Beam("b", 2, "3/2", 1, left="pinned", right="pinned")),
+                  (Spring("a", "b", "3/10", 40),
+                   Spring("a", "ground", "7/10", 15, c=0 if real else "1/5")),
+                  masses=(Mass("b", "1/2", "1/4"),))
+    tp = TransferPlan(model)
+    ar = MP.from_digits(50)
+    fast = transfer.boundary_at(tp, ar, value, real)
+    monkeypatch.setattr(transfer, "ball_available", lambda: False)
+    slow = transfer.boundary_at(tp, ar, value, real)
+    scale = max(abs(ar.to_mpmath(v)) for v in slow.reshape(-1))
+    worst = max(abs(ar.to_mpmath(a) - ar.to_mpmath(b)) for a, b in
+                zip(fast.reshape(-1), slow.reshape(-1)))
+    assert worst < mpmath.mpf(10) ** -45 * scale

@@ -84,8 +84,8 @@ def null_space_apart(tp, eigenvalue, digits: int, real: bool, working_digits) ->
         dps = working_digits(tp, value, max(digits, known))
         ar = MP.from_digits(dps)
         lam, lam2 = transfer.point(ar, value, real)
+        R = transfer.boundary_at(tp, ar, value, real)
         with ar:
-            R = transfer.boundary(tp, ar, lam, lam2)[0]
             V, ratio = null_space(ar, R, mult, separation=True)
         if ratio <= target or mult > 1 or value == 0:
             return dps, ar, lam, lam2, V, value
