@@ -174,6 +174,12 @@ def _targets(r) -> list:
                     "symtmm / FE: " + ", ".join(f"{k} {_g(v) if v is not None else 'failed'}"
                                                 for k, v in o["ratios"].items())
                     + f" ({'all within' if o['within'] else 'not all within'} 1)") + "."), ""]
+    if "shapes" in r:
+        sh = r["shapes"]
+        out += [("Reported beside them (section 8): the first 10 mode shapes, symtmm's "
+                 "`modes` / the FE's eigenvectors, "
+                 + (f"failed: {sh['error']}" if "error" in sh else
+                    ", ".join(f"{k} {_g(v)}" for k, v in sh["ratios"].items())) + "."), ""]
     return out
 
 
@@ -649,6 +655,27 @@ def _ordinary(o) -> list:
     return out + [""]
 
 
+def _shapes(sh) -> list:
+    out = ["## 8. Mode shapes (reported beside the targets)", "",
+           (f"The first {sh['count']} mode shapes (benchmarks/shapes_compare.py): symtmm's "
+            f"`mode_shapes(model, count={sh['count']}, points={sh['points']}, "
+            f"digits={sh['digits']})` (the verified solve, then each shape by the transfer "
+            "walk at the digits its cancellation needs, sampled in double precision) against "
+            "the sparse FE model of section 1 on its mesh within "
+            f"{sh['tolerance']:g} on the frequencies: assembly and `eigsh` with its "
+            "eigenvectors (the nodal values of cubic Hermite shapes, good to the mesh's "
+            f"accuracy). Each the best of {sh['repeat']} runs, in turns; symtmm's from a new "
+            "model object each time. \"shapes s\" is the part of symtmm's time after the "
+            "solve."), ""]
+    out += _table(["model", "beams", "shapes", "FE elements/beam", "FE dofs", "FE s",
+                   "symtmm s", "shapes s", "symtmm / FE"],
+                  [[c["name"], c["beams"], c["shapes"], c["fe"]["elements_per_beam"],
+                    c["fe"]["dofs"], _g(c["fe"]["seconds"]), _g(c["symtmm"]["seconds"]),
+                    _g(c["symtmm"]["shapes_seconds"]), _g(c["ratio"])]
+                   for c in sh["cases"]])
+    return out + [""]
+
+
 def render(r: dict) -> str:
     out = ["# Benchmarks", "",
            "The targets of issue 11 (\"Fast and certified by default\"), measured side by side "
@@ -666,6 +693,7 @@ def render(r: dict) -> str:
            "python benchmarks/run.py --quick                          # small sizes, <1 minute",
            "python benchmarks/run.py --sections fe sweep              # some sections",
            "python benchmarks/run.py --sections ordinary              # the ordinary models",
+           "python benchmarks/run.py --sections shapes                # mode shapes",
            "```", "",
            ("cxroots is optional (`pip install cxroots`, or the `bench` extra); without it its "
             "row reads \"not installed\". The generated C needs gcc. References are computed "
@@ -676,7 +704,7 @@ def render(r: dict) -> str:
     out += _findings(r)
     sections = {"fe": _fe, "scaling": _scaling, "precision": _precision,
                 "root_search": _root_search, "sweep": _sweep, "evaluator": _evaluator,
-                "ordinary": _ordinary}
+                "ordinary": _ordinary, "shapes": _shapes}
     for name, fn in sections.items():
         if name in r and "error" not in r[name]:
             out += fn(r[name])

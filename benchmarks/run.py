@@ -25,9 +25,10 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 #: In the order of the targets of issue 11, then the sections reported beside them.
-SECTIONS = ("fe", "scaling", "precision", "root_search", "sweep", "evaluator", "ordinary")
+SECTIONS = ("fe", "scaling", "precision", "root_search", "sweep", "evaluator", "ordinary",
+            "shapes")
 #: Sections that carry no target of their own (reported beside the targets).
-REPORTED = ("ordinary",)
+REPORTED = ("ordinary", "shapes")
 
 
 def _load() -> list:
@@ -108,12 +109,13 @@ def run(quick: bool, sections, progress) -> dict:
         precision,
         root_search,
         scaling,
+        shapes_compare,
         sweep_compare,
     )
 
     modules = {"fe": fe_compare, "scaling": scaling, "precision": precision,
                "root_search": root_search, "sweep": sweep_compare, "evaluator": evaluator,
-               "ordinary": ordinary}
+               "ordinary": ordinary, "shapes": shapes_compare}
     result = dict(quick=quick, machine=machine(), load_before=_load(),
                   command="python benchmarks/run.py" + (" --quick" if quick else "")
                   + ("" if tuple(sections) == SECTIONS else " --sections " + " ".join(sections)))

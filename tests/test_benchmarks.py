@@ -35,7 +35,7 @@ from benchmarks.kernel import internals
 
 MODULES = ["baselines", "cbench", "compare", "evaluator", "fe_compare", "kernel", "models",
            "ordinary", "precision", "profiling", "references", "report", "root_search",
-           "scaling", "sparse_fe", "sweep_compare"]
+           "scaling", "shapes_compare", "sparse_fe", "sweep_compare"]
 
 
 @pytest.mark.parametrize("name", MODULES)
@@ -405,5 +405,7 @@ def test_quick_run_all_sections(tmp_path):
     assert markdown.startswith("# Benchmarks")
     for heading in ("## 1. Verified solve", "## 2. Cost per evaluation", "## 3. The cost of",
                     "## 4. Root search", "## 5. A sweep", "## 6. The batched",
-                    "## 7. Ordinary models"):
+                    "## 7. Ordinary models", "## 8. Mode shapes"):
         assert heading in markdown
+    for case in result["shapes"]["cases"]:        # reported beside the targets
+        assert case["shapes"] >= 10 and case["ratio"] > 0, case["name"]
