@@ -53,9 +53,9 @@ ROUNDS = 6
 
 
 def null_space_apart(tp, eigenvalue, digits: int, real: bool, working_digits) -> tuple:
-    """``(dps, ar, lam, lam2, V, value)``: the null space ``V`` of ``R`` at ``value``, the
-    eigenvalue refined as far as the shape's ``digits`` need, in the arithmetic ``ar`` of
-    ``dps`` digits (``lam`` and ``lam2`` as :func:`~symtmm.numeric.transfer.point` gives them).
+    """``(dps, ar, V, value)``: the null space ``V`` of ``R`` at ``value``, the eigenvalue
+    refined as far as the shape's ``digits`` need, in the arithmetic ``ar`` of ``dps``
+    digits.
 
     Parameters
     ----------
@@ -83,12 +83,11 @@ def null_space_apart(tp, eigenvalue, digits: int, real: bool, working_digits) ->
     for _ in range(ROUNDS):
         dps = working_digits(tp, value, max(digits, known))
         ar = MP.from_digits(dps)
-        lam, lam2 = transfer.point(ar, value, real)
         R = transfer.boundary_at(tp, ar, value, real)
         with ar:
             V, ratio = null_space(ar, R, mult, separation=True)
         if ratio <= target or mult > 1 or value == 0:
-            return dps, ar, lam, lam2, V, value
+            return dps, ar, V, value
         # the share falls with the estimate's error: as many more digits as it is above
         # the target, and a guard; the neighbour lies about 10**-known / ratio away, and
         # Delta between the two (a product of the distances to both) needs those digits too
@@ -111,10 +110,13 @@ def _refined(tp, eigenvalue, value, k: int, real: bool, working_digits, known: i
     ar = MP.from_digits(working_digits(tp, value, k + apart) + 5)
     ctx = ar.ctx
     tol = ctx.mpf(10) ** -k
+    # (R walked as the shapes' own: in Arb balls where flint is installed, the midpoints
+    # taken back; the determinant in the arithmetic)
     if real:
         def f(w):
+            R = transfer.boundary_at(tp, ar, ctx.mpc(0, w), True)
             with ar:
-                return transfer.delta(tp, ar, ar.array([-(w * w)]), real=True)[0]
+                return det(ar, R)
 
         lo, hi = (eigenvalue.bracket or (None, None))
         if lo is not None and lo < hi:
@@ -125,8 +127,9 @@ def _refined(tp, eigenvalue, value, k: int, real: bool, working_digits, known: i
         return ctx.mpc(0, z)
 
     def g(z):
+        R = transfer.boundary_at(tp, ar, z, False)
         with ar:
-            return det(ar, transfer.boundary(tp, ar, ar.array([z]))[0])
+            return det(ar, R)
 
     return _secant(ctx, g, ctx.mpc(value), tol, eigenvalue, known)
 

@@ -147,23 +147,33 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
     digits = eigenvalue.digits if digits is None else digits
     mult = eigenvalue.multiplicity
     # (the eigenvalue refined where a close neighbour would leak into its null space)
-    dps, ar, lam, lam2, V, value = null_space_apart(tp, eigenvalue, digits, real,
-                                                    working_digits)
+    dps, ar, V, value = null_space_apart(tp, eigenvalue, digits, real, working_digits)
     if value is not eigenvalue.lam:
         eigenvalue = dataclasses.replace(eigenvalue, lam=_global(value))
     with ar:
         E0 = ar.zeros((tp.size, mult), like=V)
         E0[tp.columns, :] = V
     grid, xs = shape_plan.grid(points)
-    energy = Energy(shape_plan.inertia, ar, lam2, digits + 3) if real else None
-    _, states = transfer.sample(tp, ar, grid, lam, lam2, start=E0[None], inner=DOUBLE,
+    # (the walk to the samples, and the energy on the way, in Arb balls where flint is
+    # installed, their midpoints taken back: the same rounding, a third of the time)
+    walk = transfer.walk_arithmetic(ar)
+    wlam, wlam2 = transfer.point(walk, value, real)
+    start = transfer.convert(ar, walk, E0)
+    energy = Energy(shape_plan.inertia, walk, wlam2, digits + 3) if real else None
+    _, states = transfer.sample(tp, walk, grid, wlam, wlam2, start=start[None], inner=DOUBLE,
                                 observe=energy)
     states = states[0]                          # (samples, 4, mult), double
+
+    gram = parts = None
+    if real:
+        with walk:                      # (the bodies' energy added at the walk's precision)
+            gram = transfer.convert(walk, ar, energy.gram(start))
+            if mult > 1:
+                parts = [transfer.convert(walk, ar, G) for G in energy.parts(start)]
     with ar:
-        T = (mass_orthonormaliser(ar, energy.gram(E0)) if real
-             else complex_scaler(ar, states[:, 0, :]))
-        if real and mult > 1:
-            T = T @ _localised(ar, T, energy.parts(E0))
+        T = mass_orthonormaliser(ar, gram) if real else complex_scaler(ar, states[:, 0, :])
+        if parts is not None:
+            T = T @ _localised(ar, T, parts)
         E0 = E0 @ T
     states = states @ (ar.to_complex(T).real if real else ar.to_complex(T))
     per_level = states.reshape(len(model.beams), points, 4, mult)

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import functools
 import math
+import threading
 
 import mpmath
 import numpy as np
@@ -469,6 +470,11 @@ class MP(Arithmetic):
         return la.reshape(np.shape(x)), ph.reshape(np.shape(x))
 
 
+#: Held while python-flint's process-wide precision is set for a computation
+#: (:class:`Ball` contexts, :func:`symtmm.numeric.linalg.solver`); reentrant.
+FLINT_LOCK = threading.RLock()
+
+
 def ball_available() -> bool:
     """Whether python-flint (Arb ball arithmetic) can be imported."""
     try:
@@ -530,12 +536,17 @@ class Ball(Arithmetic):
         return cls(math.ceil(digits * math.log2(10)) + 4)
 
     def __enter__(self):
+        # (python-flint's precision is the process's: a thread that walked at another
+        # precision meanwhile would change this one's digits; flint's scalar calls hold
+        # Python's lock anyway, so little runs at once that this stops)
+        FLINT_LOCK.acquire()
         self._saved.append(self.flint.ctx.prec)
         self.flint.ctx.prec = self.prec
         return self
 
     def __exit__(self, *exc):
         self.flint.ctx.prec = self._saved.pop()
+        FLINT_LOCK.release()
         return False
 
     def _convert(self, value):

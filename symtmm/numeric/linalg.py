@@ -33,13 +33,12 @@ Examples
 from __future__ import annotations
 
 import random
-import threading
 
 import numpy as np
 import sympy as sp
 
 from ..errors import ComputationError
-from .arith import Arithmetic
+from .arith import FLINT_LOCK, Arithmetic
 
 __all__ = ["det", "lu", "lu_solve", "solver", "null_space", "separation_ratio", "orthonormal",
            "cholesky", "lower_inverse"]
@@ -236,8 +235,6 @@ def null_space(ar: Arithmetic, R, mult: int, separation: bool = False):
     return X
 
 
-_ARB_LOCK = threading.Lock()
-
 #: From this size of an mpmath matrix on, :func:`solver` hands the solves to Arb's LU where
 #: python-flint is installed (below it, converting the entries costs what it saves).
 ARB_SOLVE_SIZE = 16
@@ -292,7 +289,7 @@ def _arb_solver(ar: Arithmetic, A):
         man, exp = x.mid().man_exp()
         return ctx.make_mpf(libmp.from_man_exp(int(man), int(exp), prec, "n"))
 
-    with _ARB_LOCK, flint.ctx.workprec(prec):
+    with FLINT_LOCK, flint.ctx.workprec(prec):
         M = matrix(A.shape[0], A.shape[1], [to_arb(v) for v in A.flat])
 
     def solve(B):
@@ -300,7 +297,7 @@ def _arb_solver(ar: Arithmetic, A):
         shape = B.shape
         columns = B.reshape(shape[0], -1)
         # (python-flint's precision is the process's: held for the solve, against threads)
-        with _ARB_LOCK, flint.ctx.workprec(prec):
+        with FLINT_LOCK, flint.ctx.workprec(prec):
             X = M.solve(matrix(columns.shape[0], columns.shape[1],
                                [to_arb(v) for v in columns.flat]),
                         nonstop=True, algorithm="approx")

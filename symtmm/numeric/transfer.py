@@ -283,6 +283,16 @@ def boundary(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None) -> np.ndar
     return propagate(plan, ar, lam, lam2)[:, plan.rows, :]
 
 
+def walk_arithmetic(ar: Arithmetic) -> Arithmetic:
+    """The arithmetic to walk in for results wanted in ``ar``, taken back as midpoints:
+    Arb balls at ``ar``'s precision for an mpmath arithmetic where python-flint is
+    installed (Arb rounds a midpoint as mpmath rounds, in C: several times faster),
+    else ``ar`` itself."""
+    if getattr(ar, "name", None) == "mp" and ball_available():
+        return Ball(ar.prec)
+    return ar
+
+
 def boundary_at(plan: TransferPlan, ar: Arithmetic, value, real: bool) -> np.ndarray:
     """``R`` at one value ``value`` of ``lam`` (an mpmath number), as numbers of ``ar``.
 
@@ -291,9 +301,7 @@ def boundary_at(plan: TransferPlan, ar: Arithmetic, value, real: bool) -> np.nda
     (Arb rounds a midpoint as floating point does, the radius apart), in C, eight times
     faster on the 20-level chain (0.69 s -> 0.08 s at 75 digits). Otherwise in ``ar``.
     """
-    walk = ar
-    if getattr(ar, "name", None) == "mp" and ball_available():
-        walk = Ball(ar.prec)
+    walk = walk_arithmetic(ar)
     lam, lam2 = point(walk, value, real)
     with walk:
         R = boundary(plan, walk, lam, lam2)[0]
