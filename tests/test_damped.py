@@ -757,3 +757,28 @@ def test_damped_pair_closer_than_double_precision_is_split_and_shaped():
         for m in pair:
             np.testing.assert_allclose(np.abs(m.beams["b"].Y), np.abs(m.beams["a"].Y),
                                        atol=1e-12)
+
+
+def test_real_zero_a_billionth_beside_the_rigid_body_zero():
+    """Two pinned-free beams, each with a pure dashpot (c = 0.1 at x = 0.7) on its rigid
+    rotation about the pin, joined by a spring of 1e-10 at x = 0.37: lam = 0 (the
+    rotation in phase, the spring unstretched) and a real zero 5.6e-10 beside it (the
+    rotation against the spring). The rigid bodies' equation ``J th'' + c a**2 th' + 2 k
+    b**2 th = 0`` (``J = m L**3 / 3``) gives it to about k / EI (the beams' flexibility),
+    and ``-c a**2 / J`` twice to about (0.15 / 15.4)**2. The rectangle about lam = 0,
+    2e-9 across, was cut with contour steps no shorter than 1e-10 |lam_ref|: 'cannot
+    split the search rectangle'."""
+    beams = tuple(Beam(n, 1, 1, 1, left="pinned", right="free") for n in "ab")
+    model = Model(beams, (Spring("a", "b", "37/100", "1e-10"),
+                          Spring("a", "ground", "7/10", 0, c="1/10"),
+                          Spring("b", "ground", "7/10", 0, c="1/10")))
+    spec = solve_damped(model, count=4, digits=15)
+    values = sorted((e.lam for e in spec), key=lambda z: -float(z.real))
+    assert [e.multiplicity for e in spec] == [1, 1, 1, 1]
+    assert values[0] == 0 and all(z.imag == 0 for z in values)
+    J, c, a, k, b = mpmath.mpf(1) / 3, mpmath.mpf("0.1"), mpmath.mpf("0.7"), \
+        mpmath.mpf("1e-10"), mpmath.mpf("0.37")
+    small = (-c * a**2 + mpmath.sqrt((c * a**2) ** 2 - 8 * J * k * b**2)) / (2 * J)
+    assert abs(values[1].real / small - 1) < 1e-8
+    for z in values[2:]:
+        assert abs(z.real / (-c * a**2 / J) - 1) < 1e-3

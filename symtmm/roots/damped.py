@@ -352,25 +352,46 @@ class _Search:
 
     # -- counting -----------------------------------------------------------------------
     def _split(self, rect, count):
-        """Children ``[(rect, count, center, weight)]`` of ``rect``; weight 2 = mirrored."""
+        """Children ``[(rect, count, center, weight)]`` of ``rect``; weight 2 = mirrored.
+
+        A rectangle within a thousand of the contours' least step (a zero beside
+        ``lam = 0``, 1e-9 from it where ``|lam|`` of the model's modes is about 1: a pure
+        dashpot and a spring of 1e-10 on two rigid rotations) is cut again with steps
+        down to a millionth of its own size, where the first cuts met a zero."""
+        counted, last_error = self._try_splits(self.ap, rect, count)
+        if counted is not None:
+            return counted
+        if isinstance(last_error, NearZero) and \
+                rect.size < 1e3 * self.ap.min_step(rect.center):
+            size = rect.size
+            fine = ArgumentPrinciple(self.ap.f, self.ap.spacing,
+                                     min_step=lambda _u: 1e-6 * size)
+            counted, last_error = self._try_splits(fine, rect, count)
+            if counted is not None:
+                return counted
+        where = "" if self.origin is None else f" (about {complex(self.origin):.6g})"
+        raise ComputationError(f"cannot split the search rectangle {rect}{where}: "
+                               f"{last_error}")
+
+    def _try_splits(self, ap, rect, count) -> tuple:
+        """``(children, None)`` from the first of :data:`_SPLITS` whose parts' counts (by
+        ``ap``) add up to ``count``, each at growing strictness; else ``(None, error)``."""
         last_error = None
         for strictness in (0, 1, 2):
             for s in _SPLITS:
                 try:
                     kids = self._children(rect, s)
-                    found = self.ap.counts_and_centers([kid for kid, _ in kids], strictness)
+                    found = ap.counts_and_centers([kid for kid, _ in kids], strictness)
                 except NearZero as exc:
                     last_error = exc
                     continue
                 counted = self._tally(kids, found, count)
                 if counted is not None:
-                    return counted
+                    return counted, None
                 last_error = CountError(f"the counts of its parts, {[n for n, _ in found]}, "
                                         f"do not add up to its {count}")
                 break   # same split, stricter sampling
-        where = "" if self.origin is None else f" (about {complex(self.origin):.6g})"
-        raise ComputationError(f"cannot split the search rectangle {rect}{where}: "
-                               f"{last_error}")
+        return None, last_error
 
     @staticmethod
     def _tally(kids, found, count: int):
