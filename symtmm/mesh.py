@@ -516,9 +516,13 @@ class Mesh:
                 # (boundary conditions come after the attachments: a redundant one falls
                 # on a node held by a body)
                 body = name or next(n for n, c in constraints if n and set(c) & set(constraint))
+                hint = ("; inextensible members that hold a joint along one line twice "
+                        "(collinear between supports, a star of them) are not supported: "
+                        "give one of them EA instead of inextensible = true"
+                        if self.model.links else "")
                 raise ModelError("held more times than it has freedoms (statically "
                                  "indeterminate: its reactions are not determined and the "
-                                 "characteristic determinant vanishes identically)",
+                                 "characteristic determinant vanishes identically)" + hint,
                                  field=f"body '{body}'.attach", source=self.model.source)
             # a node's freedom first, then a body's translations, then its rotation
             pivot = min(expr, key=lambda v: (v[0] == "b", v[2] == 1, v[2], v[1]))

@@ -436,3 +436,23 @@ def test_inclined_rollers_against_closed_forms():
     with pytest.raises(ModelError, match="give angle"):
         loads(INCLINED.format(angle=30).replace("angle = 30\n", "", 2).replace(
             'from = [0, 0]\n', 'from = [0, 0]\nangle = 30\n', 1))
+
+
+def test_collinear_inextensible_members_are_refused_with_the_remedy(tmp_path):
+    """Two collinear inextensible members between two pinned supports hold the middle
+    joint along the line twice (their axial forces statically indeterminate, Delta zero
+    for every lam): one line, exit 2, naming the remedy; with a finite EA on one of them
+    the line is the pinned-pinned beam of length 2, ``omega = (n pi / 2)**2`` in bending."""
+    text = ('[[member]]\nname = "a"\nfrom = [0, 0]\nto = [1, 0]\nEI = 1\nm = 1\n{a}\n'
+            '[[member]]\nname = "b"\nfrom = [1, 0]\nto = [2, 0]\nEI = 1\nm = 1\n'
+            'inextensible = true\n'
+            '[[node]]\nat = [0, 0]\nsupport = "pinned"\n[[node]]\nat = [2, 0]\n'
+            'support = "pinned"\n')
+    path = tmp_path / "line.toml"
+    path.write_text(text.format(a="inextensible = true"))
+    run = run_cli(["solve", path, "--count", "3"])
+    assert run.code == 2 and len(run.stderr.strip().splitlines()) == 1
+    assert "give one of them EA" in run.stderr
+    result = api.solve(loads(text.format(a="EA = 1e6")), count=3)
+    got = [float(e.omega) for e in result for _ in range(e.multiplicity)]
+    np.testing.assert_allclose(got, [(n * np.pi / 2) ** 2 for n in (1, 2, 3)], rtol=1e-12)
