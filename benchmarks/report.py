@@ -688,7 +688,7 @@ def render(r: dict) -> str:
            + (" (quick run: small sizes only, not the targets' full measure)"
               if r.get("quick") else "") + ".", "",
            "## How to run", "", "```",
-           "python benchmarks/run.py --json > docs/benchmarks.json   # full run, 2-4 minutes",
+           "python benchmarks/run.py --json > docs/benchmarks.json   # full run, 3-5 minutes",
            "python benchmarks/run.py --from-json docs/benchmarks.json -o docs/benchmarks.md",
            "python benchmarks/run.py --quick                          # small sizes, <1 minute",
            "python benchmarks/run.py --sections fe sweep              # some sections",
