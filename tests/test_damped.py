@@ -782,3 +782,32 @@ def test_real_zero_a_billionth_beside_the_rigid_body_zero():
     assert abs(values[1].real / small - 1) < 1e-8
     for z in values[2:]:
         assert abs(z.real / (-c * a**2 / J) - 1) < 1e-3
+
+
+@pytest.mark.skipif(not ball_available(), reason="needs python-flint")
+def test_close_damped_pair_is_proved_by_rouche_in_its_sub_search():
+    """Two equal pinned-free beams (EI = m = 2) with pure dashpots (c = 0.1 at x = 0.7)
+    joined by a spring of 1e-6 at x = 0.37: a pair 6e-8 apart near 15.418i, isolated in
+    a sub-search about their cluster, whose boxes Rouche's theorem in balls now proves
+    (it did only at the search's top level: 'two precisions'). Values: the in-phase root
+    of the single beam with its dashpot, the anti-phase one with a grounded spring of
+    2e-6 added (``damped_reference.beam_char``, nothing of symtmm), to the printed digits."""
+    beams = tuple(Beam(n, 2, 2, 1, left="pinned", right="free") for n in "ab")
+    model = Model(beams, (Spring("a", "b", "37/100", "1e-6"),
+                          Spring("a", "ground", "7/10", 0, c="1/10"),
+                          Spring("b", "ground", "7/10", 0, c="1/10")))
+    spec = solve_damped(model, count=6, digits=15)
+    pair = [e for e in spec if 15 < float(e.lam.imag) < 16]
+    assert len(pair) == 2
+    assert all(e.proof == DAMPED_PROOFS["rouche"] for e in pair)
+    with mpmath.workdps(40):
+        refs = []
+        for supports in ([("0.7", 0, "0.1")], [("0.7", 0, "0.1"), ("0.37", "2e-6", 0)]):
+            sup = [(mpmath.mpf(x), mpmath.mpf(k), mpmath.mpf(c)) for x, k, c in supports]
+            refs.append(mpmath.findroot(
+                lambda z, sup=sup: beam_char(z, 2, 2, 1, "pinned", "free", sup),
+                mpmath.mpc(pair[0].lam)))
+    for e, ref in zip(sorted(pair, key=lambda e: float(e.lam.imag)),
+                      sorted(refs, key=lambda z: float(z.imag))):
+        assert decimal_string(e.lam.imag, 15) == decimal_string(ref.imag, 15)
+        assert decimal_string(e.lam.real, 15) == decimal_string(ref.real, 15)

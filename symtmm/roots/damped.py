@@ -705,9 +705,10 @@ class _Search:
                 if conservative:
                     target = abs(s["zf"].imag) or abs(s["zf"])
                 s["tol"] = _tol(-(self.digits + 4 + s["tighter"]), target)
-                if self.p.balls and self.origin is None:
+                if self.p.balls:
                     # the box Rouche's theorem proves (see _rouche), and the estimate well
-                    # inside it
+                    # inside it (in a cluster's sub-search too: a close pair 6e-8 apart
+                    # was left to 'two precisions' where boxes of 1e-30 prove each zero)
                     s["box"] = min(_tol(-(self.digits + 3 + s["tighter"]), target),
                                    _tol(-(self.digits + 15), s["zf"]))
                     s["tol"] = _tol(-3, s["box"])
@@ -722,7 +723,7 @@ class _Search:
                 else:
                     s["za"] = za
                     ok.append(s)
-            if self.p.balls and self.origin is None:
+            if self.p.balls:
                 ok = self._prove_boxes(ok, digits, conservative)
             second = self._secants([s["za"] for s in ok], digits + 15,
                                    [s["tol"] / 10 ** 5 for s in ok])
