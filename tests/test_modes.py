@@ -354,3 +354,28 @@ def test_nearly_equal_uncoupled_beams_each_move_alone():
             np.testing.assert_allclose(float(mode.omega), float(ref.omega), rtol=1e-14)
             np.testing.assert_allclose(mode.beams[name].Y, ref.beams[name].Y, atol=1e-12)
     assert seen == {"a": 2, "b": 2}
+
+
+def test_free_free_rod_on_a_spring_has_its_closed_form_shapes():
+    """A free-free rod (EA = m = L = 1) held at mid-span by an axial spring k = 10: its R is
+    ``[[0, 1], [t, 0]]`` at a root, whose right and left null vectors are orthogonal (the
+    estimate of a neighbour's share took the wrong one and refused the shape). The
+    antisymmetric mode has a node at the spring: ``U = sqrt(2) cos(pi x)``, omega = pi;
+    the symmetric one is ``A cos(beta x)`` on the left half, ``beta tan(beta / 2) =
+    k / 2 EA``, mirrored, ``A`` from ``integral m U**2 = 1``."""
+    from symtmm.model import rod
+
+    model = Model((rod("r", 1, 1, 1, left="free", right="free"),),
+                  (Spring("r", "ground", "1/2", 10),))
+    modes = mode_shapes(model, count=2, points=41)
+    x = np.linspace(0, 1, 41)
+    with mpmath.workdps(30):
+        beta = mpmath.findroot(lambda b: b * mpmath.tan(b / 2) - 5, 2.28)
+        A = 1 / mpmath.sqrt(2 * mpmath.quad(lambda s: mpmath.cos(beta * s) ** 2, [0, 0.5]))
+    half = np.minimum(x, 1 - x)
+    np.testing.assert_allclose(float(modes[0].omega), float(beta), rtol=1e-14)
+    np.testing.assert_allclose(modes[0].beams["r"].Y, float(A) * np.cos(float(beta) * half),
+                               atol=1e-13)
+    np.testing.assert_allclose(float(modes[1].omega), math.pi, rtol=1e-14)
+    np.testing.assert_allclose(modes[1].beams["r"].Y, math.sqrt(2) * np.cos(math.pi * x),
+                               atol=1e-13)

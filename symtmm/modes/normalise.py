@@ -290,7 +290,10 @@ def complex_scaler(ar: Arithmetic, Y):
     k = Y.shape[1]
     T = ar.zeros((k, k), like=ar.array([ar.number(1j)]))
     for c in range(k):
-        best = Y[int(np.argmax(np.abs(Y[:, c]))), c]
+        # (the first of the largest within rounding: ties, as at the two peaks of a
+        # symmetric mode, would let rounding choose the phase)
+        size = np.abs(Y[:, c])
+        best = Y[int(np.argmax(size >= size.max() * (1 - 1e-9))), c]
         if best == 0:
             raise ComputationError("mode shape vanishes (null vector lost)")
         T[c, c] = 1 / ar.number(complex(best))

@@ -181,9 +181,13 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
     for c in range(mult):
         sign = 1
         if real:
-            # make the largest displacement positive
+            # make the largest displacement positive: the first of those equal to it
+            # within rounding (sin 2 pi x peaks alike at 1/4 and 3/4, and which one the
+            # rounding favoured would otherwise set the sign)
             Ys = per_level[:, :, 0, c].reshape(-1)
-            sign = -1 if Ys[np.argmax(np.abs(Ys))] < 0 else 1
+            size = np.abs(Ys)
+            first = int(np.argmax(size >= size.max() * (1 - 1e-9)))
+            sign = -1 if Ys[first] < 0 else 1
         beams = {}
         for lvl, beam in enumerate(model.beams):
             z = per_level[lvl, :, :, c] * sign

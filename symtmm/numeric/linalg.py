@@ -204,13 +204,16 @@ def orthonormal(ar: Arithmetic, V, complete: bool = False):
 def null_space(ar: Arithmetic, R, mult: int, separation: bool = False):
     """Orthonormal columns spanning the near-null space of the square ``R``: ``mult`` of them.
 
-    Block inverse iteration: ``X <- orth(R^-1 X)`` twice from fixed pseudo-random
-    columns, ``R^-1`` applied through :func:`lu`. Near an eigenvalue the ``mult``
-    smallest singular values of ``R`` dominate ``R^-1``, so this spans the space of
-    their right singular vectors, as the singular value decomposition would, at the
-    cost of one LU factorisation; backward stable like the SVD, so the vectors are
-    as accurate as the eigenvalue. Where the iteration collapses (fewer than
-    ``mult`` independent directions), a private mpmath context's SVD decides.
+    Block inverse iteration on ``R^H R``: ``X <- orth(R^-1 R^-H X)`` twice from fixed
+    pseudo-random columns, through one :func:`lu` (:func:`solver`). Near an eigenvalue
+    the ``mult`` smallest singular values of ``R`` dominate ``(R^H R)^-1 = V S^-2 V^H``,
+    so this spans the space of their right singular vectors, as the singular value
+    decomposition would, at the cost of one LU factorisation; backward stable like the
+    SVD, so the vectors are as accurate as the eigenvalue. (``R^-1`` alone maps the
+    left null vectors to the right ones, and its square can turn them away: a rod's
+    ``[[0, 1], [t, 0]]``, whose right null vector is ``e1`` and left one ``e2``, has
+    ``R^-2 = I / t``.) Where the iteration collapses (fewer than ``mult`` independent
+    directions), a private mpmath context's SVD decides.
 
     With ``separation``, returns ``(X, ratio)``: also how well the space stands apart
     from the next direction, ``ratio`` about ``sigma_mult / sigma_(mult+1)`` of ``R``
@@ -221,17 +224,17 @@ def null_space(ar: Arithmetic, R, mult: int, separation: bool = False):
         return ar.zeros((0, mult))
     if mult > n:
         raise ComputationError(f"multiplicity {mult} exceeds the size {n} of R")
-    solve = solver(ar, R)
+    solve, adjoint = solver(ar, R), solver(ar, R, adjoint=True)
     rng = random.Random(20240607)          # fixed: the shapes are reproducible
     X = ar.array([ar.exact(sp.Rational(rng.randrange(-2**20, 2**20), 2**20))
                   for _ in range(n * mult)], (n, mult))
     for _ in range(2):
-        X = orthonormal(ar, solve(X))
+        X = orthonormal(ar, solve(adjoint(X)))
         if X is None:
             X = _svd_null_space(ar, R, mult)
             break
     if separation:
-        return X, separation_ratio(ar, R, X, solve, rng)
+        return X, separation_ratio(ar, R, X, (solve, adjoint), rng)
     return X
 
 
@@ -240,8 +243,9 @@ def null_space(ar: Arithmetic, R, mult: int, separation: bool = False):
 ARB_SOLVE_SIZE = 16
 
 
-def solver(ar: Arithmetic, A):
-    """``B -> A^-1 B`` for the columns of ``B``: :func:`lu` once, then :func:`lu_solve`.
+def solver(ar: Arithmetic, A, adjoint: bool = False):
+    """``B -> A^-1 B`` (with ``adjoint``, ``B -> A^-H B``) for the columns of ``B``:
+    :func:`lu` once, then :func:`lu_solve` (or :func:`lu_solve_adjoint`).
 
     For an mpmath arithmetic and a matrix of :data:`ARB_SOLVE_SIZE` or more rows, where
     python-flint is installed, Arb's approximate LU solve does it in C at the same
@@ -249,7 +253,7 @@ def solver(ar: Arithmetic, A):
     would do; a 154 x 154 matrix at 217 bits, 2.5 s -> 10 ms, the same vectors to 1e-67);
     where it meets an exact zero pivot (NaN), the guarded LU below serves instead.
     """
-    fast = _arb_solver(ar, A)
+    fast = _arb_solver(ar, A, adjoint)
     factors: list = []
 
     def solve(B):
@@ -259,13 +263,30 @@ def solver(ar: Arithmetic, A):
                 return X
         if not factors:
             factors.append(lu(ar, A))
-        return lu_solve(ar, factors[0], B)
+        return (lu_solve_adjoint if adjoint else lu_solve)(ar, factors[0], B)
     return solve
 
 
-def _arb_solver(ar: Arithmetic, A):
-    """Arb's approximate solve with ``A`` (see :func:`solver`), or None where it does not
-    apply: not an mpmath arithmetic, a small matrix, or no python-flint."""
+def lu_solve_adjoint(ar: Arithmetic, factors, B):
+    """``A^-H B`` from :func:`lu`'s factors of ``A`` (``P A = L U``: ``A^H = U^H L^H P``)."""
+    LU, perm = factors
+    n = LU.shape[0]
+    conj = _conj(ar, LU)
+    z = np.array(B, copy=True, dtype=np.result_type(LU, np.asarray(B)))
+    for i in range(n):                      # U^H z = B: lower triangular
+        if i:
+            z[i] = z[i] - conj[:i, i] @ z[:i]
+        z[i] = z[i] / conj[i, i]
+    for i in range(n - 2, -1, -1):          # L^H w = z: upper, unit diagonal
+        z[i] = z[i] - conj[i + 1:, i] @ z[i + 1:]
+    out = np.empty_like(z)
+    out[perm] = z                           # P x = w
+    return out
+
+
+def _arb_solver(ar: Arithmetic, A, adjoint: bool = False):
+    """Arb's approximate solve with ``A`` or ``A^H`` (see :func:`solver`), or None where it
+    does not apply: not an mpmath arithmetic, a small matrix, or no python-flint."""
     if getattr(ar, "name", None) != "mp" or A.shape[0] < ARB_SOLVE_SIZE or A.dtype != object:
         return None
     try:
@@ -291,6 +312,8 @@ def _arb_solver(ar: Arithmetic, A):
 
     with FLINT_LOCK, flint.ctx.workprec(prec):
         M = matrix(A.shape[0], A.shape[1], [to_arb(v) for v in A.flat])
+        if adjoint:
+            M = M.conjugate().transpose() if complex_ else M.transpose()
 
     def solve(B):
         B = np.asarray(B)
@@ -313,15 +336,17 @@ def _arb_solver(ar: Arithmetic, A):
     return solve
 
 
-def separation_ratio(ar: Arithmetic, R, X, solve=None, rng=None) -> float:
+def separation_ratio(ar: Arithmetic, R, X, solvers=None, rng=None) -> float:
     """About ``sigma_m / sigma_(m+1)`` of ``R``: how far the near-null space ``X`` (``m``
-    orthonormal columns) stands apart from the next singular direction.
+    orthonormal columns of right singular vectors) stands apart from the next direction.
 
-    ``sigma_m`` is read as the largest residual ``|R x|`` of the columns, ``sigma_(m+1)``
-    by inverse iteration on the complement of ``X``. At an eigenvalue ``lam`` estimated
-    to within ``delta`` of its root, with the next root a distance ``gap`` away, the
-    ratio is about ``delta / gap``: the share of the neighbour's vector that the null
-    space takes in (0 where ``X`` fills the space). A float; 0.0 below the double range.
+    ``sigma_m`` is read as the largest residual ``|R x|`` of the columns; ``sigma_(m+1)``
+    as ``|(R^H R)^-1|**(-1/2)`` on the complement of ``X``, by power iteration there
+    (``solvers``: the ``(R^-1, R^-H)`` of :func:`solver`, made if not given). At an
+    eigenvalue ``lam`` estimated to within ``delta`` of its root, with the next root a
+    distance ``gap`` away, the ratio is about ``delta / gap``: the share of the
+    neighbour's vector that the null space takes in (0 where ``X`` fills the space). A
+    float; 0.0 below the double range.
 
     Examples
     --------
@@ -332,11 +357,15 @@ def separation_ratio(ar: Arithmetic, R, X, solve=None, rng=None) -> float:
     >>> X = null_space(ar, R, 1)
     >>> print(f"{separation_ratio(ar, R, X):.3g}")
     1e-27
+    >>> rod = np.array([[ar.number(0), ar.number(1)], [ar.number("1e-25"), ar.number(0)]])
+    >>> X = null_space(ar, rod, 1)                       # e1: rod @ e1 = (0, 1e-25)
+    >>> print(f"{separation_ratio(ar, rod, X):.3g}", abs(float(X[1, 0])) < 1e-50)
+    1e-25 True
     """
     n, m = X.shape
     if m >= n:
         return 0.0
-    solve = solve or solver(ar, R)
+    solve, adjoint = solvers or (solver(ar, R), solver(ar, R, adjoint=True))
     rng = rng or random.Random(20240607)
     residual = max(_sqrt(ar, _norm2(R @ X[:, c])) for c in range(m))
     Xh = _conj(ar, X).T
@@ -353,10 +382,10 @@ def separation_ratio(ar: Arithmetic, R, X, solve=None, rng=None) -> float:
         size = _sqrt(ar, _norm2(x))
         if not size > 0:
             return 0.0
-        y = deflate(solve((x / size)[:, None])[:, 0])
-        growth, x = _sqrt(ar, _norm2(y)), y
-    # growth is |R^-1| on the complement: 1 / sigma_(m+1)
-    return float(residual * growth)
+        x = deflate(solve(adjoint((x / size)[:, None]))[:, 0])
+        growth = _sqrt(ar, _norm2(x))
+    # growth is |(R^H R)^-1| on the complement: 1 / sigma_(m+1)**2
+    return float(residual * _sqrt(ar, growth)) if growth > 0 else 0.0
 
 
 def _svd_null_space(ar: Arithmetic, R, mult: int):
