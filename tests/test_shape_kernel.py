@@ -281,9 +281,11 @@ def test_energy_of_short_segments_closed_form_against_quadrature(monkeypatch):
 @pytest.mark.parametrize("complex_", [False, True], ids=["real", "complex"])
 def test_solver_in_arb_and_in_mpmath_agree_with_the_exact_solve(complex_, monkeypatch):
     """``linalg.solver`` on a 20 x 20 matrix of Gaussian rationals (Arb's LU where
-    python-flint is installed, mpmath's without): the exact solution from SymPy's
-    elimination over QQ or QQ<I> to 55 digits either way; an exactly singular matrix
-    (Arb: NaN) falls back to the guarded LU, whose solves stay finite."""
+    python-flint is installed, mpmath's without), for ``A`` and for its conjugate
+    transpose (``adjoint``: Arb's on ``A^H``, mpmath's from ``A``'s own factors): the exact
+    solutions from SymPy's elimination over QQ or QQ<I> to 55 digits every way; an
+    exactly singular matrix (Arb: NaN) falls back to the guarded LU, whose solves stay
+    finite."""
     import random
     import sys
 
@@ -305,14 +307,18 @@ def test_solver_in_arb_and_in_mpmath_agree_with_the_exact_solve(complex_, monkey
         return np.array([[ar.ctx.mpc(ar.exact(sp.re(v)), ar.exact(sp.im(v))) for v in row]
                          for row in M.tolist()], dtype=object)
 
+    # the adjoint system A^H x = B, exactly: the conjugate transpose over the same domain
+    exact_adjoint = DomainMatrix.from_Matrix(A.H).convert_to(domain).lu_solve(
+        DomainMatrix.from_Matrix(B).convert_to(domain)).to_Matrix()
     for without_flint in (False, True):
         if without_flint:
             monkeypatch.setitem(sys.modules, "flint", None)
-        X = linalg.solver(ar, as_mp(A))(as_mp(B))
-        with mpmath.workdps(70):
-            for got, want in zip(X.reshape(-1), exact):
-                want = mpmath.mpc(sp.N(sp.re(want), 70), sp.N(sp.im(want), 70))
-                assert abs(mpmath.mpc(got) - want) < mpmath.mpf(10) ** -55 * abs(want)
+        for adjoint, reference in ((False, exact), (True, exact_adjoint)):
+            X = linalg.solver(ar, as_mp(A), adjoint=adjoint)(as_mp(B))
+            with mpmath.workdps(70):
+                for got, want in zip(X.reshape(-1), reference):
+                    want = mpmath.mpc(sp.N(sp.re(want), 70), sp.N(sp.im(want), 70))
+                    assert abs(mpmath.mpc(got) - want) < mpmath.mpf(10) ** -55 * abs(want)
     monkeypatch.undo()
     # (i j + 1: rank 2, exact zero pivots in any elimination)
     singular = as_mp(sp.Matrix(n, n, lambda i, j: i * j + 1))
