@@ -48,13 +48,14 @@ from fractions import Fraction
 
 import numpy as np
 import sympy as sp
+from mpmath.libmp import mpf_pos
 
 from ..assembly import Interval, Layout, state_rows
 from ..deadline import check as check_time
 from ..elements.base import LAM
 from ..errors import ComputationError
 from ..limits import MAX_PIECES
-from .arith import DOUBLE, Arithmetic, Ball, Batch, ball_available, memo
+from .arith import DOUBLE, Arithmetic, Ball, Batch, _mpf_of, ball_available, memo
 from .linalg import det
 from .segments import cut_tables, family_matrices, kind_order, kind_tables
 from .segments import kind as segment_kind
@@ -377,7 +378,23 @@ def convert(ar: Arithmetic, target: Arithmetic, x):
     if isinstance(target, Batch):
         z = ar.to_complex(x)
         return z if ar.is_complex(x) else z.real
+    if isinstance(ar, Ball) and getattr(target, "name", None) == "mp":
+        return _midpoints(ar, target, x)
     return np.frompyfunc(lambda v: target.number(ar.to_mpmath(v)), 1, 1)(x)
+
+
+def _midpoints(ar: Ball, target: Arithmetic, x):
+    """Balls' midpoints as numbers of the mpmath arithmetic ``target``, rounded once to its
+    precision, as ``target.number`` rounds them (without a global mpmath number between:
+    the shapes of the 20-span beam convert R, 154 x 154, twice a shape)."""
+    acb, ctx, prec = ar.flint.acb, target.ctx, target.prec
+
+    def mid(v):
+        if isinstance(v, acb):
+            return ctx.make_mpc((mpf_pos(_mpf_of(v.real.mid()), prec, "n"),
+                                 mpf_pos(_mpf_of(v.imag.mid()), prec, "n")))
+        return ctx.make_mpf(mpf_pos(_mpf_of(v.mid()), prec, "n"))
+    return np.frompyfunc(mid, 1, 1)(x)
 
 
 class Sampling:
