@@ -28,7 +28,7 @@ import numpy as np
 import scipy.sparse.linalg
 
 from . import sparse_fe
-from .fe_compare import CASES, COUNT, TOLERANCE, coarsest_mesh, reference
+from .fe_compare import CASES, COUNT, TOLERANCE, best_seconds, coarsest_mesh, reference
 from .models import from_scratch
 
 __all__ = ["run", "NAMES"]
@@ -50,15 +50,6 @@ def fe_shapes(fe, n: int) -> tuple:
     return np.sqrt(np.abs(values)), vectors
 
 
-def _best(fn, repeat: int) -> float:
-    best = np.inf
-    for _ in range(repeat):
-        start = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - start)
-    return best
-
-
 def measure(name: str, progress=print, repeat: int = REPEAT) -> dict:
     """One case: symtmm's shapes and the FE's eigenvectors, timed in turns."""
     from symtmm.modes import mode_shapes
@@ -78,8 +69,8 @@ def measure(name: str, progress=print, repeat: int = REPEAT) -> dict:
         seconds = time.perf_counter() - start
         if seconds < best:
             best, shapes = seconds, modes.seconds
-        best_fe = min(best_fe, _best(lambda: fe_shapes(fe, n), 1))
-    best_fe = min(best_fe, _best(lambda: fe_shapes(fe, n), repeat))
+        best_fe = min(best_fe, best_seconds(lambda: fe_shapes(fe, n), 1))
+    best_fe = min(best_fe, best_seconds(lambda: fe_shapes(fe, n), repeat))
     return dict(name=name, title=title, beams=len(model.beams), shapes=len(modes),
                 symtmm=dict(seconds=best, shapes_seconds=shapes),
                 fe=dict(elements_per_beam=n, dofs=sparse_fe.dof_count(fe, n), seconds=best_fe),
