@@ -118,6 +118,31 @@ def test_pieces_of_every_kind_are_the_exact_matrices(lam):
             assert np.max(np.abs(got - ref)) < 1e-13 * np.max(np.abs(ref)), (k, length)
 
 
+@pytest.mark.parametrize("arith", ["double", "mp"])
+def test_pieces_of_many_kinds_in_one_table_are_the_exact_matrices(arith):
+    # cut_tables with a kind per length (the samples of a shape, one call per family)
+    from symtmm.numeric.segments import cut_tables, family_matrices
+    plan = TransferPlan(PIECES)
+    ar = DOUBLE if arith == "double" else MP(200)
+    lam = R(-3, 2) + 4 * sp.I
+    lam2 = ar.array([ar.number(complex(sp.N(lam**2, 60)))])
+    families: dict = {}
+    for k, (family, _) in enumerate(plan.kinds):
+        families.setdefault(family, []).append(k)
+    assert sorted(families) == ["eb", "theory"] and len(families["eb"]) >= 2
+    for family, ks in families.items():
+        pieces = [(k, length) for length in (R(1, 7), R(1, 2), R(2, 3)) for k in ks[::-1]]
+        with ar:
+            table = cut_tables(ar, plan.kinds, plan.kind_tables(ar), [k for k, _ in pieces],
+                               ar.array([ar.exact(v) for _, v in pieces]))
+            U = family_matrices(ar, [(family, table)], lam2)[0][0]
+        for q, (k, length) in enumerate(pieces):
+            exact = plan.kind_segments[k].with_length(length).transfer_matrix(lam)
+            ref = np.array(sp.N(exact, 30).tolist(), dtype=complex)
+            got = ar.to_complex(U[q])
+            assert np.max(np.abs(got - ref)) < 1e-12 * np.max(np.abs(ref)), (family, k, length)
+
+
 # -- precision stays local ------------------------------------------------------------------
 
 def pinned_pinned_eigenvalue(digits):

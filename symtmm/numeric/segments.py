@@ -618,17 +618,29 @@ def kind_tables(ar: Arithmetic, kinds) -> list:
     return out
 
 
-def cut_tables(ar: Arithmetic, kinds, tables, k: int, lengths) -> dict:
+def cut_tables(ar: Arithmetic, kinds, tables, k, lengths) -> dict:
     """The constants of 4-state kind ``k`` of ``kinds`` cut to each of ``lengths`` (an
     array of numbers of ``ar``): one segment per length, for :func:`family_matrices`.
 
+    ``k`` may also be a sequence, the kind of each length (all of one family): the
+    pieces of many kinds in one table, evaluated in one call (the samples of a shape).
     ``tables`` are the kinds' own (:func:`kind_tables`); only the length and what
     scales with it change.
     """
-    family = kinds[k][0]
-    j = sum(f == family for f, _ in kinds[:k])          # its place in its family
-    one = {name: column[j] for name, column in dict(tables)[family].items()}
-    out = {name: ar.array([value] * len(lengths)) for name, value in one.items()}
+    many = not isinstance(k, (int, np.integer))
+    ks = list(k) if many else [k]
+    family = kinds[ks[0]][0]
+    place = np.cumsum([f == family for f, _ in kinds]) - 1     # each kind in its family
+    if any(kinds[i][0] != family for i in ks):
+        raise ValueError("cut_tables: the kinds of one table must be of one family")
+    columns = dict(tables)[family]
+    if many:
+        at = place[ks]
+        one = {name: column[at] for name, column in columns.items()}
+        out = dict(one)
+    else:
+        one = {name: column[place[k]] for name, column in columns.items()}
+        out = {name: ar.array([value] * len(lengths)) for name, value in one.items()}
     out["l"] = lengths
     r = lengths / one["l"]
     if family == "eb":

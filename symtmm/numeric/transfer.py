@@ -492,6 +492,9 @@ class Sampling:
                 inside.setdefault(i, {}).setdefault(a, []).append((slot, b))
         self.inside = {i: [(pos, seg, items) for (pos, seg), items in groups.items()]
                        for i, groups in inside.items()}
+        #: per segment with samples inside and number of anchors: their anchors and the
+        #: lengths left (:func:`_inside`), the same at every eigenvalue of that number
+        self.splits: dict = {}
 
     def __len__(self):
         return len(self.slots)
@@ -544,7 +547,12 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
             lam2 = lam * lam
     lam2_c = ar.to_complex(lam2)
     lam2_in = convert(ar, inner, lam2)
+    lam_in = None if lam is None else convert(ar, inner, lam)
     out: dict = {}
+    # the last short steps of 4-state pieces in double precision wait for the end of the
+    # walk and go in one call per family (one call a segment cost the 20-level chain's
+    # shapes 640 small evaluations each, three quarters of their time)
+    pending = [] if isinstance(inner, Batch) else None
 
     def watch(i, before, after):
         for slot, lvl, when in sampling.ends.get(i, ()):
@@ -556,61 +564,104 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
             _inside(plan, ar, inner, k, seg, lam, lam2, lam2_c, lam2_in,
                     before[:, block(levels), :], items, out,
                     None if isinstance(levels, int) else
-                    [levels.index(sampling.slots[slot][0]) for slot, _ in items])
+                    [levels.index(sampling.slots[slot][0]) for slot, _ in items],
+                    pending, sampling.splits.setdefault((i, pos, inner.key), {}))
         if observe is not None:
             observe(i, before, after)
 
     E = propagate(plan, ar, lam, lam2, start, watch)
+    _take_pending(plan, ar, inner, pending, lam2_in, lam_in, out)
     if not len(sampling):
         return E, inner.zeros((E.shape[0], 0, 4, E.shape[2]))
     return E, np.stack([out[n] for n in range(len(sampling))], axis=1)
 
 
 def _inside(plan, ar, inner, k, seg, lam, lam2, lam2_c, lam2_in, Z0, items, out,
-            positions=None):
+            positions=None, pending=None, splits=None):
     """States at points strictly inside one segment (kind ``k``) from its start ``Z0``.
 
     ``positions``: for beams joined by layers, each item's beam among them (its state is
-    picked from the coupled one)."""
+    picked from the coupled one). ``pending``: where given, the last short steps of a
+    4-state kind are not taken but kept there, the states as they are, for
+    :func:`_take_pending` to convert and take all at once. ``splits``: a dict that keeps
+    the anchors of this segment's samples between eigenvalues (exact fractions split
+    once per number of anchors, not once a shape)."""
     n = max(1, math.ceil(float(np.max(seg.wave_number(lam2_c), initial=0.0)) * float(seg.l)))
-    groups: dict = {}
-    for q, (slot, f) in enumerate(items):
-        j, r = _split(f, n)
-        groups.setdefault(j, []).append((slot, r, None if positions is None else positions[q]))
-    anchors = sorted(groups)
-    length = _length(plan.kinds[k])
+    groups = None if splits is None else splits.get(n)
+    if groups is None:
+        length = _length(plan.kinds[k])
+        l_in = inner.exact(length)
+        groups = {}
+        for q, (slot, f) in enumerate(items):
+            j, r = _split(f, n)
+            groups.setdefault(j, []).append(
+                (slot, None if r == 0 else _number(inner, r) * l_in,
+                 None if positions is None else positions[q]))
+        groups = sorted(groups.items())
+        if splits is not None:
+            splits[n] = groups
     lam_in = None if lam is None else convert(ar, inner, lam)
     with ar:
-        far = [j for j in anchors if j > 0]
+        far = [j for j, _ in groups if j > 0]
         reached = {0: Z0}
         if far:
-            l_ar = ar.exact(length)
+            l_ar = ar.exact(_length(plan.kinds[k]))
             U = plan.piece_matrices(ar, k, lam2, ar.array([_number(ar, Fraction(j, n)) * l_ar
                                                             for j in far]), lam)
             for q, j in enumerate(far):
                 reached[j] = U[:, q] @ Z0
-    l_in = inner.exact(length)
     N = Z0.shape[1] // 4
 
     def own(Z, p):
         # the sample's beam's [Y, Theta, M, Q] from a coupled state (variable by variable)
         return Z if p is None else Z[..., [v * N + p for v in range(4)], :]
+    family = plan.kinds[k][0]
+    if pending is not None and family != "coupled":
+        for j, members in groups:
+            for slot, h, _ in members:
+                pending.append((slot, k, h, reached[j]))
+        return
     slots, lengths, sources = [], [], []
-    for j in anchors:
+    for j, members in groups:
         Zj = convert(ar, inner, reached[j])
-        for slot, r, p in groups[j]:
-            if r == 0:
+        for slot, h, p in members:
+            if h is None:
                 out[slot] = own(Zj, p)
             else:
                 slots.append((slot, p))
-                lengths.append(_number(inner, r) * l_in)
+                lengths.append(h)
                 sources.append(Zj)
-    if slots:
+    if not slots:
+        return
+    with inner:
+        U = plan.piece_matrices(inner, k, lam2_in, inner.array(lengths), lam_in)
+        states = U @ np.stack(sources, axis=1)
+    for q, (slot, p) in enumerate(slots):
+        out[slot] = own(states[:, q], p)
+
+
+def _take_pending(plan, ar, inner, pending, lam2_in, lam_in, out):
+    """The samples :func:`_inside` kept, ``(slot, kind, length or None, state)``: the
+    states converted to ``inner`` in one call, then one evaluation of the last short
+    steps per family of kinds."""
+    if not pending:
+        return
+    states = convert(ar, inner, np.stack([z for *_, z in pending], axis=1))
+    families: dict = {}
+    for q, (slot, k, h, _) in enumerate(pending):
+        if h is None:
+            out[slot] = states[:, q]
+        else:
+            families.setdefault(plan.kinds[k][0], []).append((q, slot, k, h))
+    for family, group in families.items():
         with inner:
-            U = plan.piece_matrices(inner, k, lam2_in, inner.array(lengths), lam_in)
-            states = U @ np.stack(sources, axis=1)
-        for q, (slot, p) in enumerate(slots):
-            out[slot] = own(states[:, q], p)
+            tables = [(family, cut_tables(inner, plan.kinds, plan.kind_tables(inner),
+                                          [k for _, _, k, _ in group],
+                                          inner.array([h for *_, h in group])))]
+            U = family_matrices(inner, tables, lam2_in, lam_in)[0]
+            moved = U @ states[:, [q for q, *_ in group]]
+        for c, (_, slot, _, _) in enumerate(group):
+            out[slot] = moved[:, c]
 
 
 # -- double precision, stable at any mode ---------------------------------------------------
