@@ -218,6 +218,63 @@ def test_null_space_spans_the_exact_one():
         linalg.null_space(ar, _mp_matrix(ar, M), 6)
 
 
+def _householder(v):
+    """``I - 2 v v^H / (v^H v)``: unitary (an mpmath matrix at the working precision)."""
+    v = mpmath.matrix(v)
+    return mpmath.eye(len(v)) - 2 * v * v.H / (v.H * v)[0]
+
+
+def _arithmetics():
+    yield "mp", MP(200)
+    if ball_available():
+        yield "ball", Ball(200)
+
+
+@pytest.mark.parametrize("kind", ["real", "complex"])
+@pytest.mark.parametrize("flint", ["flint", "no flint"])
+def test_null_space_of_a_large_matrix_and_its_separation(kind, flint, monkeypatch):
+    # R = H1 diag(s) H2, unitary Householder factors (at 80 digits, R rounded once to the
+    # arithmetic's 60): its smallest singular values are s[-2:], their right singular
+    # vectors the last columns of H2^H. 20 rows take Arb's matrices where python-flint is
+    # installed (linalg.ARB_SOLVE_SIZE), mpmath's LU else.
+    from symtmm.numeric import arb_null
+    if flint == "no flint":
+        monkeypatch.setattr(arb_null, "applies", lambda ar, R: False)
+    elif not ball_available():
+        pytest.skip("python-flint is not installed")
+    n = 20
+    assert n >= linalg.ARB_SOLVE_SIZE
+    im = 1j if kind == "complex" else 0
+    with mpmath.workdps(80):
+        H1 = _householder([(i % 5) - 2 + im * (i % 3) for i in range(n)])
+        H2 = _householder([(i % 7) - 3 + im * ((i + 1) % 2) for i in range(n)])
+        J = mpmath.eye(n)                           # swaps the last two rows
+        J[n - 2, n - 2] = J[n - 1, n - 1] = 0
+        J[n - 2, n - 1] = J[n - 1, n - 2] = 1
+        for mult, small, left in ((1, ["1e-3", "1e-30"], H1), (2, ["1e-3", "1e-25", "1e-30"], H1),
+                                  (1, ["1e-3", "1e-30"], H2.H * J)):
+            # (the last: R = H2^H J S H2, whose R^-2 = H2^H S^-1 J S^-1 J H2 favours neither
+            # of the last two directions, as a rod's [[0, 1], [t, 0]]: R^H R must be used)
+            s = [1 + mpmath.mpf(i) / n for i in range(n - len(small))] + \
+                [mpmath.mpf(v) for v in small]
+            R = left * mpmath.diag(s) * H2
+            E = np.array(H2.H[:, n - mult:].tolist(), dtype=complex)   # the wanted space
+            for name, ar in _arithmetics():
+                if name == "ball" and flint == "no flint":
+                    continue
+                with ar:
+                    M = np.array([[ar.number(R[i, j]) for j in range(n)] for i in range(n)],
+                                 dtype=object)
+                    X, ratio = linalg.null_space(ar, M, mult, separation=True)
+                Xc = np.array([[complex(ar.to_mpmath(v)) for v in row] for row in X])
+                # the same space: the projectors agree, and X is orthonormal
+                assert np.abs(Xc.conj().T @ Xc - np.eye(mult)).max() < 1e-14, name
+                assert np.abs(Xc @ Xc.conj().T - E @ E.conj().T).max() < 1e-14, name
+                # sigma_m / sigma_(m+1)
+                want = float(s[-1] / s[-2]) if mult == 1 else float(s[-2] / s[-3])
+                assert want / 2 < ratio < 2 * want, (name, mult, ratio)
+
+
 def test_lu_solve_cholesky_and_triangular_inverse_are_exact_to_working_precision():
     A = sp.Matrix([[4, -2, 1], [3, 6, -4], [2, 1, 8]])
     B = sp.Matrix([[1, 0], [R(1, 3), 2], [-1, R(5, 7)]])

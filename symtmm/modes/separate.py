@@ -83,9 +83,12 @@ def null_space_apart(tp, eigenvalue, digits: int, real: bool, working_digits) ->
     for _ in range(ROUNDS):
         dps = working_digits(tp, value, max(digits, known))
         ar = MP.from_digits(dps)
-        R = transfer.boundary_at(tp, ar, value, real)
-        with ar:
-            V, ratio = null_space(ar, R, mult, separation=True)
+        # (R and its null space where it was walked: Arb's matrices, where python-flint
+        # is installed; only the null vectors come back to mpmath)
+        walk, R = transfer.boundary_walked(tp, ar, value, real)
+        with walk:
+            V, ratio = null_space(walk, R, mult, separation=True)
+        V = transfer.convert(walk, ar, V)
         if ratio <= target or mult > 1 or value == 0:
             return dps, ar, V, value
         # the share falls with the estimate's error: as many more digits as it is above

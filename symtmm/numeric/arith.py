@@ -679,6 +679,12 @@ class Ball(Arithmetic):
             # (arrays hold one kind of number: one sum over the array, no call per element)
             return np.asarray(x, dtype=object) + (flint.acb(r, r) if self.is_complex(x) else r)
 
+    def to_complex(self, x) -> np.ndarray:
+        # (Arb rounds a midpoint to the nearest double as mpmath does, without a global
+        # mpmath number between: a shape's samples convert tens of thousands of states)
+        flat = np.asarray(x, dtype=object).reshape(-1)
+        return np.fromiter((complex(v) for v in flat), complex, flat.size).reshape(np.shape(x))
+
     def to_mpmath(self, x):
         flint = self.flint
         if isinstance(x, flint.acb):

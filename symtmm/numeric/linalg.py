@@ -38,6 +38,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import ComputationError
+from . import arb_null
 from .arith import FLINT_LOCK, Arithmetic
 
 __all__ = ["det", "lu", "lu_solve", "solver", "null_space", "separation_ratio", "orthonormal",
@@ -224,6 +225,14 @@ def null_space(ar: Arithmetic, R, mult: int, separation: bool = False):
         return ar.zeros((0, mult))
     if mult > n:
         raise ComputationError(f"multiplicity {mult} exceeds the size {n} of R")
+    # (in Arb's matrices where python-flint is installed: for balls always, for mpmath
+    # numbers from the size where converting them costs less than Python's solves)
+    if (ar.name == "ball" or n >= ARB_SOLVE_SIZE) and arb_null.applies(ar, R):
+        got = arb_null.null_space(ar, R, mult, separation)
+        if got is not None:
+            return got
+    if ar.name == "ball":
+        return _null_space_of_midpoints(ar, R, mult, separation)
     solve, adjoint = solver(ar, R), solver(ar, R, adjoint=True)
     rng = random.Random(20240607)          # fixed: the shapes are reproducible
     X = ar.array([ar.exact(sp.Rational(rng.randrange(-2**20, 2**20), 2**20))
@@ -236,6 +245,18 @@ def null_space(ar: Arithmetic, R, mult: int, separation: bool = False):
     if separation:
         return X, separation_ratio(ar, R, X, (solve, adjoint), rng)
     return X
+
+
+def _null_space_of_midpoints(ar: Arithmetic, R, mult: int, separation: bool):
+    """:func:`null_space` of balls' midpoints in mpmath at their precision, the result as
+    exact balls (where Arb's matrices broke down: an exact zero pivot, a collapse)."""
+    from .arith import MP
+    mp = MP(ar.prec)
+    with mp:
+        got = null_space(mp, arb_null.midpoints(mp, R), mult, separation)
+    X = got[0] if separation else got
+    X = np.frompyfunc(ar.number, 1, 1)(X)
+    return (X, got[1]) if separation else X
 
 
 #: From this size of an mpmath matrix on, :func:`solver` hands the solves to Arb's LU where

@@ -43,25 +43,26 @@ True
 
 from __future__ import annotations
 
+import bisect
 import math
 from fractions import Fraction
 
 import numpy as np
 import sympy as sp
-from mpmath.libmp import mpf_pos
 
 from ..assembly import Interval, Layout, state_rows
 from ..deadline import check as check_time
 from ..elements.base import LAM
 from ..errors import ComputationError
 from ..limits import MAX_PIECES
-from .arith import DOUBLE, Arithmetic, Ball, Batch, _mpf_of, ball_available, memo
+from .arb_null import midpoints
+from .arith import DOUBLE, Arithmetic, Ball, Batch, ball_available, memo
 from .linalg import det
 from .segments import cut_tables, family_matrices, kind_order, kind_tables
 from .segments import kind as segment_kind
 
-__all__ = ["TransferPlan", "propagate", "boundary", "delta", "log_delta", "NU_STEP",
-           "digits_lost", "Sampling", "sample", "convert"]
+__all__ = ["TransferPlan", "propagate", "boundary", "boundary_at", "boundary_walked", "delta",
+           "log_delta", "NU_STEP", "digits_lost", "Sampling", "sample", "convert"]
 
 #: Largest ``|beta| l`` of one step of :func:`log_delta`: the columns grow by at most
 #: ``exp(NU_STEP)`` between two re-orthonormalisations.
@@ -302,11 +303,17 @@ def boundary_at(plan: TransferPlan, ar: Arithmetic, value, real: bool) -> np.nda
     (Arb rounds a midpoint as floating point does, the radius apart), in C, eight times
     faster on the 20-level chain (0.69 s -> 0.08 s at 75 digits). Otherwise in ``ar``.
     """
+    walk, R = boundary_walked(plan, ar, value, real)
+    return convert(walk, ar, R)
+
+
+def boundary_walked(plan: TransferPlan, ar: Arithmetic, value, real: bool) -> tuple:
+    """``(walk, R)``: :func:`boundary_at`'s ``R`` as numbers of the arithmetic it was
+    walked in (:func:`walk_arithmetic`), for work that goes on there."""
     walk = walk_arithmetic(ar)
     lam, lam2 = point(walk, value, real)
     with walk:
-        R = boundary(plan, walk, lam, lam2)[0]
-    return convert(walk, ar, R)
+        return walk, boundary(plan, walk, lam, lam2)[0]
 
 
 def delta(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None, real: bool = False):
@@ -385,16 +392,8 @@ def convert(ar: Arithmetic, target: Arithmetic, x):
 
 def _midpoints(ar: Ball, target: Arithmetic, x):
     """Balls' midpoints as numbers of the mpmath arithmetic ``target``, rounded once to its
-    precision, as ``target.number`` rounds them (without a global mpmath number between:
-    the shapes of the 20-span beam convert R, 154 x 154, twice a shape)."""
-    acb, ctx, prec = ar.flint.acb, target.ctx, target.prec
-
-    def mid(v):
-        if isinstance(v, acb):
-            return ctx.make_mpc((mpf_pos(_mpf_of(v.real.mid()), prec, "n"),
-                                 mpf_pos(_mpf_of(v.imag.mid()), prec, "n")))
-        return ctx.make_mpf(mpf_pos(_mpf_of(v.mid()), prec, "n"))
-    return np.frompyfunc(mid, 1, 1)(x)
+    precision, as ``target.number`` rounds them (without a global mpmath number between)."""
+    return midpoints(target, x)
 
 
 class Sampling:
@@ -437,6 +436,12 @@ class Sampling:
         # (rational coordinates compared as Fractions: SymPy's comparisons of every sample
         # with every segment took 0.5 s of the 20-level chain's 101 points a beam)
         exact = [[_rational(x) for x, _ in level] for level in points]
+        # (per beam, its rational points sorted: an interval looks up the ones it holds by
+        # bisection, where every interval of a 20-level chain went through every point)
+        ordered = [sorted((fx, n) for n, fx in enumerate(level) if fx is not None)
+                   for level in exact]
+        keys = [[fx for fx, _ in level] for level in ordered]
+        others = [[n for n, fx in enumerate(level) if fx is None] for level in exact]
         where: dict = {}
         segments = iter(plan.segments_of)
         for i, ((kind, items), step) in enumerate(zip(plan.steps, plan.layout.steps)):
@@ -446,7 +451,14 @@ class Sampling:
                 segs = next(segments)
                 for pos, (levels, _k) in enumerate(items):
                     for lvl in (levels,) if isinstance(levels, int) else levels:
-                        for n, (x, _side) in enumerate(points[lvl]):
+                        if fs is not None and fe is not None:
+                            lo = bisect.bisect_left(keys[lvl], fs)
+                            hi = bisect.bisect_right(keys[lvl], fe)
+                            candidates = [n for _, n in ordered[lvl][lo:hi]] + others[lvl]
+                        else:
+                            candidates = range(len(points[lvl]))
+                        for n in candidates:
+                            x = points[lvl][n][0]
                             fx = exact[lvl][n]
                             if fx is not None and fs is not None and fe is not None:
                                 if fx < fs or fx > fe:
