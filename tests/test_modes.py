@@ -78,6 +78,32 @@ def test_single_pinned_pinned_beam_is_a_sine():
             assert np.max(np.abs(sign * s[var] - expected[var])) < 1e-12 * scale, (n, var)
 
 
+
+@pytest.mark.parametrize("digits", [15, 40])
+def test_a_beam_cut_by_other_beams_springs_keeps_its_sine(digits):
+    # beam a is cut at the eight spring positions of b (and at a mass-free station of its
+    # own end), but nothing acts on it: its energy is summed over runs of pieces, and its
+    # shapes are still sqrt(2 / m L) sin(n pi x / L), mass-normalised
+    EI, m, L = 2.0, 3.0, 1.5
+    springs = tuple(Spring("b", "ground", x=f"{j}/{10}", k=50 + j) for j in range(1, 9))
+    model = Model((Beam("a", EI=2, m=3, L="3/2", left="pinned", right="pinned"),
+                   Beam("b", EI=1, m=1, L=1, left="clamped", right="free")), springs)
+    frequencies = [n**2 * math.pi**2 / L**2 * math.sqrt(EI / m) for n in range(1, 7)]
+    found = 0
+    for mode in mode_shapes(model, count=8, points=33, digits=digits):
+        omega = float(mode.eigenvalue.lam.imag)
+        n = [j for j, f in enumerate(frequencies, 1) if abs(omega / f - 1) < 1e-12]
+        if not n:
+            assert np.max(np.abs(mode.beams["a"].Y)) < 1e-12        # a mode of b alone
+            continue
+        found += 1
+        s, k = mode.beams["a"], n[0] * math.pi / L
+        expected = math.sqrt(2 / (m * L)) * np.sin(k * s.x)
+        sign = np.sign(np.dot(s.Y, expected))
+        assert np.max(np.abs(sign * s.Y - expected)) < 1e-12 * np.max(np.abs(expected)), n
+        assert np.max(np.abs(mode.beams["b"].Y)) < 1e-12
+    assert found == 5
+
 def test_high_mode_keeps_its_accuracy_at_the_far_end():
     # beta L = 12 pi: the transfer product loses about 16 digits, the shape must not
     model = Model((Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned"),))

@@ -12,7 +12,9 @@ walk (:func:`symtmm.numeric.transfer.propagate`):
 * an Euler–Bernoulli segment's integral has the closed form
   ``[F]/(4 kappa)``, ``kappa = beta**4``,
   ``F = x (kappa Y**2 - 2 Y' Y''' + Y''**2) + 3 Y Y''' - Y' Y''`` (from
-  ``Y'''' = kappa Y``), from the states at its two ends;
+  ``Y'''' = kappa Y``), from the states at its two ends; over a run of segments
+  of one beam with the same constants and no jump of its state between them
+  (the cuts of other beams' springs) the integrals telescope into one ``[F]``;
 * every other segment (and an Euler–Bernoulli one where ``kappa l**4`` is
   small, where the closed form would cancel) is integrated by Gauss–Legendre
   quadrature on pieces with ``|s| h <= 1``, with as many nodes as the digits
@@ -117,6 +119,8 @@ class Energy:
         self.digits = digits
         self.G = None
         self._levels: dict = {}
+        self._runs: dict = {}
+        self._beams = 4 * self.plan.layout.levels      # rows of the beams' states
 
     def _add(self, part, level: int):
         self.G = part if self.G is None else self.G + part
@@ -127,15 +131,35 @@ class Energy:
         if kind == "segments":
             for lvl, k in items:
                 if not isinstance(lvl, int):
+                    for level in lvl:
+                        self._close(level)
                     parts = coupled_gram(self.plan, self.ar, k, self.lam2, self.lam2_c,
                                          before[0, block(lvl), :], self.digits)
                     for level, part in zip(lvl, parts):
                         self._add(part, level)
                     continue
                 blk = slice(4 * lvl, 4 * lvl + 4)
-                self._add(segment_gram(self.plan, self.ar, k, self.lam2, self.lam2_c,
-                                       before[0, blk, :], after[0, blk, :], self.digits), lvl)
+                family, consts = self.plan.kinds[k]
+                if family != "eb":
+                    self._close(lvl)
+                    self._add(segment_gram(self.plan, self.ar, k, self.lam2, self.lam2_c,
+                                           before[0, blk, :], after[0, blk, :], self.digits),
+                              lvl)
+                    continue
+                # an Euler-Bernoulli run: its segments' integrals telescope (see _Run)
+                key = (consts[0], consts[1], consts[3])
+                run = self._runs.get(lvl)
+                if run is not None and run.key != key:
+                    self._close(lvl)
+                    run = None
+                if run is None:
+                    run = self._runs[lvl] = _Run(key)
+                # (``after`` is the walk's own array, changed in place as it goes on)
+                run.extend(self.ar, k, consts[2], before[0, blk, :], after[0, blk, :].copy())
             return
+        # the state of a beam jumps here: its run ends
+        for level in sorted({row // 4 for row, _, _ in items if row < self._beams}):
+            self._close(level)
         ar = self.ar
         # lumped masses: d^T M d (displacements do not jump at the station)
         for disp, inertia in self.inertia.stations.get(i, ()):
@@ -143,9 +167,19 @@ class Energy:
             D = before[0, disp, :]
             self._add(D.T @ Mi @ D, disp[0] // 4)
 
+    def _close(self, level: int):
+        run = self._runs.pop(level, None)
+        if run is not None:
+            self._add(run.gram(self.plan, self.ar, self.lam2, self.lam2_c, self.digits), level)
+
+    def _finish(self):
+        for level in sorted(self._runs):
+            self._close(level)
+
     def gram(self, start):
         """The Gram matrix, the bodies' energy added from the left state ``start``
         (``size x k``: the bodies' unknowns are constant along ``x``)."""
+        self._finish()
         G = self.G
         for part in self._bodies(start):
             G = G + part
@@ -154,6 +188,7 @@ class Energy:
     def parts(self, start) -> list:
         """The Gram matrix in parts that sum to :meth:`gram`: one per beam (its segments
         and the masses on it), then one per inertia of a body."""
+        self._finish()
         return [self._levels[lvl] for lvl in sorted(self._levels)] + self._bodies(start)
 
     def _bodies(self, start) -> list:
@@ -162,6 +197,58 @@ class Energy:
             v = sum(start[i, :] * ar.exact(c) for i, c in zip(indices, coefs))
             out.append(np.outer(v, v) * ar.exact(value))
         return out
+
+
+class _Run:
+    """Consecutive Euler–Bernoulli segments of one beam with the same ``EI``, ``m`` and
+    ``kw``, and no jump of its state between them (the cuts of other beams' springs).
+
+    ``F`` of the closed form (:func:`_bilinear_F`) has ``dF/dx = 4 kappa Y**2`` with the
+    state continuous, so the segments' integrals telescope: one ``[F]`` over the run
+    from its two end states, where a 20-level chain cut every beam at 40 points and
+    paid for each piece. Where the run is too short for the closed form it is summed
+    piece by piece (:func:`segment_gram`), as before.
+    """
+
+    __slots__ = ("end", "key", "kinds", "length", "starts")
+
+    def __init__(self, key):
+        self.key = key
+        self.kinds: list = []
+        self.starts: list = []
+        self.end = None
+        self.length = None
+
+    def extend(self, ar, k: int, length, Z0, Z1):
+        self.kinds.append(k)
+        self.starts.append(Z0)
+        self.end = Z1
+        piece = ar.exact(length)
+        self.length = piece if self.length is None else self.length + piece
+
+    def gram(self, plan, ar: Arithmetic, lam2, lam2_c: complex, digits: int):
+        EI, m, kw = (ar.exact(v) for v in self.key)
+        kappa = -(lam2[0] * m + kw) / EI
+        if len(self.kinds) > 1 and _closed_form_holds(ar, kappa, self.length, digits):
+            F1 = _bilinear_F(ar, self.length, kappa, EI, self.end)
+            F0 = _bilinear_F(ar, None, kappa, EI, self.starts[0])
+            return (F1 - F0) * (m / (4 * kappa))
+        ends = self.starts[1:] + [self.end]
+        out = None
+        for k, Z0, Z1 in zip(self.kinds, self.starts, ends):
+            part = segment_gram(plan, ar, k, lam2, lam2_c, Z0, Z1, digits)
+            out = part if out is None else out + part
+        return out
+
+
+def _closed_form_holds(ar: Arithmetic, kappa, length, digits: int) -> bool:
+    """Whether ``[F]/(4 kappa)`` over ``length`` keeps ``digits`` in ``ar``: it loses about
+    ``log10(1 / |kappa| l**4)`` digits to cancellation, which the walk's arithmetic may
+    hold beyond the integrals' own (the digits of a shape's walk are its cancellation's,
+    two to five times the shape's)."""
+    size = float(ar.upper(ar.array([kappa * length ** 4]))[0])
+    spare = ar.digits - digits - _CLOSED_FORM_GUARD
+    return size > 0 and size >= min(CLOSED_FORM_MIN, 10.0 ** -max(spare, 0))
 
 
 def _bilinear_F(ar, x, kappa, EI, Z):
@@ -194,14 +281,8 @@ def segment_gram(plan, ar: Arithmetic, k: int, lam2, lam2_c: complex, Z0, Z1, di
     if family == "eb":
         EI, m, length, kw = (ar.exact(v) for v in consts)
         kappa = -(lam2[0] * m + kw) / EI
-        l4 = length ** 4
-        size = float(ar.upper(ar.array([kappa * l4]))[0])
-        # the closed form loses about log10(1 / |kappa| l**4) digits: where the walk's
-        # arithmetic holds that many beyond the integrals' own (the digits of a shape's
-        # walk are its cancellation's, two to five times the shape's), it is still right,
-        # and quadrature on the short pieces of a chain cost two thirds of its shapes
-        spare = ar.digits - digits - _CLOSED_FORM_GUARD
-        if size > 0 and size >= min(CLOSED_FORM_MIN, 10.0 ** -max(spare, 0)):
+        # (quadrature on the short pieces of a chain cost two thirds of its shapes)
+        if _closed_form_holds(ar, kappa, length, digits):
             F1 = _bilinear_F(ar, length, kappa, EI, Z1)
             F0 = _bilinear_F(ar, None, kappa, EI, Z0)
             return (F1 - F0) * (m / (4 * kappa))
