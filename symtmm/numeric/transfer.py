@@ -614,14 +614,19 @@ def _inside(plan, ar, inner, k, seg, lam, lam2, lam2_c, lam2_in, Z0, items, out,
             splits[n] = groups
     lam_in = None if lam is None else convert(ar, inner, lam)
     with ar:
-        far = [j for j, _ in groups if j > 0]
+        far = {j for j, _ in groups if j > 0}
         reached = {0: Z0}
         if far:
+            # (anchor by anchor with the matrix of one step, l / n: one evaluation of the
+            # kind's functions where each anchor took its own; the rounding of up to n
+            # products is far inside the guard digits of the walk's arithmetic)
             l_ar = ar.exact(_length(plan.kinds[k]))
-            U = plan.piece_matrices(ar, k, lam2, ar.array([_number(ar, Fraction(j, n)) * l_ar
-                                                            for j in far]), lam)
-            for q, j in enumerate(far):
-                reached[j] = U[:, q] @ Z0
+            step = plan.piece_matrices(ar, k, lam2, ar.array([l_ar / n]), lam)[:, 0]
+            Z = Z0
+            for j in range(1, max(far) + 1):
+                Z = step @ Z
+                if j in far:
+                    reached[j] = Z
     N = Z0.shape[1] // 4
 
     def own(Z, p):
