@@ -14,6 +14,7 @@ References, independent of the code under test:
 from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -406,6 +407,35 @@ def test_solver_in_arb_and_in_mpmath_agree_with_the_exact_solve(complex_, monkey
     singular = as_mp(sp.Matrix(n, n, lambda i, j: i * j + 1))
     X = linalg.solver(ar, singular)(as_mp(B))
     assert all(ar.ctx.isfinite(v) for v in X.reshape(-1))
+
+
+@pytest.mark.skipif(not ball_available(), reason="needs python-flint")
+@pytest.mark.parametrize("name, value", [
+    ("rigid_body_on_beam", mpmath.mpc(0, 40.5)), ("kukla_rods", mpmath.mpc(0, 300.5)),
+    ("paper_ex4_damped", mpmath.mpc(-70, 170)), ("portal_frame", mpmath.mpc(0, 12.5)),
+    ("tuned_mass_damper", mpmath.mpc(-0.5, 20.5))])
+def test_the_walk_in_arb_matrices_is_the_walk_in_object_arrays(name, value):
+    """An unobserved walk of one point in balls keeps each beam's rows in one ``arb_mat``
+    (``transfer._propagate_in_arb_matrices``); an observer keeps the walk in numpy object
+    arrays. Both are enclosures of the same columns: they overlap entry by entry, and
+    their midpoints agree to the precision. (Rigid bodies and frames: rows beyond the
+    beams'; rods; damped jumps in ``lam``.)"""
+    from symtmm.modelfile import load
+    from symtmm.numeric import transfer
+    model = load(Path(__file__).resolve().parent.parent / "examples" / f"{name}.toml")
+    tp = TransferPlan(model)
+    ar = Ball(200)
+    real = not model.damped
+    with ar:
+        lam, lam2 = transfer.point(ar, value, real)
+        fast = transfer.propagate(tp, ar, lam, lam2)
+        slow = transfer.propagate(tp, ar, lam, lam2, observe=lambda *_: None)
+    assert fast.shape == slow.shape and tp.single_beams
+    scale = max(abs(complex(v.mid())) for v in slow.reshape(-1))
+    assert scale > 0
+    for a, b in zip(fast.reshape(-1), slow.reshape(-1)):
+        assert a.overlaps(b)
+        assert abs(complex(a.mid()) - complex(b.mid())) <= 1e-50 * scale
 
 
 @pytest.mark.skipif(not ball_available(), reason="needs python-flint")
