@@ -276,6 +276,25 @@ def test_null_space_of_a_large_matrix_and_its_separation(kind, flint, monkeypatc
                 assert want / 2 < ratio < 2 * want, (name, mult, ratio)
 
 
+@pytest.mark.skipif(not ball_available(), reason="needs python-flint")
+def test_an_exact_zero_pivot_in_arb_falls_back_to_the_guarded_lu():
+    # R = I with its last row replaced by e_0: exactly singular, its null vector e_(n-1);
+    # Arb's approximate LU meets an exact zero pivot (NaN), and the mpmath LU with its
+    # guard pivot serves instead, in balls and in mpmath numbers alike
+    from symtmm.numeric import arb_null
+    n = 20
+    for ar in (Ball(200), MP(200)):
+        with ar:
+            R = np.array([[ar.exact(int(i == j and i < n - 1)) for j in range(n)]
+                          for i in range(n)], dtype=object)
+            R[n - 1, 0] = ar.exact(1)
+            assert arb_null.null_space(ar, R, 1) is None
+            X, ratio = linalg.null_space(ar, R, 1, separation=True)
+        x = np.array([complex(ar.to_mpmath(v)) for v in X[:, 0]])
+        assert abs(abs(x[-1]) - 1) < 1e-50 and np.abs(x[:-1]).max() < 1e-50
+        assert ratio < 1e-50
+
+
 def test_lu_solve_cholesky_and_triangular_inverse_are_exact_to_working_precision():
     A = sp.Matrix([[4, -2, 1], [3, 6, -4], [2, 1, 8]])
     B = sp.Matrix([[1, 0], [R(1, 3), 2], [-1, R(5, 7)]])
