@@ -614,6 +614,7 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
     # walk and go in one call per family (one call a segment cost the 20-level chain's
     # shapes 640 small evaluations each, three quarters of their time)
     pending = [] if isinstance(inner, Batch) else None
+    anchors: dict = {}                  # per kind: its number of anchors at this lam
 
     def watch(i, before, after):
         for slot, lvl, when in sampling.ends.get(i, ()):
@@ -622,7 +623,10 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
             out[slot] = convert(ar, inner, state[:, 4 * lvl:4 * lvl + 4, :].copy())
         for pos, seg, items in sampling.inside.get(i, ()):
             levels, k = plan.steps[i][1][pos]
-            _inside(plan, ar, inner, k, seg, lam, lam2, lam2_c, lam2_in,
+            n = anchors.get(k)
+            if n is None:
+                n = anchors[k] = _anchors(seg, lam2_c)
+            _inside(plan, ar, inner, k, n, lam, lam2, lam2_in, lam_in,
                     before[:, block(levels), :], items, out,
                     None if isinstance(levels, int) else
                     [levels.index(sampling.slots[slot][0]) for slot, _ in items],
@@ -637,9 +641,17 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
     return E, np.stack([out[n] for n in range(len(sampling))], axis=1)
 
 
-def _inside(plan, ar, inner, k, seg, lam, lam2, lam2_c, lam2_in, Z0, items, out,
+def _anchors(seg, lam2_c) -> int:
+    """Anchors of a segment at ``lam**2 = lam2_c``: ``|s| h <= 1`` between them (at least
+    one, its start)."""
+    return max(1, math.ceil(float(np.max(seg.wave_number(lam2_c), initial=0.0))
+                            * float(seg.l)))
+
+
+def _inside(plan, ar, inner, k, n, lam, lam2, lam2_in, lam_in, Z0, items, out,
             positions=None, pending=None, splits=None):
-    """States at points strictly inside one segment (kind ``k``) from its start ``Z0``.
+    """States at points strictly inside one segment (kind ``k``, ``n`` anchors:
+    :func:`_anchors`) from its start ``Z0``.
 
     ``positions``: for beams joined by layers, each item's beam among them (its state is
     picked from the coupled one). ``pending``: where given, the last short steps of a
@@ -647,7 +659,6 @@ def _inside(plan, ar, inner, k, seg, lam, lam2, lam2_c, lam2_in, Z0, items, out,
     :func:`_take_pending` to convert and take all at once. ``splits``: a dict that keeps
     the anchors of this segment's samples between eigenvalues (exact fractions split
     once per number of anchors, not once a shape)."""
-    n = max(1, math.ceil(float(np.max(seg.wave_number(lam2_c), initial=0.0)) * float(seg.l)))
     groups = None if splits is None else splits.get(n)
     if groups is None:
         length = _length(plan.kinds[k])
@@ -661,11 +672,10 @@ def _inside(plan, ar, inner, k, seg, lam, lam2, lam2_c, lam2_in, Z0, items, out,
         groups = sorted(groups.items())
         if splits is not None:
             splits[n] = groups
-    lam_in = None if lam is None else convert(ar, inner, lam)
-    with ar:
-        far = {j for j, _ in groups if j > 0}
-        reached = {0: Z0}
-        if far:
+    far = {j for j, _ in groups if j > 0}
+    reached = {0: Z0}
+    if far:
+        with ar:
             # (anchor by anchor with the matrix of one step, l / n: one evaluation of the
             # kind's functions where each anchor took its own; the rounding of up to n
             # products is far inside the guard digits of the walk's arithmetic)
