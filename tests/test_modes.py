@@ -236,6 +236,49 @@ def test_agrees_with_finite_element_eigenvectors(examples_dir):
 
 # -- damped ---------------------------------------------------------------------------------------
 
+def test_a_damped_model_s_triple_root_has_one_shape_per_beam(examples_dir):
+    # example 4's beams are equal and pinned-pinned, its springs and dashpots at x = 1/4
+    # and 3/4: sin(4 pi x) has nodes there, so omega = 16 omega_1 (omega_1 = 146.2698,
+    # exactly by the example's EI) is a triple root, one beam moving alone in each shape
+    model = load(examples_dir / "paper_ex4_damped.toml")
+    with mpmath.workdps(40):
+        lam = mpmath.mpc(0, 16 * mpmath.mpf("146.2698"))
+    shapes = shapes_at(model, Eigenvalue(lam, 3, 15), points=33)
+    moved = []
+    for shape in shapes:
+        sizes = {name: np.max(np.abs(b.Y)) for name, b in shape.beams.items()}
+        name = max(sizes, key=sizes.get)
+        moved.append(name)
+        assert sizes[name] == pytest.approx(1.0)
+        assert all(v < 1e-12 for n, v in sizes.items() if n != name), sizes
+        b = shape.beams[name]
+        expected = np.sin(4 * math.pi * b.x)
+        Y = b.Y / b.Y[np.argmax(np.abs(expected))]                 # phase and scale
+        assert np.max(np.abs(Y - expected)) < 1e-12
+    assert sorted(moved) == ["b1", "b2", "b3"]
+
+
+def test_equal_damped_beams_shapes_are_the_same_shape_on_each_beam():
+    # three equal uncoupled pinned-free beams, each with the same dashpot: every damped
+    # eigenvalue is triple, and its shapes are one beam's, one per beam (a decoupled
+    # family: the same samples on each)
+    beams = tuple(Beam(n, EI=1, m=1, L=1, left="pinned", right="free") for n in "abc")
+    springs = tuple(Spring(n, "ground", x="3/5", k=4, c=2) for n in "abc")
+    modes = mode_shapes(Model(beams, springs), omega_max=30, points=21)
+    triple = [m for m in modes if m.eigenvalue.multiplicity == 3]
+    assert len(triple) >= 6
+    for start in range(0, len(triple), 3):
+        group = triple[start:start + 3]
+        on = []
+        for shape in group:
+            sizes = {n: np.max(np.abs(b.Y)) for n, b in shape.beams.items()}
+            name = max(sizes, key=sizes.get)
+            assert all(v < 1e-12 for n, v in sizes.items() if n != name), sizes
+            on.append((name, shape.beams[name].Y))
+        assert sorted(n for n, _ in on) == ["a", "b", "c"]
+        for _, Y in on[1:]:
+            assert np.max(np.abs(Y - on[0][1])) < 1e-12
+
 def test_damped_shape_satisfies_boundary_conditions_and_jumps():
     k, c = 50, 2
     model = Model((Beam("a", 1, 1, 1, left="pinned", right="pinned"),

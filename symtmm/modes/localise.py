@@ -34,7 +34,7 @@ import numpy as np
 
 from ..numeric.threads import one_blas_thread
 
-__all__ = ["localising_rotation"]
+__all__ = ["localising_rotation", "pivoted_basis"]
 
 
 def _off(parts, p: int, q: int) -> float:
@@ -99,3 +99,47 @@ def localising_rotation(parts, sweeps: int = 50, tol: float = 1e-15) -> np.ndarr
     order = sorted(range(m), key=lambda i: (int(np.argmax(weights[:, i])),
                                             -float(np.max(weights[:, i]))))
     return Q[:, order]
+
+
+def pivoted_basis(Y, tie: float = 1e-9):
+    """``P`` (``m x m``, complex) whose basis ``Y @ P`` has each shape equal to 1 at a
+    sample of its own and 0 at the other shapes' (``Y``: ``(samples, m)``, the
+    displacements of any basis of the space), or None where ``Y`` does not tell ``m``
+    directions apart.
+
+    The damped counterpart of :func:`localising_rotation`: complex shapes have no
+    mass-orthonormal basis to rotate, and a null space's basis is whatever its
+    iteration and rounding left. The samples are chosen greedily, each the one of
+    largest residual displacement once the chosen ones are projected out (the first
+    within ``tie`` of it, as the sign and phase of a shape are chosen: ties between
+    symmetric peaks would otherwise go to rounding). Shapes that each move one beam
+    (three equal uncoupled beams) come out so, and the basis no longer depends on the
+    null space's start.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> Y = np.array([[1, 1], [1, -1], [0.5, 0.5]], dtype=complex)   # (a + b), (a - b)
+    >>> P = pivoted_basis(Y)
+    >>> np.round(Y @ P, 12) + 0.0
+    array([[1. +0.j, 0. +0.j],
+           [0. +0.j, 1. +0.j],
+           [0.5+0.j, 0. +0.j]])
+    """
+    Y = np.asarray(Y, dtype=complex)
+    m = Y.shape[1]
+    residual = Y.copy()
+    pivots: list = []
+    first = None
+    for _ in range(m):
+        size = np.linalg.norm(residual, axis=1)
+        top = float(size.max()) if size.size else 0.0
+        if first is None:
+            first = top
+        if not top > 1e-8 * first:
+            return None
+        i = int(np.argmax(size >= top * (1 - tie)))
+        q = residual[i] / size[i]
+        residual = residual - np.outer(residual @ q.conj(), q)
+        pivots.append(i)
+    return np.linalg.inv(Y[pivots, :])

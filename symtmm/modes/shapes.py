@@ -36,7 +36,7 @@ from ..numeric import transfer
 from ..numeric.arith import DOUBLE, MP
 from ..numeric.linalg import null_space
 from ..results import Eigenvalue, Spectrum
-from .localise import localising_rotation
+from .localise import localising_rotation, pivoted_basis
 from .modeset import BeamShape, ModeSet, ModeShape
 from .nodal import nodal_displacements
 from .normalise import Energy, Inertia, complex_scaler, mass_orthonormaliser
@@ -171,9 +171,15 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
             if mult > 1:
                 parts = [transfer.convert(walk, ar, G) for G in energy.parts(start)]
     with ar:
-        T = mass_orthonormaliser(ar, gram) if real else complex_scaler(ar, states[:, 0, :])
-        if parts is not None:
-            T = T @ _localised(ar, T, parts)
+        if real:
+            T = mass_orthonormaliser(ar, gram)
+            if parts is not None:
+                T = T @ _localised(ar, T, parts)
+        else:
+            T = _pivoted(ar, states[:, 0, :]) if mult > 1 else None
+            Y = states[:, 0, :] if T is None else states[:, 0, :] @ ar.to_complex(T)
+            scale = complex_scaler(ar, Y)
+            T = scale if T is None else T @ scale
         E0 = E0 @ T
     states = states @ (ar.to_complex(T).real if real else ar.to_complex(T))
     per_level = states.reshape(len(model.beams), points, 4, mult)
@@ -213,6 +219,15 @@ def _localised(ar, T, parts):
                  (T.shape[1], T.shape[1]))
     # Q is orthogonal to double precision; a Cholesky step makes it so to the shape's
     return Q @ mass_orthonormaliser(ar, Q.T @ Q)
+
+
+def _pivoted(ar, Y):
+    """The basis change of a damped multiple eigenvalue's shapes to the one of
+    :func:`~symtmm.modes.localise.pivoted_basis` (numbers of ``ar``), or None."""
+    P = pivoted_basis(Y)
+    if P is None:
+        return None
+    return ar.array([ar.number(complex(v)) for v in P.reshape(-1)], P.shape)
 
 
 #: Digits a double-precision walk keeps before its cancellation (of 15.9, a guard).
@@ -425,4 +440,8 @@ def _mode_set(model, spectrum, count, points) -> ModeSet:
         notes.append("shapes of a multiple eigenvalue: the mass-orthonormal basis that "
                      "concentrates each one's kinetic energy on as few beams and bodies as "
                      "possible (a joint diagonalisation of their energies)")
+    if any(e.multiplicity > 1 for e in spectrum) and model.damped:
+        notes.append("shapes of a multiple damped eigenvalue: the basis in which each one "
+                     "is 1 at a sample of its own, where it moves most, and 0 at the "
+                     "others' (one beam each where the eigenvalue's beams move alone)")
     return ModeSet(tuple(modes), model, spectrum, time.perf_counter() - start, tuple(notes))
