@@ -435,7 +435,7 @@ def test_solver_in_arb_and_in_mpmath_agree_with_the_exact_solve(complex_, monkey
     ("tuned_mass_damper", mpmath.mpc(-0.5, 20.5))])
 def test_the_walk_in_arb_matrices_is_the_walk_in_object_arrays(name, value):
     """An unobserved walk of one point in balls keeps each beam's rows in one ``arb_mat``
-    (``transfer._propagate_in_arb_matrices``); an observer keeps the walk in numpy object
+    (``transfer._ArbBlocks``); an observer keeps the walk in numpy object
     arrays. Both are enclosures of the same columns: they overlap entry by entry, and
     their midpoints agree to the precision. (Rigid bodies and frames: rows beyond the
     beams'; rods; damped jumps in ``lam``.)"""

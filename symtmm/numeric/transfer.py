@@ -270,63 +270,87 @@ def propagate(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None, start=Non
             E = np.array(start, copy=True)
         U = kind_matrices(ar, plan.kind_tables(ar), lam2, lam) if plan.kinds else None
         values = plan.jump_values(ar, lam, lam2) if plan.coefficients else []
-        if observe is None and B == 1 and isinstance(ar, Ball) and plan.single_beams:
-            return _propagate_in_arb_matrices(plan, ar, U, values, E)
+        state = _ArbBlocks(plan, ar, E, U, values) if observe is None and B == 1 and \
+            isinstance(ar, Ball) and plan.single_beams else _Columns(E)
         for i, (kind, items) in enumerate(plan.steps):
-            before = E.copy() if observe is not None else None
+            before = state.E.copy() if observe is not None else None
             if kind == "segments":
                 for lvl, k in items:
-                    blk = block(lvl)
-                    E[:, blk, :] = U[k] @ E[:, blk, :]
+                    state.segment(lvl, k, U[k])
             else:
                 for row, col, j in items:
-                    E[:, row, :] = E[:, row, :] + values[j][:, None] * E[:, col, :]
+                    state.jump(row, col, values[j])
             if observe is not None:
-                observe(i, before, E)
-    return E
+                observe(i, before, state.E)
+        return state.array()
 
 
-def _propagate_in_arb_matrices(plan: TransferPlan, ar: Ball, U, values, E) -> np.ndarray:
-    """:func:`propagate` of one point in Arb balls, unobserved, each beam's four rows held as
-    one ``arb_mat`` (``acb_mat``) across the walk: a segment is one product in C where
-    numpy's object ``matmul`` calls Python per entry (4 x 4 by 4 x 40, the 20-level chain's
-    R walk: 19 against 85 microseconds), a jump a row picked and added back by products
-    with unit vectors. The same steps as :func:`propagate`'s, the same balls up to the
-    rounding of Arb's dot products; only the state's layout differs."""
-    flint = ar.flint
-    complex_ = ar.is_complex(E) or any(ar.is_complex(u) for u in (U or ())) or \
-        any(ar.is_complex(v) for v in values)
-    mat = flint.acb_mat if complex_ else flint.arb_mat
-    levels = plan.layout.levels
-    C = E.shape[2]
-    blocks = [mat(4, C, list(E[0, 4 * lvl:4 * lvl + 4, :].flat)) for lvl in range(levels)]
-    extras = {r: mat(1, C, list(E[0, r, :])) for r in range(4 * levels, plan.size)}
-    pick = [mat(1, 4, [int(i == j) for j in range(4)]) for i in range(4)]
-    put = [mat(4, 1, [int(i == j) for j in range(4)]) for i in range(4)]
-    kinds: dict = {}
+class _Columns:
+    """The walk's state as one array ``(B, size, k)`` of numbers of any arithmetic."""
 
-    def row(r):
-        return pick[r % 4] * blocks[r // 4] if r < 4 * levels else extras[r]
-    for kind, items in plan.steps:
-        if kind == "segments":
-            for lvl, k in items:
-                Uk = kinds.get(k)
-                if Uk is None:
-                    Uk = kinds[k] = mat(4, 4, list(U[k][0].flat))
-                blocks[lvl] = Uk * blocks[lvl]
-            continue
-        for r, c, j in items:
-            term = row(c) * values[j][0]
-            if r < 4 * levels:
-                blocks[r // 4] = blocks[r // 4] + put[r % 4] * term
-            else:
-                extras[r] = extras[r] + term
-    out = np.empty(E.shape, dtype=object)
-    for lvl, blk in enumerate(blocks):
-        out[0, 4 * lvl:4 * lvl + 4, :] = np.array(blk.entries(), dtype=object).reshape(4, C)
-    for r, vec in extras.items():
-        out[0, r, :] = vec.entries()
-    return out
+    def __init__(self, E):
+        self.E = E
+
+    def segment(self, lvl, k: int, Uk):
+        blk = block(lvl)
+        self.E[:, blk, :] = Uk @ self.E[:, blk, :]
+
+    def jump(self, row: int, col: int, value):
+        self.E[:, row, :] = self.E[:, row, :] + value[:, None] * self.E[:, col, :]
+
+    def array(self):
+        return self.E
+
+
+class _ArbBlocks:
+    """The state of one point's unobserved walk in Arb balls, each beam's four rows one
+    ``arb_mat`` (``acb_mat``), a body's row a ``1 x k`` one: a segment is one product in
+    C where numpy's object ``matmul`` calls Python per entry (4 x 4 by 4 x 40, the
+    20-level chain's R walk: 19 against 85 microseconds), a jump a row picked and added
+    back by products with unit vectors. The same steps as :class:`_Columns`, the same
+    balls up to the rounding of Arb's dot products."""
+
+    def __init__(self, plan: TransferPlan, ar: Ball, E, U, values):
+        flint = ar.flint
+        complex_ = ar.is_complex(E) or any(ar.is_complex(u) for u in (U or ())) or \
+            any(ar.is_complex(v) for v in values)
+        mat = self.mat = flint.acb_mat if complex_ else flint.arb_mat
+        self.shape = E.shape
+        self.beams = levels = plan.layout.levels
+        C = E.shape[2]
+        self.blocks = [mat(4, C, list(E[0, 4 * lvl:4 * lvl + 4, :].flat))
+                       for lvl in range(levels)]
+        self.extras = {r: mat(1, C, list(E[0, r, :])) for r in range(4 * levels, plan.size)}
+        self.pick = [mat(1, 4, [int(i == j) for j in range(4)]) for i in range(4)]
+        self.put = [mat(4, 1, [int(i == j) for j in range(4)]) for i in range(4)]
+        self.kinds: dict = {}
+
+    def segment(self, lvl: int, k: int, Uk):
+        M = self.kinds.get(k)
+        if M is None:
+            M = self.kinds[k] = self.mat(4, 4, list(Uk[0].flat))
+        self.blocks[lvl] = M * self.blocks[lvl]
+
+    def _row(self, r: int):
+        if r < 4 * self.beams:
+            return self.pick[r % 4] * self.blocks[r // 4]
+        return self.extras[r]
+
+    def jump(self, row: int, col: int, value):
+        term = self._row(col) * value[0]
+        if row < 4 * self.beams:
+            self.blocks[row // 4] = self.blocks[row // 4] + self.put[row % 4] * term
+        else:
+            self.extras[row] = self.extras[row] + term
+
+    def array(self):
+        C = self.shape[2]
+        out = np.empty(self.shape, dtype=object)
+        for lvl, blk in enumerate(self.blocks):
+            out[0, 4 * lvl:4 * lvl + 4, :] = np.array(blk.entries(), dtype=object).reshape(4, C)
+        for r, vec in self.extras.items():
+            out[0, r, :] = vec.entries()
+        return out
 
 
 def boundary(plan: TransferPlan, ar: Arithmetic, lam=None, lam2=None) -> np.ndarray:
