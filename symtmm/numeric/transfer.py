@@ -639,6 +639,7 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
     # shapes 640 small evaluations each, three quarters of their time)
     pending = [] if isinstance(inner, Batch) else None
     anchors: dict = {}                  # per kind: its number of anchors at this lam
+    steps: dict = {}                    # per kind: the transfer matrix from one to the next
 
     def watch(i, before, after):
         for slot, lvl, when in sampling.ends.get(i, ()):
@@ -654,7 +655,7 @@ def sample(plan: TransferPlan, ar: Arithmetic, sampling: Sampling, lam=None, lam
                     before[:, block(levels), :], items, out,
                     None if isinstance(levels, int) else
                     [levels.index(sampling.slots[slot][0]) for slot, _ in items],
-                    pending, sampling.splits.setdefault((i, pos, inner.key), {}))
+                    pending, sampling.splits.setdefault((i, pos, inner.key), {}), steps)
         if observe is not None:
             observe(i, before, after)
 
@@ -673,7 +674,7 @@ def _anchors(seg, lam2_c) -> int:
 
 
 def _inside(plan, ar, inner, k, n, lam, lam2, lam2_in, lam_in, Z0, items, out,
-            positions=None, pending=None, splits=None):
+            positions=None, pending=None, splits=None, steps=None):
     """States at points strictly inside one segment (kind ``k``, ``n`` anchors:
     :func:`_anchors`) from its start ``Z0``.
 
@@ -682,7 +683,8 @@ def _inside(plan, ar, inner, k, n, lam, lam2, lam2_in, lam_in, Z0, items, out,
     4-state kind are not taken but kept there, the states as they are, for
     :func:`_take_pending` to convert and take all at once. ``splits``: a dict that keeps
     the anchors of this segment's samples between eigenvalues (exact fractions split
-    once per number of anchors, not once a shape)."""
+    once per number of anchors, not once a shape); ``steps``, per kind, the matrix from
+    one anchor to the next (the same for every segment of a kind in one walk)."""
     groups = None if splits is None else splits.get(n)
     if groups is None:
         length = _length(plan.kinds[k])
@@ -703,8 +705,12 @@ def _inside(plan, ar, inner, k, n, lam, lam2, lam2_in, lam_in, Z0, items, out,
             # (anchor by anchor with the matrix of one step, l / n: one evaluation of the
             # kind's functions where each anchor took its own; the rounding of up to n
             # products is far inside the guard digits of the walk's arithmetic)
-            l_ar = ar.exact(_length(plan.kinds[k]))
-            step = plan.piece_matrices(ar, k, lam2, ar.array([l_ar / n]), lam)[:, 0]
+            step = None if steps is None else steps.get(k)
+            if step is None:
+                l_ar = ar.exact(_length(plan.kinds[k]))
+                step = plan.piece_matrices(ar, k, lam2, ar.array([l_ar / n]), lam)[:, 0]
+                if steps is not None:
+                    steps[k] = step
             Z = Z0
             for j in range(1, max(far) + 1):
                 Z = step @ Z
