@@ -234,6 +234,31 @@ def test_agrees_with_finite_element_eigenvectors(examples_dir):
         assert np.max(np.abs(fe - exact)) < 1e-6 * np.max(np.abs(exact)), mode.number
 
 
+def test_a_beam_over_many_equal_spans_has_its_closed_form_first_shape():
+    # a beam over 12 equal pinned spans, one beam per span joined end to end (its R,
+    # 90 x 90 and nearly empty, is factored sparsely where python-flint is installed):
+    # the first mode is each span's own, sin(pi (x - x0)), of alternating sign, at the
+    # single span's frequency pi**2; mass-normalised over the 12 spans, amplitude
+    # sqrt(2 / 12)
+    from symtmm.model import Attachment, RigidBody
+    spans = 12
+    beams = tuple(Beam(f"s{i + 1}", EI=1, m=1, L=1, x0=i,
+                       left="pinned" if i == 0 else "free", right="pinned")
+                  for i in range(spans))
+    joints = tuple(RigidBody(f"pin{i}", (Attachment(f"s{i}", i), Attachment(f"s{i + 1}", i)))
+                   for i in range(1, spans))
+    (mode,) = mode_shapes(Model(beams, bodies=joints), count=1, points=17)
+    assert mode.omega == pytest.approx(math.pi ** 2, rel=1e-14)
+    amplitude = math.sqrt(2 / spans)
+    signs = []
+    for i, b in enumerate(mode.beams.values()):
+        expected = amplitude * np.sin(math.pi * (b.x - i))
+        sign = np.sign(np.dot(b.Y, expected))
+        signs.append(sign)
+        assert np.max(np.abs(sign * b.Y - expected)) < 1e-12
+    assert all(a == -b for a, b in itertools.pairwise(signs))
+
+
 # -- damped ---------------------------------------------------------------------------------------
 
 def test_a_damped_model_s_triple_root_has_one_shape_per_beam(examples_dir):

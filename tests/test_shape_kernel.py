@@ -13,6 +13,7 @@ References, independent of the code under test:
 
 from __future__ import annotations
 
+import random
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -274,6 +275,77 @@ def test_null_space_of_a_large_matrix_and_its_separation(kind, flint, monkeypatc
                 # sigma_m / sigma_(m+1)
                 want = float(s[-1] / s[-2]) if mult == 1 else float(s[-2] / s[-3])
                 assert want / 2 < ratio < 2 * want, (name, mult, ratio)
+
+
+@pytest.mark.skipif(not ball_available(), reason="needs python-flint")
+@pytest.mark.parametrize("kind", ["real", "complex"])
+def test_sparse_lu_solves_as_the_dense_solve(kind):
+    # a sparse 60 x 60 matrix (its diagonal and two entries a row, rows shuffled): the
+    # solves with A and A^H against Arb's dense solve of the same midpoints
+    import flint
+
+    from symtmm.numeric.sparse_lu import SparseLU
+    rng = random.Random(3)
+    n = 60
+    with flint.ctx.workprec(200):
+        def number():
+            x = flint.arb(rng.randrange(1, 2**20)) / (1 << 20)
+            return flint.acb(x, flint.arb(rng.randrange(1, 2**10)) / (1 << 10)) \
+                if kind == "complex" else x
+        perm = list(range(n))
+        rng.shuffle(perm)
+        nonzeros = {}
+        for i in range(n):
+            for j in (i, (i + 1) % n, (i + 7) % n):
+                nonzeros[(perm[i], j)] = number()
+        lu = SparseLU(n, nonzeros, 200)
+        assert lu.ok
+        mat = flint.acb_mat if kind == "complex" else flint.arb_mat
+        A = mat(n, n)
+        for (i, j), v in nonzeros.items():
+            A[i, j] = v
+        AH = A.conjugate().transpose() if kind == "complex" else A.transpose()
+        b = [number() for _ in range(n)]
+        B = mat(n, 1, b)
+        for M, x in ((A, lu.solve(b)), (AH, lu.solve_adjoint(b))):
+            exact = M.solve(B, algorithm="approx")
+            worst = max(abs(x[i] - exact[i, 0]).mid() for i in range(n))
+            assert worst < 1e-50 * max(abs(exact[i, 0]).mid() for i in range(n))
+
+
+@pytest.mark.skipif(not ball_available(), reason="needs python-flint")
+@pytest.mark.parametrize("kind", ["real", "complex"])
+def test_null_space_of_a_large_sparse_matrix(kind, monkeypatch):
+    # R = A S, A sparse and well conditioned, S = diag(1, ..., 1, 1e-30): the right null
+    # vector is e_(n-1) to about 1e-30, sigma_n / sigma_(n-1) about 1e-30 |A|; R of 48
+    # rows and 3 nonzeros a row is factored sparsely (arb_null.SPARSE_SIZE)
+    from symtmm.numeric import arb_null, sparse_lu
+    used = []
+    real_init = sparse_lu.SparseLU.__init__
+
+    def spy(self, *args):
+        used.append(True)
+        real_init(self, *args)
+    monkeypatch.setattr(sparse_lu.SparseLU, "__init__", spy)
+    n = 48
+    assert n >= arb_null.SPARSE_SIZE
+    im = 1j if kind == "complex" else 0
+    for ar in (Ball(200), MP(200)):
+        with ar:
+            zero = ar.number(im * 0) if im else ar.exact(0)
+            R = np.array([[zero] * n for _ in range(n)], dtype=object)
+            for i in range(n):
+                R[i, i] = ar.number(4 + i % 3 + im)
+                R[i, (i + 1) % n] = ar.number(1 - im)
+                R[(i + 5) % n, i] = ar.number(-1)
+            for i in range(n):
+                R[i, n - 1] = R[i, n - 1] * ar.number("1e-30")
+            used.clear()
+            X, ratio = linalg.null_space(ar, R, 1, separation=True)
+        assert used, "the sparse LU was not used"
+        x = np.array([complex(ar.to_mpmath(v)) for v in X[:, 0]])
+        assert abs(abs(x[-1]) - 1) < 1e-20 and np.abs(x[:-1]).max() < 1e-20
+        assert 1e-32 < ratio < 1e-28
 
 
 @pytest.mark.skipif(not ball_available(), reason="needs python-flint")

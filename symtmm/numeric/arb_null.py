@@ -76,20 +76,57 @@ def null_space(ar: Arithmetic, R, mult: int, separation: bool = False):
         entries = list(R.flat) if ar.name == "ball" else \
             [_to_arb(v, flint, complex_) for v in R.flat]
         M = mat(n, n, entries).mid()
-        identity = mat(n, n, [1 if i == j else 0 for i in range(n) for j in range(n)])
-        inverse = M.solve(identity, nonstop=True, algorithm="approx").mid()
-        adjoint = _adjoint(inverse, complex_)
+        solves = _sparse_solves(flint, mat, M, n, ar.prec) or _dense_solves(mat, M, n, complex_)
         X = mat(n, mult, [_start(rng, flint) for _ in range(n * mult)])
         for _ in range(2):
             # (an exact zero pivot leaves NaN in the inverse, and so in every column)
-            Y = inverse * (adjoint * X)
+            Y = solves[0](solves[1](X))
             X = _orthonormal(mat, Y, ar.prec, complex_) if _finite(Y, complex_) else None
             if X is None:
                 return None
-        ratio = _separation(flint, mat, M, inverse, adjoint, X, rng, complex_) \
-            if separation else None
+        ratio = _separation(flint, mat, M, solves, X, rng, complex_) if separation else None
         out = _back(ar, X, complex_)
     return (out, ratio) if separation else out
+
+
+#: From this size on, a matrix with at most :data:`SPARSE_DENSITY` of its entries nonzero
+#: is factored sparsely (:class:`~symtmm.numeric.sparse_lu.SparseLU`)...
+SPARSE_SIZE = 32
+#: ... the fraction of nonzeros below which the sparse factors pay (the 20-span beam's R:
+#: 0.022; a 20-level chain's, whose springs couple every beam to the next: 0.31).
+SPARSE_DENSITY = 0.1
+
+
+def _dense_solves(mat, M, n: int, complex_) -> tuple:
+    """``(X -> R^-1 X, X -> R^-H X)`` from ``R^-1`` once, by Arb's approximate solve against
+    the identity; every solve after it a product with it or its adjoint."""
+    identity = mat(n, n, [1 if i == j else 0 for i in range(n) for j in range(n)])
+    inverse = M.solve(identity, nonstop=True, algorithm="approx").mid()
+    adjoint = _adjoint(inverse, complex_)
+    return (lambda X: (inverse * X).mid()), (lambda X: (adjoint * X).mid())
+
+
+def _sparse_solves(flint, mat, M, n: int, prec: int):
+    """The solves of :func:`_dense_solves` by a sparse LU where ``M`` is large and nearly
+    empty (beams in series), or None."""
+    if n < SPARSE_SIZE:
+        return None
+    entries = M.entries()
+    nonzeros = {(k // n, k % n): v for k, v in enumerate(entries) if v != 0}
+    if len(nonzeros) > SPARSE_DENSITY * n * n:
+        return None
+    from .sparse_lu import SparseLU
+    lu = SparseLU(n, nonzeros, prec)
+    if not lu.ok:
+        return None
+
+    def by_columns(solve):
+        def apply(X):
+            m = X.ncols()
+            cols = [solve([X[i, c] for i in range(n)]) for c in range(m)]
+            return mat(n, m, [cols[c][i] for i in range(n) for c in range(m)]).mid()
+        return apply
+    return by_columns(lu.solve), by_columns(lu.solve_adjoint)
 
 
 def _to_arb(v, flint, complex_):
@@ -151,7 +188,7 @@ def _orthonormal(mat, V, prec: int, complex_):
     return mat(n, m, [cols[c][i, 0] for i in range(n) for c in range(m)])
 
 
-def _separation(flint, mat, M, inverse, adjoint, X, rng, complex_) -> float:
+def _separation(flint, mat, M, solves, X, rng, complex_) -> float:
     """About ``sigma_m / sigma_(m+1)`` of ``R``, as
     :func:`symtmm.numeric.linalg.separation_ratio` estimates it."""
     n, m = X.nrows(), X.ncols()
@@ -171,7 +208,7 @@ def _separation(flint, mat, M, inverse, adjoint, X, rng, complex_) -> float:
         size = _norm(x, complex_)
         if not size > 0:
             return 0.0
-        x = deflate((inverse * (adjoint * (x * (1 / size)))).mid())
+        x = deflate(solves[0](solves[1](x * (1 / size))))
         growth = _norm(x, complex_)
     # growth is |(R^H R)^-1| on the complement: 1 / sigma_(m+1)**2
     if not growth > 0:
