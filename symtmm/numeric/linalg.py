@@ -233,7 +233,7 @@ def null_space(ar: Arithmetic, R, mult: int, separation: bool = False):
             return got
     if ar.name == "ball":
         return _null_space_of_midpoints(ar, R, mult, separation)
-    solve, adjoint = solver(ar, R), solver(ar, R, adjoint=True)
+    solve, adjoint = _sparse_solvers(ar, R) or (solver(ar, R), solver(ar, R, adjoint=True))
     rng = random.Random(20240607)          # fixed: the shapes are reproducible
     X = ar.array([ar.exact(sp.Rational(rng.randrange(-2**20, 2**20), 2**20))
                   for _ in range(n * mult)], (n, mult))
@@ -257,6 +257,33 @@ def _null_space_of_midpoints(ar: Arithmetic, R, mult: int, separation: bool):
     X = got[0] if separation else got
     X = np.frompyfunc(ar.number, 1, 1)(X)
     return (X, got[1]) if separation else X
+
+
+def _sparse_solvers(ar: Arithmetic, R):
+    """``(B -> R^-1 B, B -> R^-H B)`` by one sparse LU where ``R`` is a large and nearly
+    empty matrix of mpmath numbers (beams in series: :mod:`symtmm.numeric.sparse_lu`, as
+    :mod:`symtmm.numeric.arb_null` takes it in Arb), or None."""
+    n = R.shape[0]
+    if getattr(ar, "name", None) != "mp" or R.dtype != object or n < arb_null.SPARSE_SIZE:
+        return None
+    nonzeros = {(i, j): R[i, j] for i in range(n) for j in range(n) if R[i, j] != 0}
+    if len(nonzeros) > arb_null.SPARSE_DENSITY * n * n:
+        return None
+    from .sparse_lu import SparseLU
+    lu = SparseLU(n, nonzeros, ar.prec)
+    if not lu.ok:
+        return None
+
+    def by_columns(solve):
+        def apply(B):
+            B = np.asarray(B)
+            columns = B.reshape(n, -1)
+            out = np.empty(columns.shape, dtype=object)
+            for c in range(columns.shape[1]):
+                out[:, c] = solve(list(columns[:, c]))
+            return out.reshape(B.shape)
+        return apply
+    return by_columns(lu.solve), by_columns(lu.solve_adjoint)
 
 
 #: From this size of an mpmath matrix on, :func:`solver` hands the solves to Arb's LU where

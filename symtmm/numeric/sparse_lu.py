@@ -1,4 +1,4 @@
-"""A sparse LU of a large, sparse ``R`` in Arb numbers: the null spaces of beams in series.
+"""A sparse LU of a large, sparse ``R``: the null spaces of beams in series.
 
 The boundary matrix of beams joined end to end (a beam over many spans, a frame) is
 large and nearly empty: each beam's conditions involve its own unknowns and its
@@ -20,7 +20,7 @@ leave (a solve's residual came to 1e-13 of the 20-span beam's, not 1e-60).
 
 from __future__ import annotations
 
-__all__ = ["SparseLU", "FILL_LIMIT", "conj"]
+__all__ = ["SparseLU", "FILL_LIMIT", "conj", "mid"]
 
 #: The factors may hold at most this many times the nonzeros of ``R`` (more: the order
 #: left a wide band, and the dense LU serves instead).
@@ -34,7 +34,8 @@ class SparseLU:
     ----------
     n : int
     nonzeros : dict
-        ``(row, column) -> value`` (``flint.arb`` or ``flint.acb``; no zeros).
+        ``(row, column) -> value``: Arb numbers (``flint.arb``, ``flint.acb``), kept as
+        midpoints, or mpmath numbers of one context (no zeros).
     prec : int
         The bits of the pivot guard (the caller's working precision).
 
@@ -75,7 +76,7 @@ class SparseLU:
         for i, row in enumerate(rows):
             for j in row:
                 columns[j].add(i)
-        top = max((abs(v).mid() for v in nonzeros.values()), default=None)
+        top = max((mid(abs(v)) for v in nonzeros.values()), default=None)
         if top is None or not top > 0:
             return
         guard = top * 2.0 ** -prec
@@ -88,25 +89,25 @@ class SparseLU:
             candidates = columns[k]
             if not candidates:
                 return                                   # (a column without entries)
-            r = max(sorted(candidates), key=lambda i: abs(rows[i][k]).mid())
+            r = max(sorted(candidates), key=lambda i: mid(abs(rows[i][k])))
             pivot_row = rows[r]
             pivot = pivot_row[k]
-            if abs(pivot).mid() < guard:
-                pivot = pivot_row[k] = (guard if pivot == 0 else
-                                        pivot * (guard / abs(pivot))).mid()
+            if mid(abs(pivot)) < guard:
+                pivot = pivot_row[k] = mid(guard if pivot == 0 else
+                                           pivot * (guard / abs(pivot)))
             for j in pivot_row:
                 columns[j].discard(r)
             for i in candidates:
                 row = rows[i]
-                f = (row.pop(k) / pivot).mid()
+                f = mid(row.pop(k) / pivot)
                 lower.setdefault(i, {})[k] = f
                 for j, v in pivot_row.items():
                     if j == k:
                         continue
                     if j in row:
-                        row[j] = (row[j] - f * v).mid()
+                        row[j] = mid(row[j] - f * v)
                     else:
-                        row[j] = (-(f * v)).mid()
+                        row[j] = mid(-(f * v))
                         columns[j].add(i)
                 stored += 1
             columns[k] = set()
@@ -125,15 +126,15 @@ class SparseLU:
         z = [b[self.p[k]] for k in range(n)]
         for k in range(n):                               # L z = P b, unit diagonal
             for j, f in L[k].items():
-                z[k] = (z[k] - f * z[j]).mid()
+                z[k] = mid(z[k] - f * z[j])
         y: list = [None] * n
         for k in range(n - 1, -1, -1):                   # U y = z
             acc = z[k]
             row = U[k]
             for j, v in row.items():
                 if j != k:
-                    acc = (acc - v * y[j]).mid()
-            y[k] = (acc / row[k]).mid()
+                    acc = mid(acc - v * y[j])
+            y[k] = mid(acc / row[k])
         x: list = [None] * n
         for k in range(n):                               # x = Q y
             x[self.q[k]] = y[k]
@@ -146,13 +147,13 @@ class SparseLU:
         c = [b[self.q[k]] for k in range(n)]             # Q^T b
         for k in range(n):                               # U^H w = c, lower triangular
             row = U[k]
-            c[k] = (c[k] / conj(row[k])).mid()
+            c[k] = mid(c[k] / conj(row[k]))
             for j, v in row.items():
                 if j != k:
-                    c[j] = (c[j] - conj(v) * c[k]).mid()
+                    c[j] = mid(c[j] - conj(v) * c[k])
         for k in range(n - 1, -1, -1):                   # L^H v = w, unit upper
             for j, f in L[k].items():
-                c[j] = (c[j] - conj(f) * c[k]).mid()
+                c[j] = mid(c[j] - conj(f) * c[k])
         x: list = [None] * n
         for k in range(n):                               # P x = v
             x[self.p[k]] = c[k]
@@ -160,5 +161,10 @@ class SparseLU:
 
 
 def conj(v):
-    """The conjugate of an Arb number (an ``arb`` is its own)."""
+    """The conjugate of a number (an Arb ``arb`` is its own)."""
     return v.conjugate() if hasattr(v, "conjugate") else v
+
+
+def mid(v):
+    """A ball's midpoint (radius 0); an mpmath number as it is."""
+    return v.mid() if hasattr(v, "mid") else v
