@@ -353,6 +353,26 @@ def test_null_space_of_a_large_sparse_matrix(kind, flint, monkeypatch):
         assert 1e-32 < ratio < 1e-28
 
 
+def test_a_sparse_matrix_with_an_empty_column_is_left_to_the_dense_lu():
+    # the zero column is the null space (e_3); the sparse LU declines it, the dense one,
+    # guarded, finds it
+    from symtmm.numeric.sparse_lu import SparseLU
+    n = 40
+    ar = MP(200)
+    with ar:
+        R = np.array([[ar.exact(0)] * n for _ in range(n)], dtype=object)
+        for i in range(n):
+            if i != 3:
+                R[i, i] = ar.exact(2)
+                R[i, (i + 1) % n] = ar.exact(1) if (i + 1) % n != 3 else ar.exact(0)
+        R[3, 0] = ar.exact(1)
+        nonzeros = {(i, j): R[i, j] for i in range(n) for j in range(n) if R[i, j] != 0}
+        assert not SparseLU(n, nonzeros, ar.prec).ok
+        X = linalg.null_space(ar, R, 1)
+    x = np.array([abs(complex(ar.to_mpmath(v))) for v in X[:, 0]])
+    assert abs(x[3] - 1) < 1e-50 and np.delete(x, 3).max() < 1e-50
+
+
 @pytest.mark.skipif(not ball_available(), reason="needs python-flint")
 def test_an_exact_zero_pivot_in_arb_falls_back_to_the_guarded_lu():
     # R = I with its last row replaced by e_0: exactly singular, its null vector e_(n-1);
