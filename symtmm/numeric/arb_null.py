@@ -31,7 +31,7 @@ import random
 
 import numpy as np
 
-from .arith import FLINT_LOCK, Arithmetic, _arb_exact
+from .arith import FLINT_LOCK, Arithmetic, _arb_exact, ball_midpoints
 
 __all__ = ["null_space", "applies"]
 
@@ -217,26 +217,6 @@ def _separation(flint, mat, M, solves, X, rng, complex_) -> float:
     return float(value.mid()) if value.is_finite() else math.inf
 
 
-def midpoints(ar: Arithmetic, values):
-    """Arb numbers' midpoints as mpmath numbers of the arithmetic ``ar``, each rounded once
-    to its precision (an array of the same shape)."""
-    from mpmath import libmp
-
-    from .arith import _mpf_of
-    ctx, prec = ar.ctx, ar.prec
-
-    def mpf(x):
-        return libmp.mpf_pos(_mpf_of(x.mid()), prec, "n")
-
-    import flint
-
-    def one(z):
-        if isinstance(z, flint.acb):
-            return ctx.make_mpc((mpf(z.real), mpf(z.imag)))
-        return ctx.make_mpf(mpf(z))
-    return np.frompyfunc(one, 1, 1)(np.asarray(values, dtype=object))
-
-
 def _back(ar: Arithmetic, X, complex_):
     """The entries of ``X`` as numbers of ``ar``: exact balls (midpoints) for Arb, mpmath
     numbers rounded once to ``ar``'s precision otherwise."""
@@ -245,5 +225,5 @@ def _back(ar: Arithmetic, X, complex_):
     if ar.name == "ball":
         out = [z.mid() for z in entries]
     else:
-        out = list(midpoints(ar, entries))
+        out = list(ball_midpoints(ar, entries))
     return ar.array(out, (X.nrows(), X.ncols()))

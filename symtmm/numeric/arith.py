@@ -46,7 +46,7 @@ from ..errors import ComputationError
 from ..expr import exact_float
 
 __all__ = ["Arithmetic", "Batch", "MP", "Ball", "ball_available", "memo", "DOUBLE",
-           "magnitude_parts"]
+           "magnitude_parts", "ball_midpoints"]
 
 
 # Tables of :meth:`Arithmetic.cached`, keyed by arithmetic, precision and table. A
@@ -839,3 +839,20 @@ def memo(owner, ar: Arithmetic, name: str, build):
         with ar:
             hit = store[key] = build()
     return hit
+
+
+def ball_midpoints(ar: Arithmetic, values):
+    """Arb numbers' midpoints as mpmath numbers of the arithmetic ``ar``, each rounded once
+    to its precision (an array of the same shape)."""
+    ctx, prec = ar.ctx, ar.prec
+
+    def mpf(x):
+        return libmp.mpf_pos(_mpf_of(x.mid()), prec, "n")
+
+    import flint
+
+    def one(z):
+        if isinstance(z, flint.acb):
+            return ctx.make_mpc((mpf(z.real), mpf(z.imag)))
+        return ctx.make_mpf(mpf(z))
+    return np.frompyfunc(one, 1, 1)(np.asarray(values, dtype=object))

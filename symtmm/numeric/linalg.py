@@ -39,7 +39,7 @@ import sympy as sp
 
 from ..errors import ComputationError
 from . import arb_null
-from .arith import FLINT_LOCK, Arithmetic
+from .arith import FLINT_LOCK, Arithmetic, ball_midpoints
 
 __all__ = ["det", "lu", "lu_solve", "solver", "null_space", "separation_ratio", "orthonormal",
            "cholesky", "lower_inverse"]
@@ -253,7 +253,7 @@ def _null_space_of_midpoints(ar: Arithmetic, R, mult: int, separation: bool):
     from .arith import MP
     mp = MP(ar.prec)
     with mp:
-        got = null_space(mp, arb_null.midpoints(mp, R), mult, separation)
+        got = null_space(mp, ball_midpoints(mp, R), mult, separation)
     X = got[0] if separation else got
     X = np.frompyfunc(ar.number, 1, 1)(X)
     return (X, got[1]) if separation else X

@@ -55,8 +55,7 @@ from ..deadline import check as check_time
 from ..elements.base import LAM
 from ..errors import ComputationError
 from ..limits import MAX_PIECES
-from .arb_null import midpoints
-from .arith import DOUBLE, Arithmetic, Ball, Batch, ball_available, memo
+from .arith import DOUBLE, Arithmetic, Ball, Batch, ball_available, ball_midpoints, memo
 from .linalg import det
 from .segments import cut_tables, family_matrices, kind_order, kind_size, kind_tables
 from .segments import kind as segment_kind
@@ -459,14 +458,8 @@ def convert(ar: Arithmetic, target: Arithmetic, x):
         z = ar.to_complex(x)
         return z if ar.is_complex(x) else z.real
     if isinstance(ar, Ball) and getattr(target, "name", None) == "mp":
-        return _midpoints(ar, target, x)
+        return ball_midpoints(target, x)
     return np.frompyfunc(lambda v: target.number(ar.to_mpmath(v)), 1, 1)(x)
-
-
-def _midpoints(ar: Ball, target: Arithmetic, x):
-    """Balls' midpoints as numbers of the mpmath arithmetic ``target``, rounded once to its
-    precision, as ``target.number`` rounds them (without a global mpmath number between)."""
-    return midpoints(target, x)
 
 
 class Sampling:
