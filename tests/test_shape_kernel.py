@@ -232,18 +232,23 @@ def _arithmetics():
         yield "ball", Ball(200)
 
 
+@pytest.fixture(params=["flint", "no flint"])
+def flint(request, monkeypatch):
+    """Null spaces in Arb's matrices (python-flint installed), or kept from them."""
+    from symtmm.numeric import arb_null
+    if request.param == "no flint":
+        monkeypatch.setattr(arb_null, "applies", lambda ar, R: False)
+    elif not ball_available():
+        pytest.skip("python-flint is not installed")
+    return request.param
+
+
 @pytest.mark.parametrize("kind", ["real", "complex"])
-@pytest.mark.parametrize("flint", ["flint", "no flint"])
-def test_null_space_of_a_large_matrix_and_its_separation(kind, flint, monkeypatch):
+def test_null_space_of_a_large_matrix_and_its_separation(kind, flint):
     # R = H1 diag(s) H2, unitary Householder factors (at 80 digits, R rounded once to the
     # arithmetic's 60): its smallest singular values are s[-2:], their right singular
     # vectors the last columns of H2^H. 20 rows take Arb's matrices where python-flint is
     # installed (linalg.ARB_SOLVE_SIZE), mpmath's LU else.
-    from symtmm.numeric import arb_null
-    if flint == "no flint":
-        monkeypatch.setattr(arb_null, "applies", lambda ar, R: False)
-    elif not ball_available():
-        pytest.skip("python-flint is not installed")
     n = 20
     assert n >= linalg.ARB_SOLVE_SIZE
     im = 1j if kind == "complex" else 0
@@ -313,18 +318,13 @@ def test_sparse_lu_solves_as_the_dense_solve(kind):
             assert worst < 1e-50 * max(abs(exact[i, 0]).mid() for i in range(n))
 
 
-@pytest.mark.parametrize("flint", ["flint", "no flint"])
 @pytest.mark.parametrize("kind", ["real", "complex"])
 def test_null_space_of_a_large_sparse_matrix(kind, flint, monkeypatch):
     # R = A S, A sparse and well conditioned, S = diag(1, ..., 1, 1e-30): the right null
     # vector is e_(n-1) to about 1e-30, sigma_n / sigma_(n-1) about 1e-30 |A|; R of 48
-    # rows and 3 nonzeros a row is factored sparsely (arb_null.SPARSE_SIZE), in Arb
+    # rows and 3 nonzeros a row is factored sparsely (sparse_lu.SPARSE_SIZE), in Arb
     # numbers where python-flint is installed, in mpmath's otherwise
-    from symtmm.numeric import arb_null, sparse_lu
-    if flint == "no flint":
-        monkeypatch.setattr(arb_null, "applies", lambda ar, R: False)
-    elif not ball_available():
-        pytest.skip("python-flint is not installed")
+    from symtmm.numeric import sparse_lu
     used = []
     real_init = sparse_lu.SparseLU.__init__
 
@@ -333,7 +333,7 @@ def test_null_space_of_a_large_sparse_matrix(kind, flint, monkeypatch):
         real_init(self, *args)
     monkeypatch.setattr(sparse_lu.SparseLU, "__init__", spy)
     n = 48
-    assert n >= arb_null.SPARSE_SIZE
+    assert n >= sparse_lu.SPARSE_SIZE
     im = 1j if kind == "complex" else 0
     for ar in (Ball(200), MP(200)) if flint == "flint" else (MP(200),):
         with ar:

@@ -89,14 +89,6 @@ def null_space(ar: Arithmetic, R, mult: int, separation: bool = False):
     return (out, ratio) if separation else out
 
 
-#: From this size on, a matrix with at most :data:`SPARSE_DENSITY` of its entries nonzero
-#: is factored sparsely (:class:`~symtmm.numeric.sparse_lu.SparseLU`)...
-SPARSE_SIZE = 32
-#: ... the fraction of nonzeros below which the sparse factors pay (the 20-span beam's R:
-#: 0.022; a 20-level chain's, whose springs couple every beam to the next: 0.31).
-SPARSE_DENSITY = 0.1
-
-
 def _dense_solves(mat, M, n: int, complex_) -> tuple:
     """``(X -> R^-1 X, X -> R^-H X)`` from ``R^-1`` once, by Arb's approximate solve against
     the identity; every solve after it a product with it or its adjoint."""
@@ -108,16 +100,11 @@ def _dense_solves(mat, M, n: int, complex_) -> tuple:
 
 def _sparse_solves(flint, mat, M, n: int, prec: int):
     """The solves of :func:`_dense_solves` by a sparse LU where ``M`` is large and nearly
-    empty (beams in series), or None."""
-    if n < SPARSE_SIZE:
-        return None
+    empty (beams in series: :func:`~symtmm.numeric.sparse_lu.sparse_factors`), or None."""
+    from .sparse_lu import sparse_factors
     entries = M.entries()
-    nonzeros = {(k // n, k % n): v for k, v in enumerate(entries) if v != 0}
-    if len(nonzeros) > SPARSE_DENSITY * n * n:
-        return None
-    from .sparse_lu import SparseLU
-    lu = SparseLU(n, nonzeros, prec)
-    if not lu.ok:
+    lu = sparse_factors(n, lambda i, j: entries[i * n + j], prec)
+    if lu is None:
         return None
 
     def by_columns(solve):

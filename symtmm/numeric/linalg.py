@@ -39,7 +39,8 @@ import sympy as sp
 
 from ..errors import ComputationError
 from . import arb_null
-from .arith import FLINT_LOCK, Arithmetic, ball_midpoints
+from .arith import Arithmetic, ball_midpoints
+from .sparse_lu import sparse_factors
 
 __all__ = ["det", "lu", "lu_solve", "solver", "null_space", "separation_ratio", "orthonormal",
            "cholesky", "lower_inverse"]
@@ -261,17 +262,13 @@ def _null_space_of_midpoints(ar: Arithmetic, R, mult: int, separation: bool):
 
 def _sparse_solvers(ar: Arithmetic, R):
     """``(B -> R^-1 B, B -> R^-H B)`` by one sparse LU where ``R`` is a large and nearly
-    empty matrix of mpmath numbers (beams in series: :mod:`symtmm.numeric.sparse_lu`, as
-    :mod:`symtmm.numeric.arb_null` takes it in Arb), or None."""
+    empty matrix of mpmath numbers (beams in series: :func:`symtmm.numeric.sparse_lu.
+    sparse_factors`, as :mod:`symtmm.numeric.arb_null` takes it in Arb), or None."""
     n = R.shape[0]
-    if getattr(ar, "name", None) != "mp" or R.dtype != object or n < arb_null.SPARSE_SIZE:
+    if getattr(ar, "name", None) != "mp" or R.dtype != object:
         return None
-    nonzeros = {(i, j): R[i, j] for i in range(n) for j in range(n) if R[i, j] != 0}
-    if len(nonzeros) > arb_null.SPARSE_DENSITY * n * n:
-        return None
-    from .sparse_lu import SparseLU
-    lu = SparseLU(n, nonzeros, ar.prec)
-    if not lu.ok:
+    lu = sparse_factors(n, lambda i, j: R[i, j], ar.prec)
+    if lu is None:
         return None
 
     def by_columns(solve):
@@ -286,29 +283,19 @@ def _sparse_solvers(ar: Arithmetic, R):
     return by_columns(lu.solve), by_columns(lu.solve_adjoint)
 
 
-#: From this size of an mpmath matrix on, :func:`solver` hands the solves to Arb's LU where
-#: python-flint is installed (below it, converting the entries costs what it saves).
+#: From this size of an mpmath matrix on, :func:`null_space` hands it to Arb's matrices
+#: where python-flint is installed (:mod:`symtmm.numeric.arb_null`; below it, converting
+#: the entries costs what it saves).
 ARB_SOLVE_SIZE = 16
 
 
 def solver(ar: Arithmetic, A, adjoint: bool = False):
     """``B -> A^-1 B`` (with ``adjoint``, ``B -> A^-H B``) for the columns of ``B``:
-    :func:`lu` once, then :func:`lu_solve` (or :func:`lu_solve_adjoint`).
-
-    For an mpmath arithmetic and a matrix of :data:`ARB_SOLVE_SIZE` or more rows, where
-    python-flint is installed, Arb's approximate LU solve does it in C at the same
-    precision (midpoints only, no error bounds: the floating-point elimination mpmath
-    would do; a 154 x 154 matrix at 217 bits, 2.5 s -> 10 ms, the same vectors to 1e-67);
-    where it meets an exact zero pivot (NaN), the guarded LU below serves instead.
-    """
-    fast = _arb_solver(ar, A, adjoint)
+    :func:`lu` once, then :func:`lu_solve` (or :func:`lu_solve_adjoint`). (Large matrices
+    take Arb's solves in :mod:`symtmm.numeric.arb_null` before they come here.)"""
     factors: list = []
 
     def solve(B):
-        if fast is not None:
-            X = fast(B)
-            if X is not None:
-                return X
         if not factors:
             factors.append(lu(ar, A))
         return (lu_solve_adjoint if adjoint else lu_solve)(ar, factors[0], B)
@@ -330,58 +317,6 @@ def lu_solve_adjoint(ar: Arithmetic, factors, B):
     out = np.empty_like(z)
     out[perm] = z                           # P x = w
     return out
-
-
-def _arb_solver(ar: Arithmetic, A, adjoint: bool = False):
-    """Arb's approximate solve with ``A`` or ``A^H`` (see :func:`solver`), or None where it
-    does not apply: not an mpmath arithmetic, a small matrix, or no python-flint."""
-    if getattr(ar, "name", None) != "mp" or A.shape[0] < ARB_SOLVE_SIZE or A.dtype != object:
-        return None
-    try:
-        import flint
-    except ImportError:
-        return None
-    from mpmath import libmp
-
-    from .arith import _arb_exact
-    complex_ = ar.is_complex(A)
-    matrix = flint.acb_mat if complex_ else flint.arb_mat
-    ctx, prec = ar.ctx, ar.prec
-
-    def to_arb(v):
-        if complex_:
-            return flint.acb(_arb_exact(v.real, flint), _arb_exact(v.imag, flint))
-        return _arb_exact(v, flint)
-
-    def to_mpf(x):
-        # (the midpoint exactly: a mantissa and an exponent; at the arithmetic's precision)
-        man, exp = x.mid().man_exp()
-        return ctx.make_mpf(libmp.from_man_exp(int(man), int(exp), prec, "n"))
-
-    with FLINT_LOCK, flint.ctx.workprec(prec):
-        M = matrix(A.shape[0], A.shape[1], [to_arb(v) for v in A.flat])
-        if adjoint:
-            M = M.conjugate().transpose() if complex_ else M.transpose()
-
-    def solve(B):
-        B = np.asarray(B)
-        shape = B.shape
-        columns = B.reshape(shape[0], -1)
-        # (python-flint's precision is the process's: held for the solve, against threads)
-        with FLINT_LOCK, flint.ctx.workprec(prec):
-            X = M.solve(matrix(columns.shape[0], columns.shape[1],
-                               [to_arb(v) for v in columns.flat]),
-                        nonstop=True, algorithm="approx")
-            entries = X.entries()
-            parts = [p for z in entries for p in (z.real, z.imag)] if complex_ else entries
-            if not all(p.is_finite() for p in parts):
-                return None             # an exact zero pivot
-            if complex_:
-                out = [ctx.mpc(to_mpf(z.real), to_mpf(z.imag)) for z in entries]
-            else:
-                out = [to_mpf(x) for x in entries]
-        return ar.array(out, shape)
-    return solve
 
 
 def separation_ratio(ar: Arithmetic, R, X, solvers=None, rng=None) -> float:

@@ -20,11 +20,36 @@ leave (a solve's residual came to 1e-13 of the 20-span beam's, not 1e-60).
 
 from __future__ import annotations
 
-__all__ = ["SparseLU", "FILL_LIMIT", "conj", "mid"]
+__all__ = ["SparseLU", "sparse_factors", "SPARSE_SIZE", "SPARSE_DENSITY", "FILL_LIMIT", "conj",
+           "mid"]
 
+#: From this size on, a matrix with at most :data:`SPARSE_DENSITY` of its entries nonzero
+#: is factored sparsely (:func:`sparse_factors`)...
+SPARSE_SIZE = 32
+#: ... the fraction of nonzeros below which the sparse factors pay (the 20-span beam's R:
+#: 0.022; a 20-level chain's, whose springs couple every beam to the next: 0.31).
+SPARSE_DENSITY = 0.1
 #: The factors may hold at most this many times the nonzeros of ``R`` (more: the order
 #: left a wide band, and the dense LU serves instead).
 FILL_LIMIT = 8
+
+
+def sparse_factors(n: int, entry, prec: int):
+    """The :class:`SparseLU` of the ``n x n`` matrix ``entry(i, j)`` where it is large and
+    nearly empty enough to pay (:data:`SPARSE_SIZE`, :data:`SPARSE_DENSITY`,
+    :data:`FILL_LIMIT`), else None: the dense LU serves."""
+    if n < SPARSE_SIZE:
+        return None
+    nonzeros = {}
+    for i in range(n):
+        for j in range(n):
+            v = entry(i, j)
+            if v != 0:
+                nonzeros[(i, j)] = v
+    if len(nonzeros) > SPARSE_DENSITY * n * n:
+        return None
+    lu = SparseLU(n, nonzeros, prec)
+    return lu if lu.ok else None
 
 
 class SparseLU:
