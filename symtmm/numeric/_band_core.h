@@ -17,22 +17,42 @@
 #include <math.h>
 #include <stdint.h>
 
-static void band_eliminate_real(double *Kp, Py_ssize_t w, Py_ssize_t n)
+/* One pivot's update, for a width w known where it is inlined: with a constant w (the
+ * usual widths, below) the compiler unrolls both loops, which on the narrow bands of
+ * small models cost as much as the arithmetic (the same operations in the same order). */
+static inline void band_pivot_real(double *Kp, Py_ssize_t k, Py_ssize_t w)
 {
-    for (Py_ssize_t k = 0; k < n; k++) {
-        const double *row = Kp + k * w;
-        /* one division per pivot, not one per multiplier: they cost a third of the loop */
-        const double inv = 1.0 / row[0];
-        for (Py_ssize_t i = 1; i < w; i++) {
-            const double f = row[i] * inv;
-            double *target = Kp + (k + i) * w - i;
-            for (Py_ssize_t j = i; j < w; j++) {
-                const double t = f * row[j];
-                target[j] = target[j] - t;
-            }
+    const double *row = Kp + k * w;
+    /* one division per pivot, not one per multiplier: they cost a third of the loop */
+    const double inv = 1.0 / row[0];
+    for (Py_ssize_t i = 1; i < w; i++) {
+        const double f = row[i] * inv;
+        double *target = Kp + (k + i) * w - i;
+        for (Py_ssize_t j = i; j < w; j++) {
+            const double t = f * row[j];
+            target[j] = target[j] - t;
         }
     }
 }
+
+#define BAND_WIDTH_CASE(W)                                                                 \
+    case W:                                                                                \
+        for (Py_ssize_t k = 0; k < n; k++)                                                 \
+            band_pivot_real(Kp, k, W);                                                     \
+        return;
+
+static void band_eliminate_real(double *Kp, Py_ssize_t w, Py_ssize_t n)
+{
+    switch (w) {
+        BAND_WIDTH_CASE(2) BAND_WIDTH_CASE(3) BAND_WIDTH_CASE(4) BAND_WIDTH_CASE(5)
+        BAND_WIDTH_CASE(6) BAND_WIDTH_CASE(7) BAND_WIDTH_CASE(8) BAND_WIDTH_CASE(9)
+        BAND_WIDTH_CASE(10) BAND_WIDTH_CASE(11) BAND_WIDTH_CASE(12)
+    default:
+        for (Py_ssize_t k = 0; k < n; k++)
+            band_pivot_real(Kp, k, w);
+    }
+}
+#undef BAND_WIDTH_CASE
 
 /* (a / b) as numpy divides complex numbers (Smith's method). */
 static void band_cdiv(double ar, double ai, double br, double bi, double *qr, double *qi)
@@ -84,22 +104,26 @@ static double band_magnitude(const double *x, int is_complex)
 }
 
 /* The diagonal of |L||D||L^T| per freedom of a factorised band F (the band before, K:
- * its diagonal), into scale (n doubles): for j = 1 .. w - 1 in turn, |L D| of the j-th
- * row above, squared, over that pivot's |d| (hypot for complex magnitudes, as numpy's
- * abs). */
+ * its diagonal), into scale (n doubles): pivot by pivot, each pivot's |d| inverted once
+ * (a division per entry of the band cost a third of a double point's summary), the
+ * terms |L D|^2 / |d| of the rows below it added to theirs, so that each row sums its
+ * terms from the farthest pivot to the nearest (hypot for complex magnitudes, as numpy's
+ * abs; stiffness._ldl adds in the same order). */
 static void band_pivot_scales(const double *F, const double *K, Py_ssize_t w, Py_ssize_t n,
                               int is_complex, double *scale)
 {
     const Py_ssize_t c = is_complex ? 2 : 1;
     for (Py_ssize_t m = 0; m < n; m++)
         scale[m] = band_magnitude(K + c * m * w, is_complex);
-    for (Py_ssize_t j = 1; j < w && j < n; j++) {
-        for (Py_ssize_t m = j; m < n; m++) {
-            const double r = band_magnitude(F + c * ((m - j) * w + j), is_complex);
-            const double d = band_magnitude(F + c * (m - j) * w, is_complex);
-            /* np.maximum(d, 1e-300): a NaN stays NaN */
-            const double q = r * r / ((d != d || d > 1e-300) ? d : 1e-300);
-            scale[m] = scale[m] + q;
+    for (Py_ssize_t k = 0; k + 1 < n; k++) {
+        const double *row = F + c * k * w;
+        const double d = band_magnitude(row, is_complex);
+        /* np.maximum(d, 1e-300): a NaN stays NaN */
+        const double inv = 1.0 / ((d != d || d > 1e-300) ? d : 1e-300);
+        const Py_ssize_t top = w < n - k ? w : n - k;
+        for (Py_ssize_t j = 1; j < top; j++) {
+            const double r = band_magnitude(row + c * j, is_complex);
+            scale[k + j] = scale[k + j] + r * r * inv;
         }
     }
 }
@@ -154,20 +178,24 @@ static void band_point_summary(const double *F, const double *K, const double *D
                 ur = r;
             } else
                 ph += atan2(d[1], d[0]);
-        } else if (d[0] < 0) {
+        } else if (d[0] < 0)
             negatives++;
-            ph += M_PI;
-        }
     }
     la += log(mant) + (double)ex * M_LN2;
     if (is_complex)
         ph += atan2(ui, ur);
+    /* real: the phase is pi times the number of negative factors, told by its parity
+     * (its sine, cosine and arctangent cost a tenth of a point's summary) */
+    int64_t odd = negatives;
     for (Py_ssize_t j = 0; j < S; j++) {
         const double *v = D + c * j;
         la += (double)mu[j] * log(band_magnitude(v, is_complex));
-        ph += (double)mu[j] * (is_complex ? atan2(v[1], v[0]) : (v[0] < 0 ? M_PI : 0.0));
+        if (is_complex)
+            ph += (double)mu[j] * atan2(v[1], v[0]);
+        else if (v[0] < 0)
+            odd += mu[j];
     }
     *logabs = la + log_constant;
-    *phase = atan2(sin(ph), cos(ph));
+    *phase = is_complex ? atan2(sin(ph), cos(ph)) : (odd % 2 ? M_PI : 0.0);
     *count = decided ? (is_complex ? 0 : negatives) : -1;
 }

@@ -801,12 +801,13 @@ def _ldl(plan, ar: Arithmetic, K, det12, reverse: bool = False) -> Factors:
             # the diagonal of |L||D||L^T| bounds what rounding can do to each pivot (balls
             # carry their own bound: a float per entry of the band would cost more than
             # their whole elimination's bookkeeping)
+            # (each pivot inverted once, each row's terms added from the farthest pivot to
+            # the nearest: the order of _band_core.h's band_pivot_scales, the same bits)
             scale = ar.upper(K[:, :, 0]).astype(float)
-            mag = ar.upper(pivots).astype(float)
-            for j in range(1, w):
-                if n > j:
-                    r = ar.upper(Kb[:, :n - j, j]).astype(float)
-                    scale[:, j:] += r * r / np.maximum(mag[:, :n - j], 1e-300)
+            inv = 1.0 / np.maximum(ar.upper(pivots).astype(float), 1e-300)
+            for j in range(min(w, n) - 1, 0, -1):
+                r = ar.upper(Kb[:, :n - j, j]).astype(float)
+                scale[:, j:] += r * r * inv[:, :n - j]
     signs, decided = ar.decide(pivots, scale, n)
     # Each decided pivot exceeds what the backward error E (|E| <= c u |L||D||L^T|) can do to
     # it; the inertia of K + E is K's only while E stays below K's smallest eigenvalue,
