@@ -9,6 +9,7 @@ from decimal import Decimal
 from functools import cached_property
 
 import mpmath
+from mpmath.libmp import mpf_sub, round_nearest, to_float
 
 from .display import html_table, latex_array, latex_text, text_lines
 from .jsonout import dumps, header
@@ -144,24 +145,34 @@ def _digits_of(value, digits: int):
     if not man:
         return None
     man = int(man)
+    low, high = _power_of_ten(digits - 1), _power_of_ten(digits)
     # the decade from the binary exponent, then made exact by comparisons
     e = math.floor((exp + bc - 1) * 0.30102999566398120)
     for _ in range(3):
         k = digits - 1 - e                          # |value| 10**k in [10**(D-1), 10**D)
         num = man << exp if exp >= 0 else man
-        den = 1 if exp >= 0 else 1 << -exp
         if k >= 0:
-            num *= 10 ** k
+            num *= _power_of_ten(k)
+        if exp < 0 and k >= 0:
+            # (a power of two below: a shift, where the division cost most of the call)
+            den = 1 << -exp
+            q = num >> -exp
+            r = num - (q << -exp)
         else:
-            den *= 10 ** -k
-        q, r = divmod(num, den)
-        if q < 10 ** (digits - 1):
+            den = (1 if exp >= 0 else 1 << -exp) * (1 if k >= 0 else _power_of_ten(-k))
+            q, r = divmod(num, den)
+        if q < low:
             e -= 1
-        elif q >= 10 ** digits:
+        elif q >= high:
             e += 1
         else:
             return sign, q, r, den, e
     return None
+
+
+@functools.lru_cache(maxsize=512)
+def _power_of_ten(k: int) -> int:
+    return 10 ** k
 
 
 def print_apart(a, b, digits: int) -> bool:
@@ -175,11 +186,29 @@ def print_apart(a, b, digits: int) -> bool:
     >>> print_apart(1.2344, 1.2399, 5), print_apart(1.23444, 1.23456, 5)
     (True, False)
     """
-    if a == 0 or b == 0:
+    fa, fb = _float(a), _float(b)
+    if fa == 0 or fb == 0:
         return False
-    top = max(abs(float(a)), abs(float(b)))
+    top = max(abs(fa), abs(fb))
     return 0 < top < math.inf and \
-        abs(float(b - a)) > 10.0 ** (math.floor(math.log10(top)) - digits + 2)
+        abs(_float_difference(b, a)) > 10.0 ** (math.floor(math.log10(top)) - digits + 2)
+
+
+def _float(x) -> float:
+    """``x`` (an mpmath number or a float) as the nearest float, read off its binary
+    value directly (mpmath's ``float()`` costs a context call: the proof stages ask
+    this of every bracket end)."""
+    m = getattr(x, "_mpf_", None)
+    return float(x) if m is None else to_float(m, rnd=round_nearest)
+
+
+def _float_difference(b, a) -> float:
+    """``b - a`` rounded once to a float (exact operands, as mpmath's difference at 53
+    bits rounds it)."""
+    mb, ma = getattr(b, "_mpf_", None), getattr(a, "_mpf_", None)
+    if mb is None or ma is None:
+        return float(b - a)
+    return to_float(mpf_sub(mb, ma, 53, round_nearest), rnd=round_nearest)
 
 
 def first(eigenvalues, count: int) -> list:

@@ -288,3 +288,30 @@ def test_a_plan_serves_the_range_its_pieces_are_short_enough_for():
     finally:
         plan_module.StiffnessPlan = original
     assert len(built) == 1, built
+
+
+@pytest.mark.parametrize("digits", [8, 15, 30])
+def test_omega_ends_are_widened_by_the_scales_margin(digits):
+    """The ends of ``Omega = sqrt(omega / scale)`` a bracket is tested with lie
+    ``10**-(digits + 8)`` outside the exact values (the margin for the scale's rounding,
+    which is carried to ``digits + 10`` digits): against mpmath at twice the bits, for a
+    beam whose scale is irrational. (The margin once rounded away to 1 at 53 bits.)"""
+    import mpmath
+
+    from symtmm.numeric.arith import MP
+    from symtmm.roots.undamped import _Search
+
+    model = Model((Beam("b", 2, 3, 1, left="pinned", right="pinned"),))
+    search = _Search(model, digits, 100.0)
+    ctx = MP(search.book_prec).ctx
+    omega = ctx.mpf(10) * ctx.pi
+    with mpmath.workprec(2 * search.book_prec):
+        exact = mpmath.sqrt(mpmath.mpf(omega) / mpmath.sqrt(mpmath.mpf(2) / 3))
+        margin = mpmath.mpf(10) ** -(digits + 8)
+        for side in (-1, 0, 1):
+            got = search._big(omega, side)
+            assert got.context is ctx
+            want = exact * (1 + side * margin)
+            assert abs(got - want) <= mpmath.mpf(10) ** -(digits + 10) * exact
+        assert search._big(omega, -1) < exact * (1 - margin / 2)
+        assert search._big(omega, 1) > exact * (1 + margin / 2)

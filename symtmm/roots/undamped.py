@@ -48,6 +48,7 @@ from typing import NamedTuple
 import mpmath
 import numpy as np
 import sympy as sp
+from mpmath.libmp import fone, mpf_add, mpf_div, mpf_mul, mpf_sqrt, mpf_sub
 
 from .. import progress
 from ..budget import checked_request
@@ -255,6 +256,7 @@ class _Search:
         # (the number as made, every bit kept: mpmath.mpf would round it to the ambient 53)
         self._scale = None if self.omega_scale is None else self.omega_scale[1]
         self._widen = mpmath.mpf(10) ** -(digits + 8)
+        self._big_constants: dict = {}     # (prec, rounding) -> scale, 1 - widen, 1 + widen
 
     def _prints(self, lo, hi) -> bool:
         """Whether a bracket ``[lo, hi]`` proves the digits: both ends print alike, and so
@@ -263,17 +265,36 @@ class _Search:
             return False
         if self._scale is None:
             return True
-        ctx = _context_of(lo)
-        s = ctx.mpf(self._scale)
-        return prints_alike(ctx.sqrt(lo / s) * (1 - self._widen),
-                            ctx.sqrt(hi / s) * (1 + self._widen), self.digits)
+        return prints_alike(self._big(lo, -1), self._big(hi, 1), self.digits)
+
+    def _big(self, x, side: int = 0):
+        """``Omega = sqrt(x / scale)`` of a bookkeeping number ``x``, times ``1 - widen``
+        (``side`` -1) or ``1 + widen`` (+1), each operation rounded as ``x``'s context
+        rounds it: the context's own operations, on the binary values directly (through
+        the context's calls, the two ends' cost most of a bracket's print test)."""
+        ctx = _context_of(x)
+        if not hasattr(x, "_mpf_"):
+            big = ctx.sqrt(x / ctx.mpf(self._scale))
+            return big if not side else big * (1 + side * ctx.mpf(self._widen))
+        prec, rnd = ctx._prec_rounding
+        known = self._big_constants.get((prec, rnd))
+        if known is None:
+            # (1 -+ widen in the context: in the global one, at 53 bits, they were 1)
+            widen = ctx.mpf(self._widen)._mpf_
+            known = self._big_constants[(prec, rnd)] = (
+                ctx.mpf(self._scale)._mpf_, mpf_sub(fone, widen, prec, rnd),
+                mpf_add(fone, widen, prec, rnd))
+        s, lower, upper = known
+        big = mpf_sqrt(mpf_div(x._mpf_, s, prec, rnd), prec, rnd)
+        if side:
+            big = mpf_mul(big, lower if side < 0 else upper, prec, rnd)
+        return ctx.make_mpf(big)
 
     def _room(self, c) -> float:
         """Half of how far ``c`` may move and print as it does, its ``Omega`` too."""
         room = rounding_room(c, self.digits)
         if self._scale is not None and room > 0:
-            ctx = _context_of(c)
-            big = ctx.sqrt(c / ctx.mpf(self._scale))
+            big = self._big(c)
             room_big = rounding_room(big, self.digits) - float(big) * float(self._widen)
             # (d omega = 2 Omega scale d Omega)
             room = min(room, max(0.0, 2 * float(big) * float(self._scale) * room_big))
