@@ -50,15 +50,18 @@ __all__ = ["Evaluator", "exact_mpf", "exact_mpc"]
 @one_blas_thread
 def _pivoted_log_delta(fa, points=None) -> tuple:
     """``(log|Delta|, arg Delta, trusted)`` at the ``points`` of double factors ``fa`` (all
-    where None) whose band elimination was not trusted: from the dense ``K`` factorised
-    with partial pivoting, trusted where its condition number leaves the phase good to
-    ``1e-6``; elsewhere the band's values, untrusted."""
-    from .stiffness import dense
+    where None) whose band elimination was not trusted: from ``K`` factorised with partial
+    pivoting, trusted where its condition number leaves the phase good to ``1e-6``;
+    elsewhere the band's values, untrusted. A long, narrow band within the band
+    (:func:`_band_pivoted`), a short or wide one densely by LAPACK."""
+    from .stiffness import dense, pivots_in_band
     points = np.arange(fa.pivots.shape[0]) if points is None else points
     logabs, phase = (x[points] for x in fa.log_delta())
-    full = dense(fa.plan, fa.K[points])
     with np.errstate(all="ignore"):
-        sign, logdet, cond = _pivoted(full)
+        if pivots_in_band(fa.plan.n, fa.plan.band):
+            sign, logdet, cond = _band_pivoted(fa.K[points], fa.plan.band)
+        else:
+            sign, logdet, cond = _pivoted(dense(fa.plan, fa.K[points]))
     la12, ph12 = DOUBLE.log_abs_arg(fa.det12[points])
     mult = fa.plan.multiplicity
     good = np.isfinite(logdet) & (cond * fa.plan.n * 2.2e-16 < 1e-6)
@@ -72,6 +75,30 @@ def _pivoted(full) -> tuple:
     (small matrices: on one BLAS thread, :mod:`symtmm.numeric.threads`)."""
     sign, logdet = np.linalg.slogdet(full)
     return sign, logdet, np.linalg.cond(full)
+
+
+def _band_pivoted(K, band: int) -> tuple:
+    """:func:`_pivoted` of the bands ``K`` ``(B, n, band + 1)`` of long, narrow matrices,
+    within the band (:class:`~symtmm.numeric.band_lu.BandLU`), the condition number in
+    the 1-norm by Hager's estimate (within a small factor of it)."""
+    from .band_lu import BandLU, condition_estimate
+    B = K.shape[0]
+    sign = np.empty(B, dtype=K.dtype)
+    logdet, cond = np.empty(B), np.empty(B)
+    for p in range(B):
+        check_time()
+        upper = K[p].tolist()
+        lu = BandLU(upper, band, keep=True)
+        if lu.singular:
+            sign[p], logdet[p], cond[p] = 0.0, -np.inf, np.inf
+            continue
+        # (the determinant, a product of thousands of pivots, leaves the doubles' range:
+        # its logarithm and phase are summed pivot by pivot)
+        pivots = np.array(lu.pivots, dtype=K.dtype)
+        sign[p] = np.prod(pivots / np.abs(pivots)) * (-1) ** lu.swaps
+        logdet[p] = np.sum(np.log(np.abs(pivots)))
+        cond[p] = condition_estimate(lu, upper, band)
+    return sign, logdet, cond
 
 
 def exact_mpf(x) -> mpmath.mpf:
@@ -302,9 +329,13 @@ class Evaluator:
         (measured: 1e12 from end to end of a 24-freedom band); Arb's determinant of
         the dense ``K`` with preconditioning (Hansen and Smith's, in
         ``acb_mat_det``) keeps them within a factor of about ``1e5 .. 1e8`` of what
-        the width of the box must cost. ``O(n**3)`` per point.
+        the width of the box must cost, ``O(n**3)`` per point. A plan too large to be
+        made dense (:func:`~symtmm.numeric.stiffness.pivots_in_band`) is eliminated within
+        the band with partial pivoting (:class:`~symtmm.numeric.band_lu.BandLU`), whose
+        enclosures are wider.
         """
-        from .stiffness import assemble, dense
+        from .band_lu import BandLU
+        from .stiffness import assemble, dense, pivots_in_band
 
         check_time()
         points = [z for z in lam]
@@ -322,12 +353,20 @@ class Evaluator:
             for plan, idx in plans.values():
                 values = ar.array([points[p] for p in idx])
                 K, det12 = assemble(plan, ar, values * values, values)
-                full = dense(plan, K)
-                n = plan.n
+                n, b = plan.n, plan.band
+                banded = pivots_in_band(n, b)
+                full = None if banded else dense(plan, K)
                 const = ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
                 for q, p in enumerate(idx):
-                    value = flint.acb_mat(n, n, [full[q, i, j] for i in range(n)
-                                                 for j in range(n)]).det() if n else flint.acb(1)
+                    if banded:
+                        # (too large to be made dense: within the band, with partial
+                        # pivoting, whose radii over a box may grow past the values)
+                        check_time()
+                        value = BandLU(K[q], b).det
+                    else:
+                        value = flint.acb_mat(n, n, [full[q, i, j] for i in range(n)
+                                                     for j in range(n)]).det() \
+                            if n else flint.acb(1)
                     value = value * const
                     for v, m in zip(det12[q], plan.multiplicity):
                         value = value * v ** int(m)

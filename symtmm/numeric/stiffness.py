@@ -402,19 +402,27 @@ class Factors:
         return ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
 
     def pivoted_delta(self, points) -> list:
-        """``Delta`` at the given point indices from the dense ``K`` with partial pivoting
-        (Arb's preconditioned determinant for balls): where a pivot of the band
-        elimination is (nearly) zero without ``K`` being singular, as at an eigenvalue
-        of a leading sub-structure."""
+        """``Delta`` at the given point indices from ``K`` with partial pivoting: where a
+        pivot of the band elimination is (nearly) zero without ``K`` being singular, as at
+        an eigenvalue of a leading sub-structure. Densely (Arb's preconditioned
+        determinant for balls, ``O(n**3)`` in C), or within the band
+        (:class:`~symtmm.numeric.band_lu.BandLU`, ``O(n b**2)``) where
+        :func:`pivots_in_band` says."""
+        from .band_lu import BandLU
         from .linalg import det
         ar, plan = self.ar, self.plan
-        full = dense(plan, self.K[points])
-        n = plan.n
+        n, b = plan.n, plan.band
+        banded = pivots_in_band(n, b, radii=ar.rigorous)
+        rows = self.K[points]
+        full = None if banded else dense(plan, rows)
         out = []
         with ar:
             const = self._constant()
             for p, idx in enumerate(points):
-                if ar.rigorous and n:
+                if banded:
+                    check_time()
+                    value = BandLU(rows[p], b).det
+                elif ar.rigorous and n:
                     value = ar.flint.acb_mat(n, n, [full[p, i, j] for i in range(n)
                                                     for j in range(n)]).det()
                 else:
@@ -531,6 +539,28 @@ _CHECK_EVERY = 256
 #: 640 at 2**18); a frame of 33 storeys (2575 freedoms) 2.8-3.1 ms in one part, 2.1-2.3 ms
 #: at 2**21, 3.1-3.3 ms at 2**18 (parts of 7 points: the per-call overhead).
 BAND_ENTRIES = 1 << 21
+
+
+#: Freedoms beyond which ``K`` is never made dense (``n**2`` numbers): its determinants
+#: with partial pivoting are taken within the band (:class:`~symtmm.numeric.band_lu.
+#: BandLU`, ``O(n b**2)``). A beam on a stiff foundation in 6561 freedoms spent minutes in
+#: one dense decomposition, past the search's time budget. Below it balls keep Arb's
+#: dense, preconditioned determinant: interval elimination along the band widens the
+#: radii by the dependency of its updates (a 124-freedom beam: 1e-55 to 1e-13, Arb's
+#: 1e-52) ...
+DENSE_LIMIT = 400
+#: ... while mpmath's numbers, which carry no radius, go within the band from this many
+#: freedoms per unit of half-bandwidth on: the dense elimination in Python is ``O(n**3)``
+#: operations (148 freedoms of half-bandwidth 3: seconds a point, the band's milliseconds).
+BANDED_DET = 16
+
+
+def pivots_in_band(n: int, band: int, radii: bool = True) -> bool:
+    """Whether a determinant of ``K`` (``n`` freedoms, half-bandwidth ``band``) with
+    partial pivoting is taken within the band: beyond :data:`DENSE_LIMIT`, and for
+    numbers without radii (``radii`` False: mpmath's) beyond :data:`BANDED_DET` times
+    the half-bandwidth too."""
+    return n > DENSE_LIMIT or (not radii and n > BANDED_DET * max(band, 1))
 
 
 def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Factors:
