@@ -811,3 +811,74 @@ def test_close_damped_pair_is_proved_by_rouche_in_its_sub_search():
                       sorted(refs, key=lambda z: float(z.imag))):
         assert decimal_string(e.lam.imag, 15) == decimal_string(ref.imag, 15)
         assert decimal_string(e.lam.real, 15) == decimal_string(ref.real, 15)
+
+
+_LONG_BEAM_ON_FOUNDATION = """
+[[beam]]
+name = "b0"
+EI = 5.09
+m = 0.731
+L = 46.3
+left = "clamped"
+right = "clamped"
+kw = 410.0
+
+[[spring]]
+between = ["b0", "ground"]
+x = 0.0
+k = 1130000.0
+kind = "rotational"
+c = 0.0259
+
+[[spring]]
+between = ["b0", "ground"]
+x = 35.65
+k = 14300000.0
+
+[[spring]]
+between = ["b0", "ground"]
+x = 23.15
+k = 0.0437
+
+[[spring]]
+between = ["b0", "ground"]
+x = 23.15
+k = 159.0
+
+[[mass]]
+beam = "b0"
+x = 3.357
+M = 761.0
+"""
+
+
+def test_a_count_in_a_dense_spectrum_proves_few_eigenvalues(tmp_path, monkeypatch):
+    """A long beam on a foundation (found by a campaign of random models): its modes
+    crowd just above sqrt(kw / m), where the count's first guess lands, and doubling the
+    region took in 57 eigenvalues for the 2 asked, each proved by dense determinants of
+    148 freedoms: past the time budget. The region's top is lowered while it holds the
+    count, and a Rouche disk no larger disk can rescue is given up. Reference: the
+    same model without its dashpot, which sits at a clamped end and never moves
+    (the undamped search, on the frequency axis)."""
+    from symtmm.numeric import evaluator
+
+    boxes = []
+    enclose = evaluator.Evaluator.enclose
+
+    def counted(self, lam, ar):
+        boxes.extend(lam)
+        return enclose(self, lam, ar)
+    monkeypatch.setattr(evaluator.Evaluator, "enclose", counted)
+    path = tmp_path / "long.toml"
+    path.write_text(_LONG_BEAM_ON_FOUNDATION)
+    damped = solve(load(path), count=2, digits=15)
+    path.write_text(_LONG_BEAM_ON_FOUNDATION.replace("c = 0.0259\n", ""))
+    undamped = solve(load(path), count=2, digits=15)
+    def printed(spectrum):
+        return [(d["real"], d["imag"], d["multiplicity"])
+                for d in (e.to_dict() for e in spectrum)]
+    assert printed(damped) == printed(undamped)
+    region = next(n for n in damped.notes if n.startswith("search region"))
+    top = float(region.split("Im lam <=")[1].split()[0])
+    assert top < 1.02 * 23.6830887813572         # (the doubling's top: 47.4)
+    assert len(boxes) <= 30

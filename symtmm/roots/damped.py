@@ -136,6 +136,11 @@ def _imaginary(z) -> mpmath.mpc:
     return mpmath.mp.make_mpc((mpmath.libmp.fzero, _global(z).imag._mpf_))
 
 
+#: A Rouche disk whose bound exceeds what the proof allows by more than this factor, times
+#: the radius still to grow, is given up with its box (:meth:`_Search._rouche_once`).
+_HOPELESS = 1e3
+
+
 def _real(z) -> mpmath.mpc:
     """``Re z`` as a complex number, exactly."""
     return mpmath.mp.make_mpc((_global(z).real._mpf_, mpmath.libmp.fzero))
@@ -800,6 +805,7 @@ class _Search:
         """
         out = [False] * len(items)
         todo = list(range(len(items)))
+        given_up: set = set()
         every = (10, 12, 13, 14, 15, 16, 17, 18)
         best: dict = {}             # per box the radius that came nearest to proving it
         # the enclosure over the disk grows faster than its radius beyond some radius,
@@ -819,21 +825,25 @@ class _Search:
             for i in todo:
                 groups.setdefault((best[i],) if extra and i in best else factors, []).append(i)
             for radii, members in groups.items():
-                proved, nearest = self._rouche_once([items[i] for i in members],
-                                                    digits + extra, radii)
+                proved, nearest, hopeless = self._rouche_once([items[i] for i in members],
+                                                              digits + extra, radii)
                 for i, ok, k in zip(members, proved, nearest):
                     out[i] = ok
                     if k is not None:
                         best[i] = k
-            todo = [i for i in todo if not out[i]]
+                # (more digits leave the enclosures' excess as it is: such a box is left
+                # to the other proofs)
+                given_up.update(members[j] for j in hopeless)
+            todo = [i for i in todo if not out[i] and i not in given_up]
         return out
 
     def _rouche_once(self, items, digits, factors) -> tuple:
         """One attempt of :meth:`_rouche` at ``digits``, with disks of radii ``10**k r`` for
-        ``k`` in ``factors``: ``(proved, nearest)`` per box, ``nearest`` the ``k`` whose
-        disk came nearest to proving it (None where its points did not pass)."""
+        ``k`` in ``factors``: ``(proved, nearest, hopeless)``, per box whether it is proved
+        and the ``k`` whose disk came nearest to proving it (None where its points did not
+        pass), and the boxes no disk can prove (:data:`_HOPELESS`)."""
         if not items:
-            return [], []
+            return [], [], set()
         import flint
 
         ar = Ball.from_digits(digits)
@@ -860,6 +870,7 @@ class _Search:
             out = [False] * len(items)
             nearest: list = [None] * len(items)
             margin: dict = {}
+            hopeless: set = set()
             todo = list(model)
             for k in factors:
                 if not todo:
@@ -877,16 +888,28 @@ class _Search:
                     if M.is_finite() and lhs < rhs:
                         out[i] = True
                     else:
-                        still.append(i)
                         if M.is_finite() and rhs > 0:
                             ratio = float((lhs / rhs).mid())
                             if i not in margin or ratio < margin[i]:
                                 margin[i], nearest[i] = ratio, k
+                        # a larger disk lowers the ratio at best as its radius grows (M
+                        # grows at least like the slope times the radius), and more digits
+                        # leave it as it is once the slope is known: where no smaller disk
+                        # is left to try, a box out of reach of the largest is given up (an
+                        # ill-conditioned K, whose enclosures exceed |Delta| by 1e130: 90
+                        # dense determinants of 148 freedoms in vain)
+                        later = factors[factors.index(k) + 1:]
+                        if i in margin and not any(q < k for q in later) and \
+                                2 * s.abs_lower() > s.abs_upper() and \
+                                margin[i] > _HOPELESS * 10.0 ** (max(later, default=k) - k):
+                            hopeless.add(i)
+                        else:
+                            still.append(i)
                 todo = still
             for i in model:
                 if nearest[i] is None and not out[i]:
                     nearest[i] = factors[0]
-        return out, nearest
+        return out, nearest, hopeless
 
     def _judge(self, s, zb, digits, conservative):
         """Accept ``zb`` (the refinement 15 digits higher) or say what the next round needs."""
@@ -1248,6 +1271,49 @@ def _region(omega_max: float, sigma_max: float, lam_ref: float, attempt: int):
     return rects
 
 
+def _found(cells, order: int, rigid: int) -> int:
+    """The eigenvalues with ``Im lam >= 0`` that counted ``cells`` hold at least: the
+    symmetric strip counts conjugate pairs twice (at least half are above); the zero at
+    ``lam = 0`` counts once per rigid-body mode."""
+    found = sum(n if not r.symmetric else (n + 1) // 2 for r, n, _ in cells)
+    return found - (order - rigid)
+
+
+#: Region searches a count's search spends at most on lowering the top of its region.
+_LOWER_STEPS = 8
+
+
+def _lowered(model, count: int, below: float, W: float, S: float, search, cells, how):
+    """``(W, search, cells, evaluations spent)``: the top ``W`` of a count's region lowered
+    toward ``below`` (where the region held fewer than ``count``) by bisection, while
+    the region with its strip ``-S <= Re lam <= 0`` kept still holds ``count`` and the
+    doubling had overshot: every eigenvalue counted is refined and proved, and those
+    beyond the ``count`` lowest are dropped. A dense spectrum above the first guess
+    (a long beam on a foundation: its modes crowd above ``sqrt(kw / m)``, the first
+    guess) held 57 where 2 were asked, and their proofs took a minute; the strip kept
+    keeps the answer the doubled region gives (the lowest ``Im lam`` in that strip)."""
+    digits, certified, order, rigid = how
+    spent = 0
+    found = _found(cells, order, rigid)
+    for _ in range(_LOWER_STEPS):
+        if found <= count + max(2, count // 4) or W - below <= 1e-3 * W:
+            break
+        mid = 0.5 * (below + W)
+        try:
+            lower, counted, wasted = _search_region(model, mid, S, digits, certified)
+        except ComputationError:
+            break               # (its boundary keeps meeting eigenvalues: the higher serves)
+        spent += wasted
+        got = _found(counted, order, rigid)
+        if got >= count:
+            spent += search.p.evaluations
+            W, search, cells, found = mid, lower, counted, got
+        else:
+            spent += lower.p.evaluations
+            below = mid
+    return W, search, cells, spent
+
+
 def _prove_count(search: _Search, cells, digits: int) -> str:
     """The counts of the region's rectangles proved in balls (:mod:`symtmm.roots.winding`),
     checked against the double-precision ones; a note saying what was proved."""
@@ -1382,21 +1448,21 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         search, cells, spent = _search_region(model, W, S, digits, certified)
         evaluations += spent
     else:
-        W = _first_guess(model)
+        W, below = _first_guess(model), 0.0
         while True:
             S = default_sigma_max(W) if sigma_max is None else float(sigma_max)
             search, cells, spent = _search_region(model, W, S, digits, certified)
             evaluations += spent
-            # the symmetric strip counts conjugate pairs twice: at least half are above;
-            # the zero at lam = 0 counts once per rigid-body mode
-            found = sum(n if not r.symmetric else (n + 1) // 2 for r, n, _ in cells)
-            found -= order - rigid
+            found = _found(cells, order, rigid)
             if found >= count:
                 break
             evaluations += search.p.evaluations
-            W *= 2.0
+            below, W = W, 2.0 * W
             if W > 1e12:
                 raise ComputationError(f"fewer than {count} eigenvalues below |lam| = 1e12")
+        W, search, cells, spent = _lowered(model, count, below, W, S, search, cells,
+                                           (digits, certified, order, rigid))
+        evaluations += spent
     search.zero_order = order
     count_note = _prove_count(search, cells, digits) if prove_count else None
     with progress.stages("solve", ["isolating", "refining and proving",
