@@ -9,11 +9,10 @@ double search (the condition number by estimate) and in balls.
 
 from __future__ import annotations
 
-from fractions import Fraction
-
 import mpmath
 import numpy as np
 import pytest
+from exact import exact_det
 
 from symtmm.model import Beam, Model, Spring
 from symtmm.numeric import evaluator, multiword, stiffness
@@ -72,25 +71,13 @@ def test_tridiagonal_closed_forms_in_mpmath():
         assert BandLU(np.array(swap, dtype=object), 1).det == (0 if n % 2 else (-1) ** (n // 2))
 
 
-def _exact_det(rows, b):
+def _exact_band_det(rows, b):
     n = len(rows)
-    A = [[Fraction(0)] * n for _ in range(n)]
+    A = [[0] * n for _ in range(n)]
     for r in range(n):
         for j in range(min(b + 1, n - r)):
-            A[r][r + j] = A[r + j][r] = Fraction(rows[r][j])
-    det = Fraction(1)
-    for k in range(n):
-        p = next((i for i in range(k, n) if A[i][k] != 0), None)
-        if p is None:
-            return Fraction(0)
-        if p != k:
-            A[k], A[p] = A[p], A[k]
-            det = -det
-        det *= A[k][k]
-        for i in range(k + 1, n):
-            f = A[i][k] / A[k][k]
-            A[i] = [a - f * c for a, c in zip(A[i], A[k])]
-    return det
+            A[r][r + j] = A[r + j][r] = rows[r][j]
+    return exact_det(A)
 
 
 @needs_flint
@@ -110,7 +97,7 @@ def test_balls_enclose_the_exact_determinant(complex_):
             if trial % 2:
                 for r in rows:
                     r[0] = 0
-            exact = _exact_det(rows, b)
+            exact = _exact_band_det(rows, b)
             flint.ctx.prec = 30 + trial
             widen = 1 + flint.arb(0, 2.0 ** -(30 + trial))
             balls = [[flint.arb(v) * widen for v in r] for r in rows]

@@ -16,6 +16,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
+from exact import exact_det
 
 from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load
@@ -725,24 +726,6 @@ def _dense(rows) -> list:
     return A
 
 
-def _exact_det(A) -> Fraction:
-    A = [row[:] for row in A]
-    n, det = len(A), Fraction(1)
-    for k in range(n):
-        p = next((i for i in range(k, n) if A[i][k] != 0), None)
-        if p is None:
-            return Fraction(0)
-        if p != k:
-            A[k], A[p] = A[p], A[k]
-            det = -det
-        det *= A[k][k]
-        for i in range(k + 1, n):
-            f = A[i][k] / A[k][k]
-            for j in range(k, n):
-                A[i][j] -= f * A[k][j]
-    return det
-
-
 @pytest.mark.parametrize("N", [2, 3])
 def test_twisted_elimination_keeps_the_inertia_and_the_determinant(N):
     """Eliminated from both ends toward any freedom, a band keeps the inertia (against
@@ -754,7 +737,7 @@ def test_twisted_elimination_keeps_the_inertia_and_the_determinant(N):
         n, w = int(rng.integers(4, 9)), int(rng.integers(2, 5))
         rows = _fraction_band(n, w, rng)
         A = _dense(rows)
-        det = _exact_det(A)
+        det = exact_det(A)
         negative = int((np.linalg.eigvalsh(np.array(A, dtype=float)) < 0).sum())
         for t in range(n):
             band = np.zeros((1, n, w, W), dtype=np.uint64)
