@@ -522,3 +522,47 @@ def test_rounding_room_is_the_distance_to_the_nearest_tie(man, exp, digits, nega
     past = ctx.mpf(room) * (1 + 1e-12) + unit / _TIE
     assert printed != decimal_string(x + past, digits) or \
         printed != decimal_string(x - past, digits)
+
+
+def test_print_tests_agree_with_exact_decimal_rounding():
+    """``prints_alike`` and ``print_apart`` (read off the numbers' binary values) against
+    Python's Decimal rounding of the exact binary value, and ``rounding_room`` against
+    the exact distance to the nearest tie: random values of 100-bit mantissas (no ties)
+    over 200 decades, at 1 to 40 digits, pairs from far apart to within a unit."""
+    import decimal
+    import random
+
+    from symtmm.results import print_apart, prints_alike, rounding_room
+
+    rng = random.Random(5)
+    ctx = mpmath.mp.clone()
+    ctx.prec = 100
+    decimal.getcontext().prec = 300
+    D = decimal.Decimal
+
+    def exact(x):
+        man, exp = x.man_exp
+        q = Fraction(int(man)) * Fraction(2) ** exp
+        return D(q.numerator) / D(q.denominator)
+
+    def rounded(d, digits):
+        return d.quantize(D(1).scaleb(d.adjusted() - digits + 1),
+                          rounding=decimal.ROUND_HALF_EVEN)
+
+    for _ in range(1500):
+        digits = rng.randint(1, 40)
+        a = ctx.mpf(rng.getrandbits(100) | (1 << 99)) * ctx.mpf(2) ** rng.randint(-400, 300)
+        b = a * (1 + ctx.mpf(10) ** -rng.uniform(0, digits + 3) * rng.choice([-1, 1]))
+        da, db = exact(a), exact(b)
+        alike = rounded(da, digits) == rounded(db, digits)
+        assert prints_alike(a, b, digits) == alike
+        assert not (print_apart(a, b, digits) and alike)
+        # the room: the distance to the nearest tie (in the decade below too, at the
+        # start of a decade), less at most the 1/100 of a unit left to the strings
+        unit = D(1).scaleb(da.adjusted() - digits + 1)
+        tie = abs((da / unit) % 1 - D("0.5")) * unit
+        start = D(1).scaleb(da.adjusted())
+        tie = min(tie, da - (start - unit / 20))
+        room = rounding_room(a, digits)
+        assert room <= float(tie) * (1 + 1e-12)
+        assert room >= float(tie - unit / 100) * (1 + 1e-12) - 1e-300 or room == 0

@@ -30,10 +30,10 @@ __all__ = ["BandLU", "condition_estimate"]
 
 
 def _size(v) -> float:
-    """How large ``v`` is, to choose pivots by: the modulus, a ball's upper bound of it
-    (the classical choice, which keeps the multipliers' midpoints within 1: choosing by
-    the balls' lower bounds instead grew the radii past the values over the boxes of
-    Rouche's proofs)."""
+    """How large ``v`` is, to choose pivots by: the modulus, for a ball the upper bound
+    of it (the classical choice, which keeps the multipliers' midpoints within 1; a
+    ball's radius says nothing about which row is best, as in
+    :func:`symtmm.numeric.linalg.det`)."""
     upper = getattr(v, "abs_upper", None)
     return float(upper()) if upper is not None else float(abs(v))
 
