@@ -674,3 +674,83 @@ def test_derive_refuses_a_product_that_would_end_past_its_budget(tmp_path):
     assert_contract(run, 120)
     assert run.code == 1 and "--max-seconds" in one_line(run)
     assert run.seconds < 20
+
+
+_BEAMS_WITH_A_LARGE_DETERMINANT = """
+[[beam]]
+name = "b0"
+EI = 106000000.0
+m = 0.914
+L = 75.8
+left = "clamped"
+right = "clamped"
+
+[[beam]]
+name = "b1"
+EI = 2080.0
+m = 1450.0
+L = 37.2
+left = "sliding"
+right = "pinned"
+
+[[spring]]
+between = ["b0", "ground"]
+x = 7.58
+k = 0
+kind = "rotational"
+c = 2.79
+
+[[spring]]
+between = ["b0", "b1"]
+x = 37.2
+k = 2880.0
+c = 0.0641
+
+[[spring]]
+between = ["b0", "ground"]
+x = 37.9
+k = 68700000.0
+
+[[mass]]
+beam = "b0"
+x = 42.99
+M = 1.91
+"""
+
+
+def test_derive_refuses_a_factorisation_too_large_to_interrupt(tmp_path):
+    """Two damped beams and a mass (a random model): a determinant of 352 484 terms in 37
+    variables went to python-flint's factorisation, which cannot be interrupted: derive
+    ran over five minutes with --max-seconds 5. A polynomial beyond FACTOR_TERMS, or one
+    whose factorisation would end past the deadline, is now refused before it starts."""
+    run = run_file(tmp_path, _BEAMS_WITH_A_LARGE_DETERMINANT, "derive", "--max-seconds", "5",
+                   limit=60)
+    assert_contract(run, 60)
+    assert run.code == 1 and "can be factored" in one_line(run)
+    assert run.seconds < 15
+
+
+def test_factoring_fits_its_size_and_the_time_left():
+    """The guard itself: a polynomial beyond FACTOR_TERMS never fits; below it, one fits
+    while the deadline leaves its assumed time, not once the deadline has passed."""
+    from symtmm.characteristic import budget as b
+    from symtmm.limits import FACTOR_TERMS
+
+    class Terms:
+        def __init__(self, n):
+            self.n = n
+
+        def __len__(self):
+            return self.n
+    assert not b.factoring_fits(Terms(FACTOR_TERMS + 1))
+    assert b.factoring_fits(Terms(FACTOR_TERMS))          # (no budget set: no deadline)
+    token = b._BUDGET.set(b.budget(60.0, None))
+    try:
+        assert b.factoring_fits(Terms(10_000))
+    finally:
+        b._BUDGET.reset(token)
+    token = b._BUDGET.set(b.budget(1e-9, None))
+    try:
+        assert not b.factoring_fits(Terms(10_000))
+    finally:
+        b._BUDGET.reset(token)

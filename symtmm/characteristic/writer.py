@@ -16,7 +16,7 @@ from fractions import Fraction
 import sympy as sp
 
 from .algebra import _Algebra
-from .budget import spend
+from .budget import factoring_fits, spend
 from .factor import _normalise
 from .ring import _rational, _Ring
 
@@ -249,6 +249,8 @@ class _Writer:
         ring = self._rest_ring
         poly = ring.from_dict({k: ring.coefficient(sp.Rational(v.numerator, v.denominator))
                                for k, v in by_rest.items()})
+        if not factoring_fits(poly):
+            return expr                 # (written out: its factors are only for reading)
         content, parts = ring.factor(poly)
         if len(parts) < 2 and all(e == 1 for _, e in parts):
             return expr
