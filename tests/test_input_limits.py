@@ -754,3 +754,27 @@ def test_factoring_fits_its_size_and_the_time_left():
         assert not b.factoring_fits(Terms(10_000))
     finally:
         b._BUDGET.reset(token)
+
+
+def test_a_large_double_batch_checks_the_time_budget_between_its_slices(monkeypatch):
+    """A compiled call cannot be interrupted: a contour's first grid on a long beam on a
+    stiff foundation (tens of thousands of points in one batch, 4.7 s a call) ran 15 s
+    past a 60 s budget. A double batch now runs in slices of about CHECK_SECONDS with
+    the budget checked between them: under a budget already spent, a batch of many
+    slices stops after its first, and one that fits in a slice is not stopped."""
+    import numpy as np
+
+    from symtmm.deadline import time_budget
+    from symtmm.numeric import multiword
+    from symtmm.numeric.plan import StiffnessPlan
+
+    plan = StiffnessPlan(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 1e4)
+    lam2 = -np.linspace(1.0, 90.0, 50) ** 2
+    assert multiword.double_summary(plan, lam2) is not None
+    monkeypatch.setattr(multiword, "CHECK_SECONDS", 1e-12)       # one point a slice
+    with time_budget(0.0):
+        time.sleep(0.001)
+        with pytest.raises(ComputationError, match="--max-seconds"):
+            multiword.double_summary(plan, lam2)
+        _, _, counts, ok = multiword.double_summary(plan, lam2[:1])
+    assert ok.all() and counts.tolist() == [0]

@@ -53,6 +53,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from ..deadline import check as check_time
 from ..expr import exact_float
 from .arith import Ball, exact_key
 from .parallel import run_ranges
@@ -138,14 +139,31 @@ def double_summary(plan, lam2, lam=None):
     counts, ok = np.empty(B, dtype=np.int64), np.zeros(B, dtype=np.uint8)
     mult = np.ascontiguousarray(plan.multiplicity, dtype=np.int64)
 
-    def run(lo, hi):
-        # (each part writes its own range of the outputs)
-        _multiword.summary(code, lam2[lo:hi], lam[lo:hi] if len(lam) else lam,
-                           *_series_tables(tabs), n, w, mult, DOUBLE.TRUST,
-                           DOUBLE.growth_limit, float(plan.log_constant), logabs[lo:hi],
-                           phase[lo:hi], counts[lo:hi], ok[lo:hi])
-    run_ranges(run, B, _batch_seconds(plan, B, 1, 2 if code > COMPLEX else 1))
+    W = 2 if code > COMPLEX else 1
+    # a batch in slices of about CHECK_SECONDS each, the search's time budget checked
+    # between them: a compiled call cannot be interrupted, and a contour's first grid on
+    # a long beam on a stiff foundation (tens of thousands of points, 4.7 s a call) ran
+    # 15 s past a 60 s budget
+    step = max(1, int(CHECK_SECONDS / max(_batch_seconds(plan, 1, 1, W), 1e-12)))
+    for start in range(0, B, step):
+        if start:
+            check_time()
+        stop = min(B, start + step)
+
+        def run(lo, hi, start=start):
+            # (each part writes its own range of the outputs)
+            lo, hi = start + lo, start + hi
+            _multiword.summary(code, lam2[lo:hi], lam[lo:hi] if len(lam) else lam,
+                               *_series_tables(tabs), n, w, mult, DOUBLE.TRUST,
+                               DOUBLE.growth_limit, float(plan.log_constant), logabs[lo:hi],
+                               phase[lo:hi], counts[lo:hi], ok[lo:hi])
+        run_ranges(run, stop - start, _batch_seconds(plan, stop - start, 1, W))
     return logabs, phase, counts, ok.astype(bool)
+
+
+#: Estimated seconds of one slice of a double batch between checks of the search's time
+#: budget (:func:`double_summary`).
+CHECK_SECONDS = 0.5
 
 
 #: Seconds per entry of a point's band elimination (freedoms times the squared width) and
