@@ -189,3 +189,26 @@ def test_a_plan_beyond_the_dense_limit_is_never_made_dense(monkeypatch):
     fa = stiffness.factor(plan, DOUBLE, lam * lam, lam)
     logabs, _, trusted = evaluator._pivoted_log_delta(fa)
     assert np.isfinite(logabs).all() and trusted.all()
+
+
+@needs_flint
+def test_a_large_ball_batch_in_parts_is_the_batch_at_once(monkeypatch):
+    """Evaluator.factors splits a ball batch larger than BALL_ENTRIES into parts, the
+    budget checked before each (Arb's bands of thousands of points on a long plan had
+    taken 3.9 GB in one piece): the same Delta and counts as the batch at once, also where
+    the compiled balls decline and Arb's band rows are kept (the pivoted determinants)."""
+    from symtmm.numeric.evaluator import Evaluator
+
+    model = _long_beam()
+    ar = Ball(160)
+    lam = [mpmath.mpc(-0.3, w) for w in (3.0, 20.5, 77.7, 150.2, 222.2, 301.0)]
+    for compiled in (True, False):
+        monkeypatch.setattr(multiword, "ENABLED", compiled)
+        whole = Evaluator(model, 400.0).delta(lam, ar)
+        plan = Evaluator(model, 400.0).plan(301.0, len(lam), ar)
+        monkeypatch.setattr(evaluator, "BALL_ENTRIES", 3 * plan.n * plan.width)  # 3 a part
+        parts = Evaluator(model, 400.0).delta(lam, ar)
+        monkeypatch.setattr(evaluator, "BALL_ENTRIES", 1 << 18)
+        for x, y in zip(whole[0], parts[0]):
+            assert x.overlaps(y) and y.rad() < 1e-10 * abs(y).mid()
+        assert list(whole[1]) == list(parts[1])

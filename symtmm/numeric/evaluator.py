@@ -121,6 +121,10 @@ def exact_mpc(z) -> mpmath.mpc:
                                mpmath.libmp.from_float(z.imag)))
 
 
+#: Entries of the band (points x freedoms x (half-bandwidth + 1)) one batch in balls or
+#: mpmath builds at once (:meth:`Evaluator.factors`): a larger batch goes in parts.
+BALL_ENTRIES = 1 << 18
+
 #: Double-precision points a batch may evaluate on a plan cut for a larger range. A plan
 #: costs what hundreds of points do (measured: a 10-level chain's 20 to 36 ms against 64 us
 #: a point; example 1's 3 to 6 ms against 5 us), a plan for 13 times the range at most
@@ -213,13 +217,22 @@ class Evaluator:
         points = [exact_mpc(z) if not hasattr(z, "mid") else z for z in lam]
         top = max((float(abs(complex(z.mid()) if hasattr(z, "mid") else complex(z)))
                    for z in points), default=0.0)
+        plan = self.plan(top, len(points), ar)
+        step = max(1, BALL_ENTRIES // max(1, plan.n * plan.width))
+        if len(points) > step:
+            # a large batch in parts, the budget checked before each: a part cannot be
+            # interrupted, and where the compiled balls decline a plan, Arb's band of every
+            # point is built at once (a contour's untrusted points on a plan of thousands
+            # of freedoms: 3.9 GB, and 11 s past a 60 s budget)
+            return Factors.joined([self.factors(points[i:i + step], ar, retry)
+                                   for i in range(0, len(points), step)])
         self.evaluations += len(points)
 
         def build(work, idx):
             chosen = points if idx is None else [points[i] for i in idx]
             values = work.array([work.number(z) for z in chosen])
             return work.square(values), values
-        return self._factor(self.plan(top, len(points), ar), ar, build, retry)
+        return self._factor(plan, ar, build, retry)
 
     def _factor(self, plan, ar, build, retry: bool = True) -> Factors:
         """``factor`` at the points ``build(ar, idx) -> (lam2, lam)`` gives (``idx``: which

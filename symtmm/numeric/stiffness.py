@@ -385,7 +385,9 @@ class Factors:
             return np.concatenate([getattr(p, field) for p in parts], axis=0)
         rows, offset = {}, 0
         for part in parts:
-            if part.K is not None:
+            if isinstance(part.K, BandRows):        # (a ball batch's: its untrusted rows)
+                rows.update((offset + i, row) for i, row in part.K.rows.items())
+            elif part.K is not None:
                 for i in np.nonzero(~part.trusted)[0]:
                     rows[offset + int(i)] = part.K[i]
             offset += part.pivots.shape[0]
