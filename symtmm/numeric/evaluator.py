@@ -347,8 +347,7 @@ class Evaluator:
         the band with partial pivoting (:class:`~symtmm.numeric.band_lu.BandLU`), whose
         enclosures are wider.
         """
-        from .band_lu import BandLU
-        from .stiffness import assemble, dense, pivots_in_band
+        from .stiffness import assemble, pivoted_deltas
 
         check_time()
         points = [z for z in lam]
@@ -360,29 +359,12 @@ class Evaluator:
         for p, z in enumerate(points):
             plan = self.plan(float(abs(complex(z.mid()))) + float(z.rad()))
             plans.setdefault(id(plan), (plan, []))[1].append(p)
-        flint = ar.flint
         out: list = [None] * len(points)
         with ar:
             for plan, idx in plans.values():
                 values = ar.array([points[p] for p in idx])
                 K, det12 = assemble(plan, ar, values * values, values)
-                n, b = plan.n, plan.band
-                banded = pivots_in_band(n, b)
-                full = None if banded else dense(plan, K)
-                const = ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
-                for q, p in enumerate(idx):
-                    if banded:
-                        # (too large to be made dense: within the band, with partial
-                        # pivoting, whose radii over a box may grow past the values)
-                        check_time()
-                        value = BandLU(K[q], b).det
-                    else:
-                        value = flint.acb_mat(n, n, [full[q, i, j] for i in range(n)
-                                                     for j in range(n)]).det() \
-                            if n else flint.acb(1)
-                    value = value * const
-                    for v, m in zip(det12[q], plan.multiplicity):
-                        value = value * v ** int(m)
+                for p, value in zip(idx, pivoted_deltas(plan, ar, K, det12)):
                     out[p] = value
         return ar.array(out)
 

@@ -406,34 +406,8 @@ class Factors:
     def pivoted_delta(self, points) -> list:
         """``Delta`` at the given point indices from ``K`` with partial pivoting: where a
         pivot of the band elimination is (nearly) zero without ``K`` being singular, as at
-        an eigenvalue of a leading sub-structure. Densely (Arb's preconditioned
-        determinant for balls, ``O(n**3)`` in C), or within the band
-        (:class:`~symtmm.numeric.band_lu.BandLU`, ``O(n b**2)``) where
-        :func:`pivots_in_band` says."""
-        from .band_lu import BandLU
-        from .linalg import det
-        ar, plan = self.ar, self.plan
-        n, b = plan.n, plan.band
-        banded = pivots_in_band(n, b, radii=ar.rigorous)
-        rows = self.K[points]
-        full = None if banded else dense(plan, rows)
-        out = []
-        with ar:
-            const = self._constant()
-            for p, idx in enumerate(points):
-                if banded:
-                    check_time()
-                    value = BandLU(rows[p], b).det
-                elif ar.rigorous and n:
-                    value = ar.flint.acb_mat(n, n, [full[p, i, j] for i in range(n)
-                                                    for j in range(n)]).det()
-                else:
-                    value = det(ar, full[p])
-                value = value * const
-                for v, m in zip(self.det12[idx], plan.multiplicity):
-                    value = value * v ** int(m)
-                out.append(value)
-        return out
+        an eigenvalue of a leading sub-structure (:func:`pivoted_deltas`)."""
+        return pivoted_deltas(self.plan, self.ar, self.K[points], self.det12[points])
 
     def delta(self) -> np.ndarray:
         """``Delta`` per point as numbers of the arithmetic (mpmath numbers or balls)."""
@@ -563,6 +537,39 @@ def pivots_in_band(n: int, band: int, radii: bool = True) -> bool:
     numbers without radii (``radii`` False: mpmath's) beyond :data:`BANDED_DET` times
     the half-bandwidth too."""
     return n > DENSE_LIMIT or (not radii and n > BANDED_DET * max(band, 1))
+
+
+def pivoted_deltas(plan, ar: Arithmetic, K, det12) -> list:
+    """``Delta`` of each band ``K[p]`` (``(B, n, b + 1)``, its ``det U12`` the row
+    ``det12[p]``) by a determinant with partial pivoting: densely (Arb's preconditioned
+    determinant for balls, ``O(n**3)`` in C), or within the band
+    (:class:`~symtmm.numeric.band_lu.BandLU`, ``O(n b**2)``) where :func:`pivots_in_band`
+    says. Balls enclose ``Delta`` over the balls of ``K``, wide ones too (a box of the
+    complex plane: :meth:`~symtmm.numeric.evaluator.Evaluator.enclose`)."""
+    from .band_lu import BandLU
+    from .linalg import det
+    n, b = plan.n, plan.band
+    banded = pivots_in_band(n, b, radii=ar.rigorous)
+    full = None if banded or n == 0 else dense(plan, K)
+    out = []
+    with ar:
+        const = ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
+        for p in range(K.shape[0]):
+            if n == 0:
+                value = ar.exact(1)
+            elif banded:
+                check_time()
+                value = BandLU(K[p], b).det
+            elif ar.rigorous:
+                value = ar.flint.acb_mat(n, n, [full[p, i, j] for i in range(n)
+                                                for j in range(n)]).det()
+            else:
+                value = det(ar, full[p])
+            value = value * const
+            for v, m in zip(det12[p], plan.multiplicity):
+                value = value * v ** int(m)
+            out.append(value)
+    return out
 
 
 def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Factors:
