@@ -42,7 +42,7 @@ from symtmm.cli import main
 from symtmm.compile import Evaluator
 from symtmm.fe import fe_dashpots, fe_matrices
 from symtmm.model import Beam, Model, Spring
-from symtmm.modelfile import load
+from symtmm.modelfile import load, loads
 from symtmm.numeric.arith import ball_available
 from symtmm.numeric.evaluator import Evaluator as Kernel
 from symtmm.results import decimal_string
@@ -882,3 +882,93 @@ def test_a_count_in_a_dense_spectrum_proves_few_eigenvalues(tmp_path, monkeypatc
     top = float(region.split("Im lam <=")[1].split()[0])
     assert top < 1.02 * 23.6830887813572         # (the doubling's top: 47.4)
     assert len(boxes) <= 30
+
+
+# a campaign's model: a very stiff short beam (b1) on soft springs beside a long soft beam
+# on a foundation; the radii of its balls grow by about 10**55 along the band
+_STIFF_SHORT_BEAM = """
+[[beam]]
+name = "b0"
+EI = 0.0027
+m = 647.0
+L = 5.22
+left = "free"
+right = "sliding"
+kw = 459.0
+
+[[beam]]
+name = "b1"
+EI = 480000000.0
+m = 34.2
+L = 0.0772
+left = "free"
+right = "pinned"
+
+[[beam]]
+name = "b2"
+EI = 69.5
+m = 37.3
+L = 0.224
+left = "sliding"
+right = "sliding"
+theory = "timoshenko"
+rhoI = 0.000112
+kGA = 69700000.0
+
+[[spring]]
+between = ["b0", "b2"]
+x = 0.224
+k = 70.7
+
+[[spring]]
+between = ["b0", "b1"]
+x = 0.05944
+k = 18.3
+c = 0.23
+
+[[spring]]
+between = ["b1", "b0"]
+x = 0.0
+k = 52.5
+c = 10.6
+"""
+
+
+def test_values_reach_their_digits_where_the_compiled_balls_round_the_precision(
+        monkeypatch):
+    """A point whose compiled balls decide every pivot but carry its value to 2 digits
+    only, at 30, 40 and 50 digits alike (the words round the precision up to a tier that
+    the growth of the radii eats): the contour found no trusted value there, and the
+    model's search failed with "a zero lies too close to the contour". The values now
+    come with radii under a thousandth of them (what the contours ask); reference: Arb's
+    own elimination at 120 digits (the compiled balls switched off)."""
+    from symtmm.numeric import multiword
+    from symtmm.roots.damped import _Problem
+
+    model = loads(_STIFF_SHORT_BEAM)
+    # (a side of the contour beside the region's corner: the batch's largest |lam| picks
+    # the plan, on which these points' balls grow so)
+    points = [mpmath.mpc(0.0336910356580728, y) for y in np.linspace(0.70, 0.80, 40)]
+    points.append(mpmath.mpc(-1.68455195135882, 0.842276059906997))
+    got = _Problem(model, 1.9775557).values(points, 30)
+    monkeypatch.setattr(multiword, "ENABLED", False)
+    reference = _Problem(model, 1.9775557).values(points, 120)
+    for a, b in zip(got, reference):
+        assert a is not None and b is not None
+        assert abs(a - b) <= abs(b) / 1024
+
+
+@pytest.mark.slow
+def test_a_stiff_short_beam_on_soft_springs_is_solved():
+    """The campaign's model whose search failed ("a zero lies too close to the contour"):
+    solved. Reference: the undamped search of the model without its dashpots (the
+    Wittrick-Williams count on the frequency axis); the damping ratios are 7e-6 and
+    2e-11, and move the frequencies by less than 1e-7 of them."""
+    damped = solve(loads(_STIFF_SHORT_BEAM), count=2, digits=15)
+    undamped = solve(loads(_STIFF_SHORT_BEAM.replace("c = 0.23\n", "")
+                           .replace("c = 10.6\n", "")), count=2, digits=15)
+    assert len(damped.eigenvalues) == len(undamped.eigenvalues) == 2
+    for d, u in zip(damped.eigenvalues, undamped.eigenvalues):
+        lam, omega = complex(d.lam), float(u.omega)
+        assert -1e-5 * omega < lam.real < 0
+        assert abs(lam.imag - omega) < 1e-7 * omega

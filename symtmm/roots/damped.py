@@ -241,6 +241,7 @@ class _Problem:
         out: list = [None] * len(points)
         todo = list(range(len(points)))
         work = digits
+        before = None           # the widest ball's shortfall at the last precision
         for attempt in range(3):
             if not todo:
                 break
@@ -263,8 +264,15 @@ class _Problem:
             todo = wide
             # the next precision: the digits the widest ball lacked and ten more (a point
             # near a zero, its value far below the terms: doubling took 45 -> 90 -> 180
-            # digits there, past the compiled balls), else twice as many
-            work = work + max(10, math.ceil(short) + 10) if math.isfinite(short) else 2 * work
+            # digits there, past the compiled balls), else twice as many. Where the last
+            # step gained under half the digits it added, the balls did not come from this
+            # precision (the compiled words round it up to a tier, which may already have
+            # held more: a model with a growth of 10^55 along its band read the same radius
+            # at 30, 40 and 50 digits) and the shortfall says nothing of the next: doubled
+            stalled = before is not None and short > before[0] - 0.5 * (work - before[1])
+            before = (short, work)
+            work = work + max(10, math.ceil(short) + 10) \
+                if math.isfinite(short) and not stalled else 2 * work
         return out
 
     def log_delta(self, z):
