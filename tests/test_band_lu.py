@@ -175,6 +175,35 @@ def test_double_pivoted_values_in_the_band_agree_with_lapack(monkeypatch):
     assert band[2].tolist() == dense[2].tolist()
 
 
+@pytest.mark.parametrize("complex_", [False, True])
+def test_dense_pivoted_condition_numbers_against_the_svd(complex_):
+    """The dense fallback's condition number: LAPACK's 2-norm one (SVD) wherever it is
+    below the limit asked; elsewhere a lower bound of it that reaches the limit, so that
+    the same points are trusted as with the SVD everywhere. Random matrices of
+    condition 1 to 1e16, singular ones among them."""
+    rng = np.random.default_rng(11)
+    B, n = 60, 24
+    def unitary():
+        X = rng.standard_normal((B, n, n))
+        return np.linalg.qr(X + 1j * rng.standard_normal((B, n, n)) if complex_ else X)[0]
+    s = 10.0 ** -np.linspace(0, rng.uniform(0, 16, (B, 1)), n, axis=-1).reshape(B, n)
+    s[::15, -1] = 0.0                                   # (singular but for rounding)
+    A = unitary() @ (s[:, :, None] * unitary())
+    limit = 1e8
+    sign, logdet, cond = evaluator._pivoted(A, limit)
+    ref_sign, ref_logdet = np.linalg.slogdet(A)
+    ref = np.linalg.cond(A)
+    assert np.array_equal(sign, ref_sign) and np.array_equal(logdet, ref_logdet)
+    below = ref < limit
+    assert 0 < below.sum() < B                          # (both kinds drawn)
+    assert np.allclose(cond[below], ref[below], rtol=1e-12)
+    assert np.all(cond[~below] >= limit)
+    # a lower bound (where the SVD's condition number is more than rounding's noise)
+    meaningful = ~below & (ref < 1e14)
+    assert meaningful.any() and np.all(cond[meaningful] <= ref[meaningful] * (1 + 1e-6))
+    assert np.array_equal(cond < limit, below)
+
+
 def test_a_plan_beyond_the_dense_limit_is_never_made_dense(monkeypatch):
     """Beyond DENSE_LIMIT freedoms neither the double fallback nor the ball determinants
     build K densely (a beam on a stiff foundation in 6561 freedoms spent minutes in one
