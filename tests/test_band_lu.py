@@ -225,17 +225,24 @@ def test_a_large_ball_batch_in_parts_is_the_batch_at_once(monkeypatch):
     """Evaluator.factors splits a ball batch larger than BALL_ENTRIES into parts, the
     budget checked before each (Arb's bands of thousands of points on a long plan had
     taken 3.9 GB in one piece): the same Delta and counts as the batch at once, also where
-    the compiled balls decline and Arb's band rows are kept (the pivoted determinants)."""
+    the compiled balls decline and Arb's band rows are kept (the pivoted determinants).
+    The parts are eliminated on the batch's plan (a part's own plan had other freedoms,
+    and joining the parts raised a ValueError)."""
     from symtmm.numeric.evaluator import Evaluator
 
     model = _long_beam()
     ar = Ball(160)
-    lam = [mpmath.mpc(-0.3, w) for w in (3.0, 20.5, 77.7, 150.2, 222.2, 301.0)]
+    # (the parts' largest |lam| far apart, the last part a single point: each part is
+    # eliminated on the batch's plan, not on one of its own range and size)
+    lam = [mpmath.mpc(-0.3, w) for w in (301.0, 222.2, 150.2, 77.7, 20.5, 3.0, 0.5)]
     for compiled in (True, False):
         monkeypatch.setattr(multiword, "ENABLED", compiled)
         whole = Evaluator(model, 400.0).delta(lam, ar)
         plan = Evaluator(model, 400.0).plan(301.0, len(lam), ar)
-        monkeypatch.setattr(evaluator, "BALL_ENTRIES", 3 * plan.n * plan.width)  # 3 a part
+        monkeypatch.setattr(evaluator, "BALL_ENTRIES", 5 * plan.n * plan.width)  # 5 a part
+        # (a plan cut for the small range of the last part, built by another search: a
+        # part of few points alone would take it, the others the batch's plan)
+        Evaluator(model, 400.0).delta([mpmath.mpc(-0.3, w) for w in (1, 1.5, 2, 2.5, 3)], ar)
         parts = Evaluator(model, 400.0).delta(lam, ar)
         monkeypatch.setattr(evaluator, "BALL_ENTRIES", 1 << 18)
         for x, y in zip(whole[0], parts[0]):

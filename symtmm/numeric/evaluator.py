@@ -248,20 +248,23 @@ class Evaluator:
                    for z in points), default=0.0)
         plan = self.plan(top, len(points), ar)
         step = max(1, BALL_ENTRIES // max(1, plan.n * plan.width))
-        if len(points) > step:
-            # a large batch in parts, the budget checked before each: a part cannot be
-            # interrupted, and where the compiled balls decline a plan, Arb's band of every
-            # point is built at once (a contour's untrusted points on a plan of thousands
-            # of freedoms: 3.9 GB, and 11 s past a 60 s budget)
-            return Factors.joined([self.factors(points[i:i + step], ar, retry)
-                                   for i in range(0, len(points), step)])
-        self.evaluations += len(points)
+        # a large batch in parts on the batch's plan, the budget checked before each: a
+        # part cannot be interrupted, and where the compiled balls decline a plan, Arb's
+        # band of every point is built at once (a contour's untrusted points on a plan of
+        # thousands of freedoms: 3.9 GB, and 11 s past a 60 s budget)
+        parts = [points[i:i + step] for i in range(0, len(points), step)]
+        out = []
+        for part in parts:
+            if out:
+                check_time()
+            self.evaluations += len(part)
 
-        def build(work, idx):
-            chosen = points if idx is None else [points[i] for i in idx]
-            values = work.array([work.number(z) for z in chosen])
-            return work.square(values), values
-        return self._factor(plan, ar, build, retry)
+            def build(work, idx, part=part):
+                chosen = part if idx is None else [part[i] for i in idx]
+                values = work.array([work.number(z) for z in chosen])
+                return work.square(values), values
+            out.append(self._factor(plan, ar, build, retry))
+        return out[0] if len(out) == 1 else Factors.joined(out)
 
     def _factor(self, plan, ar, build, retry: bool = True) -> Factors:
         """``factor`` at the points ``build(ar, idx) -> (lam2, lam)`` gives (``idx``: which
