@@ -577,3 +577,55 @@ def test_boundary_walked_in_balls_is_the_mpmath_walk(value, monkeypatch):
     worst = max(abs(ar.to_mpmath(a) - ar.to_mpmath(b)) for a, b in
                 zip(fast.reshape(-1), slow.reshape(-1)))
     assert worst < mpmath.mpf(10) ** -45 * scale
+
+
+@pytest.mark.parametrize("scale", ["1e-400", "1e-200", "1", "1e200", "1e400"])
+def test_determinants_at_any_magnitude(scale):
+    """linalg.det in mpmath and in balls chooses its pivots at any magnitude: entries
+    beyond the doubles' range had all compared as inf (or 0, and the matrix had
+    determinant 0), with numpy's overflow warning on stderr (a model with N = 7e10
+    beside EI = 0.001). Reference: the exact rational determinant times scale**n."""
+    from exact import exact_det
+
+    rng = random.Random(5)
+    rows = [[rng.randint(-9, 9) for _ in range(5)] for _ in range(5)]
+    rows[0][0] = 0                                  # (a pivot from below at once)
+    whole = exact_det(rows)
+    assert whole.denominator == 1 and whole != 0
+    with mpmath.workprec(300):
+        reference = mpmath.mpf(whole.numerator) * mpmath.mpf(scale) ** 5
+    ar = MP(120)
+    s = ar.ctx.mpf(scale)
+    with np.errstate(all="raise"):
+        got = linalg.det(ar, np.array([[ar.number(v) * s for v in row] for row in rows],
+                                      dtype=object))
+    with mpmath.workprec(300):
+        assert abs(mpmath.mpf(got) - reference) <= mpmath.mpf(2) ** -100 * abs(reference)
+    if ball_available():
+        import flint
+        b = Ball(120)
+        with b, np.errstate(all="raise"):
+            sb = flint.arb(scale)
+            got = linalg.det(b, np.array([[flint.arb(v) * sb for v in row] for row in rows],
+                                         dtype=object))
+        assert got.overlaps(flint.arb(whole.numerator) * sb ** 5)
+        assert got.rad() < abs(got.mid()) * 2.0 ** -90
+
+
+@pytest.mark.skipif(not ball_available(), reason="python-flint not installed")
+def test_a_determinant_of_balls_that_hold_zero_is_never_an_exact_zero():
+    """Balls that all hold 0 (and the NaN balls their quotients make): the determinant
+    must hold every member's, never be the exact 0 that "every candidate pivot is an
+    exact zero" gives (which a Rouche or sign proof would take as a value)."""
+    import flint
+
+    b = Ball(100)
+    with b:
+        z = flint.arb(0, 1e-3)
+        got = linalg.det(b, np.array([[z, z], [z, z]], dtype=object))
+        assert not got.is_zero()
+        for member in (0, 1e-6, -1e-6):            # (det [[a, b], [c, d]] of members)
+            assert got.contains(member)
+        exact = linalg.det(b, np.array([[flint.arb(0), flint.arb(0)],
+                                        [flint.arb(0), flint.arb(1)]], dtype=object))
+        assert exact.is_zero()

@@ -438,7 +438,9 @@ class MP(Arithmetic):
         return _ufunc(lambda v: ctx.root(ctx.mpc(v), 4))(x)
 
     def upper(self, x):
-        return self._abs(x).astype(float) * (1 + 1e-14)
+        # (beyond the doubles' range the bound is inf, said without numpy's warning)
+        with np.errstate(over="ignore", under="ignore"):
+            return self._abs(x).astype(float) * (1 + 1e-14)
 
     def is_complex(self, x):
         # arrays are homogeneous (every kernel array is built from one kind of input):
@@ -449,7 +451,8 @@ class MP(Arithmetic):
     def decide(self, pivot, scale, n):
         pivot = np.asarray(pivot, dtype=object)
         limit = float(n + 1) * 2.0 ** (40 - self.prec)
-        mag = self._abs(pivot).astype(float)
+        with np.errstate(over="ignore", under="ignore"):
+            mag = self._abs(pivot).astype(float)
         decided = mag > limit * np.asarray(scale, dtype=float)
         if self.is_complex(pivot):
             return np.zeros(pivot.shape, dtype=np.int8), decided
@@ -657,7 +660,8 @@ class Ball(Arithmetic):
         return _ufunc(root)(x)
 
     def upper(self, x):
-        return self._upper(x).astype(float)
+        with np.errstate(over="ignore", under="ignore"):
+            return self._upper(x).astype(float)
 
     def is_complex(self, x):
         flat = np.asarray(x).reshape(-1)

@@ -32,8 +32,10 @@ Examples
 
 from __future__ import annotations
 
+import math
 import random
 
+import mpmath
 import numpy as np
 import sympy as sp
 
@@ -50,7 +52,8 @@ def det(ar: Arithmetic, M):
     """The determinant of one square matrix (an object or complex array) in ``ar``.
 
     An empty matrix has determinant 1; a matrix whose every candidate pivot is an
-    exact zero has determinant 0.
+    exact zero has determinant 0. Pivots are chosen by size at any magnitude; where
+    an entry has no value (NaN, or a ball that lost it) the determinant has none.
     """
     n = M.shape[0]
     if n == 0:
@@ -60,9 +63,14 @@ def det(ar: Arithmetic, M):
     A = M.copy()
     value = ar.exact(1)
     for k in range(n):
-        size = ar.upper(A[k:, k])
+        size = _pivot_sizes(ar, A[k:, k])
+        lost = np.isnan(size)
+        if lost.any():
+            # an entry without a value (a ball divided by one that holds 0): the
+            # determinant has none either, never the exact 0 of the rule below
+            return value * A[k + int(np.argmax(lost)), k]
         p = k + int(np.argmax(size))
-        if not size[p - k] > 0:
+        if size[p - k] == -math.inf:
             return 0 * value
         if p != k:
             A[[k, p], k:] = A[[p, k], k:]
@@ -76,6 +84,33 @@ def det(ar: Arithmetic, M):
 
 
 # -- helpers ---------------------------------------------------------------------------------
+def _pivot_sizes(ar: Arithmetic, column) -> np.ndarray:
+    """Sizes of a column's entries to choose a pivot by, ``-inf`` for an exact zero (a
+    ball that merely holds 0 is a candidate: its determinant then holds 0 too): ``|x|``
+    as floats, or where an entry leaves the doubles' range (an inf, or a nonzero entry
+    rounded to 0: a model with ``N = 7e10`` beside ``EI = 0.001``) ``log2 |x|``."""
+    size = ar.upper(column)
+    zero = np.array([_is_zero(v) for v in column], dtype=bool)
+    if np.isfinite(size).all() and (size[~zero] > 0).all():
+        return np.where(zero, -math.inf, size)
+    mag = getattr(getattr(ar, "ctx", None), "mag", mpmath.mp.mag)
+    return np.array([-math.inf if z else _log2_abs(v, mag) for v, z in zip(column, zero)])
+
+
+def _is_zero(v) -> bool:
+    """Whether ``v`` is exactly zero (a ball: of radius 0 too)."""
+    test = getattr(v, "is_zero", None)
+    return bool(test()) if test is not None else v == 0
+
+
+def _log2_abs(v, mag) -> float:
+    """About ``log2 |v|`` (within one) of a number of any size, a ball's upper bound's;
+    NaN where ``v`` is not finite."""
+    if hasattr(v, "mid"):
+        return float(abs(v).upper().log()) / math.log(2) if v.is_finite() else math.nan
+    return float(mag(v)) if mpmath.isfinite(v) else math.nan
+
+
 def _eps(ar: Arithmetic):
     """The unit roundoff ``2**-prec`` as a number of ``ar``."""
     return ar.exact(sp.Integer(2) ** -ar.prec)
