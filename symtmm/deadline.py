@@ -17,7 +17,7 @@ Examples
 ...     check()
 Traceback (most recent call last):
   ...
-symtmm.errors.ComputationError: the search takes longer than 0 s (--max-seconds): allow more, or ask for fewer eigenvalues, fewer digits or a lower range
+symtmm.errors.OverBudget: the search takes longer than 0 s (--max-seconds): allow more, or ask for fewer eigenvalues, fewer digits or a lower range
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ import contextlib
 import contextvars
 import time
 
-from .errors import ComputationError
+from .errors import OverBudget
 
 __all__ = ["time_budget", "check"]
 
@@ -36,9 +36,13 @@ _DEADLINE: contextvars.ContextVar = contextvars.ContextVar("symtmm_search_deadli
 
 
 @contextlib.contextmanager
-def time_budget(seconds: float | None):
+def time_budget(seconds: float | None, explain=None):
     """Searches inside stop after ``seconds`` of wall-clock time (None: no limit of this
-    one; an outer budget still holds)."""
+    one; an outer budget still holds).
+
+    ``explain``: a function of no arguments that may say, once the budget is spent, what
+    made the search costly (:func:`symtmm.numeric.plan.crowding`); added to the error's
+    line by the outermost budget that has one."""
     if seconds is None:
         yield
         return
@@ -50,14 +54,21 @@ def time_budget(seconds: float | None):
     token = _DEADLINE.set(budget)
     try:
         yield
+    except OverBudget as exc:
+        why = explain() if explain is not None and not exc.explained else None
+        if not why:
+            raise
+        more = OverBudget(f"{exc}; {why}")
+        more.explained = True
+        raise more from None
     finally:
         _DEADLINE.reset(token)
 
 
 def check() -> None:
-    """Raise :class:`~symtmm.errors.ComputationError` where the budget is spent."""
+    """Raise :class:`~symtmm.errors.OverBudget` where the budget is spent."""
     budget = _DEADLINE.get()
     if budget is not None and time.perf_counter() > budget[1]:
-        raise ComputationError(f"the search takes longer than {budget[0]:g} s "
-                               "(--max-seconds): allow more, or ask for fewer eigenvalues, "
-                               "fewer digits or a lower range")
+        raise OverBudget(f"the search takes longer than {budget[0]:g} s "
+                         "(--max-seconds): allow more, or ask for fewer eigenvalues, "
+                         "fewer digits or a lower range")

@@ -80,3 +80,11 @@ class ModelError(SymtmmError, ValueError):
 
 class ComputationError(SymtmmError, RuntimeError):
     """A computation could not deliver what was asked (digits, roots, ...)."""
+
+
+class OverBudget(ComputationError):
+    """A search spent its wall-clock budget (:mod:`symtmm.deadline`).
+
+    ``explained``: whether the line already says what made the search costly."""
+
+    explained = False

@@ -12,6 +12,7 @@ from .deadline import time_budget
 from .errors import ModelError
 from .limits import SEARCH_SECONDS
 from .model import Model
+from .numeric.plan import crowding
 from .results import Spectrum
 from .roots.damped import solve_damped
 from .roots.fmin import fmin1d, fmin2d
@@ -110,6 +111,6 @@ def solve(model: Model, count: int | None = None, omega_max=None, sigma_max=None
     extra = {"prove_count": True} if prove_count else {}
     if guesses is not None and method == "default":
         extra["guesses"] = _pairs(guesses)
-    with time_budget(max_seconds):
+    with time_budget(max_seconds, explain=lambda: crowding(model)):
         spectrum = METHODS[method](model, count, omega_max, sigma_max, digits, **extra)
     return spectrum.with_model_name(spectrum.model_name or model.source or "", model.title)

@@ -778,3 +778,65 @@ def test_a_large_double_batch_checks_the_time_budget_between_its_slices(monkeypa
             multiword.double_summary(plan, lam2)
         _, _, counts, ok = multiword.double_summary(plan, lam2[:1])
     assert ok.all() and counts.tolist() == [0]
+
+
+STIFF_FOUNDATION = """
+[[beam]]
+name = "other"
+EI = 31.6
+m = 0.201
+L = 37.1
+left = "clamped"
+right = "pinned"
+N = 0.68
+
+[[beam]]
+name = "soft"
+EI = 0.00211
+m = 2.82
+L = 62.3
+left = "pinned"
+right = "free"
+theory = "timoshenko"
+rhoI = 0.546
+kGA = 0.0109
+kw = 607.0
+
+[[spring]]
+between = ["soft", "other"]
+x = 0.0
+k = 6430.0
+
+[[spring]]
+between = ["other", "ground"]
+x = 0.0
+k = 72000.0
+kind = "rotational"
+c = 7750.0
+"""
+
+
+@pytest.mark.parametrize("command", ["solve", "modes"])
+def test_a_spent_budget_names_the_beam_that_made_the_search_costly(tmp_path, command):
+    """A Timoshenko beam on a foundation far stiffer than its EI / L**4 (kw L**4 / EI =
+    4e12, a campaign's damped model): its waves are a few thousandths of it long, the
+    plan cuts it into thousands of pieces, and a search outruns its budget. The one line
+    says so, and which beam (such models had said only "the search takes longer than
+    60 s")."""
+    run = run_file(tmp_path, STIFF_FOUNDATION, command, "--count", "3", "--max-seconds",
+                   "0.5", limit=60)
+    line = one_line(run)
+    assert run.code == 1 and "takes longer than 0.5 s (--max-seconds)" in line
+    assert "beam 'soft' is cut into" in line and "foundation kw is far stiffer" in line
+
+
+def test_crowding_names_the_axial_force_or_nothing():
+    from symtmm.numeric.plan import crowding, plan_for
+
+    taut = Model((Beam("taut", "1/10000", 1, 10, left="pinned", right="pinned", N=100),))
+    plan_for(taut.require_numeric(), 1.0)
+    assert "beam 'taut'" in crowding(taut.require_numeric())
+    assert "axial force N is far larger" in crowding(taut.require_numeric())
+    small = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)).require_numeric()
+    plan_for(small, 100.0)
+    assert crowding(small) is None

@@ -35,6 +35,7 @@ from ..model import Model
 from ..numeric import transfer
 from ..numeric.arith import DOUBLE, MP
 from ..numeric.linalg import null_space
+from ..numeric.plan import crowding
 from ..results import Eigenvalue, Spectrum
 from .localise import localising_rotation, pivoted_basis
 from .modeset import BeamShape, ModeSet, ModeShape
@@ -412,7 +413,7 @@ def mode_shapes(model: Model, count: int | None = None, omega_max=None, sigma_ma
     from ..solve import solve
 
     model = model.require_numeric()
-    with time_budget(max_seconds):
+    with time_budget(max_seconds, explain=lambda: crowding(model)):
         if spectrum is None:
             spectrum = solve(model, count=count, omega_max=omega_max, sigma_max=sigma_max,
                              digits=digits, method=method, max_seconds=None)

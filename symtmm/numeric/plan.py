@@ -48,7 +48,7 @@ from .segments import kind, kind_key, kind_order, kind_size, kind_tables
 
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "wave_piece", "generous_range",
            "rcm_order", "wave_number_bound", "plan_for", "design_range", "design_below",
-           "clear_plans", "PLAN_MODELS"]
+           "clear_plans", "PLAN_MODELS", "crowding", "CROWDED"]
 
 #: SymPy's one (a singleton): most coefficients of the scatter are it.
 ONE = sp.S.One
@@ -561,6 +561,58 @@ def plan_for(model, size: float, slack: float = 4.0) -> StiffnessPlan:
         with _PLANS_LOCK:
             plan = _PLANS.setdefault(model, {}).setdefault(design, plan)
     return plan
+
+
+#: Freedoms from which a plan is named as what made a search outrun its time budget.
+CROWDED = 2000
+
+
+def crowding(model) -> str | None:
+    """What made the searches of ``model`` costly, where its largest plan built so far has
+    :data:`CROWDED` freedoms or more: the beam cut into most pieces, and what shortens its
+    waves (the foundation, the axial force, the shear; else its flexibility at the range
+    asked). None otherwise.
+    For a spent time budget's line (:func:`symtmm.deadline.time_budget`).
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> m = Model((Beam("b", "1/1000", 1, 40, left="pinned", right="free", kw=10**6),))
+    >>> _ = plan_for(m, 1.0)
+    >>> print(crowding(m))                         # doctest: +ELLIPSIS
+    its stiffness has ... freedoms; beam 'b' is cut into ... pieces: its foundation kw is far stiffer than its EI / L**4
+    """
+    from collections import Counter
+
+    from ..elements.theories import BeamSegment
+
+    with _PLANS_LOCK:
+        plans = list(_PLANS.get(model, {}).values())
+    plan = max(plans, key=lambda p: p.n, default=None)
+    if plan is None or plan.n < CROWDED:
+        return None
+    pieces = Counter(b for b, *_ in plan.mesh.segments if not isinstance(b, tuple))
+    if not pieces:
+        return None
+    i, k = pieces.most_common(1)[0]
+    beam = model.beams[i]
+
+    def waves(kw, N, kGA) -> float:
+        seg = EulerBernoulliSegment(beam.EI, beam.m, beam.L, kw) if beam.plain else \
+            BeamSegment(beam.EI, beam.m, beam.L, kw, N, beam.rhoI, kGA)
+        return wave_number_bound(seg, plan.radius)
+
+    s = waves(beam.kw, beam.N, beam.kGA)
+    if beam.kw != 0 and waves(0, beam.N, beam.kGA) < s / 2:
+        why = "its foundation kw is far stiffer than its EI / L**4"
+    elif beam.N != 0 and not beam.plain and waves(beam.kw, 0, beam.kGA) < s / 2:
+        why = "its axial force N is far larger than its EI / L**2"
+    elif beam.kGA is not None and not beam.plain and waves(beam.kw, beam.N, None) < s / 2:
+        why = "its shear stiffness kGA is far softer than its EI / L**2"
+    else:
+        why = "its EI / L**4 is far below m omega**2 + kw at the range asked"
+    return (f"its stiffness has {plan.n} freedoms; beam '{beam.name}' is cut into {k} "
+            f"pieces: {why}")
 
 
 #: A plan is cut for up to twice the range asked where that adds at most this fraction of

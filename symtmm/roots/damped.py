@@ -67,7 +67,7 @@ import numpy as np
 
 from .. import progress
 from ..budget import checked_request
-from ..errors import ComputationError
+from ..errors import ComputationError, OverBudget
 from ..limits import MAX_PIECES
 from ..mesh import zero_order
 from ..model import Model
@@ -1335,6 +1335,8 @@ def _lowered(model, count: int, below: float, W: float, S: float, search, cells,
         mid = 0.5 * (below + W)
         try:
             lower, counted, wasted = _search_region(model, mid, S, digits, certified)
+        except OverBudget:
+            raise
         except ComputationError:
             break               # (its boundary keeps meeting eigenvalues: the higher serves)
         spent += wasted
