@@ -406,6 +406,11 @@ class _Search:
                 except NearZero as exc:
                     last_error = exc
                     continue
+                except CountError as exc:
+                    # (a part's winding number not a count, -2 on a campaign's model: its
+                    # sampling missed turns of arg Delta) the same split, stricter sampling
+                    last_error = exc
+                    break
                 counted = self._tally(kids, found, count)
                 if counted is not None:
                     return counted, None
