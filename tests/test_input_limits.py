@@ -840,3 +840,29 @@ def test_crowding_names_the_axial_force_or_nothing():
     small = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)).require_numeric()
     plan_for(small, 100.0)
     assert crowding(small) is None
+
+
+SOFT_SHEAR_ON_FOUNDATION = """
+[[beam]]
+name = "soft"
+EI = 0.0329
+m = 550.0
+L = 67.1
+left = "sliding"
+right = "sliding"
+theory = "timoshenko"
+rhoI = 65800.0
+kGA = 0.000825
+kw = 2440.0
+"""
+
+
+def test_a_mode_shape_whose_walk_needs_too_many_digits_says_so(tmp_path):
+    """A Timoshenko beam of kGA = 8e-4 on a foundation (a campaign's model): its
+    evanescent waves grow like exp(115,000) along it, and the shape's transfer walk
+    asked for 50,000 digits; one series of its matrices ran for minutes, past the
+    budget. The walk's digits are bounded (MAX_WALK_DIGITS), in one line naming the beam."""
+    run = run_file(tmp_path, SOFT_SHEAR_ON_FOUNDATION, "modes", "--count", "1", limit=60)
+    line = one_line(run)
+    assert run.code == 1 and "digits in the transfer walk, more than 2000" in line
+    assert "beam 'soft' loses" in line

@@ -28,9 +28,9 @@ import sympy as sp
 from .. import progress
 from ..deadline import check as check_time
 from ..deadline import time_budget
-from ..errors import ModelError
+from ..errors import ComputationError, ModelError
 from ..expr import ExpressionError, parse_expression
-from ..limits import SEARCH_SECONDS
+from ..limits import MAX_WALK_DIGITS, SEARCH_SECONDS
 from ..model import Model
 from ..numeric import transfer
 from ..numeric.arith import DOUBLE, MP
@@ -103,7 +103,24 @@ def working_digits(plan, lam, digits: int) -> int:
     35
     """
     plan = getattr(plan, "plan", plan)
-    return max(int(digits), 15) + math.ceil(transfer.digits_lost(plan, complex(lam))) + 15
+    work = max(int(digits), 15) + math.ceil(transfer.digits_lost(plan, complex(lam))) + 15
+    if work > MAX_WALK_DIGITS:
+        lam2 = complex(lam) ** 2
+        lost = [float(np.max(seg.wave_number(lam2))) * L / math.log(10)
+                for seg, _, L in plan.levels]
+        worst = int(np.argmax(lost))
+        raise ComputationError(
+            f"the mode shape at {_value_text(lam)} would need {work} digits in the transfer "
+            f"walk, more than {MAX_WALK_DIGITS}: beam '{plan.model.beams[worst].name}' loses "
+            f"{lost[worst]:.0f} of them (its waves grow like exp(|beta| L) along it: a "
+            "foundation kw, an axial force or a shear stiffness far from its EI)")
+    return work
+
+
+def _value_text(lam) -> str:
+    """``lam`` in a line: ``omega = ...`` on the frequency axis, else ``lam = ...``."""
+    z = complex(lam)
+    return f"omega = {z.imag:.6g}" if z.real == 0 else f"lam = {z:.6g}"
 
 
 def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: int | None = None,
