@@ -95,3 +95,24 @@ def test_paper_example_3_triple_root_with_and_without_balls(examples_dir, certif
     with mpmath.workdps(50):
         exact = (4 * mpmath.pi) ** 2
     assert decimal_string(triple.omega, 30) == decimal_string(exact, 30)
+
+
+def test_a_root_beside_a_crowd_of_another_beams_roots():
+    """Two uncoupled beams (a campaign's model; its spring acts at a clamped end): a
+    pinned-clamped beam and a soft pinned-pinned beam on a stiff foundation, whose modes
+    crowd within 0.5 rad/s above its first, 1989.45. The refinement of that first one
+    took the end of its bracket for it (Delta there 1e-46 of the other end's) and did
+    not converge. References, at 25 digits: the pinned-clamped root tan x = tanh x, and
+    omega**2 = (kw + EI (pi/L)**4) / m of the beam on its foundation."""
+    model = Model((Beam("b0", 26, 374, "0.0793", left="pinned", right="clamped"),
+                   Beam("b1", "0.0153", "0.0019", "3.95", left="pinned", right="pinned",
+                        kw=7520)),
+                  (Spring("b0", "ground", "0.0793", "0.0297"),))
+    spectrum = solve(model, count=2, digits=25)
+    with mpmath.workdps(40):
+        x = mpmath.findroot(lambda x: mpmath.tan(x) - mpmath.tanh(x), 3.9266)
+        clamped = x ** 2 * mpmath.sqrt(mpmath.mpf(26) / (374 * mpmath.mpf("0.0793") ** 4))
+        foundation = mpmath.sqrt((7520 + mpmath.mpf("0.0153") * (mpmath.pi / mpmath.mpf("3.95"))
+                                  ** 4) / mpmath.mpf("0.0019"))
+        for e, ref in zip(spectrum, (clamped, foundation)):
+            assert abs(mpmath.mpf(e.to_dict()["imag"]) - ref) < mpmath.mpf(10) ** -24 * ref

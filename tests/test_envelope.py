@@ -436,3 +436,21 @@ def test_paired_functions_in_balls_enclose_mpmath_values():
                 assert b.overlaps(flint.acb(str(exact.real), str(exact.imag))
                                   if isinstance(b, flint.acb) else flint.arb(str(exact)))
     assert BallJet.cosh_sinh is not Ball.cosh_sinh and BallJet.cos_sin is not Ball.cos_sin
+
+
+def test_a_bracket_end_far_below_the_other_is_not_taken_for_the_root():
+    """An end whose value is far below the other's without the root being near it: the
+    root at 1, a cluster of roots just beyond the bracket's right end (the value there
+    1e-86 of the left end's), as a beam on a foundation beside a root of another beam in
+    a campaign's model. The secant's point fell on the right end, which ``settle`` took
+    for the root (4e-6 off there, and its proof did not converge). Reference: the root."""
+    def f(x, idx):
+        return (x - 1.0) * (x - 3.0) ** 20 * (1 + 0 * idx)
+
+    def probe(c, idx):
+        v = f(c, idx)
+        return v, np.where(v > 0, 1, -1)
+    a, b = np.array([0.0]), np.array([2.9999])
+    for settle in (False, True):
+        out = shrink(a, b, f(a, 0), f(b, 0), probe, 1e-11, settle=settle)
+        np.testing.assert_allclose(out, [1.0], rtol=1e-10)

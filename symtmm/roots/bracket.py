@@ -102,6 +102,7 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
     active = [q - p > width * max(abs(p), abs(q)) for p, q in zip(a, b)]
     slow = [False] * R
     last = [0] * R                          # the side each bracket's last point fell on
+    crawl = [0] * R                         # its last steps that moved an end by the guard
     best = [0.5 * (p + q) for p, q in zip(a, b)]
     best_f = [math.inf] * R
     tops = list(range(1, SPREAD + 1))
@@ -114,6 +115,20 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
             A, B, FA, FB = a[j], b[j], fa[j], fb[j]
             d = FB - FA
             c = B - FB * (B - A) / d if d != 0 else math.nan
+            if crawl[j]:
+                # the last step moved an end by the guard alone, as the secant's point fell
+                # on that end: a point across the root it claims there closes the bracket;
+                # where that too lands on the end's side, the end's value is far below the
+                # other's without the root being near it (beside a cluster of roots |f|
+                # fell 1e46-fold across a campaign's bracket, and the secant kept landing
+                # on the end, 4e-6 from the root): halve
+                if crawl[j] == 1:
+                    step = 4 * min(0.25 * width * max(abs(A), abs(B)), (B - A) / 4)
+                    c = B - step if last[j] > 0 else A + step
+                else:
+                    c = 0.5 * (A + B)
+                cs.append((j, c))
+                continue
             if settle and last[j] != 0:
                 # the step from the latest point is below the width: that point is the
                 # root as far as the secant tells (the other end's value, scaled down, only
@@ -184,6 +199,14 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
             # plain secant through them converges superlinearly (scaling them as well
             # slowed the refinement to a constant factor per step wherever the steps
             # alternate)
+            # (one end moved, by no more than twice the guard, to the side it moved last)
+            guard = min(0.25 * width * max(abs(a[j]), abs(b[j])), width_before / 4)
+            side = 1 if right is not None and left is None else \
+                -1 if left is not None and right is None else 0
+            crept = (side > 0 and b[j] - xs[right] <= 2 * guard) or \
+                (side < 0 and xs[left] - a[j] <= 2 * guard)
+            # (counted on while the same end moves: the point across, then the halving)
+            crawl[j] = crawl[j] + 1 if crept or (crawl[j] and side == last[j] != 0) else 0
             if right is not None and left is None:
                 if last[j] > 0:
                     # (an end's value may have underflowed to 0 in the scaling: halve)
