@@ -4,4 +4,5 @@ import sys
 
 from .cli import main
 
-sys.exit(main())
+if __name__ == "__main__":      # (not in a child process, which imports this module anew)
+    sys.exit(main())
