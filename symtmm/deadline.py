@@ -55,7 +55,13 @@ def time_budget(seconds: float | None, explain=None):
     try:
         yield
     except OverBudget as exc:
-        why = explain() if explain is not None and not exc.explained else None
+        why = None
+        if explain is not None and not exc.explained:
+            try:
+                why = explain()
+            except (ArithmeticError, AttributeError, IndexError, KeyError, TypeError,
+                    ValueError):
+                why = None      # (an explanation never takes the error's place)
         if not why:
             raise
         more = OverBudget(f"{exc}; {why}")

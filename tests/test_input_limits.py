@@ -866,3 +866,18 @@ def test_a_mode_shape_whose_walk_needs_too_many_digits_says_so(tmp_path):
     line = one_line(run)
     assert run.code == 1 and "digits in the transfer walk, more than 2000" in line
     assert "beam 'soft' loses" in line
+
+
+def test_an_explanation_that_fails_leaves_the_budget_line():
+    import time as _time
+
+    from symtmm.deadline import check, time_budget
+    from symtmm.errors import OverBudget
+
+    def broken():
+        raise ValueError("no plan")
+    line = (r"takes longer than 0 s \(--max-seconds\): allow more, or ask for fewer "
+            r"eigenvalues, fewer digits or a lower range$")
+    with pytest.raises(OverBudget, match=line), time_budget(0.0, explain=broken):
+        _time.sleep(0.001)
+        check()
