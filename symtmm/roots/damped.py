@@ -899,9 +899,11 @@ class _Search:
                 rho = {i: centres[i][1] * 10 ** k for i in todo}
                 boxes = [flint.acb(flint.arb(centres[i][0].real.mid(), rho[i]),
                                    flint.arb(centres[i][0].imag.mid(), rho[i])) for i in todo]
+                # (the bits the narrowest box needs serve the wider ones too)
+                narrowest = min(float(rho[q] / abs(centres[q][0]).mid()) for q in todo)
                 still = []
-                for i, bound in zip(todo, self.p.kernel.enclose(boxes, _box_arithmetic(
-                        ar, max(float(rho[i] / abs(centres[i][0]).mid()) for i in todo)))):
+                for i, bound in zip(todo, self.p.kernel.enclose(
+                        boxes, _box_arithmetic(ar, narrowest))):
                     s, dist, reach = model[i]
                     rr = centres[i][1]
                     M = bound.abs_upper()
