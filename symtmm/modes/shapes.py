@@ -103,17 +103,15 @@ def working_digits(plan, lam, digits: int) -> int:
     35
     """
     plan = getattr(plan, "plan", plan)
-    work = max(int(digits), 15) + math.ceil(transfer.digits_lost(plan, complex(lam))) + 15
+    growth = transfer.growth_by_beam(plan, complex(lam))
+    work = max(int(digits), 15) + math.ceil(sum(growth) / math.log(10)) + 15
     if work > MAX_WALK_DIGITS:
-        lam2 = complex(lam) ** 2
-        lost = [float(np.max(seg.wave_number(lam2))) * L / math.log(10)
-                for seg, _, L in plan.levels]
-        worst = int(np.argmax(lost))
+        worst = int(np.argmax(growth))
         raise ComputationError(
             f"the mode shape at {_value_text(lam)} would need {work} digits in the transfer "
             f"walk, more than {MAX_WALK_DIGITS}: beam '{plan.model.beams[worst].name}' loses "
-            f"{lost[worst]:.0f} of them (its waves grow like exp(|beta| L) along it: a "
-            "foundation kw, an axial force or a shear stiffness far from its EI)")
+            f"{growth[worst] / math.log(10):.0f} of them (its waves grow like exp(|beta| L) "
+            "along it: a foundation kw, an axial force or a shear stiffness far from its EI)")
     return work
 
 

@@ -204,8 +204,7 @@ def condition_estimate(lu: BandLU, upper, band: int) -> float:
         xi = [v / abs(v) if v != 0 else 1.0 for v in y]
         z = lu.solve_adjoint(xi)
         j = max(range(n), key=lambda i: abs(z[i]))
-        if abs(z[j]) <= (sum((zz.conjugate() if isinstance(zz, complex) else zz) * xx
-                             for zz, xx in zip(z, x))).real:
+        if abs(z[j]) <= sum(_conjugate(zz) * xx for zz, xx in zip(z, x)).real:
             break
         x = [0.0] * n
         x[j] = 1.0

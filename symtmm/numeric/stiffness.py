@@ -400,8 +400,7 @@ class Factors:
                        cat("det12"), BandRows(rows), products)
 
     def _constant(self):
-        ar, plan = self.ar, self.plan
-        return ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
+        return plan_constant(self.plan, self.ar)
 
     def pivoted_delta(self, points) -> list:
         """``Delta`` at the given point indices from ``K`` with partial pivoting: where a
@@ -531,6 +530,12 @@ DENSE_LIMIT = 400
 BANDED_DET = 16
 
 
+def plan_constant(plan, ar: Arithmetic):
+    """The factor ``Delta`` has beyond the pivots and ``det U12`` (the plan's scaling of
+    the freedoms), as a number of ``ar``."""
+    return ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
+
+
 def pivots_in_band(n: int, band: int, radii: bool = True) -> bool:
     """Whether a determinant of ``K`` (``n`` freedoms, half-bandwidth ``band``) with
     partial pivoting is taken within the band: beyond :data:`DENSE_LIMIT`, and for
@@ -553,7 +558,7 @@ def pivoted_deltas(plan, ar: Arithmetic, K, det12) -> list:
     full = None if banded or n == 0 else dense(plan, K)
     out = []
     with ar:
-        const = ar.exact(plan.pivot_product) * ar.exact(2) ** (-2 * sum(plan.exponent))
+        const = plan_constant(plan, ar)
         for p in range(K.shape[0]):
             if n == 0:
                 value = ar.exact(1)

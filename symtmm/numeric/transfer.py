@@ -61,7 +61,8 @@ from .segments import cut_tables, family_matrices, kind_order, kind_size, kind_t
 from .segments import kind as segment_kind
 
 __all__ = ["TransferPlan", "propagate", "boundary", "boundary_at", "boundary_walked", "delta",
-           "log_delta", "NU_STEP", "digits_lost", "Sampling", "sample", "convert"]
+           "log_delta", "NU_STEP", "digits_lost", "growth_by_beam", "Sampling", "sample",
+           "convert"]
 
 #: Largest ``|beta| l`` of one step of :func:`log_delta`: the columns grow by at most
 #: ``exp(NU_STEP)`` between two re-orthonormalisations.
@@ -414,9 +415,14 @@ def digits_lost(plan: TransferPlan, lam) -> float:
     >>> round(digits_lost(pp, 1j * (12 * np.pi) ** 2), 2)       # 12 pi / ln 10
     16.37
     """
+    return sum(growth_by_beam(plan, lam)) / math.log(10)
+
+
+def growth_by_beam(plan: TransferPlan, lam) -> list:
+    """``|beta| L`` of each level of ``plan`` (each beam) at ``lam``, in their order: the
+    natural logarithm of its matrices' growth (:func:`digits_lost`)."""
     lam2 = complex(lam) ** 2
-    return sum(float(np.max(seg.wave_number(lam2))) * L
-               for seg, _, L in plan.levels) / math.log(10)
+    return [float(np.max(seg.wave_number(lam2))) * L for seg, _, L in plan.levels]
 
 
 # -- states at sample points -----------------------------------------------------------------
