@@ -730,6 +730,69 @@ def test_derive_refuses_a_factorisation_too_large_to_interrupt(tmp_path):
     assert run.seconds < 15
 
 
+_FOUR_BEAMS_WITH_A_MASS_AND_A_DASHPOT = """
+[[beam]]
+name = "b0"
+EI = 5.34
+m = 229.0
+L = 0.0423
+left = "pinned"
+right = "sliding"
+
+[[beam]]
+name = "b1"
+EI = 3680.0
+m = 3470.0
+L = 14.3
+left = "pinned"
+right = "pinned"
+
+[[beam]]
+name = "b2"
+EI = 1880.0
+m = 263.0
+L = 1.26
+left = "free"
+right = "free"
+
+[[beam]]
+name = "b3"
+EI = 2650.0
+m = 1.41
+L = 4.81
+left = "free"
+right = "sliding"
+
+[[spring]]
+between = ["b0", "b1"]
+x = 0.02115
+k = 392000.0
+
+[[spring]]
+between = ["b0", "ground"]
+x = 0.0
+k = 0
+c = 17.0
+
+[[mass]]
+beam = "b0"
+x = 0.002751
+M = 552.0
+"""
+
+
+def test_derive_stops_a_factorisation_at_its_deadline(tmp_path):
+    """Four beams, a mass and a dashpot (a random model): python-flint's factorisation of a
+    determinant of 111 616 terms cannot be interrupted and ran past the guard's foresight
+    (2.5 s at its floor of a rate), so derive --max-seconds 5 ran 67 s. Under a deadline a large factorisation
+    now runs in a forked child, stopped at the deadline."""
+    run = run_file(tmp_path, _FOUR_BEAMS_WITH_A_MASS_AND_A_DASHPOT, "derive", "--max-seconds",
+                   "5", limit=120)
+    assert_contract(run, 120)
+    assert run.code == 1 and "takes longer than 5 s (--max-seconds)" in one_line(run)
+    assert run.seconds < 30
+
+
 def test_factoring_fits_its_size_and_the_time_left():
     """The guard itself: a polynomial beyond FACTOR_TERMS never fits; below it, one fits
     while the deadline leaves its assumed time, not once the deadline has passed."""

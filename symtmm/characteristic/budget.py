@@ -3,8 +3,9 @@
 A wall-clock deadline and the terms of any polynomial on the way (the terms stand
 for memory: python-flint aborts the interpreter when an allocation fails, so
 memory must never run out). :func:`spend` is called between the steps of the
-other modules; a single step is bounded by the terms it is given. Limits and
-their reasons: :mod:`symtmm.limits`.
+other modules; a single step is bounded by the terms it is given, and a large
+factorisation, which cannot be interrupted, runs in a forked child stopped at the
+deadline (:func:`factor`). Limits and their reasons: :mod:`symtmm.limits`.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ import contextvars
 import time
 from dataclasses import dataclass, field
 
+from .. import forked
 from ..errors import ComputationError
 from ..limits import FACTOR_TERMS
 
@@ -119,6 +121,47 @@ def spend_factoring(p) -> None:
                                f"{FACTOR_TERMS} can be factored (it cannot be interrupted): "
                                f"{_HINT}")
     raise _over_time(_BUDGET.get())
+
+
+#: Terms from which a factorisation under a deadline runs in a forked child that is stopped
+#: there (:mod:`symtmm.forked`): the fork and the result's transfer cost milliseconds, a
+#: factorisation of this size tens of them.
+_FORK_TERMS = 2000
+
+
+def factor(ring, p, optional: bool = False):
+    """``ring.factor(p)`` within the budget: ``(content, [(factor, multiplicity), ...])``.
+
+    A factorisation cannot be interrupted and its time is not foreseeable from its terms
+    (1e-5 to 6e-4 s a term). Under a deadline a large one runs in a forked child stopped
+    at the deadline where this process may fork (:func:`symtmm.forked.usable`), and is
+    refused beforehand where it could not finish at the assumed rate otherwise
+    (:func:`factoring_fits`). ``optional``: return None instead of raising where it does
+    not fit in time (a factorisation that only shortens what is written).
+    """
+    terms = len(p)
+    if terms > FACTOR_TERMS:
+        if optional:
+            return None
+        spend_factoring(p)
+    budget_ = _BUDGET.get()
+    if budget_ is None or budget_.deadline == float("inf") or terms < _FORK_TERMS \
+            or not forked.usable():
+        if not factoring_fits(p):
+            if optional:
+                return None
+            spend_factoring(p)
+        return ring.factor(p)
+    try:
+        packed = forked.call(lambda: ring.pack_factors(ring.factor(p)), budget_.deadline)
+    except forked.PastDeadline:
+        if optional:
+            return None
+        raise _over_time(budget_) from None
+    except forked.ChildFailed:
+        raise ComputationError(f"the factorisation of a polynomial of {terms} terms failed "
+                               f"(out of memory?): {_HINT}") from None
+    return ring.unpack_factors(packed)
 
 
 def budget(seconds: float | None, terms: int | None) -> _Budget:

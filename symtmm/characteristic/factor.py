@@ -16,7 +16,7 @@ import sympy as sp
 
 from ..errors import ComputationError
 from .algebra import _Algebra
-from .budget import spend, spend_factoring
+from .budget import factor, spend
 from .determinant import _blocks, _decouple_pairs, _det_minors, _eliminate_constants
 from .ring import _rational
 
@@ -82,8 +82,7 @@ def _factorise(alg: _Algebra, R):
                 add(h, e * e2)
             return
         spend(g)
-        spend_factoring(g)
-        c2, parts = alg.ring.factor(g)
+        c2, parts = factor(alg.ring, g)
         constant *= _rational(c2) ** e
         for h, e2 in parts:
             add(h, e * int(e2))
@@ -102,8 +101,7 @@ def _factorise(alg: _Algebra, R):
                 # the normal form is far shorter, at the price of products it may hide
                 det = alg.reduce(det)
             spend(det)
-            spend_factoring(det)
-            content, first = alg.ring.factor(det)
+            content, first = factor(alg.ring, det)
             constant *= _rational(content)
         for f, e in first:
             spend(f)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+import numpy as np
 import sympy as sp
 
 
@@ -71,6 +72,29 @@ class _Ring:
         if self._flint is not None:
             return p.factor()
         return p.factor_list()  # pragma: no cover
+
+    def pack_factors(self, factored) -> tuple:
+        """:meth:`factor`'s result as plain data, compact (exponents as bytes; integers, not
+        tuples, pickle fast): what :mod:`symtmm.forked` sends back from a child."""
+        content, parts = factored
+        packed = []
+        for f, e in parts:
+            exps = np.array(f.monoms(), dtype=np.int64).reshape(-1, len(self.names))
+            coeffs = f.coeffs()
+            packed.append((exps.tobytes(), [int(c.numerator) for c in coeffs],
+                           [int(c.denominator) for c in coeffs], int(e)))
+        return (int(content.numerator), int(content.denominator)), packed
+
+    def unpack_factors(self, packed) -> tuple:
+        """The inverse of :meth:`pack_factors`."""
+        (num, den), parts = packed
+        fmpq = self._flint.fmpq
+        out = []
+        for exps, nums, dens, e in parts:
+            keys = map(tuple, np.frombuffer(exps, dtype=np.int64)
+                       .reshape(-1, len(self.names)).tolist())
+            out.append((self._ctx.from_dict(dict(zip(keys, map(fmpq, nums, dens)))), e))
+        return fmpq(num, den), out
 
 
 def _rational(c) -> sp.Rational:

@@ -16,7 +16,7 @@ from fractions import Fraction
 import sympy as sp
 
 from .algebra import _Algebra
-from .budget import factoring_fits, spend
+from .budget import factor, spend
 from .factor import _normalise
 from .ring import _rational, _Ring
 
@@ -249,9 +249,10 @@ class _Writer:
         ring = self._rest_ring
         poly = ring.from_dict({k: ring.coefficient(sp.Rational(v.numerator, v.denominator))
                                for k, v in by_rest.items()})
-        if not factoring_fits(poly):
+        result = factor(ring, poly, optional=True)
+        if result is None:
             return expr                 # (written out: its factors are only for reading)
-        content, parts = ring.factor(poly)
+        content, parts = result
         if len(parts) < 2 and all(e == 1 for _, e in parts):
             return expr
         factored = _rational(content) * sp.Mul(*[
