@@ -14,6 +14,7 @@ from .limits import SEARCH_SECONDS
 from .model import Model
 from .numeric.plan import crowding
 from .results import Spectrum
+from .roots.apart import solve_apart, split
 from .roots.damped import solve_damped
 from .roots.fmin import fmin1d, fmin2d
 from .roots.undamped import solve_undamped
@@ -23,6 +24,12 @@ __all__ = ["solve", "METHODS"]
 
 def _default(model, count, omega_max, sigma_max, digits, prove_count=False, guesses=None):
     if model.damped:
+        parts = split(model)
+        if parts is not None:
+            # (undamped unjoined parts on the frequency axis, where their clusters are
+            # counted exactly: symtmm.roots.apart)
+            return solve_apart(model, *parts, count, omega_max, sigma_max, digits,
+                               prove_count=prove_count)
         return solve_damped(model, count=count, omega_max=omega_max, sigma_max=sigma_max,
                             digits=digits, prove_count=prove_count)
     # (the count on the frequency axis is proved already: Wittrick-Williams in balls)

@@ -134,7 +134,13 @@ def _refined(tp, eigenvalue, value, k: int, real: bool, working_digits, known: i
         with ar:
             return det(ar, R)
 
-    return _secant(ctx, g, ctx.mpc(value), tol, eigenvalue, known)
+    z = _secant(ctx, g, ctx.mpc(value), tol, eigenvalue, known)
+    if eigenvalue.lam.real == 0 and abs(z.real) <= tol * abs(z):
+        # (an eigenvalue the search put on the imaginary axis, a mode that does not move
+        # the dashpots or one of an undamped part: a real part within the refinement's
+        # error is its rounding, not a decay rate to print)
+        z = ctx.mpc(0, z.imag)
+    return z
 
 
 def _regula_falsi(ctx, f, a, b, start, tol, steps: int = 200):
