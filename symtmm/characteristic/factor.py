@@ -96,7 +96,7 @@ def _factorise(alg: _Algebra, R):
             first = [(det, 1)]
         else:
             if (alg.problem.waves or alg.problem.members) \
-                    and len(alg.ring.terms(det)) > _FACTOR_UNREDUCED:
+                    and len(det) > _FACTOR_UNREDUCED:
                 # too long to factor as it is (with the waves' Dl, iq it takes minutes):
                 # the normal form is far shorter, at the price of products it may hide
                 det = alg.reduce(det)
@@ -137,7 +137,7 @@ def _regroup_discriminants(alg: _Algebra, found: dict, add) -> sp.Rational:
         pieces, mono = [], []
         for h, m in parts:
             _, h = _normalise(alg, h)
-            (mono if len(ring.terms(h)) == 1 else pieces).append((h, int(m)))
+            (mono if len(h) == 1 else pieces).append((h, int(m)))
         keys = [tuple(sorted(ring.terms(h).items())) for h, _ in pieces]
         if not pieces or any(k not in found for k in keys):
             continue
