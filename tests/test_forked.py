@@ -115,3 +115,18 @@ def test_a_factorisation_past_the_deadline_is_the_budget_line(monkeypatch, can_f
         assert b.factor(ring, p, optional=True) is None
     finally:
         b._BUDGET.reset(token)
+
+
+def test_a_long_polynomial_is_not_listed_to_learn_its_length_or_degree(monkeypatch):
+    """Listing a determinant's 908 576 terms took 9.5 s no budget check interrupts (a random
+    model's derive --max-seconds 5 ran 16.8 s, another's 8.7 s): whether a polynomial is
+    constant, how long it is and its degree in a variable are read without listing it."""
+    pytest.importorskip("flint")
+    from symtmm.characteristic.ring import _Ring
+    ring, p = _ring_and_product()
+    listed = []
+    monkeypatch.setattr(_Ring, "terms", lambda self, q: listed.append(len(q)) or q.to_dict())
+    assert ring.constant_value(p) is None
+    assert [ring.degree(p, i) for i in range(4)] == [13, 13, 17, 13]
+    assert ring.degree(ring.zero, 0) == 0 and ring.constant_value(ring.one * 5) == 5
+    assert listed == [1]                # (only the constant's one term)

@@ -269,10 +269,12 @@ class _Algebra:
         ring = self.ring
         out = []
         for k, (_, iq) in self.wave_index.items():
-            terms = ring.terms(p)
-            K = max((m[iq] for m in terms), default=0)
+            # (the degree first: most factors hold no iq, and listing a long one's terms
+            # takes seconds no budget check interrupts)
+            K = ring.degree(p, iq)
             if not K:
                 continue
+            terms = ring.terms(p)
             disc = self.from_expr(self.problem.waves[k].disc_ring)
             parts: dict = {}
             for m, cf in terms.items():

@@ -59,11 +59,17 @@ class _Ring:
             return p.to_dict()
         return dict(p.terms())  # pragma: no cover
 
+    def degree(self, p, i: int) -> int:
+        """The degree of ``p`` in generator ``i`` (0 for the zero polynomial)."""
+        if self._flint is not None:
+            return max(int(p.degrees()[i]), 0)
+        return max(p.degree(i), 0)  # pragma: no cover
+
     def constant_value(self, p):
         """The rational value of a constant polynomial, else None."""
-        terms = self.terms(p)
-        if len(terms) != 1:
+        if len(p) != 1:         # (without listing the terms of a long one: seconds)
             return None
+        terms = self.terms(p)
         (mon, cf), = terms.items()
         return _rational(cf) if not any(mon) else None
 
