@@ -360,6 +360,11 @@ class Eigenvalue:
         {'hz': '0.636620', 'abs': '5.00000', 'zeta': '0.600000'}
         >>> Eigenvalue(mpmath.mpc(-3, 4), digits=6).quantities()["zeta"]
         '0.60000'
+
+        A real eigenvalue's ``|lam|`` is its printed digits:
+
+        >>> Eigenvalue(mpmath.mpc("-2.19141315549854", 0), digits=15).quantities()["abs"]
+        '2.19141315549854'
         """
         return dict(self._quantities)
 
@@ -399,8 +404,14 @@ class Eigenvalue:
         iv, re, im = self._enclosure
         d = self.to_dict()
         size = iv.sqrt(re * re + im * im)
-        out = {"hz": enclosed_string(im / (2 * iv.pi), self.digits),
-               "abs": enclosed_string(size, self.digits)}
+        out = {"hz": enclosed_string(im / (2 * iv.pi), self.digits)}
+        if d["real"] == "0" or d["imag"] == "0":
+            # (|lam| of a real or an imaginary eigenvalue is the other part's printed
+            # digits, all of them: the square root of the square of its rounding interval
+            # straddled a boundary and lost one)
+            out["abs"] = (d["imag"] if d["real"] == "0" else d["real"]).lstrip("-")
+        else:
+            out["abs"] = enclosed_string(size, self.digits)
         if d["real"] == "0":
             out["zeta"] = "0"
         elif d["imag"] == "0":

@@ -431,6 +431,21 @@ def test_quantities_of_values_printed_with_an_exponent_hold_the_value(value, dig
                 assert text == decimal_string(hz, digits)
 
 
+@pytest.mark.parametrize("lam", [("-2.19141315549854061840715649358", "0"),
+                                 ("0", "20.9003135070539263483791484246"),
+                                 ("-9.99999999999999999", "0")])
+def test_the_modulus_of_a_real_or_imaginary_eigenvalue_has_all_its_digits(lam):
+    """|lam| of a real (or imaginary) eigenvalue is the absolute value of its nonzero part:
+    its printed digits, all of them (the real eigenvalue of the issue's pure-dashpot beam
+    printed -2.19141315549854 beside a modulus of 2.1914131554985)."""
+    from symtmm.results import Eigenvalue
+    with mpmath.workdps(40):
+        value = mpmath.mpc(*lam)
+        e = Eigenvalue(value, digits=15)
+        part = value.real if value.imag == 0 else value.imag
+        assert e.quantities()["abs"] == decimal_string(abs(part), 15)
+
+
 @pytest.mark.parametrize("text, unit", [("122.", 0), ("1.2e+2", 1),
                                         ("3.58069963539574e+30", 16), ("0.000000150", -9)])
 def test_printed_intervals_are_half_a_unit_of_the_last_digit(text, unit):
