@@ -7,12 +7,15 @@ made by ``fork`` it inherits its arguments for free (the memory is shared until
 written), and the parent, waiting on a pipe, can stop it at the deadline. Only the
 result travels, pickled: the function returns it in plain data (numbers, bytes).
 
-``fork`` is used only where it is safe and available: on a platform that has it,
-and in a process that runs no other thread (a thread holding a lock at the fork
-would leave the child's copy of it locked forever). :func:`usable` says so; where
-it is not, callers fall back to a guard that refuses calls foreseen to be too long.
-A child that dies (an allocation python-flint cannot make aborts the process) costs
-the parent nothing but the answer: :class:`ChildFailed`.
+Other threads of the process do not matter to such a call: the child runs the one
+function, self-contained C work and plain data (no lock another thread may hold is
+taken there; the allocator's are made safe across fork by the C library), and leaves
+by ``os._exit``. :func:`usable` says only whether the platform can fork; where it
+cannot, callers fall back to a guard that refuses calls foreseen to be too long. A
+child that dies (an allocation python-flint cannot make aborts the process) costs the
+parent nothing but the answer: :class:`ChildFailed`. Running arbitrary work in
+forked processes, as a sweep's workers do, is another matter:
+:func:`no_other_threads`.
 
 Examples
 --------
@@ -33,8 +36,9 @@ import signal
 import sys
 import threading
 import time
+import warnings
 
-__all__ = ["usable", "call", "ChildFailed", "PastDeadline"]
+__all__ = ["usable", "no_other_threads", "call", "ChildFailed", "PastDeadline"]
 
 
 class PastDeadline(Exception):
@@ -46,9 +50,17 @@ class ChildFailed(Exception):
 
 
 def usable() -> bool:
-    """Whether :func:`call` may fork here: the platform has ``fork`` and this process runs
-    one thread."""
-    return hasattr(os, "fork") and threading.active_count() == 1
+    """Whether :func:`call` can fork here (the platform has ``fork``)."""
+    return hasattr(os, "fork")
+
+
+def no_other_threads() -> bool:
+    """Whether this process runs no other thread than the kernel's idle workers
+    (:func:`symtmm.numeric.parallel.only_idle_workers`, left from an earlier batch: they
+    hold no lock), so that a forked child may run anything (a sweep's worker processes).
+    A thread holding a lock at the fork would leave the child's copy locked forever."""
+    from .numeric.parallel import only_idle_workers
+    return threading.active_count() == 1 or only_idle_workers()
 
 
 def _child(fn, write_end: int) -> None:
@@ -74,13 +86,18 @@ def call(fn, deadline: float):
     """``fn()`` computed in a forked child; :class:`PastDeadline` if it has not returned by
     ``deadline`` (a :func:`time.perf_counter` time), :class:`ChildFailed` if the child died.
 
-    The caller checks :func:`usable` first.
+    ``fn`` must be self-contained (C work on data it holds, results in plain data): it
+    may run beside a copy of another thread's locks. The caller checks :func:`usable`.
     """
     # (anything still buffered would be written twice: once by each process)
     sys.stdout.flush()
     sys.stderr.flush()
     read_end, write_end = os.pipe()
-    pid = os.fork()
+    with warnings.catch_warnings():
+        # (Python 3.12 warns of any fork beside other threads: the child runs only fn,
+        # which takes none of their locks)
+        warnings.simplefilter("ignore", DeprecationWarning)
+        pid = os.fork()
     if pid == 0:  # pragma: no cover - runs in the child, which never returns
         os.close(read_end)
         _child(fn, write_end)

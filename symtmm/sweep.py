@@ -226,20 +226,22 @@ def _dask_client(scheduler):
 def _process_context():
     """Start method of the worker processes.
 
-    ``fork`` when the caller runs no other thread: it needs no main module, so
-    a plain script without ``if __name__ == "__main__":`` works. Otherwise
-    (Jupyter, Dask, a GUI) forking could copy a lock held by another thread,
-    and ``spawn`` starts fresh interpreters; it re-imports the main script by
-    its path, which a main program read from standard input does not have.
+    ``fork`` when the caller runs no other thread but the kernel's idle workers
+    (:func:`symtmm.forked.no_other_threads`): it needs no main module, so a plain script
+    without ``if __name__ == "__main__":`` works. Otherwise (Jupyter, Dask, a GUI)
+    forking could copy a lock held by another thread, and ``spawn`` starts fresh
+    interpreters; it re-imports the main script by its path, which a main program
+    read from standard input does not have.
     """
     import multiprocessing
     import sys
-    import threading
+
+    from .forked import no_other_threads
 
     methods = multiprocessing.get_all_start_methods()
     main_file = getattr(sys.modules.get("__main__"), "__file__", None)
     unreadable_main = main_file is not None and not os.path.exists(main_file)
-    if "fork" in methods and (threading.active_count() == 1 or unreadable_main):
+    if "fork" in methods and (no_other_threads() or unreadable_main):
         return multiprocessing.get_context("fork")
     return multiprocessing.get_context("spawn")
 

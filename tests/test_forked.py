@@ -6,6 +6,8 @@ from __future__ import annotations
 import os
 import pickle
 import resource
+import subprocess
+import sys
 import threading
 import time
 
@@ -49,12 +51,15 @@ def test_a_child_that_dies_or_raises_is_a_failure_not_a_crash(fn):
         forked.call(fn, time.perf_counter() + 60)
 
 
-def test_no_fork_while_another_thread_runs():
+def test_a_call_beside_another_thread_forks_and_returns():
+    """The child runs only the function: another thread (here one waiting on an event, as
+    tqdm's monitor does) neither keeps the call from forking nor blocks the child."""
     stop = threading.Event()
     other = threading.Thread(target=stop.wait)
     other.start()
     try:
-        assert not forked.usable()
+        assert forked.usable()
+        assert forked.call(lambda: 6 * 7, time.perf_counter() + 60) == 42
     finally:
         stop.set()
         other.join()
@@ -130,3 +135,66 @@ def test_a_long_polynomial_is_not_listed_to_learn_its_length_or_degree(monkeypat
     assert [ring.degree(p, i) for i in range(4)] == [13, 13, 17, 13]
     assert ring.degree(ring.zero, 0) == 0 and ring.constant_value(ring.one * 5) == 5
     assert listed == [1]                # (only the constant's one term)
+
+
+@pytest.fixture
+def idle_pool(monkeypatch):
+    """The kernel's pool of two workers, idle after a batch split over it."""
+    from symtmm.numeric import parallel
+    monkeypatch.setattr(parallel, "WORKERS", 2)
+    assert parallel.run_ranges(lambda lo, hi: hi - lo, 4, work=1.0) == [2, 2]
+    yield parallel
+
+
+_THREADS_SCRIPT = """
+import threading
+from symtmm import forked
+from symtmm.numeric import parallel
+parallel.WORKERS = 2
+out = [forked.no_other_threads()]
+parallel.run_ranges(lambda lo, hi: out.append(parallel.only_idle_workers()), 2, work=1.0)
+out.append(threading.active_count() > 1 and forked.no_other_threads())
+stop = threading.Event()
+other = threading.Thread(target=stop.wait)
+other.start()
+out.append(forked.no_other_threads())
+stop.set()
+other.join()
+print(out)
+"""
+
+
+def test_only_the_kernels_idle_workers_let_a_process_fork_for_anything():
+    """A sweep forks its worker processes where no other thread runs: the kernel's idle
+    workers, left from an earlier batch, hold no lock (a batch running on them does, and
+    so may any other thread). In a fresh interpreter: earlier tests leave threads."""
+    run = subprocess.run([sys.executable, "-c", _THREADS_SCRIPT], check=False,
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == "[True, False, False, True, False]"
+
+
+def test_a_child_forked_beside_the_pool_splits_its_own_batches(idle_pool):
+    """The pool's threads stay in the parent: a batch in the child would wait for them
+    forever; the child makes a pool of its own."""
+    out = forked.call(lambda: idle_pool.run_ranges(lambda lo, hi: (lo, hi), 4, work=1.0),
+                      time.perf_counter() + 60)
+    assert out == [(0, 2), (2, 4)]
+
+
+def test_a_factorisation_beside_other_threads_goes_to_a_child(idle_pool, monkeypatch):
+    """A campaign's derive --max-seconds 5 ran 77 s in a process that had solved before
+    (the kernel's workers alive): the factorisation was refused the child and the guard
+    let it run."""
+    pytest.importorskip("flint")
+    calls = []
+    real = forked.call
+    monkeypatch.setattr(forked, "call", lambda fn, deadline: calls.append(1) or real(
+        fn, deadline))
+    ring, p = _ring_and_product()
+    b, token = _within(60.0)
+    try:
+        _, parts = b.factor(ring, p)
+    finally:
+        b._BUDGET.reset(token)
+    assert calls == [1] and sorted(e for _, e in parts) == [4, 9]

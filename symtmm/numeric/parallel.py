@@ -25,7 +25,7 @@ import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
 
-__all__ = ["WORKERS", "SPLIT_SECONDS", "run_ranges"]
+__all__ = ["WORKERS", "SPLIT_SECONDS", "run_ranges", "only_idle_workers"]
 
 #: At most this many threads, whatever the machine.
 MOST_WORKERS = 8
@@ -49,6 +49,8 @@ SPLIT_SECONDS = 1e-3
 
 _pool: ThreadPoolExecutor | None = None
 _pool_lock = threading.Lock()
+#: Batches whose parts are running on the pool now.
+_running = 0
 
 
 def _executor() -> ThreadPoolExecutor:
@@ -60,6 +62,29 @@ def _executor() -> ThreadPoolExecutor:
         return _pool
 
 
+def _forget_pool() -> None:
+    """In a forked child: the pool's threads stayed in the parent; a batch there would
+    wait for them forever. The child makes a pool of its own when it needs one."""
+    global _pool, _pool_lock, _running
+    _pool, _pool_lock, _running = None, threading.Lock(), 0
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_pool)
+
+
+def only_idle_workers() -> bool:
+    """Whether every thread of this process but the calling one is a worker of this
+    module's pool, and none is running a part of a batch (so a fork copies no lock that
+    a thread holds: an idle worker waits on its queue, which the child never touches)."""
+    with _pool_lock:
+        if _running:
+            return False
+        workers = set(_pool._threads) if _pool is not None else set()
+    me = threading.current_thread()
+    return all(t is me or t in workers for t in threading.enumerate())
+
+
 def run_ranges(fn, count: int, work: float) -> list:
     """``[fn(lo, hi), ...]`` over consecutive ranges covering ``0 .. count``, in order: one
     range where ``work`` (the batch's estimated seconds) is below :data:`SPLIT_SECONDS`
@@ -69,8 +94,15 @@ def run_ranges(fn, count: int, work: float) -> list:
     parts = min(WORKERS, count) if work >= SPLIT_SECONDS else 1
     if parts <= 1:
         return [fn(0, count)]
+    global _running
     bounds = [count * k // parts for k in range(parts + 1)]
     pool = _executor()
-    futures = [pool.submit(fn, lo, hi) for lo, hi in itertools.pairwise(bounds[1:])]
-    first = fn(bounds[0], bounds[1])
-    return [first] + [f.result() for f in futures]
+    with _pool_lock:
+        _running += 1
+    try:
+        futures = [pool.submit(fn, lo, hi) for lo, hi in itertools.pairwise(bounds[1:])]
+        first = fn(bounds[0], bounds[1])
+        return [first] + [f.result() for f in futures]
+    finally:
+        with _pool_lock:
+            _running -= 1
