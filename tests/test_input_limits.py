@@ -914,6 +914,28 @@ def test_a_large_double_batch_checks_the_time_budget_between_its_slices(monkeypa
     assert ok.all() and counts.tolist() == [0]
 
 
+
+def test_pivoted_determinants_check_the_time_budget_between_their_points():
+    """A dense determinant in balls cannot be interrupted (half a second at 194 freedoms):
+    a Rouche proof's batch of 32 of them ran 12 s past a search's 60 s budget (a random
+    damped model with a stiff spring). The budget is checked before each point."""
+    from symtmm.deadline import time_budget
+    from symtmm.numeric.arith import Ball
+    from symtmm.numeric.plan import StiffnessPlan
+    from symtmm.numeric.stiffness import assemble, pivoted_deltas
+
+    flint = pytest.importorskip("flint")
+    plan = StiffnessPlan(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 1e4)
+    ar = Ball(120)
+    with ar:
+        lam = ar.array([flint.acb(0, w) for w in (3, 5, 7)])
+        K, det12 = assemble(plan, ar, lam * lam, lam)
+    assert all(v.is_finite() for v in pivoted_deltas(plan, ar, K, det12))
+    with time_budget(0.0):
+        time.sleep(0.001)
+        with pytest.raises(ComputationError, match="--max-seconds"):
+            pivoted_deltas(plan, ar, K, det12)
+
 STIFF_FOUNDATION = """
 [[beam]]
 name = "other"

@@ -560,10 +560,14 @@ def pivoted_deltas(plan, ar: Arithmetic, K, det12) -> list:
     with ar:
         const = plan_constant(plan, ar)
         for p in range(K.shape[0]):
+            if n:
+                # (a point cannot be interrupted: a dense determinant of a few hundred
+                # freedoms in balls takes half a second, a batch of 32 ran 16 s past a
+                # search's budget)
+                check_time()
             if n == 0:
                 value = ar.exact(1)
             elif banded:
-                check_time()
                 value = BandLU(K[p], b).det
             elif ar.rigorous:
                 value = ar.flint.acb_mat(n, n, [full[p, i, j] for i in range(n)
