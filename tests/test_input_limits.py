@@ -732,6 +732,19 @@ def test_derive_refuses_a_factorisation_too_large_to_interrupt(tmp_path):
     assert run.seconds < 15
 
 
+def _derive_as_a_program(tmp_path, text, seconds):
+    """``(completed process, wall seconds)`` of ``python -m symtmm derive`` on ``text``: a
+    program of its own, as a user runs it (the suite's worker may run threads that an
+    earlier test left)."""
+    path = tmp_path / "model.toml"
+    path.write_text(text)
+    start = time.perf_counter()
+    run = subprocess.run([sys.executable, "-m", "symtmm", "derive", str(path), "--max-seconds",
+                          str(seconds)], check=False, capture_output=True, text=True,
+                         timeout=120)
+    return run, time.perf_counter() - start
+
+
 _FOUR_BEAMS_WITH_A_MASS_AND_A_DASHPOT = """
 [[beam]]
 name = "b0"
@@ -788,14 +801,7 @@ def test_derive_stops_a_factorisation_at_its_deadline(tmp_path):
     determinant of 111 616 terms cannot be interrupted and ran past the guard's foresight
     (2.5 s at its floor of a rate), so derive --max-seconds 5 ran 67 s. Under a deadline a large factorisation
     now runs in a forked child, stopped at the deadline."""
-    # (a program of its own: a test before this one in the same process may have left a
-    # thread running, and a process that runs two threads does not fork)
-    path = tmp_path / "model.toml"
-    path.write_text(_FOUR_BEAMS_WITH_A_MASS_AND_A_DASHPOT)
-    start = time.perf_counter()
-    run = subprocess.run([sys.executable, "-m", "symtmm", "derive", str(path), "--max-seconds",
-                          "5"], check=False, capture_output=True, text=True, timeout=120)
-    seconds = time.perf_counter() - start
+    run, seconds = _derive_as_a_program(tmp_path, _FOUR_BEAMS_WITH_A_MASS_AND_A_DASHPOT, 5)
     assert run.returncode == 1 and run.stdout == ""
     assert len(run.stderr.splitlines()) == 1
     assert "takes longer than 5 s (--max-seconds)" in run.stderr
@@ -853,12 +859,7 @@ def test_derive_counts_a_long_determinant_without_listing_its_terms(tmp_path):
     """Four beams, a spring and a mass (a random model): the determinant of 908 576 terms
     was listed term by term (9.5 s, uninterruptible) only to count them, and derive
     --max-seconds 5 ran 16.8 s. Its length is read as it is."""
-    path = tmp_path / "model.toml"
-    path.write_text(_FOUR_BEAMS_WITH_A_LONG_DETERMINANT)
-    start = time.perf_counter()
-    run = subprocess.run([sys.executable, "-m", "symtmm", "derive", str(path), "--max-seconds",
-                          "5"], check=False, capture_output=True, text=True, timeout=120)
-    seconds = time.perf_counter() - start
+    run, seconds = _derive_as_a_program(tmp_path, _FOUR_BEAMS_WITH_A_LONG_DETERMINANT, 5)
     assert run.returncode == 1 and len(run.stderr.splitlines()) == 1
     assert "takes longer than 5 s (--max-seconds)" in run.stderr
     assert seconds < 10
