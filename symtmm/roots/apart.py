@@ -32,7 +32,18 @@ __all__ = ["split", "solve_apart"]
 
 def split(model: Model):
     """``(damped part, undamped part)`` of a damped model whose unjoined parts are not all
-    damped (each the union of such parts), else None."""
+    damped (each the union of such parts), else None.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model, Spring
+    >>> a, b = (Beam(n, 1, 1, 1, left="pinned", right="pinned") for n in "ab")
+    >>> damped, undamped = split(Model((a, b), (Spring("a", "ground", "1/2", 0, c=1),)))
+    >>> [x.name for x in damped.beams], [x.name for x in undamped.beams]
+    (['a'], ['b'])
+    >>> split(Model((a, b), (Spring("a", "b", "1/2", 0, c=1),))) is None     # joined
+    True
+    """
     groups = beam_groups(model)
     if len(groups) < 2:
         return None
