@@ -22,7 +22,7 @@ from symtmm.characteristic import characteristic_equation
 from symtmm.errors import ComputationError, ModelError
 from symtmm.expr import ExpressionError, parse_expression, substitute
 from symtmm.limits import DERIVE_TERMS, FIELD_MAX, FIELD_MIN, MAX_EIGENVALUES, MAX_NESTING
-from symtmm.model import Beam, Model
+from symtmm.model import Beam, Model, Spring
 from symtmm.modelfile import load, loads
 
 CANTILEVER = """
@@ -997,6 +997,25 @@ def test_crowding_names_the_axial_force_or_nothing():
     small = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)).require_numeric()
     plan_for(small, 100.0)
     assert crowding(small) is None
+
+
+def test_crowding_names_a_beam_that_holds_most_of_a_few_hundred_freedoms():
+    """Below CROWDED freedoms the proofs' dense determinant in balls is what costs (half a
+    second a point at 194 freedoms: campaign models on stiff foundations ran out of their
+    budget with a bare line). A beam that holds half of the freedoms is named; a chain
+    of as many freedoms spread over its beams is not."""
+    from symtmm.numeric.plan import CROWDED, crowding, plan_for
+
+    stiff = Model((Beam("b", "1/1000", 1, 10, left="pinned", right="pinned", kw=10**3),))
+    plan = plan_for(stiff.require_numeric(), 1.0)
+    assert 100 <= plan.n < CROWDED
+    assert "beam 'b'" in crowding(stiff.require_numeric())
+    assert "foundation kw is far stiffer" in crowding(stiff.require_numeric())
+    beams = tuple(Beam(f"b{i}", 1, 1, 1, left="pinned", right="pinned") for i in range(12))
+    chain = Model(beams, tuple(Spring(f"b{i}", f"b{i + 1}", "1/3", 10) for i in range(11)))
+    plan = plan_for(chain.require_numeric(), 1e4)
+    assert 100 <= plan.n < CROWDED
+    assert crowding(chain.require_numeric()) is None
 
 
 SOFT_SHEAR_ON_FOUNDATION = """

@@ -48,7 +48,7 @@ from .segments import kind, kind_key, kind_order, kind_size, kind_tables
 
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "wave_piece", "generous_range",
            "rcm_order", "wave_number_bound", "plan_for", "design_range", "design_below",
-           "clear_plans", "PLAN_MODELS", "crowding", "CROWDED"]
+           "clear_plans", "PLAN_MODELS", "crowding", "CROWDED", "CROWDED_BY_ONE_BEAM"]
 
 #: SymPy's one (a singleton): most coefficients of the scatter are it.
 ONE = sp.S.One
@@ -563,13 +563,18 @@ def plan_for(model, size: float, slack: float = 4.0) -> StiffnessPlan:
     return plan
 
 
-#: Freedoms from which a plan is named as what made a search outrun its time budget.
+#: Freedoms from which a plan is named as what made a search outrun its time budget ...
 CROWDED = 2000
+#: ... or from which it is, where one beam holds half of them: the proofs' determinant
+#: with pivoting, in balls below ``DENSE_LIMIT`` freedoms, is dense and ``O(n**3)`` (half a
+#: second a point at 194 freedoms: a random damped model, one beam cut into 138 pieces).
+CROWDED_BY_ONE_BEAM = 100
 
 
 def crowding(model) -> str | None:
     """What made the searches of ``model`` costly, where its largest plan built so far has
-    :data:`CROWDED` freedoms or more: the beam cut into most pieces, and what shortens its
+    :data:`CROWDED` freedoms or more, or :data:`CROWDED_BY_ONE_BEAM` and one beam holds half
+    of them: the beam cut into most pieces, and what shortens its
     waves (the foundation, the axial force, the shear; else its flexibility at the range
     asked). None otherwise.
     For a spent time budget's line (:func:`symtmm.deadline.time_budget`).
@@ -589,12 +594,14 @@ def crowding(model) -> str | None:
     with _PLANS_LOCK:
         plans = list(_PLANS.get(model, {}).values())
     plan = max(plans, key=lambda p: p.n, default=None)
-    if plan is None or plan.n < CROWDED:
+    if plan is None or plan.n < CROWDED_BY_ONE_BEAM:
         return None
     pieces = Counter(b for b, *_ in plan.mesh.segments if not isinstance(b, tuple))
     if not pieces:
         return None
     i, k = pieces.most_common(1)[0]
+    if plan.n < CROWDED and 4 * k < plan.n:     # (a piece brings two freedoms)
+        return None
     beam = model.beams[i]
 
     def waves(kw, N, kGA) -> float:
