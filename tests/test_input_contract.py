@@ -1,6 +1,7 @@
 """Property: every model file, valid or not, gets a defined outcome from every command.
 
-Hypothesis writes model files (valid ones, and mutations of the example files:
+Hypothesis writes model files (valid ones, of beams and springs and of the rest of
+the element library, and mutations of the example files:
 values replaced by extreme or malformed ones, fields removed, added or of the
 wrong type, text cut and spliced) and runs ``solve``, ``derive``, ``codegen`` and
 ``modes`` on each, in-process. Only the contract is asserted (:mod:`cli_contract`):
@@ -153,6 +154,84 @@ def valid_models(draw):
     return data
 
 
+@st.composite
+def library_models(draw):
+    """Valid models of the element library beyond beams and springs: two beams joined by
+    layers (a patch with a dashpot among them), beams end to end through rigid or hinged
+    joints and bodies with a tip body and a sprung mass, rods with axial springs, and
+    L-shaped and portal frames."""
+    kind = draw(st.sampled_from(["layers", "joints", "rods", "frame"]))
+    if kind == "layers":
+        L = draw(st.sampled_from([Decimal(1), Decimal(2)]))
+        beams = [{"name": f"b{i}", "EI": draw(moderate), "m": draw(moderate), "L": L,
+                  "left": "pinned", "right": draw(st.sampled_from(BCS))} for i in range(2)]
+        cut = L * draw(st.sampled_from([Decimal("0.25"), Decimal("0.5")]))
+        layers = [{"between": ["b0", "b1"], "k": draw(moderate), "to": cut},
+                  {"between": ["b0", "b1"], "k": draw(moderate), "from": cut}]
+        if draw(st.booleans()):
+            layers[1]["c"] = draw(moderate)
+        return {"beam": beams, "layer": layers}
+    if kind == "joints":
+        n = draw(st.integers(2, 3))
+        beams, x = [], Decimal(0)
+        for i in range(n):
+            L = draw(st.sampled_from([Decimal("0.5"), Decimal(1)]))
+            beam = {"name": f"b{i}", "EI": draw(moderate), "m": draw(moderate), "L": L,
+                    "left": "clamped" if i == 0 else "free",
+                    "right": draw(st.sampled_from(["free", "pinned"])) if i == n - 1
+                    else "free"}
+            if x:
+                beam["x0"] = x
+            beams.append(beam)
+            x += L
+        data = {"beam": beams}
+        joints, rigid = [], []
+        for i in range(n - 1):
+            ends = [f"b{i}.right", f"b{i + 1}.left"]
+            if draw(st.booleans()):
+                joints.append({"ends": ends, "kind": draw(st.sampled_from(["rigid", "hinge"]))})
+            else:
+                rigid.append({"name": f"r{i}", "attach": ends, "M": draw(moderate),
+                              "J": draw(moderate) / 100})
+        if draw(st.booleans()):
+            rigid.append({"name": "tip", "attach": [f"b{n - 1}.right"], "M": draw(moderate),
+                          "J": draw(moderate) / 100})
+        if joints:
+            data["joint"] = joints
+        if rigid:
+            data["rigid"] = rigid
+        if draw(st.booleans()):
+            M = draw(moderate)
+            data["oscillator"] = [{"name": "tmd", "beam": "b0", "x": beams[0]["L"] / 2,
+                                   "M": M, "k": M * draw(moderate) * 10,
+                                   "c": draw(st.sampled_from([0, Decimal("0.1")]))}]
+        return data
+    if kind == "rods":
+        n = draw(st.integers(1, 2))
+        rods = [{"name": f"r{i}", "EA": draw(moderate) * 1000, "m": draw(moderate),
+                 "L": Decimal(1), "left": "fixed",
+                 "right": draw(st.sampled_from(["fixed", "free"]))} for i in range(n)]
+        data = {"rod": rods}
+        springs = [{"between": ["r0", "r1" if n == 2 else "ground"],
+                    "x": draw(st.sampled_from([Decimal("0.25"), Decimal("0.5")])),
+                    "k": draw(moderate) * 100, "kind": "axial"}]
+        if draw(st.booleans()):
+            springs[0]["c"] = draw(moderate)
+        data["spring"] = springs
+        return data
+    H, W = draw(moderate), draw(moderate)
+    EI, m = draw(moderate), draw(moderate)
+    EA = EI * 1000
+    members = [{"name": "left", "from": [0, 0], "to": [0, H], "EI": EI, "EA": EA, "m": m},
+               {"name": "top", "from": [0, H], "to": [W, H], "EI": EI, "EA": EA, "m": m}]
+    nodes = [{"at": [0, 0], "support": draw(st.sampled_from(["clamped", "pinned"]))}]
+    if draw(st.booleans()):
+        members.append({"name": "right", "from": [W, H], "to": [W, 0], "EI": EI, "EA": EA,
+                        "m": m})
+        nodes.append({"at": [W, 0], "support": draw(st.sampled_from(["clamped", "pinned"]))})
+    return {"member": members, "node": nodes}
+
+
 # -- mutations of the examples --------------------------------------------------------------
 
 NASTY_NUMBERS = [
@@ -287,6 +366,14 @@ def test_valid_models_meet_the_contract(tmp_path_factory, data, command):
 @pytest.mark.parametrize("command", COMMANDS, ids=" ".join)
 @seed(12)
 @CI
+@given(data=library_models())
+def test_element_library_models_meet_the_contract(tmp_path_factory, data, command):
+    _valid_case(tmp_path_factory, data, command)
+
+
+@pytest.mark.parametrize("command", COMMANDS, ids=" ".join)
+@seed(12)
+@CI
 @given(case=mutated_examples(), flags=FLAGS)
 def test_mutated_examples_meet_the_contract(tmp_path_factory, case, command, flags):
     _mutated_case(tmp_path_factory, case, command, flags)
@@ -307,6 +394,14 @@ def test_spliced_text_meets_the_contract(tmp_path_factory, text, command):
 @LONG
 @given(data=valid_models(), command=st.sampled_from(COMMANDS))
 def test_valid_models_meet_the_contract_long(tmp_path_factory, data, command):
+    _valid_case(tmp_path_factory, data, command)
+
+
+@pytest.mark.slow
+@LONG
+@given(data=library_models(), command=st.sampled_from(COMMANDS + [
+    ["solve", "--count", "3", "--method", "contour"]]))
+def test_element_library_models_meet_the_contract_long(tmp_path_factory, data, command):
     _valid_case(tmp_path_factory, data, command)
 
 
