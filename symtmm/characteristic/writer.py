@@ -168,6 +168,9 @@ class _Writer:
                     if shift < 0:   # the first factor needs no product-to-sum
                         acc = {(kind, unit): 1}
                     else:
+                        # (the sum grows with every factor: a monomial of high powers in
+                        # several groups took seconds between two checks of the budget)
+                        spend()
                         acc = _harmonic_product(acc, {(kind, unit): 1}, hyperbolic)
                     shift += 1
         result = (acc, max(shift, 0))

@@ -1,8 +1,11 @@
-"""A call that cannot be interrupted, in a forked child stopped at a deadline
-(:mod:`symtmm.forked`), and the factorisations of ``derive`` that use it."""
+"""Work that cannot be interrupted, kept within a budget: a call in a forked child stopped
+at a deadline (:mod:`symtmm.forked`) and the factorisations of ``derive`` that use it,
+and long steps of ``derive`` that now check the budget between their parts or no longer
+list a long polynomial's terms."""
 
 from __future__ import annotations
 
+import math
 import os
 import pickle
 import resource
@@ -198,3 +201,30 @@ def test_a_factorisation_beside_other_threads_goes_to_a_child(idle_pool, monkeyp
     finally:
         b._BUDGET.reset(token)
     assert calls == [1] and sorted(e for _, e in parts) == [4, 9]
+
+
+def test_the_harmonic_expansion_of_one_monomial_checks_the_budget():
+    """cos/sin powers of several groups expanded by product-to-sum: the sum grows with
+    every factor, and a monomial of high powers took seconds between two budget checks
+    (an element-library model's derive --max-seconds 5 ran 8.7 s). The budget is checked
+    between the factors."""
+    from types import SimpleNamespace
+
+    from symtmm.characteristic.writer import _Writer
+    writer = _Writer.__new__(_Writer)
+    writer.alg, writer._trig_cache = SimpleNamespace(groups=3), {}
+    sums, shift = writer._harmonics((2, 1, 0, 2, 1, 1), False)
+    # (the sum of cosines and sines of combined arguments over 2**shift is the monomial
+    # cos(a)**2 sin(a) sin(b)**2 cos(c) sin(c))
+    a, b, c = 0.3, 0.7, 1.1
+    value = sum(v * (math.sin if kind else math.cos)(fa * a + fb * b + fc * c)
+                for (kind, (fa, fb, fc)), v in sums.items()) / 2 ** shift
+    assert value == pytest.approx(math.cos(a) ** 2 * math.sin(a) * math.sin(b) ** 2
+                                  * math.cos(c) * math.sin(c), rel=1e-12)
+    writer._trig_cache = {}
+    b, token = _within(1e-9)
+    try:
+        with pytest.raises(ComputationError, match="--max-seconds"):
+            writer._harmonics((2, 1, 0, 2, 1, 1), False)
+    finally:
+        b._BUDGET.reset(token)
