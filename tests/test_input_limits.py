@@ -1018,6 +1018,22 @@ def test_crowding_names_a_beam_that_holds_most_of_a_few_hundred_freedoms():
     assert crowding(chain.require_numeric()) is None
 
 
+
+def test_crowding_names_the_soft_beam_under_a_stiff_layer():
+    """A layer far stiffer than one of the beams it joins cuts both into the same pieces
+    (an element-library campaign model: 398 freedoms, the search past its budget with a
+    bare line, then naming the stiff beam). The soft one is named, and the layer."""
+    from symtmm.model import Layer
+    from symtmm.numeric.plan import crowding, plan_for
+
+    model = Model((Beam("stiff", 1000, 1, 1, left="pinned", right="pinned"),
+                   Beam("soft", "1/1000", 1, 1, left="pinned", right="pinned")),
+                  layers=(Layer("stiff", "soft", 10**6),)).require_numeric()
+    plan_for(model, 1.0)
+    line = crowding(model)
+    assert "beam 'soft'" in line and "a layer joining it is far stiffer" in line
+
+
 SOFT_SHEAR_ON_FOUNDATION = """
 [[beam]]
 name = "soft"

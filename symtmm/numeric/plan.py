@@ -576,7 +576,7 @@ def crowding(model) -> str | None:
     :data:`CROWDED` freedoms or more, or :data:`CROWDED_BY_ONE_BEAM` and one beam holds half
     of them: the beam cut into most pieces, and what shortens its
     waves (the foundation, the axial force, the shear; else its flexibility at the range
-    asked). None otherwise.
+    asked; a layer joining it). None otherwise.
     For a spent time budget's line (:func:`symtmm.deadline.time_budget`).
 
     Examples
@@ -596,10 +596,18 @@ def crowding(model) -> str | None:
     plan = max(plans, key=lambda p: p.n, default=None)
     if plan is None or plan.n < CROWDED_BY_ONE_BEAM:
         return None
-    pieces = Counter(b for b, *_ in plan.mesh.segments if not isinstance(b, tuple))
+    pieces, layered = Counter(), Counter()
+    for b, *_ in plan.mesh.segments:
+        # (a piece of beams joined by a layer counts for each of them)
+        for j in b if isinstance(b, tuple) else (b,):
+            pieces[j] += 1
+            layered[j] += isinstance(b, tuple)
     if not pieces:
         return None
-    i, k = pieces.most_common(1)[0]
+    k = max(pieces.values())
+    # (of beams cut alike, the pieces of a layer joining them: the softest is the cause)
+    i = min((j for j, c in pieces.items() if c == k),
+            key=lambda j: float(model.beams[j].EI / model.beams[j].L ** 4))
     if plan.n < CROWDED and 4 * k < plan.n:     # (a piece brings two freedoms)
         return None
     beam = model.beams[i]
@@ -610,7 +618,10 @@ def crowding(model) -> str | None:
         return wave_number_bound(seg, plan.radius)
 
     s = waves(beam.kw, beam.N, beam.kGA)
-    if beam.kw != 0 and waves(0, beam.N, beam.kGA) < s / 2:
+    if 2 * layered[i] > k and waves(beam.kw, beam.N, beam.kGA) * beam.L < 3 * k / 2:
+        # (most of its pieces are a layer's, cut finer than its own waves need)
+        why = "a layer joining it is far stiffer than its EI / L**4"
+    elif beam.kw != 0 and waves(0, beam.N, beam.kGA) < s / 2:
         why = "its foundation kw is far stiffer than its EI / L**4"
     elif beam.N != 0 and not beam.plain and waves(beam.kw, 0, beam.kGA) < s / 2:
         why = "its axial force N is far larger than its EI / L**2"
