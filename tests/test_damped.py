@@ -1073,3 +1073,51 @@ def test_a_winding_number_that_is_no_count_is_sampled_again(monkeypatch):
     assert len(got) == len(published)
     for z, ref in zip(got, sorted(published, key=lambda z: (complex(z).imag, complex(z).real))):
         assert abs(z - ref) <= 1e-11 * max(abs(ref), 1.0)
+
+
+def _fake_search(values):
+    """A search whose ``_real_values`` are ``values(x, ctx)`` at real points: what
+    :meth:`symtmm.roots.damped._Search._pairs` reads, and nothing else."""
+    from types import SimpleNamespace
+
+    from symtmm.numeric.arith import MP
+    from symtmm.roots.damped import _Search
+    calls = []
+
+    def real_values(points, digits):
+        calls.append(len(points))
+        ctx = MP.from_digits(digits + 30).ctx
+        return [values(ctx.mpf(p.real), ctx) for p in points]
+    fake = SimpleNamespace(digits=15, floor=15, p=SimpleNamespace(lam_ref=1.0, balls=True),
+                           _real_values=real_values)
+    fake._digits_for = lambda z, small=None: _Search._digits_for(fake, z, small)
+    return fake, calls
+
+
+def test_a_real_zero_far_from_its_estimate_is_reached_by_halving():
+    """Delta grows like an exponential along the real axis: secant steps from an estimate
+    far from the zero crawled (0.09 a round across a bracket of 78, the contour's midpoint
+    of a pure-dashpot beam's rectangle), and the search failed ("cannot reach 15 digits
+    for the real eigenvalue near -40.03"). Where two rounds do not halve the bracket, its
+    midpoint. Reference: the zero of exp(-20 x) - exp(-20 r) is r."""
+    from symtmm.roots.damped import _Search
+    r = "-2.19141315549854061840715649358"
+    fake, calls = _fake_search(lambda x, ctx: ctx.exp(-20 * x) - ctx.exp(-20 * ctx.mpf(r)))
+    (e,) = _Search._pairs(fake, [-40.03], [(-78.96, -1.0957)])
+    lo, hi = e.bracket
+    with mpmath.workdps(30):
+        assert lo <= mpmath.mpf(r) <= hi and hi - lo < 1e-15
+    assert e.to_dict()["real"] == "-2.19141315549854"
+    assert sum(calls) < 200
+
+
+def test_a_real_count_that_the_signs_refute_fails_at_once():
+    """Signs that are certain and equal at both ends of a rectangle said to hold one real
+    zero: more digits cannot change them (it looped to 1500 digits); the count was
+    misled, and the line says so."""
+    from symtmm.errors import ComputationError
+    from symtmm.roots.damped import _Search
+    fake, calls = _fake_search(lambda x, ctx: 1 + x * x)
+    with pytest.raises(ComputationError, match="same sign at both ends"):
+        _Search._pairs(fake, [0.5], [(0.0, 1.0)])
+    assert len(calls) == 1

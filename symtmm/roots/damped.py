@@ -1082,12 +1082,22 @@ class _Search:
             b = [ctx.mpf(y) for _, y in outer]
             ends = self._real_values([_global(t) for t in a + b], digits)
             sa, sb = ends[:R], ends[R:]
-            if any(u is None or v is None or (u > 0) == (v > 0) for u, v in zip(sa, sb)):
+            for i, (u, v) in enumerate(zip(sa, sb)):
+                if u is not None and v is not None and (u > 0) == (v > 0):
+                    # (signs that are certain: more digits cannot change them, and an odd
+                    # count between them is impossible; it came from a misled count)
+                    raise ComputationError(
+                        f"the search counted one real eigenvalue between "
+                        f"{float(outer[i][0]):.6g} and {float(outer[i][1]):.6g}, where Delta "
+                        "has the same sign at both ends: the count was misled (eigenvalues "
+                        "crowding near the search rectangles' edges?)")
+            if any(u is None or v is None for u, v in zip(sa, sb)):
                 digits += max(20, digits // 2)
                 continue
             c = [min(max(ctx.mpf(e), a[i]), b[i]) for i, e in enumerate(estimates)]
             h = [ctx.mpf("1e-11")] * R
             done: list = [None] * R
+            widths: list = [[] for _ in range(R)]     # each bracket's, round by round
             for _ in range(60):
                 tests, owner = [], []
                 for i in range(R):
@@ -1118,9 +1128,17 @@ class _Search:
                     step = None
                     if s1 is not None and s2 is not None and s1 != s2:
                         step = t2 - ctx.mpf(s2) * (t2 - t1) / (ctx.mpf(s2) - ctx.mpf(s1))
-                    if step is None or not a[i] < step < b[i]:
+                    # (a secant step on Delta, which grows like an exponential along the
+                    # real axis, crawls from an estimate far from the zero: 0.09 a round
+                    # across a bracket of 78 when the contour's estimate was its midpoint.
+                    # Where two rounds have not halved the bracket, its midpoint)
+                    widths[i].append(b[i] - a[i])
+                    crawl = len(widths[i]) > 2 and widths[i][-1] > widths[i][-3] / 2
+                    if step is None or not a[i] < step < b[i] or crawl:
                         step = (a[i] + b[i]) / 2
                         h[i] = min(h[i], (b[i] - a[i]) / (8 * max(abs(step), ctx.mpf(1e-300))))
+                        if crawl:
+                            widths[i].clear()
                     else:
                         h[i] = min(h[i], target)
                     c[i] = step
