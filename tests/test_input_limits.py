@@ -1060,6 +1060,47 @@ def test_a_mode_shape_whose_walk_needs_too_many_digits_says_so(tmp_path):
     assert "beam 'soft' loses" in line
 
 
+
+SOFT_LONG_TIMOSHENKO_BESIDE_A_DASHPOT = """
+[[beam]]
+name = "b0"
+EI = 0.053
+m = 86.9
+L = 66.9
+left = "clamped"
+right = "clamped"
+theory = "timoshenko"
+rhoI = 9.34
+kGA = 0.148
+N = -3.51e-05
+
+[[beam]]
+name = "b1"
+EI = 1.07
+m = 0.0232
+L = 1.28
+left = "clamped"
+right = "pinned"
+
+[[spring]]
+between = ["b1", "ground"]
+x = 0.128
+k = 100000.0
+kind = "rotational"
+c = 267.0
+"""
+
+
+def test_a_mode_far_above_a_beams_own_modes_names_that_cause(tmp_path):
+    """A soft, heavy and long beam beside a damped one (a campaign's model, no foundation):
+    at an overdamped eigenvalue near -375 its waves grow like exp(740,000) along it. The
+    line named only foundations, axial forces and shear stiffnesses as causes."""
+    run = run_file(tmp_path, SOFT_LONG_TIMOSHENKO_BESIDE_A_DASHPOT, "modes", "--count", "3",
+                   "--points", "4", limit=60)
+    line = one_line(run)
+    assert run.code == 1 and "beam 'b0' loses" in line
+    assert "an eigenvalue far above its own first modes" in line
+
 def test_an_explanation_that_fails_leaves_the_budget_line():
     import time as _time
 

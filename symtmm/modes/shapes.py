@@ -111,7 +111,8 @@ def working_digits(plan, lam, digits: int) -> int:
             f"the mode shape at {_value_text(lam)} would need {work} digits in the transfer "
             f"walk, more than {MAX_WALK_DIGITS}: beam '{plan.model.beams[worst].name}' loses "
             f"{growth[worst] / math.log(10):.0f} of them (its waves grow like exp(|beta| L) "
-            "along it: a foundation kw, an axial force or a shear stiffness far from its EI)")
+            "along it: a foundation kw, an axial force or a shear stiffness far from its EI, "
+            "or an eigenvalue far above its own first modes)")
     return work
 
 
