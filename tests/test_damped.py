@@ -1121,3 +1121,35 @@ def test_a_real_count_that_the_signs_refute_fails_at_once():
     with pytest.raises(ComputationError, match="same sign at both ends"):
         _Search._pairs(fake, [0.5], [(0.0, 1.0)])
     assert len(calls) == 1
+
+
+def test_a_real_bracket_whose_ends_differ_by_a_thousand_e_folds_is_shrunk_in_double():
+    """The double bracketing of a real zero took the product of its ends' scaled values as
+    the sign change; an end 1500 e-folds below the other scales to a signed zero, the
+    product was -0, and the zero went to the proofs from the rectangle's midpoint, 38 from
+    it (the contour method on a pure-dashpot beam). The sides come from the signs.
+    Reference: the zero of exp(-20 x) - exp(-20 r) is r."""
+    import types
+
+    import numpy as np
+
+    from symtmm.roots.contour import Rectangle
+    from symtmm.roots.damped import _Search
+    r = -2.19141315549854
+
+    def log_delta(z):
+        x = np.asarray(z).real
+        with np.errstate(over="ignore", divide="ignore"):
+            # log|f| and its phase for f = exp(-20 x) - exp(-20 r), without overflow
+            big = np.maximum(-20 * x, -20 * r)
+            small = np.minimum(-20 * x, -20 * r)
+            la = big + np.log1p(-np.exp(small - big))
+        return la, np.where(x < r, 0.0, np.pi), np.ones(x.shape, dtype=bool)
+
+    got = []
+    fake = types.SimpleNamespace(origin=None, p=types.SimpleNamespace(
+        log_delta=log_delta, kernel=types.SimpleNamespace(log_delta=log_delta)),
+        _pairs=lambda estimates, outer: got.append(estimates) or [])
+    fake._at = lambda u, ctx=None: _Search._at(fake, u, ctx)
+    _Search.refine_real(fake, [Rectangle(-78.96, -1.0957, -1.0, 1.0)])
+    assert abs(got[0][0] - r) < 1e-10

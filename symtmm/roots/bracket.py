@@ -44,13 +44,35 @@ def scaled(logabs, sign, ref):
         return sign * np.exp(np.minimum(logabs - ref, 700.0))
 
 
+#: The most ``log|f|`` by which a bracket's ends may differ and both be scaled by the
+#: larger one (``exp(-600)`` is well inside the doubles' range).
+_SPREAD_E_FOLDS = 600.0
+
+
 def scaled_ends(logabs, sign):
     """``(fa, fb, ref)`` from ``log|f|`` and signs at the ends ``[a..., b...]`` of ``R``
     brackets: each bracket's values scaled by its larger end, so that ``|f|`` of any size
-    (a determinant far beyond the double range) fits."""
+    (a determinant far beyond the double range) fits; where they lie further apart than
+    :data:`_SPREAD_E_FOLDS`, by the smaller end's ``|f|`` times ``exp(_SPREAD_E_FOLDS)``
+    (the larger end capped, its sign kept), so that the smaller end and the points near
+    it do not underflow to zero (a real zero's bracket whose ends'
+    ``|Delta|`` were ``1e674`` and ``1e338``: every point near the zero scaled to 0, the
+    "best" of them, and the bracket stayed at its small end, 1.1 from the zero).
+
+    Examples
+    --------
+    >>> fa, fb, ref = scaled_ends(np.array([3.0, 5.0]), np.array([1.0, -1.0]))
+    >>> float(ref[0]), float(fb[0])
+    (5.0, -1.0)
+    >>> fa, fb, ref = scaled_ends(np.array([1553.0, 780.0]), np.array([1.0, -1.0]))
+    >>> float(ref[0]), bool(fb[0] < 0 < fa[0])
+    (1380.0, True)
+    """
     R = len(logabs) // 2
-    ref = np.maximum(logabs[:R], logabs[R:])
-    ref = np.where(np.isfinite(ref), ref, 0.0)
+    low, high = np.minimum(logabs[:R], logabs[R:]), np.maximum(logabs[:R], logabs[R:])
+    with np.errstate(invalid="ignore"):
+        ref = np.where(high - low > _SPREAD_E_FOLDS, low + _SPREAD_E_FOLDS, high)
+    ref = np.where(np.isfinite(ref), ref, np.where(np.isfinite(high), high, 0.0))
     return scaled(logabs[:R], sign[:R], ref), scaled(logabs[R:], sign[R:], ref), ref
 
 

@@ -1039,8 +1039,10 @@ class _Search:
             a = [self._at(r.x0, MP(256).ctx).real for r in rects]
             b = [self._at(r.x1, MP(256).ctx).real for r in rects]
             return self._pairs([(x + y) / 2 for x, y in zip(a, b)], list(zip(a, b)))
+        R = len(rects)
         la, ph, _ = self.p.log_delta(np.concatenate([a, b]).astype(complex))
-        fa, fb, ref = scaled_ends(la, np.where(np.cos(ph) < 0, -1.0, 1.0))
+        signs = np.where(np.cos(ph) < 0, -1.0, 1.0)
+        fa, fb, ref = scaled_ends(la, signs)
 
         def probe(c, idx):
             # (the double values alone: a point too near the zero for them stops its
@@ -1048,12 +1050,17 @@ class _Search:
             # balls, as the contour's values are, each cost a third of a millisecond
             # and told the pairs nothing they do not find)
             lc, pc, okc = self.p.kernel.log_delta(c.astype(complex))
-            fc = scaled(lc, np.where(np.cos(pc) < 0, -1.0, 1.0), ref[idx])
-            side = np.where(np.sign(fc) == np.sign(fb0[idx]), 1, -1)
-            return fc, np.where(okc & (fc != 0) & np.isfinite(fc), side, 0)
+            sc = np.where(np.cos(pc) < 0, -1.0, 1.0)
+            # (the side by the sign itself: a value far below the larger end's scales to
+            # 0, and was taken as undecided, stopping the bracket there)
+            side = np.where(sc == signs[R:][idx], 1, -1)
+            return scaled(lc, sc, ref[idx]), np.where(okc & np.isfinite(lc), side, 0)
 
-        fb0 = fb.copy()
-        ok = fa * fb < 0
+        # (a sign change by the signs: an end far below the other scales to a signed zero,
+        # and the product of the values was -0: the contour's rectangle of a pure-dashpot
+        # beam, |Delta| 1e674 and 1e338 at its ends, went to the proof stage from its
+        # midpoint, 38 from the zero)
+        ok = np.isfinite(la[:R]) & np.isfinite(la[R:]) & (signs[:R] != signs[R:])
         best = shrink(a[ok], b[ok], fa[ok], fb[ok], lambda c, i: probe(c, np.nonzero(ok)[0][i]),
                       1e-13) if ok.any() else []
         estimates = 0.5 * (a + b)
