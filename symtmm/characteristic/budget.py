@@ -112,15 +112,13 @@ def factoring_fits(p) -> bool:
     return time.perf_counter() + seconds <= budget.deadline
 
 
-def spend_factoring(p) -> None:
-    """Refuse to factor ``p`` where it does not fit (:func:`factoring_fits`)."""
-    if factoring_fits(p):
-        return
+def _refusal(p) -> ComputationError:
+    """The line refusing to factor ``p`` where it does not fit (:func:`factoring_fits`)."""
     if len(p) > FACTOR_TERMS:
-        raise ComputationError(f"the closed form's determinant has {len(p)} terms, more than "
-                               f"{FACTOR_TERMS} can be factored (it cannot be interrupted): "
-                               f"{_HINT}")
-    raise _over_time(_BUDGET.get())
+        return ComputationError(f"the closed form's determinant has {len(p)} terms, more "
+                                f"than {FACTOR_TERMS} can be factored (it cannot be "
+                                f"interrupted): {_HINT}")
+    return _over_time(_BUDGET.get())
 
 
 #: Terms from which a factorisation under a deadline runs in a forked child that is stopped
@@ -134,23 +132,21 @@ def factor(ring, p, optional: bool = False):
 
     A factorisation cannot be interrupted and its time is not foreseeable from its terms
     (1e-5 to 6e-4 s a term). Under a deadline a large one runs in a forked child stopped
-    at the deadline where this process may fork (:func:`symtmm.forked.usable`), and is
-    refused beforehand where it could not finish at the assumed rate otherwise
-    (:func:`factoring_fits`). ``optional``: return None instead of raising where it does
-    not fit in time (a factorisation that only shortens what is written).
+    at the deadline where the platform can fork (:func:`symtmm.forked.usable`); otherwise
+    it is refused beforehand where it could not finish at the assumed rate, and beyond
+    :data:`~symtmm.limits.FACTOR_TERMS` always (:func:`factoring_fits`). ``optional``:
+    return None instead of raising where it does not fit (a factorisation that only
+    shortens what is written).
     """
     terms = len(p)
-    if terms > FACTOR_TERMS:
-        if optional:
-            return None
-        spend_factoring(p)
     budget_ = _BUDGET.get()
-    if budget_ is None or budget_.deadline == float("inf") or terms < _FORK_TERMS \
-            or not forked.usable():
+    in_child = budget_ is not None and budget_.deadline != float("inf") \
+        and _FORK_TERMS <= terms <= FACTOR_TERMS and forked.usable()
+    if not in_child:
         if not factoring_fits(p):
             if optional:
                 return None
-            spend_factoring(p)
+            raise _refusal(p)
         return ring.factor(p)
     try:
         packed = forked.call(lambda: ring.pack_factors(ring.factor(p)), budget_.deadline)
