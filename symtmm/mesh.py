@@ -30,7 +30,7 @@ from .errors import ComputationError, ModelError
 from .expr import exact_float
 from .limits import MAX_PIECES
 from .model import FREEDOM_INDEX, GROUND, Model
-from .numeric.plan import wave_number_bound, wave_piece
+from .numeric.plan import long_piece, wave_number_bound, wave_piece
 
 __all__ = ["Mesh", "Stretches", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
 
@@ -143,8 +143,9 @@ class Stretches:
         if k == 0 and c == 0:
             if s is not None:
                 # the plans' rule on an Euler-Bernoulli beam, whose largest wave number is
-                # the beam's: a segment per stretch cost most of a chain's cut
-                return wave_piece(s, size, piece.key[1])
+                # the beam's: a segment per stretch cost most of a chain's cut (the beam's
+                # whole segment tells a long piece its constants)
+                return long_piece(self._whole[i], s, size, piece.key[2], piece.key[1])
             return piece(beam, beam.segment(xb - xa))
         # |X| of the coupled piece is at most that of a beam on the foundation
         # kw + 2 |k + c lam| <= kw + 2 k + 2 c |lam|: with the range |lam|**2 <= radius

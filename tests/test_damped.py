@@ -881,7 +881,9 @@ def test_a_count_in_a_dense_spectrum_proves_few_eigenvalues(tmp_path, monkeypatc
     region = next(n for n in damped.notes if n.startswith("search region"))
     top = float(region.split("Im lam <=")[1].split()[0])
     assert top < 1.02 * 23.6830887813572         # (the doubling's top: 47.4)
-    assert len(boxes) <= 30
+    # (the eigenvalues its Rouche proofs enclosed, each maybe more than once: the model's
+    # long pieces make a box's enclosure cheap, and wider, so some boxes take a second disk)
+    assert len({complex(b.mid()) for b in boxes}) <= 12
 
 
 # a campaign's model: a very stiff short beam (b1) on soft springs beside a long soft beam

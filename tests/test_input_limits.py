@@ -1006,7 +1006,8 @@ def test_crowding_names_a_beam_that_holds_most_of_a_few_hundred_freedoms():
     of as many freedoms spread over its beams is not."""
     from symtmm.numeric.plan import CROWDED, crowding, plan_for
 
-    stiff = Model((Beam("b", "1/1000", 1, 10, left="pinned", right="pinned", kw=10**3),))
+    # (kw L**4 / EI = 1e13: even its long pieces, |s| l <= NU_LONG, are about 80)
+    stiff = Model((Beam("b", "1/1000", 1, 10, left="pinned", right="pinned", kw=10**9),))
     plan = plan_for(stiff.require_numeric(), 1.0)
     assert 100 <= plan.n < CROWDED
     assert "beam 'b'" in crowding(stiff.require_numeric())

@@ -40,7 +40,7 @@ import numpy as np
 
 from ..deadline import check as check_time
 from .arith import DOUBLE, Arithmetic, Ball
-from .plan import StiffnessPlan, design_range, plan_for
+from .plan import StiffnessPlan, design_range, plan_for, plan_key
 from .stiffness import Factors, factor, summary
 from .threads import one_blas_thread
 
@@ -130,6 +130,13 @@ def _band_pivoted(K, band: int) -> tuple:
     return sign, logdet, cond
 
 
+def _tops(lam) -> tuple:
+    """``(max |lam|, max |Im lam|)`` of complex points: the range of the plan they take."""
+    if not lam.size:
+        return 0.0, 0.0
+    return float(np.max(np.abs(lam))), float(np.max(np.abs(lam.imag)))
+
+
 def exact_mpf(x) -> mpmath.mpf:
     """``x`` (a float, an int or a number of any mpmath context) as a global mpmath
     number without rounding (``mpmath.mpf(x)`` rounds to the ambient precision)."""
@@ -189,9 +196,11 @@ class Evaluator:
         self._extra_bits: dict = {}
 
     def plan(self, size: float, points: int | None = None,
-             ar: Arithmetic = DOUBLE) -> StiffnessPlan:
+             ar: Arithmetic = DOUBLE, top: float | None = None) -> StiffnessPlan:
         """A plan valid for ``|lam| <= size`` (:func:`~symtmm.numeric.plan.plan_for`: shared
-        with other searches of the same model; kept here by range for the batches).
+        with other searches of the same model; kept here by range for the batches), at
+        points with ``|Im lam| <= top`` (by default ``size``: long pieces are cut for it,
+        :func:`~symtmm.numeric.plan.plan_key`).
 
         A batch of few ``points`` (at most :data:`SMALL_BATCH` in double precision, or
         :data:`SMALL_PROOF_BATCH` in ``ar``'s other arithmetics) takes any plan of this
@@ -199,17 +208,20 @@ class Evaluator:
         what hundreds of double evaluations do, its extra pieces far less.
         """
         design = design_range(size)
-        plan = self._plans.get(design)
+        key = (design, design) if top is None or top >= design else \
+            plan_key(self.model, size, top)
+        plan = self._plans.get(key)
         if plan is None:
             small = SMALL_BATCH if ar is DOUBLE else SMALL_PROOF_BATCH
             if points is not None and points <= small:
                 # (not kept for this range: a larger batch here gets a plan cut for it; kept
                 # apart for the next small batch, as the shared lookup hashes the whole model)
-                plan = self._borrowed.get(design)
+                plan = self._borrowed.get(key)
                 if plan is None:
-                    plan = self._borrowed[design] = plan_for(self.model, size, slack=math.inf)
+                    plan = self._borrowed[key] = plan_for(self.model, size, slack=math.inf,
+                                                          top=key[1])
                 return plan
-            plan = self._plans[design] = plan_for(self.model, size)
+            plan = self._plans[key] = plan_for(self.model, size, top=key[1])
         return plan
 
     def _built(self) -> list:
@@ -240,13 +252,18 @@ class Evaluator:
         check_time()        # (a search's wall-clock budget: symtmm.deadline)
         if ar is DOUBLE:
             lam = np.asarray(lam, dtype=complex)
-            top = float(np.max(np.abs(lam), initial=0.0))
             self.evaluations += lam.size
-            return factor(self.plan(top, lam.size), ar, lam * lam, lam)
+            size, top = _tops(lam)
+            return factor(self.plan(size, lam.size, top=top), ar, lam * lam, lam)
         points = [exact_mpc(z) if not hasattr(z, "mid") else z for z in lam]
-        top = max((float(abs(complex(z.mid()) if hasattr(z, "mid") else complex(z)))
-                   for z in points), default=0.0)
-        plan = self.plan(top, len(points), ar)
+        size, top = 0.0, 0.0
+        for z in points:
+            if hasattr(z, "mid"):
+                mid, rad = complex(z.mid()), float(z.rad())
+            else:
+                mid, rad = complex(z), 0.0
+            size, top = max(size, abs(mid) + rad), max(top, abs(mid.imag) + rad)
+        plan = self.plan(size, len(points), ar, top=top)
         step = max(1, BALL_ENTRIES // max(1, plan.n * plan.width))
         # a large batch in parts on the batch's plan, the budget checked before each: a
         # part cannot be interrupted, and where the compiled balls decline a plan, Arb's
@@ -343,7 +360,8 @@ class Evaluator:
         of a leading sub-structure, not of the model, is then as good as any other.
         """
         lam = np.asarray(lam, dtype=complex)
-        plan = self.plan(float(np.max(np.abs(lam), initial=0.0)), lam.size)
+        size, top = _tops(lam)
+        plan = self.plan(size, lam.size, top=top)
         got = summary(plan, lam * lam, lam)
         if got is not None:
             # (one compiled pass; the points it leaves undecided factorised again below,
@@ -389,7 +407,8 @@ class Evaluator:
         # its sixteen eigenvalues proved by Rouche so, five in plans of the farthest box)
         plans: dict = {}
         for p, z in enumerate(points):
-            plan = self.plan(float(abs(complex(z.mid()))) + float(z.rad()))
+            mid, rad = complex(z.mid()), float(z.rad())
+            plan = self.plan(abs(mid) + rad, top=abs(mid.imag) + rad)
             plans.setdefault(id(plan), (plan, []))[1].append(p)
         out: list = [None] * len(points)
         with ar:

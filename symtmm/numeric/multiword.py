@@ -207,8 +207,10 @@ def _series_tables(tabs: dict) -> tuple:
 
 
 def _beams_only(plan) -> bool:
-    """Every segment kind of the plan one the compiled kernel holds (:data:`_FAMILIES`)."""
-    return all(family in _FAMILIES for family, _ in plan.kinds)
+    """Every segment kind of the plan one the compiled kernel holds (:data:`_FAMILIES`), and
+    no long piece (its series stop at ``|x|`` of a short one: :func:`~symtmm.numeric.plan.
+    long_piece`)."""
+    return not plan.long and all(family in _FAMILIES for family, _ in plan.kinds)
 
 
 #: The code of complex balls of ``N`` words in the compiled kernel (a real ball of ``N``

@@ -47,8 +47,9 @@ from .arith import DOUBLE, Arithmetic, exact_key
 from .segments import kind, kind_key, kind_order, kind_size, kind_tables
 
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "wave_piece", "generous_range",
+           "long_piece", "LONG_FROM", "NU_LONG",
            "rcm_order", "wave_number_bound", "plan_for", "design_range", "design_below",
-           "clear_plans", "PLAN_MODELS", "crowding", "CROWDED", "CROWDED_BY_ONE_BEAM"]
+           "clear_plans", "PLAN_MODELS", "plan_key", "crowding", "CROWDED", "CROWDED_BY_ONE_BEAM"]
 
 #: SymPy's one (a singleton): most coefficients of the scatter are it.
 ONE = sp.S.One
@@ -58,6 +59,23 @@ ONE = sp.S.One
 #: clamped-clamped eigenvalue in the range (``J0 = 0``, ``det U12 != 0``), and no
 #: digit is lost to the growth of long pieces.
 NU_MAX = 3.0
+
+#: An Euler–Bernoulli stretch that pieces of :data:`NU_MAX` would cut into more than this
+#: many is cut into **long pieces** where that takes at most half as many
+#: (:func:`long_piece`): a beam whose waves are far shorter than it is (a soft beam on a
+#: stiff foundation: ``kw L**4 / EI`` of ``1e9`` cut it into hundreds of pieces, and the
+#: proofs' dense determinant of hundreds of freedoms cost half a second a point).
+LONG_FROM = 8
+#: Largest ``|s| l`` of a long piece over the plan's range: its stiffness comes from the
+#: closed forms in ``nu = s l`` (:func:`symtmm.numeric.stiffness.eb_closed_stiffness`),
+#: whose terms grow like ``exp(1.31 |nu|)`` and stay far inside double precision's range.
+NU_LONG = 120.0
+#: ``beta_1 l`` of a clamped-clamped Euler–Bernoulli beam (4.7300407...), rounded down.
+BETA_CLAMPED = 4.73
+#: A long piece's first clamped-clamped ``omega**2`` lies at least this factor above the
+#: largest ``|Im lam|**2`` the plan is evaluated at (its ``top2``): ``J0 = 0`` for the
+#: count, and ``det U12`` (zero there) far from zero where the searches evaluate.
+CLAMPED_MARGIN = 1.5
 
 
 def wave_number_bound(segment, radius: float) -> float:
@@ -113,13 +131,47 @@ def wave_piece(s: float, length: float, nu_max: float = NU_MAX) -> float:
     return length if s * length <= nu_max else nu_max / s
 
 
-def piece_rule(radius: float, nu_max: float = NU_MAX):
+def long_piece(segment, s: float, length: float, top2: float, nu_max: float = NU_MAX) -> float:
+    """The piece an Euler–Bernoulli stretch ``length`` long is cut into, whose largest wave
+    number over the plan's range is ``s``, for points with ``|Im lam|**2 <= top2``.
+
+    Short pieces (:func:`wave_piece`) unless they would be more than :data:`LONG_FROM` and
+    long ones take at most half as many. A long piece keeps ``|s| l <=`` :data:`NU_LONG`
+    and its first clamped-clamped ``omega**2 = (EI (beta_1 / l)**4 + kw) / m`` at least
+    :data:`CLAMPED_MARGIN` times ``top2``: the zeros of its ``det U12`` (where its stiffness
+    has poles) all lie on the imaginary axis there. On a foundation stiffer than the
+    inertia the range asks (``kw >= CLAMPED_MARGIN m top2``) only its growth bounds it.
+
+    Examples
+    --------
+    A beam on a foundation ``kw L**4 / EI = 1e8``, below its cut-off ``sqrt(kw / m)``:
+    short pieces would be 34, long ones are the stretch itself.
+
+    >>> seg = EulerBernoulliSegment(1, 1, 1, 10**8)
+    >>> s = wave_number_bound(seg, 1.0)
+    >>> math.ceil(1 / wave_piece(s, 1.0)), long_piece(seg, s, 1.0, top2=1.0)
+    (34, 1.0)
+    """
+    short = wave_piece(s, length, nu_max)
+    if length <= LONG_FROM * short:
+        return short
+    EI, m, _, kw = segment.constants()
+    excess = CLAMPED_MARGIN * m * top2 - kw
+    clamped = math.inf if excess <= 0 else BETA_CLAMPED * (EI / excess) ** 0.25
+    longest = min(length, clamped, NU_LONG / s)
+    return longest if longest >= 2 * short else short
+
+
+def piece_rule(radius: float, nu_max: float = NU_MAX, top2: float | None = None):
     """``piece(beam, segment)``: :func:`piece_length` for ``|lam|**2 <= radius``, as
     :class:`~symtmm.mesh.Mesh` takes it (its ``radius`` bounds a layer's ``k + c lam``; its
-    ``key`` names the rule for :meth:`~symtmm.mesh.Stretches.subdivide`'s memory)."""
+    ``key`` names the rule for :meth:`~symtmm.mesh.Stretches.subdivide`'s memory). Plain
+    Euler–Bernoulli stretches take :func:`long_piece` for ``|Im lam|**2 <= top2`` (by
+    default ``radius``)."""
     def piece(beam, seg):
         return piece_length(seg, radius, nu_max)
-    piece.radius, piece.key = float(radius), (float(radius), float(nu_max))
+    top2 = float(radius) if top2 is None else min(float(top2), float(radius))
+    piece.radius, piece.key = float(radius), (float(radius), float(nu_max), top2)
     return piece
 
 
@@ -200,6 +252,9 @@ class StiffnessPlan:
         Largest ``|lam|**2`` at which the plan is evaluated: pieces are cut for it.
     nu_max : float
         Largest ``|s| l`` of a piece over that range (see :data:`NU_MAX`).
+    top2 : float, optional
+        Largest ``|Im lam|**2`` at which the plan is evaluated (by default ``radius``):
+        the long pieces' clamped-clamped eigenvalues lie above it (:func:`long_piece`).
 
     Attributes
     ----------
@@ -218,6 +273,10 @@ class StiffnessPlan:
         The largest ``|lam|**2`` its pieces are cut short enough for (:meth:`_valid_radius`),
         at least ``radius``: where the supports and springs cut the beams finer than the
         range needs, far more.
+    long : bool
+        Whether some piece is long (:func:`long_piece`): its stiffness then comes from the
+        closed forms wherever its ``|x|`` exceeds ``NU_MAX**4``, and the compiled kernels,
+        whose series stop there, leave the plan to numpy and Arb.
 
     Examples
     --------
@@ -229,13 +288,16 @@ class StiffnessPlan:
     (8, 3, 1)
     """
 
-    def __init__(self, model, radius: float, nu_max: float = NU_MAX, stretches=None):
+    def __init__(self, model, radius: float, nu_max: float = NU_MAX, stretches=None,
+                 top2: float | None = None):
         from ..mesh import Mesh
         self.model = model
         self.radius = float(radius)
+        self.top2 = self.radius if top2 is None else min(float(top2), self.radius)
         self.damped = model.damped
-        mesh = self.mesh = Mesh(model, piece_rule(self.radius, nu_max), stretches)
+        mesh = self.mesh = Mesh(model, piece_rule(self.radius, nu_max, self.top2), stretches)
         n = self.n = mesh.size
+        self.long = self._long(nu_max)
         self.valid_radius = self._valid_radius(nu_max)
         cliques = ([[g for c in places for g, _ in c] for places in mesh.segment_places]
                    + [[g for c in places for g, _ in c] for places, _ in mesh.point_places]
@@ -348,6 +410,17 @@ class StiffnessPlan:
                              - 2.0 * math.log(2.0) * sum(e))
         self.pivot_product = mesh.pivot_product
 
+    def _long(self, nu_max: float) -> bool:
+        """Whether some Euler–Bernoulli piece exceeds ``|s| l = nu_max`` in the range."""
+        seen = set()
+        for _, seg, _, _ in self.mesh.segments:
+            if id(seg) in seen or not isinstance(seg, EulerBernoulliSegment):
+                continue
+            seen.add(id(seg))
+            if wave_number_bound(seg, self.radius) * float(seg.l) > nu_max * (1 + 1e-6):
+                return True
+        return False
+
     def _valid_radius(self, nu_max: float) -> float:
         """The largest ``|lam|**2`` at which every piece keeps ``|s| l <= nu_max``: for an
         Euler–Bernoulli piece ``(EI (nu_max / l)**4 - kw) / m`` (:func:`wave_number_bound`);
@@ -386,7 +459,7 @@ class StiffnessPlan:
                 rest.append(i)
         if rest:
             D, _ = stiffness_values(DOUBLE, kind_tables(DOUBLE, [kinds[i] for i in rest]),
-                                    np.zeros(1), np.zeros(1))
+                                    np.zeros(1), np.zeros(1), self.long)
             D = np.real(D).reshape(-1)
             start = 0
             for i in rest:
@@ -487,14 +560,16 @@ class StiffnessPlan:
 #: Models whose plans are kept for the next search of the same model (``solve``, then
 #: ``modes``, ``certify`` or a sweep's tracking shapes ask for the same ones).
 PLAN_MODELS = 4
-_PLANS: OrderedDict = OrderedDict()        # model -> {design: plan}, least recent first
+_PLANS: OrderedDict = OrderedDict()        # model -> {(design, top): plan}, least recent first
 _PLANS_LOCK = threading.Lock()
+_LONG: OrderedDict = OrderedDict()         # (model, design) -> whether long pieces can be
 
 
 def clear_plans():
     """Forget the plans kept for the next search (a timing of a search from scratch)."""
     with _PLANS_LOCK:
         _PLANS.clear()
+        _LONG.clear()
 
 
 def design_range(size: float) -> float:
@@ -516,7 +591,52 @@ def design_below(size: float) -> float:
     return 2.0 ** (math.floor(4 * math.log2(float(size)) + 1e-9) / 4)
 
 
-def plan_for(model, size: float, slack: float = 4.0) -> StiffnessPlan:
+def _long_possible(model, design: float) -> bool:
+    """Whether some plain Euler–Bernoulli stretch of ``model`` would take long pieces in a
+    plan for ``|lam| <= design`` (:func:`long_piece`): only then does a plan's ``top2``
+    change its pieces."""
+    key = (model, design)
+    with _PLANS_LOCK:
+        known = _LONG.get(key)
+    if known is None:
+        from ..mesh import Stretches
+        stretches = Stretches(model)
+        known = False
+        for whole, lengths in zip(stretches._whole, stretches._lengths):
+            if isinstance(whole, EulerBernoulliSegment):
+                s = wave_number_bound(whole, design * design)
+                known = known or any(s * length > LONG_FROM * NU_MAX for length in lengths)
+        with _PLANS_LOCK:
+            _LONG[key] = known
+            while len(_LONG) > 4 * PLAN_MODELS:
+                _LONG.popitem(last=False)
+    return known
+
+
+def plan_key(model, size: float, top: float | None = None) -> tuple:
+    """``(design, top design)``: the ranges a plan for ``|lam| <= size`` at points with
+    ``|Im lam| <= top`` (by default ``size``) is cut for, :func:`design_range` of each; the
+    top is the design's own where no stretch takes long pieces (:func:`long_piece`), so
+    that searches off the imaginary axis share the plans of the others.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model
+    >>> soft = Model((Beam("b", "1/100", 1, 10, left="pinned", right="pinned", kw=10**4),))
+    >>> plain = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),))
+    >>> plan_key(soft, 500.0, 90.0), plan_key(plain, 500.0, 90.0)
+    ((512.0, 90.50966799187809), (512.0, 512.0))
+    """
+    design = design_range(size)
+    if top is None or top >= design:
+        return design, design
+    tdesign = design_range(top)
+    if tdesign >= design or not _long_possible(model, design):
+        return design, design
+    return design, tdesign
+
+
+def plan_for(model, size: float, slack: float = 4.0, top: float | None = None) -> StiffnessPlan:
     """A plan of ``model`` (numeric) valid for ``|lam| <= size``, shared between searches.
 
     Plans are cut for the ranges ``2**(k/4)`` (at most 19 % above ``size``: pieces at
@@ -526,7 +646,9 @@ def plan_for(model, size: float, slack: float = 4.0) -> StiffnessPlan:
     for a larger range and its pieces are at most twice as many as needed (``slack``,
     by default ``4 x`` the range: Euler–Bernoulli pieces shorten like
     ``range**(-1/2)``), since building a plan costs tens of evaluations. The plans of
-    the last :data:`PLAN_MODELS` models are kept.
+    the last :data:`PLAN_MODELS` models are kept. ``top``: the largest ``|Im lam|`` it is
+    evaluated at, where that shortens long pieces' cut (:func:`plan_key`); a plan serves
+    only points below its own.
 
     Examples
     --------
@@ -535,31 +657,34 @@ def plan_for(model, size: float, slack: float = 4.0) -> StiffnessPlan:
     >>> plan_for(m, 100.0) is plan_for(m, 90.0), plan_for(m, 100.0) is plan_for(m, 1e4)
     (True, False)
     """
-    design = design_range(size)
+    design, tdesign = key = plan_key(model, size, top)
     with _PLANS_LOCK:
         plans = _PLANS.pop(model, None) or {}
         _PLANS[model] = plans
         while len(_PLANS) > PLAN_MODELS:
             _PLANS.popitem(last=False)
-        plan = plans.get(design)
+        plan = plans.get(key)
         if plan is None:
             # cut for a smaller range, yet short enough for this one: no more pieces than a
             # plan cut for it (a larger plan serves under the slack rule below)
             serving = [p for p in plans.values()
-                       if p.radius <= design * design <= p.valid_radius]
+                       if p.radius <= design * design <= p.valid_radius
+                       and p.top2 >= tdesign * tdesign]
             if serving:
                 return min(serving, key=lambda p: p.n)
-            larger = [d for d in plans if design < d <= slack * design]
+            larger = [k for k in plans if design < k[0] <= slack * design and k[1] >= tdesign]
             if larger:
                 return plans[min(larger)]
     if plan is None:
         # (built outside the lock: another thread may build the same one meanwhile)
         from ..mesh import Stretches
         stretches = Stretches(model)
-        design = generous_range(stretches, design)
-        plan = StiffnessPlan(model, design * design, stretches=stretches)
+        generous = generous_range(stretches, design)
+        key = (generous, generous if tdesign == design else tdesign)
+        plan = StiffnessPlan(model, generous * generous, stretches=stretches,
+                             top2=key[1] * key[1])
         with _PLANS_LOCK:
-            plan = _PLANS.setdefault(model, {}).setdefault(design, plan)
+            plan = _PLANS.setdefault(model, {}).setdefault(key, plan)
     return plan
 
 

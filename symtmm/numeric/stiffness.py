@@ -55,6 +55,11 @@ try:        # the elimination loop in C (setup.py); without a compiler, numpy ru
 except ImportError:  # pragma: no cover - tested by switching it off
     _band = None
 
+#: ``|x|`` beyond which a long piece's stiffness takes the closed forms: ``NU_MAX**4``, the
+#: largest a short piece reaches (:mod:`symtmm.numeric.plan`), where the ``c_j`` keep their
+#: digits.
+_LONG_X = 3.0 ** 4
+
 #: Whether double-precision bands are eliminated by the C loop (where it was built);
 #: tests switch it off to run the numpy loop, which gives the same factors.
 COMPILED = _band is not None
@@ -133,49 +138,106 @@ def _eb_pattern(k11, k12, k13, k14, k22, k24) -> list:
             [-k13, -k14, k11, -k12], [k14, k24, -k12, k22]]
 
 
-def eb_closed_stiffness(ar: Arithmetic, consts: dict, lam2):
+def _closed_entries(ar: Arithmetic, xb, EI, l) -> tuple:
+    """``(k11, k12, k13, k14, k22, k24), det U12`` by the closed forms in ``nu = x**(1/4)``
+    (complex ``x``, or real ``x > 0``: then ``nu`` is real)."""
+    nu = ar.root4(xb)
+    (ch, sh), (co, si) = ar.cosh_sinh(nu), ar.cos_sin(nu)
+    Phi = 1 - ch * co
+    b = nu / l
+    EIb2 = EI * b * b
+    k = (EIb2 * b * (co * sh + si * ch) / Phi, EIb2 * (si * sh) / Phi,
+         EIb2 * b * (sh + si) / Phi, EIb2 * (ch - co) / Phi,
+         EI * b * (ch * si - co * sh) / Phi, EI * b * (sh - si) / Phi)
+    l2 = l * l
+    return k, l2 * l2 * Phi / (2 * xb * EI * EI)
+
+
+def _foundation_entries(ar: Arithmetic, xb, EI, l) -> tuple:
+    """As :func:`_closed_entries` for a real ``x = -4 q**4 < 0`` (a foundation stiffer than
+    the inertia), in real functions of ``q``: with ``nu = q (1 + i)`` the complex forms
+    reduce to ``Phi = sin(q)**2 - sinh(q)**2``, ``k11 = -4 EI q**3 (sinh q cosh q + sin q cos
+    q) / (l**3 Phi)``, ``k12 = -2 EI q**2 (sinh(q)**2 + sin(q)**2) / (l**2 Phi)``, ``k13 = -4
+    EI q**3 (sinh q cos q + cosh q sin q) / (l**3 Phi)``, ``k14 = -4 EI q**2 sinh q sin q /
+    (l**2 Phi)``, ``k22 = 2 EI q (sin q cos q - sinh q cosh q) / (l Phi)``, ``k24 = 2 EI q
+    (sinh q cos q - cosh q sin q) / (l Phi)`` and ``det U12 = -l**4 Phi / (8 q**4 EI**2)``:
+    sums of like signs, so a long piece (``q`` of tens) keeps every digit (the ``c_j`` of
+    :func:`eb_stiffness` cancel there like ``exp(2 q)``)."""
+    q = ar.real(ar.root4(-xb / 4))
+    (ch, sh), (co, si) = ar.cosh_sinh(q), ar.cos_sin(q)
+    Phi = si * si - sh * sh
+    g = EI * q / (l * Phi)                 # EI q / (l Phi)
+    g2 = g * q / l
+    g3 = g2 * q / l
+    k = (-4 * g3 * (sh * ch + si * co), -2 * g2 * (sh * sh + si * si),
+         -4 * g3 * (sh * co + ch * si), -4 * g2 * (sh * si),
+         2 * g * (si * co - sh * ch), 2 * g * (sh * co - ch * si))
+    q2, l2 = q * q, l * l
+    return k, -(l2 * l2) * Phi / (8 * q2 * q2 * EI * EI)
+
+
+def eb_closed_stiffness(ar: Arithmetic, consts: dict, lam2, threshold: float = 1.0):
     """``(D, det U12)`` of Euler–Bernoulli segments by the closed forms in ``nu = x**(1/4)``
-    where ``|x| >= 1`` (:func:`eb_stiffness`, from the series of the ``c_j``, elsewhere): with ``Phi = 1 -
+    where ``|x| >= threshold`` (:func:`eb_stiffness`, from the series of the ``c_j``, elsewhere): with ``Phi = 1 -
     cosh nu cos nu``, ``k11 = EI b**3 (cos sinh + sin cosh)/Phi``, ``k12 = EI b**2 sin sinh /
     Phi``, ``k13 = EI b**3 (sinh + sin)/Phi``, ``k14 = EI b**2 (cosh - cos)/Phi``, ``k22 = EI b
     (cosh sin - cos sinh)/Phi``, ``k24 = EI b (sinh - sin)/Phi`` (``b = nu / l``) and ``det U12
-    = l**4 Phi / (2 x EI**2)``; all even in ``nu``, so any fourth root serves.
+    = l**4 Phi / (2 x EI**2)``; all even in ``nu``, so any fourth root serves. A real ``x < 0``
+    takes the real forms of :func:`_foundation_entries`.
 
     The same numbers as the U path, with far less dependency among the operations: over a
     box of ``lam`` (jets, :mod:`symtmm.numeric.jet`) the enclosures stay narrow where the
-    U path's inversion of ``U12`` multiplies their widths a hundredfold.
+    U path's inversion of ``U12`` multiplies their widths a hundredfold. And they hold
+    every digit for pieces however long (``threshold = NU_MAX**4``: the long pieces of
+    :func:`symtmm.numeric.plan.long_piece`), where the ``c_j`` lose digits like the
+    exponentials' growth; each entry to within rounding of the largest of its row.
+
+    Examples
+    --------
+    A piece ``|s| l = 40`` long on a foundation (``x = -4 * 20**4``), whose far-end
+    entries are ``exp(-20)`` times its near-end ones, against the same numbers at 60
+    digits:
+
+    >>> import mpmath
+    >>> from symtmm.numeric.arith import MP
+    >>> from symtmm.numeric.segments import eb_constants
+    >>> lam2 = np.array([0.0])
+    >>> D, det = eb_closed_stiffness(DOUBLE, eb_constants(DOUBLE, [(1, 1, 1, 4 * 20**4)]), lam2)
+    >>> ar = MP(200)
+    >>> E, _ = eb_closed_stiffness(ar, eb_constants(ar, [(1, 1, 1, 4 * 20**4)]), ar.array([0]))
+    >>> err = max(abs(float(E[0, 0, i, j]) - D[0, 0, i, j]) / abs(float(E[0, 0, i, j]))
+    ...           for i in range(4) for j in range(4))
+    >>> bool(err < 1e-14), bool(abs(D[0, 0, 0, 2] / D[0, 0, 0, 0]) < 1e-7)
+    (True, True)
     """
     lam2 = np.asarray(lam2)
     EI, l, A, F = consts["EI"], consts["l"], consts["A"], consts["F"]
     x = -(lam2[:, None] * A + F)
-    big = ar.upper(x.reshape(-1)).reshape(x.shape) >= 1.0
+    big = ar.upper(x.reshape(-1)).reshape(x.shape) >= threshold
     if not big.all():
         D, det = eb_stiffness(ar, consts, lam2)
         if not big.any():
             return D, det
+        D, det = D.copy(), det.copy()
     else:
         D, det = ar.zeros(x.shape + (4, 4), like=x), ar.zeros(x.shape, like=x)
     idx = np.nonzero(big)
-    xb = x[idx]
-    nu = ar.root4(xb)
-    (ch, sh), (co, si) = ar.cosh_sinh(nu), ar.cos_sin(nu)
-    Phi = 1 - ch * co
-    EIb, lb = EI[idx[1]], l[idx[1]]
-    b = nu / lb
-    k11 = EIb * b * b * b * (co * sh + si * ch) / Phi
-    k12 = EIb * b * b * (si * sh) / Phi
-    k13 = EIb * b * b * b * (sh + si) / Phi
-    k14 = EIb * b * b * (ch - co) / Phi
-    k22 = EIb * b * (ch * si - co * sh) / Phi
-    k24 = EIb * b * (sh - si) / Phi
-    rows = _eb_pattern(k11, k12, k13, k14, k22, k24)
-    D = D.copy()
-    det = det.copy()
-    for i in range(4):
-        for j in range(4):
-            D[idx + (i, j)] = rows[i][j]
-    l2 = lb * lb
-    det[idx] = l2 * l2 * Phi / (2 * xb * EIb * EIb)
+    xb, EIb, lb = x[idx], EI[idx[1]], l[idx[1]]
+    if ar.is_complex(xb):
+        parts = [(np.ones(xb.shape, dtype=bool), _closed_entries)]
+    else:
+        positive = ar.positive(xb)
+        parts = [(positive, _closed_entries), (~positive, _foundation_entries)]
+    for mask, entries in parts:
+        if not mask.any():
+            continue
+        k, d = entries(ar, xb[mask], EIb[mask], lb[mask])
+        at = tuple(i[mask] for i in idx)
+        rows = _eb_pattern(*k)
+        for i in range(4):
+            for j in range(4):
+                D[at + (i, j)] = rows[i][j]
+        det[at] = d
     return D, det
 
 
@@ -221,15 +283,21 @@ def eb_stiffness(ar: Arithmetic, consts: dict, lam2):
     return D, l2 * l2 * dc / (EI * EI)
 
 
-def stiffness_values(ar: Arithmetic, kinds, lam2, lam=None):
+def stiffness_values(ar: Arithmetic, kinds, lam2, lam=None, long: bool = False):
     """``(D, det U12)``: every segment kind's stiffness flattened and concatenated ``(B, *)``
-    (kind after kind, row-major), and ``det U12`` per kind ``(B, kinds)``."""
+    (kind after kind, row-major), and ``det U12`` per kind ``(B, kinds)``. ``long``: some
+    Euler–Bernoulli pieces may be long (:attr:`~symtmm.numeric.plan.StiffnessPlan.long`),
+    and take the closed forms beyond ``|x| = NU_MAX**4``."""
     B = np.asarray(lam2).shape[0]
     Ds, dets = [], []
     for family, consts in kinds:
         if family == "eb":
-            D, det = (eb_closed_stiffness if getattr(ar, "closed_stiffness", False)
-                      else eb_stiffness)(ar, consts, lam2)
+            if getattr(ar, "closed_stiffness", False):
+                D, det = eb_closed_stiffness(ar, consts, lam2)
+            elif long:
+                D, det = eb_closed_stiffness(ar, consts, lam2, threshold=_LONG_X)
+            else:
+                D, det = eb_stiffness(ar, consts, lam2)
         else:
             [U] = family_matrices(ar, [(family, consts)], lam2, lam)
             D, det = (coupled_stiffness(U, consts["N"]) if family == "coupled"
@@ -251,7 +319,7 @@ def assemble(plan, ar: Arithmetic, lam2, lam=None):
     lam2 = np.asarray(lam2)
     B = lam2.shape[0]
     if t["kinds"]:
-        D, det12 = stiffness_values(ar, t["kinds"], lam2, lam)
+        D, det12 = stiffness_values(ar, t["kinds"], lam2, lam, plan.long)
     else:
         D = ar.zeros((B, 0), like=lam2)
         det12 = ar.zeros((B, 0), like=lam2)
