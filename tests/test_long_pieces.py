@@ -1,0 +1,229 @@
+"""Long pieces: Euler–Bernoulli stretches whose waves are far shorter than they are.
+
+A soft beam on a stiff foundation (``kw L**4 / EI`` of ``1e8`` and more) is cut into
+long pieces (:func:`symtmm.numeric.plan.long_piece`) whose stiffness comes from the
+closed forms (:func:`symtmm.numeric.stiffness.eb_closed_stiffness`). References: the
+transfer matrix of the same piece at high precision (the ``U`` path, which loses
+digits to the growth of the exponentials and is given far more than it loses), the
+transfer-matrix walk's ``det R`` (the other formulation), the closed-form natural
+frequencies of a pinned-pinned beam on a Winkler foundation, and the undamped search
+on the frequency axis for a model whose dashpot cannot move.
+"""
+
+from __future__ import annotations
+
+import mpmath
+import numpy as np
+import pytest
+
+from symtmm.elements import EulerBernoulliSegment
+from symtmm.modelfile import loads
+from symtmm.numeric import plan as plan_module
+from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
+from symtmm.numeric.plan import NU_MAX, StiffnessPlan, plan_for
+from symtmm.numeric.segments import eb_constants, segment_matrix
+from symtmm.numeric.stiffness import eb_closed_stiffness, factor, segment_stiffness
+from symtmm.numeric.transfer import TransferPlan
+from symtmm.numeric.transfer import delta as transfer_delta
+from symtmm.solve import solve
+
+# (EI, m, l, kw) and lam**2 of pieces far longer than NU_MAX: on a foundation below its
+# cut-off (real x = -4 q**4, q = 20 and 60), above it (real x > 0, nu = 4.2), and off the
+# axis (complex x, |nu| of about 40 and 110)
+PIECES = [((1, 1, 1, 4 * 20**4), -1.0), ((2, 3, "1/2", 4 * 120**4 * 2 * 16), -5.0),
+          ((1, 1, 1, 100), -(4.2**4 + 100)), ((1, 1, 1, 2 * 10**6), complex(3e5, 4e5)),
+          ((1, 1, 1, 10**8), complex(-1e8, 1.4e8))]
+
+
+def _reference(consts, lam2):
+    """The piece's stiffness and det U12 from its transfer matrix at 1200 bits."""
+    ar = MP(1200)
+    with ar:
+        point = ar.array([ar.number(mpmath.mpmathify(lam2))])
+        U = segment_matrix(ar, EulerBernoulliSegment(*consts), point)[0]
+        return segment_stiffness(U)
+
+
+@pytest.mark.parametrize("consts, lam2", PIECES)
+def test_a_long_piece_holds_every_digit_in_double_precision(consts, lam2):
+    D, det = eb_closed_stiffness(DOUBLE, eb_constants(DOUBLE, [consts]),
+                                 np.array([lam2]), threshold=NU_MAX**4)
+    E, det_ref = _reference(consts, lam2)
+    for i in range(4):
+        row = max(abs(complex(E[i, j])) for j in range(4))
+        for j in range(4):
+            assert abs(complex(D[0, 0, i, j]) - complex(E[i, j])) <= 1e-13 * row
+    assert abs(complex(det[0, 0]) / complex(det_ref) - 1) < 1e-12
+
+
+@pytest.mark.skipif(not ball_available(), reason="python-flint is not installed")
+@pytest.mark.parametrize("consts, lam2", PIECES)
+def test_a_long_piece_in_balls_holds_its_value(consts, lam2):
+    ar = Ball(200)
+    with ar:
+        point = ar.array([ar.number(mpmath.mpmathify(lam2))])
+        D, det = eb_closed_stiffness(ar, eb_constants(ar, [consts]), point,
+                                     threshold=NU_MAX**4)
+    E, det_ref = _reference(consts, lam2)
+    mpmath.mp.prec = 400
+    flint = ar.flint
+
+    def holds(ball, exact):
+        # the ball holds the 1200-bit value (within its rounding to 400 bits), and is
+        # narrow: 200 bits lose a few to the exponentials
+        ball = flint.acb(ball)
+        mid = mpmath.mpc(mpmath.mpf(ball.real.mid().str(120, radius=False)),
+                         mpmath.mpf(ball.imag.mid().str(120, radius=False)))
+        rad = mpmath.mpf(ball.real.rad()) + mpmath.mpf(ball.imag.rad())
+        exact = mpmath.mpmathify(exact)
+        return abs(mid - exact) <= rad + abs(exact) * mpmath.mpf(2) ** -300 and \
+            rad <= abs(exact) * mpmath.mpf(10) ** -45
+
+    for i in range(4):
+        row = max(abs(mpmath.mpmathify(E[i, j])) for j in range(4))
+        for j in range(4):
+            # (an entry exp(-|nu|) of its row's largest: narrow beside the row)
+            assert holds(D[0, 0, i, j], E[i, j]) or abs(mpmath.mpmathify(E[i, j])) < 1e-30 * row
+    assert holds(det[0, 0], det_ref)
+
+
+SOFT_ON_FOUNDATION = """
+[[beam]]
+name = "soft"
+EI = {EI}
+m = 1.0
+L = 10.0
+left = "pinned"
+right = "pinned"
+kw = 10000.0
+
+[[spring]]
+between = ["soft", "ground"]
+x = 0.0
+k = 0
+c = 3.0
+"""
+
+
+def _winkler(EI, n):
+    """omega_n of a pinned-pinned beam on a Winkler foundation (m = 1, L = 10, kw = 1e4)."""
+    mpmath.mp.dps = 40
+    return mpmath.sqrt(mpmath.mpf(EI) * (n * mpmath.pi / 10) ** 4 + 10000)
+
+
+def _check_winkler(EI, count):
+    model = loads(SOFT_ON_FOUNDATION.format(EI=EI), source="soft.toml")
+    got = solve(model, count=count, digits=15)
+    assert [e.multiplicity for e in got] == [1] * count
+    for n, e in enumerate(got, start=1):
+        lam = complex(e.lam)
+        assert lam.real == 0
+        assert abs(lam.imag / float(_winkler(EI, n)) - 1) < 2e-15
+
+
+def test_long_pieces_cut_a_soft_beam_on_a_stiff_foundation(monkeypatch):
+    """The plan of its damped search (|Im lam| up to its cut-off) has long pieces and at
+    most half the freedoms of short ones; the plan of an ordinary beam has none."""
+    model = loads(SOFT_ON_FOUNDATION.format(EI="0.1"), source="soft.toml").require_numeric()
+    plan_module.clear_plans()
+    long = plan_for(model, 400.0, top=100.4)
+    assert long.long and long.top2 < long.radius
+    monkeypatch.setattr(plan_module, "LONG_FROM", float("inf"))
+    short = StiffnessPlan(model, long.radius, top2=long.top2)
+    assert not short.long and 2 * long.n <= short.n
+    plain = loads(SOFT_ON_FOUNDATION.format(EI=1).replace("kw = 10000.0", ""), source="p.toml")
+    assert not plan_for(plain.require_numeric(), 400.0, top=100.4).long
+
+
+def test_delta_of_long_pieces_is_det_r_of_the_transfer_walk():
+    """Delta of the stiffness plan with long pieces, at complex points, against det R of
+    the transfer-matrix walk (the other formulation) at 1000 bits."""
+    model = loads(SOFT_ON_FOUNDATION.format(EI="0.1"), source="soft.toml").require_numeric()
+    plan = plan_for(model, 400.0, top=100.4)
+    assert plan.long
+    points = [mpmath.mpc(-300, 40), mpmath.mpc(-2, 100.2), mpmath.mpc(-0.5, 99.9)]
+    ar = MP(200)
+    with ar:
+        lam = ar.array([ar.number(z) for z in points])
+        got = factor(plan, ar, lam * lam, lam).delta()
+    ref_ar = MP(1000)
+    with ref_ar:
+        lam = ref_ar.array([ref_ar.number(z) for z in points])
+        ref = transfer_delta(TransferPlan(model), ref_ar, lam=lam, lam2=lam * lam)
+    for g, r in zip(got, ref):
+        assert abs(mpmath.mpc(g) / mpmath.mpc(r) - 1) < mpmath.mpf(10) ** -50
+
+
+def test_an_inert_dashpot_on_a_soft_beam_on_a_stiff_foundation():
+    """The damped search (its dashpot at a pinned end never moves) gives the beam's
+    closed-form natural frequencies, kw L**4 / EI = 1e8."""
+    _check_winkler("1", 4)
+
+
+@pytest.mark.slow
+def test_an_inert_dashpot_on_a_softer_beam_on_a_stiff_foundation():
+    """kw L**4 / EI = 1e10: its first modes within 1e-9 of one another (relative); the
+    search ran past a 100 s budget with short pieces, now about 20 s."""
+    _check_winkler("0.01", 4)
+
+
+# a campaign's model (seed 21226): a soft heavy beam on a foundation (b2) whose modes
+# crowd at its cut-off, its dashpot between two fixed points; 57 s of a 60 s budget in
+# dense determinants of 283 freedoms
+CAMPAIGN_21226 = """
+[[beam]]
+name = "b0"
+EI = 0.0132
+m = 0.408
+L = 0.72
+left = "pinned"
+right = "clamped"
+kw = 46.3
+
+[[beam]]
+name = "b1"
+EI = 53.4
+m = 2.37
+L = 0.0917
+left = "sliding"
+right = "sliding"
+kw = 3.85
+
+[[beam]]
+name = "b2"
+EI = 0.0184
+m = 3180.0
+L = 9.92
+left = "clamped"
+right = "sliding"
+kw = 2080.0
+
+[[spring]]
+between = ["b2", "ground"]
+x = 9.92
+k = 1850000.0
+
+[[spring]]
+between = ["b2", "b0"]
+x = 0.0
+k = 0
+c = 6.0
+
+[[spring]]
+between = ["b2", "b1"]
+x = 0.00917
+k = 459000000.0
+"""
+
+
+@pytest.mark.slow
+def test_a_campaign_model_of_crowded_modes_at_a_cut_off():
+    """Reference: the same model without its dashpot, on the frequency axis."""
+    from symtmm.deadline import time_budget
+
+    damped = loads(CAMPAIGN_21226, source="m21226.toml")
+    undamped = loads(CAMPAIGN_21226.replace("c = 6.0\n", ""), source="m21226.toml")
+    with time_budget(20.0):
+        got = solve(damped, count=2, digits=15)
+    ref = solve(undamped, count=2, digits=15)
+    assert [(str(e), e.multiplicity) for e in got] == [(str(e), e.multiplicity) for e in ref]
