@@ -20,7 +20,8 @@ needs the shapes' directions to a few digits; printed mode shapes keep the
 mpmath walk, whose digits are counted.
 
 What it covers: models whose segments are single beams in a bending theory
-(families ``"eb"`` and ``"theory"``; rods and beams joined by layers walk) and
+(families ``"eb"`` and ``"theory"``; rods, beams joined by layers and plans with long
+pieces, :func:`~symtmm.numeric.plan.long_piece`, walk) and
 whose stiffness has at most :data:`DENSE_LIMIT` freedoms; elsewhere, and at an
 eigenvalue whose null space the singular values do not separate, it returns
 ``None`` and the walk does the work.
@@ -55,6 +56,8 @@ def _samples(model, plan, points: int):
     """Per beam, per sample ``(segment index, offset in it)`` (floats: a shape's samples
     need no exact coordinates); ``None`` where a sample lies in a piece this module does
     not handle."""
+    if plan.long:
+        return None         # (a long piece's U grows like its exponentials: the walk)
     mesh = plan.mesh
     by_beam: dict = {}
     for s, (b, _, ia, _) in enumerate(mesh.segments):
