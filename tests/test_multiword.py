@@ -658,8 +658,10 @@ def test_every_entry_point_refuses_buffers_that_do_not_fit():
 
 def test_midpoints_of_products_far_beyond_the_doubles():
     """A product of the words scaled far below and above the doubles' range: its midpoint
-    read directly is its arb's, its radius a bound of the arb's (0 and inf as floats
-    where the arb's is beyond them, never a smaller number)."""
+    read directly is its arb's, its radius a bound of the arb's (0 as a float where the
+    arb's is below the doubles, a number of the context where it is above them: a float's
+    inf left every value of a long shear-soft beam, 1e50110, unresolved; never a smaller
+    number)."""
     plan = Counter(Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),)), 100.0).plan(
         100.0)
     ar = Ball(200)
@@ -675,7 +677,8 @@ def test_midpoints_of_products_far_beyond_the_doubles():
         (v,), (r,) = fa.midpoints(ctx)
         ball = fa.delta()[0]
         assert v == ctx.mpf(ar.to_mpmath(ball))
-        assert r >= float(ball.rad()) * (1 - 1e-8) and r > 0
+        assert r >= ctx.mpf(ar.to_mpmath(ball.rad())) * (1 - 1e-8) and r > 0
+        assert isinstance(r, float) or shift > 0
 
 
 def test_the_other_order_is_tried_in_the_last_tier_only(monkeypatch):

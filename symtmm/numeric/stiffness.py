@@ -500,7 +500,8 @@ class Factors:
     def midpoints(self, ctx) -> tuple:
         """``(values, radii)`` per point: ``Delta`` as a number of the mpmath context
         ``ctx`` (a ball's midpoint; None where the count is undecided) and a float bound
-        of its distance from the exact value (0 where the arithmetic gives none).
+        of its distance from the exact value (0 where the arithmetic gives none; a number
+        of ``ctx`` where it is beyond the doubles).
 
         Where the multi-word factorisation kept its product as words
         (:class:`~symtmm.numeric.multiword.WordProduct`), the midpoint is read from them
@@ -534,16 +535,22 @@ class Factors:
                 # |const| r + |mid| rad(const) + the rounding of the product, each from its
                 # mantissa and binary exponent (either factor alone may leave the doubles)
                 r_m, r_e = math.frexp(w.radius)
-                terms = [_join((c_abs[0] * r_m, c_abs[1] + r_e + w.shift)),
-                         _join(_times(magnitude_parts(value), ulp))]
+                parts = [(c_abs[0] * r_m, c_abs[1] + r_e + w.shift),
+                         _times(magnitude_parts(value), ulp)]
                 if c_rad[0]:
-                    terms.append(_join(_times(magnitude_parts(mid), c_rad)))
-                radii[p] = math.fsum(terms) * (1 + 2.0 ** -50)
+                    parts.append(_times(magnitude_parts(mid), c_rad))
+                radii[p] = math.fsum(_join(t) for t in parts) * (1 + 2.0 ** -50)
+                if math.isinf(radii[p]):
+                    # (|Delta| beyond the doubles, 1e50000 on a long shear-soft beam: the
+                    # bound in ctx, or the secant steps take every value for unresolved)
+                    radii[p] = ctx.fsum(ctx.ldexp(m, e) for m, e in parts) * (1 + 2.0 ** -50)
         if rest:
             got = self.delta_at(rest)
             for p, v in zip(rest, got):
                 values[p] = ctx.mpf(mpmath.re(ar.to_mpmath(v)))
                 radii[p] = float(v.rad()) if ar.rigorous else 0.0
+                if math.isinf(radii[p]):
+                    radii[p] = ctx.mpf(ar.to_mpmath(v.rad())) * (1 + 2.0 ** -50)
         return values, radii
 
     def delta_at(self, points) -> list:
