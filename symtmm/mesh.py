@@ -31,6 +31,7 @@ from .expr import exact_float
 from .limits import MAX_PIECES
 from .model import FREEDOM_INDEX, GROUND, Model
 from .numeric.plan import long_piece, wave_number_bound, wave_piece
+from .numeric.segments import Condensed
 
 __all__ = ["Mesh", "Stretches", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
 
@@ -371,6 +372,7 @@ class Mesh:
         stretches = stretches or Stretches(model)
         xs_of = stretches.xs_of
         subdivisions, groups, self.stretch_ratios = stretches.subdivide(piece)
+        doublings = getattr(piece, "doublings", None)
         first_of = []                    # per beam, per stretch its first node (in points)
         for b_idx, beam in enumerate(model.beams):
             xs = xs_of[b_idx]
@@ -407,6 +409,10 @@ class Mesh:
                         seg = beam.segment(length) if len(members) == 1 else \
                             member(model.beams, tuple(members), [la[4] for la in used],
                                    self._index, length)
+                        j = doublings(seg) if len(members) == 1 and doublings else 0
+                        if j:
+                            # a long piece of another theory: a chain of 2**j short ones
+                            seg = Condensed(beam.segment(length / 2**j), j)
                     if len(members) == 1:
                         ia, ib = (base + p,), (base + p + 1,)
                         self.segments.append((b_idx, seg, base + p, base + p + 1))

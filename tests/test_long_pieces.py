@@ -21,7 +21,7 @@ from symtmm.modelfile import loads
 from symtmm.numeric import plan as plan_module
 from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
 from symtmm.numeric.plan import NU_MAX, StiffnessPlan, plan_for
-from symtmm.numeric.segments import eb_constants, segment_matrix
+from symtmm.numeric.segments import condensed_stiffness, eb_constants, segment_matrix
 from symtmm.numeric.stiffness import eb_closed_stiffness, factor, segment_stiffness
 from symtmm.numeric.transfer import TransferPlan
 from symtmm.numeric.transfer import delta as transfer_delta
@@ -227,3 +227,182 @@ def test_a_campaign_model_of_crowded_modes_at_a_cut_off():
         got = solve(damped, count=2, digits=15)
     ref = solve(undamped, count=2, digits=15)
     assert [(str(e), e.multiplicity) for e in got] == [(str(e), e.multiplicity) for e in ref]
+
+
+# -- long pieces of the other theories: chains of short ones, condensed -------------------------
+@pytest.mark.parametrize("kw, lam2", [(0, complex(-3e4, 2e3)), (4 * 20**4, -5.0),
+                                      (2 * 10**6, complex(3e5, 4e5))])
+def test_a_condensed_chain_is_the_whole_piece(kw, lam2):
+    """2**5 Euler–Bernoulli pieces of 1/32, condensed by doubling, against the closed forms
+    of the piece of length 1 (its stiffness and its det U12), in doubles and in balls."""
+    D1, d1 = eb_closed_stiffness(DOUBLE, eb_constants(DOUBLE, [(1, 1, 1, kw)]),
+                                 np.array([lam2]), threshold=NU_MAX**4)
+    Ds, ds = eb_closed_stiffness(DOUBLE, eb_constants(DOUBLE, [(1, 1, "1/32", kw)]),
+                                 np.array([lam2]), threshold=NU_MAX**4)
+    Dc, dc = condensed_stiffness(DOUBLE, Ds[:, 0], ds[:, 0], 5)
+    for i in range(4):
+        row = np.max(np.abs(D1[0, 0, i]))
+        assert np.max(np.abs(Dc[0, i] - D1[0, 0, i])) <= 1e-11 * row
+    assert abs(dc[0] / d1[0, 0] - 1) < 1e-10
+    ar = Ball(200)
+    with ar:
+        point = ar.array([ar.number(mpmath.mpmathify(lam2))])
+        Ds, ds = eb_closed_stiffness(ar, eb_constants(ar, [(1, 1, "1/32", kw)]), point,
+                                     threshold=NU_MAX**4)
+        Dc, dc = condensed_stiffness(ar, Ds[:, 0], ds[:, 0], 5)
+        D1, d1 = eb_closed_stiffness(ar, eb_constants(ar, [(1, 1, 1, kw)]), point,
+                                     threshold=NU_MAX**4)
+        flint = ar.flint
+        for i in range(4):
+            for j in range(4):
+                assert flint.acb(Dc[0, i, j]).overlaps(flint.acb(D1[0, 0, i, j]))
+        assert flint.acb(dc[0]).overlaps(flint.acb(d1[0, 0]))
+        assert float(abs(flint.acb(dc[0])).rad()) < 1e-40 * float(abs(flint.acb(d1[0, 0])).mid())
+
+
+SHEAR_ON_FOUNDATION = """
+[[beam]]
+name = "beam"
+EI = 1.0
+m = 1.0
+L = 10.0
+left = "pinned"
+right = "pinned"
+theory = "{theory}"
+rhoI = 0.01
+{kGA}
+kw = 10000.0
+{dashpot}
+"""
+
+_DASHPOT = """
+[[spring]]
+between = ["beam", "ground"]
+x = 0.0
+k = 0
+c = 3.0
+"""
+
+
+def _simply_supported(n, kGA=None):
+    """omega_n of a pinned-pinned Rayleigh (kGA None) or Timoshenko beam on a Winkler
+    foundation (EI = m = 1, rhoI = 1/100, L = 10, kw = 1e4): the mode ``sin(k x)``,
+    ``k = n pi / L``; Timoshenko's the lower root of the 2x2 determinant in ``omega**2``."""
+    mpmath.mp.dps = 40
+    k = n * mpmath.pi / 10
+    EI, m, rhoI, kw = 1, 1, mpmath.mpf(1) / 100, 10000
+    if kGA is None:
+        return mpmath.sqrt((EI * k**4 + kw) / (m + rhoI * k**2))
+    kGA = mpmath.mpf(kGA)
+    # (kGA k**2 + kw - m w2)(EI k**2 + kGA - rhoI w2) - (kGA k)**2 = 0
+    a = m * rhoI
+    b = -(m * (EI * k**2 + kGA) + rhoI * (kGA * k**2 + kw))
+    c = (kGA * k**2 + kw) * (EI * k**2 + kGA) - (kGA * k) ** 2
+    return mpmath.sqrt((-b - mpmath.sqrt(b * b - 4 * a * c)) / (2 * a))
+
+
+@pytest.mark.parametrize("theory, kGA, damped", [("rayleigh", None, True),
+                                                 ("timoshenko", 500, False)])
+def test_a_beam_of_another_theory_on_a_stiff_foundation(theory, kGA, damped):
+    """Rayleigh (with a dashpot at a pinned end, which never moves: the damped search) and
+    Timoshenko (undamped) pinned-pinned beams on a foundation, kw L**4 / EI = 1e8, against
+    their closed forms; their plans hold condensed long pieces."""
+    text = SHEAR_ON_FOUNDATION.format(theory=theory, kGA="" if kGA is None else f"kGA = {kGA}",
+                                      dashpot=_DASHPOT if damped else "")
+    model = loads(text, source="beam.toml")
+    got = solve(model, count=3, digits=15)
+    assert [e.multiplicity for e in got] == [1, 1, 1]
+    # (the rotary inertia lowers the modes of short waves below the foundation's cut-off,
+    # 100: the lowest are those of about 20 half-waves, at 91.03)
+    lowest = sorted(_simply_supported(n, kGA) for n in range(1, 200))[:3]
+    for e, ref in zip(got, lowest):
+        lam = complex(e.lam)
+        assert lam.real == 0
+        assert abs(lam.imag / float(ref) - 1) < 2e-15
+    # (a plan of each search: the damped one's rectangle reaches Re lam = -250)
+    plan = plan_for(model.require_numeric(), 250.0 if damped else 100.0, top=100.0)
+    assert any(family == "condensed" for family, _ in plan.kinds)
+
+
+def test_delta_of_condensed_pieces_is_det_r_of_the_transfer_walk():
+    model = loads(SHEAR_ON_FOUNDATION.format(theory="timoshenko", kGA="kGA = 500",
+                                             dashpot=_DASHPOT), source="beam.toml")
+    model = model.require_numeric()
+    plan = plan_for(model, 400.0, top=100.4)
+    assert any(family == "condensed" for family, _ in plan.kinds)
+    points = [mpmath.mpc(-300, 40), mpmath.mpc(-2, 100.2), mpmath.mpc(-0.5, 99.9)]
+    ar = MP(200)
+    with ar:
+        lam = ar.array([ar.number(z) for z in points])
+        got = factor(plan, ar, lam * lam, lam).delta()
+    ref_ar = MP(1500)
+    with ref_ar:
+        lam = ref_ar.array([ref_ar.number(z) for z in points])
+        ref = transfer_delta(TransferPlan(model), ref_ar, lam=lam, lam2=lam * lam)
+    for g, r in zip(got, ref):
+        assert abs(mpmath.mpc(g) / mpmath.mpc(r) - 1) < mpmath.mpf(10) ** -45
+
+
+# a campaign's model (seed 22015): a Rayleigh beam on a foundation, kw L**4 / EI = 7e9,
+# joined to a short beam by a stiff spring with a dashpot and by a pure dashpot: 33 s in
+# dense determinants of about 240 freedoms, now a few seconds
+CAMPAIGN_22015 = """
+[[beam]]
+name = "b0"
+EI = 1.63
+m = 0.128
+L = 23.1
+left = "free"
+right = "free"
+theory = "rayleigh"
+rhoI = 0.00325
+kw = 41400.0
+
+[[beam]]
+name = "b1"
+EI = 0.00389
+m = 133.0
+L = 0.766
+left = "pinned"
+right = "clamped"
+kw = 159000.0
+
+[[spring]]
+between = ["b0", "b1"]
+x = 0.5898
+k = 0.0263
+kind = "rotational"
+
+[[spring]]
+between = ["b0", "b1"]
+x = 0.0766
+k = 17800000.0
+c = 0.0344
+
+[[spring]]
+between = ["b0", "b1"]
+x = 0.5898
+k = 0
+c = 0.0557
+"""
+
+
+@pytest.mark.slow
+def test_a_campaign_model_of_a_rayleigh_beam_on_a_stiff_foundation():
+    """Each eigenvalue a zero of det R of the transfer walk (the other formulation) at 1500
+    bits: |det R| there below 1e-12 of its value a relative 1e-9 away."""
+    from symtmm.deadline import time_budget
+
+    model = loads(CAMPAIGN_22015, source="m22015.toml")
+    with time_budget(20.0):
+        got = solve(model, count=2, digits=15)
+    assert len(got) == 2
+    ar = MP(1500)
+    plan = TransferPlan(model.require_numeric())
+    with ar:
+        for e in got:
+            z = mpmath.mpc(e.lam)
+            near = [z, z + abs(z) * mpmath.mpf("1e-9"), z + 1j * abs(z) * mpmath.mpf("1e-9")]
+            lam = ar.array([ar.number(p) for p in near])
+            at, *beside = transfer_delta(plan, ar, lam=lam, lam2=lam * lam)
+            assert abs(at) < mpmath.mpf("1e-12") * min(abs(b) for b in beside)

@@ -44,10 +44,10 @@ from ..elements import EulerBernoulliSegment
 from ..elements.base import stiffness_coefficients
 from ..expr import exact_float
 from .arith import DOUBLE, Arithmetic, exact_key
-from .segments import kind, kind_key, kind_order, kind_size, kind_tables
+from .segments import Condensed, kind, kind_key, kind_order, kind_size, kind_tables
 
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "wave_piece", "generous_range",
-           "long_piece", "LONG_FROM", "NU_LONG",
+           "long_piece", "condensed_piece", "LONG_FROM", "NU_LONG",
            "rcm_order", "wave_number_bound", "plan_for", "design_range", "design_below",
            "clear_plans", "PLAN_MODELS", "plan_key", "crowding", "CROWDED", "CROWDED_BY_ONE_BEAM"]
 
@@ -168,11 +168,58 @@ def piece_rule(radius: float, nu_max: float = NU_MAX, top2: float | None = None)
     ``key`` names the rule for :meth:`~symtmm.mesh.Stretches.subdivide`'s memory). Plain
     Euler–Bernoulli stretches take :func:`long_piece` for ``|Im lam|**2 <= top2`` (by
     default ``radius``)."""
-    def piece(beam, seg):
-        return piece_length(seg, radius, nu_max)
     top2 = float(radius) if top2 is None else min(float(top2), float(radius))
+
+    def piece(beam, seg):
+        short = piece_length(seg, radius, nu_max)
+        if isinstance(seg, EulerBernoulliSegment) or not _condensable(seg) or \
+                float(seg.l) <= LONG_FROM * short:
+            return short
+        return max(short, condensed_piece(seg, radius, top2))
+
+    def doublings(seg) -> int:
+        """The doublings a piece ``seg`` of a stretch cut by this rule is condensed from:
+        its pieces of :func:`piece_length` for the range (0 where it is one)."""
+        if isinstance(seg, EulerBernoulliSegment) or not _condensable(seg):
+            return 0
+        ratio = float(seg.l) / piece_length(seg, radius, nu_max)
+        return 0 if ratio <= 1 + 1e-9 else math.ceil(math.log2(ratio) - 1e-9)
+
     piece.radius, piece.key = float(radius), (float(radius), float(nu_max), top2)
+    piece.doublings = doublings
     return piece
+
+
+def _condensable(seg) -> bool:
+    """A beam of a theory other than Euler–Bernoulli (not a rod, nor beams joined by a layer):
+    its long pieces are condensed chains (:class:`~symtmm.numeric.segments.Condensed`)."""
+    from ..elements.theories import BeamSegment
+    return isinstance(seg, BeamSegment) and not (seg.kGA is not None and seg.kGA == 0)
+
+
+def condensed_piece(seg, radius: float, top2: float) -> float:
+    """The longest long piece of ``seg`` (a beam of another theory): at most ``seg``'s length
+    and :data:`NU_LONG` over its largest wave number, its clamped-clamped frequencies above
+    ``CLAMPED_MARGIN`` times ``top2`` (the theory's own rigorous bound,
+    :meth:`~symtmm.elements.theories.BeamSegment.safe_length`, with its ``1.1`` more).
+
+    Examples
+    --------
+    A Rayleigh beam on a foundation ``kw L**4 / EI = 1e8``, below its cut-off: short pieces
+    would be 34, a long one is the whole beam, condensed from 64 of them.
+
+    >>> from symtmm.elements.theories import BeamSegment
+    >>> seg = BeamSegment(1, 1, 1, kw=10**8, rhoI="1/1000")
+    >>> rule = piece_rule(1.0)
+    >>> condensed_piece(seg, 1.0, 1.0), rule(None, seg), rule.doublings(seg)
+    (1.0, 1.0, 6)
+    """
+    from ..errors import ComputationError
+    try:
+        clamped = seg.safe_length(CLAMPED_MARGIN * top2)
+    except ComputationError:
+        return 0.0
+    return min(float(seg.l), clamped, NU_LONG / wave_number_bound(seg, radius))
 
 
 def rcm_order(size: int, cliques) -> list:
@@ -411,9 +458,12 @@ class StiffnessPlan:
         self.pivot_product = mesh.pivot_product
 
     def _long(self, nu_max: float) -> bool:
-        """Whether some Euler–Bernoulli piece exceeds ``|s| l = nu_max`` in the range."""
+        """Whether some Euler–Bernoulli piece exceeds ``|s| l = nu_max`` in the range, or some
+        piece is a condensed chain."""
         seen = set()
         for _, seg, _, _ in self.mesh.segments:
+            if isinstance(seg, Condensed):
+                return True
             if id(seg) in seen or not isinstance(seg, EulerBernoulliSegment):
                 continue
             seen.add(id(seg))
@@ -603,7 +653,7 @@ def _long_possible(model, design: float) -> bool:
         stretches = Stretches(model)
         known = False
         for whole, lengths in zip(stretches._whole, stretches._lengths):
-            if isinstance(whole, EulerBernoulliSegment):
+            if isinstance(whole, EulerBernoulliSegment) or _condensable(whole):
                 s = wave_number_bound(whole, design * design)
                 known = known or any(s * length > LONG_FROM * NU_MAX for length in lengths)
         with _PLANS_LOCK:

@@ -49,7 +49,7 @@ __all__ = ["eb_exact", "eb_constants", "eb_matrices", "theory_constants", "theor
            "rod_matrices", "f_functions", "kind_inertia",
            "coupled_constants", "coupled_matrices", "transfer_matrices", "family_matrices", "cut_tables",
            "stack_matrix", "kind", "kind_key", "kind_order", "kind_size", "kind_tables",
-           "segment_matrix"]
+           "segment_matrix", "Condensed", "condensed_stiffness"]
 
 
 def stack_matrix(rows) -> np.ndarray:
@@ -537,6 +537,60 @@ def transfer_matrices(ar: Arithmetic, kinds, lam2) -> np.ndarray:
     return parts[0] if len(parts) == 1 else np.concatenate(parts, axis=1)
 
 
+# -- long pieces of the other theories ------------------------------------------------------
+class Condensed:
+    """A long piece made of ``2**doublings`` equal pieces ``inner`` (a beam of a theory other
+    than Euler–Bernoulli, :func:`symtmm.numeric.plan.long_piece`): its dynamic stiffness is
+    that of the chain with its inner nodes condensed out, by doubling
+    (:func:`condensed_stiffness`), and no transfer matrix grows across it.
+
+    Examples
+    --------
+    >>> from symtmm.elements.theories import BeamSegment
+    >>> Condensed(BeamSegment(1, 1, sp.Rational(1, 8), rhoI=1), 3).l
+    1
+    """
+
+    __slots__ = ("doublings", "inner", "l")
+
+    def __init__(self, inner, doublings: int):
+        self.inner, self.doublings = inner, int(doublings)
+        self.l = inner.l * 2 ** self.doublings
+
+
+def condensed_stiffness(ar: Arithmetic, D, det, doublings: int):
+    """``(D, det U12)`` of ``2**doublings`` equal pieces in a row, their inner nodes condensed
+    out, from one piece's ``D`` ``(B, 4, 4)`` and ``det U12`` ``(B,)``.
+
+    Two pieces ``[[P, Q], [Q', R]]`` joined at a node give ``[[P, Q, 0], [Q', R + P, Q], [0,
+    Q', R]]``; with ``S = R + P`` the node's own block, the pair's stiffness is ``[[P - Q
+    S**-1 Q', -Q S**-1 Q], [-Q' S**-1 Q', R - Q' S**-1 Q]]`` and its ``det U12 = det S *
+    det U12**2`` (``Delta = det K * prod det U12 * P`` of the two and of the one, with
+    ``det`` of the three-node ``K`` equal to ``det S`` times the pair's). ``S`` is the
+    stiffness at the middle of the pair clamped at both ends: nonsingular (and positive
+    definite on the frequency axis, so the count is the whole chain's) below the pair's
+    first clamped-clamped frequency, which the long piece's rule keeps above the range.
+    Only products of the pieces' blocks, each to rounding of its row: an evanescent
+    piece's far-end coupling ``exp(-|s| l)`` keeps its digits.
+    """
+    def mul(X, Y):
+        return stack_matrix([[X[:, i, 0] * Y[:, 0, j] + X[:, i, 1] * Y[:, 1, j]
+                              for j in range(2)] for i in range(2)])
+
+    for _ in range(doublings):
+        P, Q, Qt, R = D[:, :2, :2], D[:, :2, 2:], D[:, 2:, :2], D[:, 2:, 2:]
+        S = R + P
+        dS = S[:, 0, 0] * S[:, 1, 1] - S[:, 0, 1] * S[:, 1, 0]
+        inv = stack_matrix([[S[:, 1, 1] / dS, -S[:, 0, 1] / dS],
+                            [-S[:, 1, 0] / dS, S[:, 0, 0] / dS]])
+        SQt, SQ = mul(inv, Qt), mul(inv, Q)
+        top = np.concatenate([P - mul(Q, SQt), -mul(Q, SQ)], axis=2)
+        bottom = np.concatenate([-mul(Qt, SQt), R - mul(Qt, SQ)], axis=2)
+        D = np.concatenate([top, bottom], axis=1)
+        det = dS * det * det
+    return D, det
+
+
 # -- one segment element --------------------------------------------------------------------
 def kind(seg) -> tuple:
     """``(family, exact constants)`` of a segment element: equal kinds have equal matrices.
@@ -546,6 +600,8 @@ def kind(seg) -> tuple:
     """
     if isinstance(seg, EulerBernoulliSegment):
         return ("eb", (seg.EI, seg.m, seg.l, seg.kw))
+    if isinstance(seg, Condensed):
+        return ("condensed", (kind(seg.inner), seg.doublings))
     if isinstance(seg, CoupledSegment):
         return ("coupled", (seg.size, seg.l, seg.beams, seg.couplings))
     if seg.kGA is not None and seg.kGA == 0:
@@ -567,20 +623,25 @@ def kind_key(kind_) -> tuple:
     ('eb', (2, 1), (1, 2), (1, 1), (0, 1))
     """
     family, consts = kind_
+    if family == "condensed":
+        return (family, kind_key(consts[0]), consts[1])
     return (family,) + tuple(exact_key(v) for v in consts) if family == "eb" else kind_
 
 
 def kind_order(kind_) -> tuple:
     """Sort key of segment kinds: the order of :func:`kind_tables`' groups (``"eb"``, then
-    ``"theory"``, ``"rod"``, then ``"coupled"`` by the number of beams)."""
+    ``"theory"``, ``"rod"``, ``"condensed"``, then ``"coupled"`` by the number of beams)."""
     family, consts = kind_
-    return {"eb": (0, 0), "theory": (1, 0), "rod": (1, 1)}.get(family) or (2, consts[0])
+    return {"eb": (0, 0), "theory": (1, 0), "rod": (1, 1),
+            "condensed": (1, 2)}.get(family) or (2, consts[0])
 
 
 def kind_inertia(kind_) -> tuple:
     """``(m, rhoI)`` of a 4-state segment kind: the mass and the rotary (a rod's polar)
     inertia per unit length, for the kinetic energy ``m Y**2 + rhoI Theta**2``."""
     family, consts = kind_
+    if family == "condensed":
+        return kind_inertia(consts[0])
     if family == "eb":
         return consts[1], 0
     if family == "rod":
@@ -593,6 +654,8 @@ def kind_inertia(kind_) -> tuple:
 def kind_size(kind_) -> int:
     """The number of state variables at one end of a segment of this kind (4 per beam)."""
     family, consts = kind_
+    if family == "condensed":
+        return kind_size(consts[0])
     return 4 * consts[0] if family == "coupled" else 4
 
 
@@ -611,6 +674,9 @@ def kind_tables(ar: Arithmetic, kinds) -> list:
         out.append(("theory", theory_constants(ar, th)))
     if rods:
         out.append(("rod", rod_constants(ar, rods)))
+    for inner, doublings in (c for f, c in kinds if f == "condensed"):
+        # (one table each: few in a plan, each its own chain of doublings)
+        out.append(("condensed", {"inner": kind_tables(ar, [inner])[0], "doublings": doublings}))
     sizes = sorted({c[0] for f, c in kinds if f == "coupled"})
     for n in sizes:
         out.append(("coupled", coupled_constants(ar, [c for f, c in kinds

@@ -45,7 +45,7 @@ import numpy as np
 
 from ..deadline import check as check_time
 from .arith import DOUBLE, Arithmetic, magnitude_parts
-from .segments import _matmul, family_matrices, stack_matrix
+from .segments import _matmul, condensed_stiffness, family_matrices, stack_matrix
 
 __all__ = ["segment_stiffness", "coupled_stiffness", "eb_stiffness", "stiffness_values",
            "assemble", "factor", "eliminate", "envelope_maps", "Factors", "dense"]
@@ -298,6 +298,10 @@ def stiffness_values(ar: Arithmetic, kinds, lam2, lam=None, long: bool = False):
                 D, det = eb_closed_stiffness(ar, consts, lam2, threshold=_LONG_X)
             else:
                 D, det = eb_stiffness(ar, consts, lam2)
+        elif family == "condensed":
+            D, det = stiffness_values(ar, [consts["inner"]], lam2, lam, long)
+            D, det = condensed_stiffness(ar, D.reshape(B, 4, 4), det[:, 0], consts["doublings"])
+            D, det = D[:, None], det[:, None]
         else:
             [U] = family_matrices(ar, [(family, consts)], lam2, lam)
             D, det = (coupled_stiffness(U, consts["N"]) if family == "coupled"
