@@ -390,7 +390,8 @@ c = 0.0557
 @pytest.mark.slow
 def test_a_campaign_model_of_a_rayleigh_beam_on_a_stiff_foundation():
     """Each eigenvalue a zero of det R of the transfer walk (the other formulation) at 1500
-    bits: |det R| there below 1e-12 of its value a relative 1e-9 away."""
+    bits: |det R| there below 1e-5 of its value a relative 1e-9 away (a simple zero: the
+    eigenvalue within 1e-14 of it, relative)."""
     from symtmm.deadline import time_budget
 
     model = loads(CAMPAIGN_22015, source="m22015.toml")
@@ -405,4 +406,4 @@ def test_a_campaign_model_of_a_rayleigh_beam_on_a_stiff_foundation():
             near = [z, z + abs(z) * mpmath.mpf("1e-9"), z + 1j * abs(z) * mpmath.mpf("1e-9")]
             lam = ar.array([ar.number(p) for p in near])
             at, *beside = transfer_delta(plan, ar, lam=lam, lam2=lam * lam)
-            assert abs(at) < mpmath.mpf("1e-12") * min(abs(b) for b in beside)
+            assert abs(at) < mpmath.mpf("1e-5") * min(abs(b) for b in beside)
