@@ -30,7 +30,7 @@ from .errors import ComputationError, ModelError
 from .expr import exact_float
 from .limits import MAX_PIECES
 from .model import FREEDOM_INDEX, GROUND, Model
-from .numeric.plan import long_piece, wave_number_bound, wave_piece
+from .numeric.plan import layered_piece, long_piece, wave_number_bound, wave_piece
 from .numeric.segments import Condensed
 
 __all__ = ["Mesh", "Stretches", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
@@ -156,8 +156,13 @@ class Stretches:
         radius = getattr(piece, "radius", None)
         if radius is not None:
             lam = sp.Rational(math.sqrt(max(float(radius), 0.0))) * (1 + sp.Rational(1, 10**9))
-            return piece(beam, EulerBernoulliSegment(beam.EI, beam.m, length,
-                                                     beam.kw + 2 * k + 2 * c * lam))
+            bound = EulerBernoulliSegment(beam.EI, beam.m, length, beam.kw + 2 * k + 2 * c * lam)
+            short = piece(beam, bound)
+            if all(la[4].c == 0 for la in used) and hasattr(piece, "key"):
+                # undamped layers: long pieces, condensed chains of short ones
+                return max(short, layered_piece(beam.segment(length), bound, radius,
+                                                piece.key[2], short))
+            return short
         m = beam.m * (2 if c != 0 else 1)
         return piece(beam, EulerBernoulliSegment(beam.EI, m, length,
                                                  beam.kw + 2 * k + c**2 / beam.m))
@@ -406,13 +411,13 @@ class Mesh:
                     # (a stretch's pieces are alike: one segment serves them all)
                     if seg is None or length != seg_length:
                         seg_length, size = length, exact_float(length)
-                        seg = beam.segment(length) if len(members) == 1 else \
-                            member(model.beams, tuple(members), [la[4] for la in used],
-                                   self._index, length)
-                        j = doublings(seg) if len(members) == 1 and doublings else 0
+
+                        seg = self._piece(beam, members, used, length)
+                        j = doublings(seg) if doublings else 0
                         if j:
-                            # a long piece of another theory: a chain of 2**j short ones
-                            seg = Condensed(beam.segment(length / 2**j), j)
+                            # a long piece of another theory or of beams joined by a
+                            # layer: a chain of 2**j short ones
+                            seg = Condensed(self._piece(beam, members, used, length / 2**j), j)
                     if len(members) == 1:
                         ia, ib = (base + p,), (base + p + 1,)
                         self.segments.append((b_idx, seg, base + p, base + p + 1))
@@ -423,6 +428,14 @@ class Mesh:
                     for i in ia + ib:
                         self._node_length[i] = max(self._node_length[i], size)
             base += first[-1] + 1
+
+    def _piece(self, beam, members, used, length):
+        """The element of a piece ``length`` long of ``beam`` alone, or of the beams
+        ``members`` joined by the layers ``used``."""
+        if len(members) == 1:
+            return beam.segment(length)
+        return member(self.model.beams, tuple(members), [la[4] for la in used], self._index,
+                      length)
 
     def _number(self, subs) -> dict:
         """Number the free freedoms along ``x``; a body's next to its first attachment's node.

@@ -407,3 +407,65 @@ def test_a_campaign_model_of_a_rayleigh_beam_on_a_stiff_foundation():
             lam = ar.array([ar.number(p) for p in near])
             at, *beside = transfer_delta(plan, ar, lam=lam, lam2=lam * lam)
             assert abs(at) < mpmath.mpf("1e-5") * min(abs(b) for b in beside)
+
+
+JOINED_BY_A_STIFF_LAYER = """
+[[beam]]
+name = "a"
+EI = 1.0
+m = 1.0
+L = 10.0
+left = "pinned"
+right = "pinned"
+
+[[beam]]
+name = "b"
+EI = 1.0
+m = 1.0
+L = 10.0
+left = "pinned"
+right = "pinned"
+
+[[layer]]
+between = ["a", "b"]
+k = 1000000.0
+{dashpot}
+"""
+
+
+@pytest.mark.parametrize("damped", [False, True])
+def test_two_beams_joined_by_a_stiff_layer(damped):
+    """Two equal pinned-pinned beams joined by a layer 2e10 times their EI / L**4: the
+    modes in phase leave the layer idle, omega_n = (n pi / L)**2 (closed form), those in
+    opposition lie above sqrt(2 k). With a dashpot at a pinned end (which never moves) the
+    damped search finds the same. The plans hold condensed pieces of the joined beams."""
+    dashpot = '[[spring]]\nbetween = ["a", "ground"]\nx = 0.0\nk = 0\nc = 2.0\n'
+    model = loads(JOINED_BY_A_STIFF_LAYER.format(dashpot=dashpot if damped else ""),
+                  source="layer.toml")
+    got = solve(model, count=4, digits=15)
+    assert [e.multiplicity for e in got] == [1] * 4
+    for n, e in enumerate(got, start=1):
+        lam = complex(e.lam)
+        assert lam.real == 0
+        assert abs(lam.imag / float((n * mpmath.pi / 10) ** 2) - 1) < 2e-15
+    plan = plan_for(model.require_numeric(), 2.0)
+    assert [family for family, _ in plan.kinds] == ["condensed"]
+    assert plan.kinds[0][1][0][0] == "coupled"
+
+
+def test_delta_of_condensed_layered_pieces_is_det_r_of_the_transfer_walk():
+    model = loads(JOINED_BY_A_STIFF_LAYER.format(dashpot=""), source="layer.toml")
+    model = model.require_numeric()
+    plan = plan_for(model, 2.0)
+    assert plan.kinds[0][0] == "condensed"
+    points = [mpmath.mpc(-1, 0.5), mpmath.mpc(0, 1.3), mpmath.mpc(-0.01, 0.2)]
+    ar = MP(200)
+    with ar:
+        lam = ar.array([ar.number(z) for z in points])
+        got = factor(plan, ar, lam * lam, lam).delta()
+    ref_ar = MP(1500)
+    with ref_ar:
+        lam = ref_ar.array([ref_ar.number(z) for z in points])
+        ref = transfer_delta(TransferPlan(model), ref_ar, lam=lam, lam2=lam * lam)
+    for g, r in zip(got, ref):
+        assert abs(mpmath.mpc(g) / mpmath.mpc(r) - 1) < mpmath.mpf(10) ** -45

@@ -42,12 +42,13 @@ import sympy as sp
 
 from ..elements import EulerBernoulliSegment
 from ..elements.base import stiffness_coefficients
+from ..elements.layer import CoupledSegment
 from ..expr import exact_float
 from .arith import DOUBLE, Arithmetic, exact_key
 from .segments import Condensed, kind, kind_key, kind_order, kind_size, kind_tables
 
 __all__ = ["StiffnessPlan", "NU_MAX", "piece_length", "piece_rule", "wave_piece", "generous_range",
-           "long_piece", "condensed_piece", "LONG_FROM", "NU_LONG",
+           "long_piece", "condensed_piece", "layered_piece", "LONG_FROM", "NU_LONG",
            "rcm_order", "wave_number_bound", "plan_for", "design_range", "design_below",
            "clear_plans", "PLAN_MODELS", "plan_key", "crowding", "CROWDED", "CROWDED_BY_ONE_BEAM"]
 
@@ -155,10 +156,7 @@ def long_piece(segment, s: float, length: float, top2: float, nu_max: float = NU
     short = wave_piece(s, length, nu_max)
     if length <= LONG_FROM * short:
         return short
-    EI, m, _, kw = segment.constants()
-    excess = CLAMPED_MARGIN * m * top2 - kw
-    clamped = math.inf if excess <= 0 else BETA_CLAMPED * (EI / excess) ** 0.25
-    longest = min(length, clamped, NU_LONG / s)
+    longest = min(length, _clamped_length(segment, top2), NU_LONG / s)
     return longest if longest >= 2 * short else short
 
 
@@ -179,15 +177,62 @@ def piece_rule(radius: float, nu_max: float = NU_MAX, top2: float | None = None)
 
     def doublings(seg) -> int:
         """The doublings a piece ``seg`` of a stretch cut by this rule is condensed from:
-        its pieces of :func:`piece_length` for the range (0 where it is one)."""
-        if isinstance(seg, EulerBernoulliSegment) or not _condensable(seg):
+        its pieces of :func:`piece_length` for the range (of beams joined by undamped
+        layers, the shortest of their bounds', as :class:`~symtmm.mesh.Stretches` cuts
+        them); 0 where it is one."""
+        if isinstance(seg, CoupledSegment):
+            short = _layered_short(seg, radius, nu_max)
+        elif isinstance(seg, EulerBernoulliSegment) or not _condensable(seg):
             return 0
-        ratio = float(seg.l) / piece_length(seg, radius, nu_max)
+        else:
+            short = piece_length(seg, radius, nu_max)
+        ratio = float(seg.l) / short
         return 0 if ratio <= 1 + 1e-9 else math.ceil(math.log2(ratio) - 1e-9)
 
     piece.radius, piece.key = float(radius), (float(radius), float(nu_max), top2)
     piece.doublings = doublings
     return piece
+
+
+def _layered_short(seg, radius: float, nu_max: float) -> float:
+    """The short rule's piece of beams joined by layers (``seg`` a
+    :class:`~symtmm.elements.layer.CoupledSegment`), inf where a layer is damped (those are
+    never condensed): each beam's on the foundation ``kw + 2 k + 2 c |lam|`` of the layers
+    touching it (:meth:`symtmm.mesh.Stretches._longest`), the shortest."""
+    if any(c != 0 for *_, c in seg.couplings):
+        return math.inf
+    out = math.inf
+    for p, (EI, m, kw) in enumerate(seg.beams):
+        k = sum((kk for i, j, kk, _ in seg.couplings if p in (i, j)), sp.Integer(0))
+        bound = EulerBernoulliSegment(EI, m, seg.l, kw + 2 * k)
+        out = min(out, piece_length(bound, radius, nu_max))
+    return out
+
+
+def layered_piece(own, bound, radius: float, top2: float, short: float) -> float:
+    """The long piece of a beam ``own`` (its own segment, the stretch long) joined to others
+    by undamped layers, ``bound`` the Euler–Bernoulli segment whose wave number bounds the
+    joined piece's for this beam (:meth:`~symtmm.mesh.Stretches._longest`), ``short`` the
+    piece the short rule allows: ``short`` where it would cut at most :data:`LONG_FROM`,
+    else the longest whose clamped-clamped frequencies stay above ``CLAMPED_MARGIN`` times
+    ``top2`` and ``|s| l <=`` :data:`NU_LONG`. An undamped layer adds ``k (w_i - w_j)**2
+    >= 0`` to the energy, so the joined piece's first clamped-clamped ``omega**2`` is at
+    least the least of its beams' own, ``(EI (beta_1 / l)**4 + kw) / m`` (each beam asked
+    here for its own)."""
+    length = float(own.l)
+    if length <= LONG_FROM * short or not isinstance(own, EulerBernoulliSegment):
+        return short
+    s = wave_number_bound(bound, radius)
+    longest = min(length, _clamped_length(own, top2), NU_LONG / s)
+    return longest if longest >= 2 * short else short
+
+
+def _clamped_length(seg, top2: float) -> float:
+    """The longest Euler–Bernoulli piece of ``seg``'s constants whose first clamped-clamped
+    ``omega**2`` is at least :data:`CLAMPED_MARGIN` times ``top2``."""
+    EI, m, _, kw = seg.constants()
+    excess = CLAMPED_MARGIN * m * top2 - kw
+    return math.inf if excess <= 0 else BETA_CLAMPED * (EI / excess) ** 0.25
 
 
 def _condensable(seg) -> bool:
@@ -652,7 +697,18 @@ def _long_possible(model, design: float) -> bool:
         from ..mesh import Stretches
         stretches = Stretches(model)
         known = False
-        for whole, lengths in zip(stretches._whole, stretches._lengths):
+        # (a beam under undamped layers: its waves on the foundation of their k, bounded
+        # by all that touch it)
+        layered = [0] * len(model.beams)
+        index = {b.name: i for i, b in enumerate(model.beams)}
+        for la in model.layers:
+            if la.c == 0:
+                for name in (la.a, la.b):
+                    layered[index[name]] += 2 * exact_float(la.k)
+        for whole, lengths, extra in zip(stretches._whole, stretches._lengths, layered):
+            if extra and isinstance(whole, EulerBernoulliSegment):
+                EI, m, l, kw = whole.constants()
+                whole = EulerBernoulliSegment(EI, m, l, kw + extra)
             if isinstance(whole, EulerBernoulliSegment) or _condensable(whole):
                 s = wave_number_bound(whole, design * design)
                 known = known or any(s * length > LONG_FROM * NU_MAX for length in lengths)

@@ -560,7 +560,8 @@ class Condensed:
 
 def condensed_stiffness(ar: Arithmetic, D, det, doublings: int):
     """``(D, det U12)`` of ``2**doublings`` equal pieces in a row, their inner nodes condensed
-    out, from one piece's ``D`` ``(B, 4, 4)`` and ``det U12`` ``(B,)``.
+    out, from one piece's ``D`` ``(B, 2h, 2h)`` (``h`` freedoms an end: 2, or ``2 N`` for
+    ``N`` beams joined by a layer) and ``det U12`` ``(B,)``.
 
     Two pieces ``[[P, Q], [Q', R]]`` joined at a node give ``[[P, Q, 0], [Q', R + P, Q], [0,
     Q', R]]``; with ``S = R + P`` the node's own block, the pair's stiffness is ``[[P - Q
@@ -573,20 +574,23 @@ def condensed_stiffness(ar: Arithmetic, D, det, doublings: int):
     Only products of the pieces' blocks, each to rounding of its row: an evanescent
     piece's far-end coupling ``exp(-|s| l)`` keeps its digits.
     """
-    def mul(X, Y):
-        return stack_matrix([[X[:, i, 0] * Y[:, 0, j] + X[:, i, 1] * Y[:, 1, j]
-                              for j in range(2)] for i in range(2)])
+    from .stiffness import _inverse
+    h = D.shape[1] // 2
+
+    def minus(X, Y):
+        return [[x - y for x, y in zip(rx, ry)] for rx, ry in zip(X, Y)]
+
+    def block(D, r, c):
+        return [[D[:, r + i, c + k] for k in range(h)] for i in range(h)]
 
     for _ in range(doublings):
-        P, Q, Qt, R = D[:, :2, :2], D[:, :2, 2:], D[:, 2:, :2], D[:, 2:, 2:]
-        S = R + P
-        dS = S[:, 0, 0] * S[:, 1, 1] - S[:, 0, 1] * S[:, 1, 0]
-        inv = stack_matrix([[S[:, 1, 1] / dS, -S[:, 0, 1] / dS],
-                            [-S[:, 1, 0] / dS, S[:, 0, 0] / dS]])
-        SQt, SQ = mul(inv, Qt), mul(inv, Q)
-        top = np.concatenate([P - mul(Q, SQt), -mul(Q, SQ)], axis=2)
-        bottom = np.concatenate([-mul(Qt, SQt), R - mul(Qt, SQ)], axis=2)
-        D = np.concatenate([top, bottom], axis=1)
+        P, Q, Qt, R = block(D, 0, 0), block(D, 0, h), block(D, h, 0), block(D, h, h)
+        inv, dS = _inverse([[p + r for p, r in zip(rp, rr)] for rp, rr in zip(P, R)])
+        SQt, SQ = _matmul(inv, Qt), _matmul(inv, Q)
+        zero = [[0 * v for v in row] for row in P]
+        top = minus(P, _matmul(Q, SQt)), minus(zero, _matmul(Q, SQ))
+        bottom = minus(zero, _matmul(Qt, SQt)), minus(R, _matmul(Qt, SQ))
+        D = stack_matrix([a + b for a, b in zip(*top)] + [a + b for a, b in zip(*bottom)])
         det = dS * det * det
     return D, det
 

@@ -300,7 +300,9 @@ def stiffness_values(ar: Arithmetic, kinds, lam2, lam=None, long: bool = False):
                 D, det = eb_stiffness(ar, consts, lam2)
         elif family == "condensed":
             D, det = stiffness_values(ar, [consts["inner"]], lam2, lam, long)
-            D, det = condensed_stiffness(ar, D.reshape(B, 4, 4), det[:, 0], consts["doublings"])
+            size = math.isqrt(D.shape[1])
+            D, det = condensed_stiffness(ar, D.reshape(B, size, size), det[:, 0],
+                                         consts["doublings"])
             D, det = D[:, None], det[:, None]
         else:
             [U] = family_matrices(ar, [(family, consts)], lam2, lam)
