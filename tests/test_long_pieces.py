@@ -111,14 +111,19 @@ def _winkler(EI, n):
     return mpmath.sqrt(mpmath.mpf(EI) * (n * mpmath.pi / 10) ** 4 + 10000)
 
 
-def _check_winkler(EI, count):
-    model = loads(SOFT_ON_FOUNDATION.format(EI=EI), source="soft.toml")
-    got = solve(model, count=count, digits=15)
-    assert [e.multiplicity for e in got] == [1] * count
-    for n, e in enumerate(got, start=1):
+def _on_the_axis(got, references):
+    """Simple eigenvalues on the imaginary axis, ``i`` times the references to 15 digits."""
+    assert [e.multiplicity for e in got] == [1] * len(references)
+    for e, ref in zip(got, references):
         lam = complex(e.lam)
         assert lam.real == 0
-        assert abs(lam.imag / float(_winkler(EI, n)) - 1) < 2e-15
+        assert abs(lam.imag / float(ref) - 1) < 2e-15
+
+
+def _check_winkler(EI, count):
+    model = loads(SOFT_ON_FOUNDATION.format(EI=EI), source="soft.toml")
+    _on_the_axis(solve(model, count=count, digits=15),
+                 [_winkler(EI, n) for n in range(1, count + 1)])
 
 
 def test_long_pieces_cut_a_soft_beam_on_a_stiff_foundation(monkeypatch):
@@ -135,23 +140,29 @@ def test_long_pieces_cut_a_soft_beam_on_a_stiff_foundation(monkeypatch):
     assert not plan_for(plain.require_numeric(), 400.0, top=100.4).long
 
 
+def _agrees_with_det_r(model, plan, points, bits: int = 1500, digits: int = 45):
+    """Delta of ``plan`` at ``points`` (mpmath at 200 bits) against det R of the transfer
+    walk at ``bits``, to ``digits``."""
+    ar = MP(200)
+    with ar:
+        lam = ar.array([ar.number(z) for z in points])
+        got = factor(plan, ar, lam * lam, lam).delta()
+    ref_ar = MP(bits)
+    with ref_ar:
+        lam = ref_ar.array([ref_ar.number(z) for z in points])
+        ref = transfer_delta(TransferPlan(model), ref_ar, lam=lam, lam2=lam * lam)
+    for g, r in zip(got, ref):
+        assert abs(mpmath.mpc(g) / mpmath.mpc(r) - 1) < mpmath.mpf(10) ** -digits
+
+
 def test_delta_of_long_pieces_is_det_r_of_the_transfer_walk():
     """Delta of the stiffness plan with long pieces, at complex points, against det R of
     the transfer-matrix walk (the other formulation) at 1000 bits."""
     model = loads(SOFT_ON_FOUNDATION.format(EI="0.1"), source="soft.toml").require_numeric()
     plan = plan_for(model, 400.0, top=100.4)
     assert plan.long
-    points = [mpmath.mpc(-300, 40), mpmath.mpc(-2, 100.2), mpmath.mpc(-0.5, 99.9)]
-    ar = MP(200)
-    with ar:
-        lam = ar.array([ar.number(z) for z in points])
-        got = factor(plan, ar, lam * lam, lam).delta()
-    ref_ar = MP(1000)
-    with ref_ar:
-        lam = ref_ar.array([ref_ar.number(z) for z in points])
-        ref = transfer_delta(TransferPlan(model), ref_ar, lam=lam, lam2=lam * lam)
-    for g, r in zip(got, ref):
-        assert abs(mpmath.mpc(g) / mpmath.mpc(r) - 1) < mpmath.mpf(10) ** -50
+    _agrees_with_det_r(model, plan, [mpmath.mpc(-300, 40), mpmath.mpc(-2, 100.2),
+                                     mpmath.mpc(-0.5, 99.9)], bits=1000, digits=50)
 
 
 def test_an_inert_dashpot_on_a_soft_beam_on_a_stiff_foundation():
@@ -310,15 +321,10 @@ def test_a_beam_of_another_theory_on_a_stiff_foundation(theory, kGA, damped):
     text = SHEAR_ON_FOUNDATION.format(theory=theory, kGA="" if kGA is None else f"kGA = {kGA}",
                                       dashpot=_DASHPOT if damped else "")
     model = loads(text, source="beam.toml")
-    got = solve(model, count=3, digits=15)
-    assert [e.multiplicity for e in got] == [1, 1, 1]
     # (the rotary inertia lowers the modes of short waves below the foundation's cut-off,
     # 100: the lowest are those of about 20 half-waves, at 91.03)
-    lowest = sorted(_simply_supported(n, kGA) for n in range(1, 200))[:3]
-    for e, ref in zip(got, lowest):
-        lam = complex(e.lam)
-        assert lam.real == 0
-        assert abs(lam.imag / float(ref) - 1) < 2e-15
+    _on_the_axis(solve(model, count=3, digits=15),
+                 sorted(_simply_supported(n, kGA) for n in range(1, 200))[:3])
     # (a plan of each search: the damped one's rectangle reaches Re lam = -250)
     plan = plan_for(model.require_numeric(), 250.0 if damped else 100.0, top=100.0)
     assert any(family == "condensed" for family, _ in plan.kinds)
@@ -330,17 +336,8 @@ def test_delta_of_condensed_pieces_is_det_r_of_the_transfer_walk():
     model = model.require_numeric()
     plan = plan_for(model, 400.0, top=100.4)
     assert any(family == "condensed" for family, _ in plan.kinds)
-    points = [mpmath.mpc(-300, 40), mpmath.mpc(-2, 100.2), mpmath.mpc(-0.5, 99.9)]
-    ar = MP(200)
-    with ar:
-        lam = ar.array([ar.number(z) for z in points])
-        got = factor(plan, ar, lam * lam, lam).delta()
-    ref_ar = MP(1500)
-    with ref_ar:
-        lam = ref_ar.array([ref_ar.number(z) for z in points])
-        ref = transfer_delta(TransferPlan(model), ref_ar, lam=lam, lam2=lam * lam)
-    for g, r in zip(got, ref):
-        assert abs(mpmath.mpc(g) / mpmath.mpc(r) - 1) < mpmath.mpf(10) ** -45
+    _agrees_with_det_r(model, plan, [mpmath.mpc(-300, 40), mpmath.mpc(-2, 100.2),
+                                     mpmath.mpc(-0.5, 99.9)])
 
 
 # a campaign's model (seed 22015): a Rayleigh beam on a foundation, kw L**4 / EI = 7e9,
@@ -442,12 +439,7 @@ def test_two_beams_joined_by_a_stiff_layer(damped):
     dashpot = '[[spring]]\nbetween = ["a", "ground"]\nx = 0.0\nk = 0\nc = 2.0\n'
     model = loads(JOINED_BY_A_STIFF_LAYER.format(dashpot=dashpot if damped else ""),
                   source="layer.toml")
-    got = solve(model, count=4, digits=15)
-    assert [e.multiplicity for e in got] == [1] * 4
-    for n, e in enumerate(got, start=1):
-        lam = complex(e.lam)
-        assert lam.real == 0
-        assert abs(lam.imag / float((n * mpmath.pi / 10) ** 2) - 1) < 2e-15
+    _on_the_axis(solve(model, count=4, digits=15), [(n * mpmath.pi / 10) ** 2 for n in range(1, 5)])
     plan = plan_for(model.require_numeric(), 2.0)
     assert [family for family, _ in plan.kinds] == ["condensed"]
     assert plan.kinds[0][1][0][0] == "coupled"
@@ -458,14 +450,5 @@ def test_delta_of_condensed_layered_pieces_is_det_r_of_the_transfer_walk():
     model = model.require_numeric()
     plan = plan_for(model, 2.0)
     assert plan.kinds[0][0] == "condensed"
-    points = [mpmath.mpc(-1, 0.5), mpmath.mpc(0, 1.3), mpmath.mpc(-0.01, 0.2)]
-    ar = MP(200)
-    with ar:
-        lam = ar.array([ar.number(z) for z in points])
-        got = factor(plan, ar, lam * lam, lam).delta()
-    ref_ar = MP(1500)
-    with ref_ar:
-        lam = ref_ar.array([ref_ar.number(z) for z in points])
-        ref = transfer_delta(TransferPlan(model), ref_ar, lam=lam, lam2=lam * lam)
-    for g, r in zip(got, ref):
-        assert abs(mpmath.mpc(g) / mpmath.mpc(r) - 1) < mpmath.mpf(10) ** -45
+    _agrees_with_det_r(model, plan, [mpmath.mpc(-1, 0.5), mpmath.mpc(0, 1.3),
+                                     mpmath.mpc(-0.01, 0.2)])
