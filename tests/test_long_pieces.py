@@ -56,6 +56,19 @@ def test_a_long_piece_holds_every_digit_in_double_precision(consts, lam2):
     assert abs(complex(det[0, 0]) / complex(det_ref) - 1) < 1e-12
 
 
+@pytest.mark.parametrize("consts, lam2", [p for p in PIECES if isinstance(p[1], float)])
+def test_a_long_piece_on_the_axis_stays_real_in_mpmath(consts, lam2):
+    """A real point gives real mpmath numbers (the LDL^T counts their signs), also above
+    the cut-off, where mpmath's fourth root is complex."""
+    ar = MP(200)
+    with ar:
+        point = ar.array([ar.number(mpmath.mpf(lam2))])
+        D, det = eb_closed_stiffness(ar, eb_constants(ar, [consts]), point, threshold=NU_MAX**4)
+    _, det_ref = _reference(consts, lam2)
+    assert all(isinstance(v, ar.ctx.mpf) for v in list(D.reshape(-1)) + [det[0, 0]])
+    assert abs(det[0, 0] / mpmath.re(det_ref) - 1) < mpmath.mpf(10) ** -50
+
+
 @pytest.mark.skipif(not ball_available(), reason="python-flint is not installed")
 @pytest.mark.parametrize("consts, lam2", PIECES)
 def test_a_long_piece_in_balls_holds_its_value(consts, lam2):

@@ -193,6 +193,7 @@ class Evaluator:
         self.evaluations = 0
         self._plans: dict = {}
         self._borrowed: dict = {}       # design -> a plan cut for a larger range
+        self._keys: dict = {}           # (design, top's design) -> its plans' key
         self._extra_bits: dict = {}
 
     def plan(self, size: float, points: int | None = None,
@@ -208,8 +209,14 @@ class Evaluator:
         what hundreds of double evaluations do, its extra pieces far less.
         """
         design = design_range(size)
-        key = (design, design) if top is None or top >= design else \
-            plan_key(self.model, size, top)
+        if top is None or top >= design:
+            key = (design, design)
+        else:
+            # (the shared lookup hashes the whole model: once per range and top here)
+            asked = (design, design_range(top))
+            key = self._keys.get(asked)
+            if key is None:
+                key = self._keys[asked] = plan_key(self.model, size, top)
         plan = self._plans.get(key)
         if plan is None:
             small = SMALL_BATCH if ar is DOUBLE else SMALL_PROOF_BATCH

@@ -366,9 +366,11 @@ class StiffnessPlan:
         at least ``radius``: where the supports and springs cut the beams finer than the
         range needs, far more.
     long : bool
-        Whether some piece is long (:func:`long_piece`): its stiffness then comes from the
-        closed forms wherever its ``|x|`` exceeds ``NU_MAX**4``, and the compiled kernels,
-        whose series stop there, leave the plan to numpy and Arb.
+        Whether some piece is long: an Euler–Bernoulli one (:func:`long_piece`), whose
+        stiffness then comes from the closed forms wherever its ``|x|`` exceeds
+        ``NU_MAX**4``, or a condensed chain (:func:`condensed_piece`,
+        :func:`layered_piece`). The compiled kernels, whose series stop at a short piece's
+        ``|x|``, leave such a plan to numpy and Arb.
 
     Examples
     --------
@@ -687,9 +689,9 @@ def design_below(size: float) -> float:
 
 
 def _long_possible(model, design: float) -> bool:
-    """Whether some plain Euler–Bernoulli stretch of ``model`` would take long pieces in a
-    plan for ``|lam| <= design`` (:func:`long_piece`): only then does a plan's ``top2``
-    change its pieces."""
+    """Whether some stretch of ``model`` may take long pieces in a plan for ``|lam| <=
+    design`` (:func:`long_piece`, :func:`condensed_piece`, :func:`layered_piece`): only then
+    does a plan's ``top2`` change its pieces."""
     key = (model, design)
     with _PLANS_LOCK:
         known = _LONG.get(key)

@@ -540,7 +540,9 @@ def transfer_matrices(ar: Arithmetic, kinds, lam2) -> np.ndarray:
 # -- long pieces of the other theories ------------------------------------------------------
 class Condensed:
     """A long piece made of ``2**doublings`` equal pieces ``inner`` (a beam of a theory other
-    than Euler–Bernoulli, :func:`symtmm.numeric.plan.long_piece`): its dynamic stiffness is
+    than Euler–Bernoulli, or beams joined by undamped layers:
+    :func:`symtmm.numeric.plan.condensed_piece`, :func:`~symtmm.numeric.plan.layered_piece`):
+    its dynamic stiffness is
     that of the chain with its inner nodes condensed out, by doubling
     (:func:`condensed_stiffness`), and no transfer matrix grows across it.
 

@@ -140,8 +140,9 @@ def _eb_pattern(k11, k12, k13, k14, k22, k24) -> list:
 
 def _closed_entries(ar: Arithmetic, xb, EI, l) -> tuple:
     """``(k11, k12, k13, k14, k22, k24), det U12`` by the closed forms in ``nu = x**(1/4)``
-    (complex ``x``, or real ``x > 0``: then ``nu`` is real)."""
-    nu = ar.root4(xb)
+    (complex ``x``, or real ``x > 0``: then ``nu`` is real, and kept real: mpmath's root
+    is complex)."""
+    nu = ar.root4(xb) if ar.is_complex(xb) else ar.real(ar.root4(xb))
     (ch, sh), (co, si) = ar.cosh_sinh(nu), ar.cos_sin(nu)
     Phi = 1 - ch * co
     b = nu / l
