@@ -62,11 +62,19 @@ ONE = sp.S.One
 NU_MAX = 3.0
 
 #: An Euler–Bernoulli stretch that pieces of :data:`NU_MAX` would cut into more than this
-#: many is cut into **long pieces** where that takes at most half as many
+#: many is cut into **long pieces** (:data:`LONG_GAIN`)
 #: (:func:`long_piece`): a beam whose waves are far shorter than it is (a soft beam on a
 #: stiff foundation: ``kw L**4 / EI`` of ``1e9`` cut it into hundreds of pieces, and the
 #: proofs' dense determinant of hundreds of freedoms cost half a second a point).
 LONG_FROM = 8
+#: ... and where long pieces take at most ``1 / LONG_GAIN`` as many. A plan with long pieces
+#: leaves the compiled kernels (their series stop at a short piece's ``|x|``) for numpy, a
+#: few times slower a freedom: a campaign model whose soft beam's range reaches above its
+#: cut-off, 745 freedoms against 1725, went from 31 s to past 60 s. A gain of 3 keeps that
+#: plan short, but takes the long pieces from two other campaign models (2.7 and 3.5 s
+#: again past 60 s), and mixed plans sent the first one's damped search astray (an
+#: eigenvalue of its crowded cluster refined to Re lam = +1e-6, refused as not passive).
+LONG_GAIN = 2.0
 #: Largest ``|s| l`` of a long piece over the plan's range: its stiffness comes from the
 #: closed forms in ``nu = s l`` (:func:`symtmm.numeric.stiffness.eb_closed_stiffness`),
 #: whose terms grow like ``exp(1.31 |nu|)`` and stay far inside double precision's range.
@@ -137,7 +145,7 @@ def long_piece(segment, s: float, length: float, top2: float, nu_max: float = NU
     number over the plan's range is ``s``, for points with ``|Im lam|**2 <= top2``.
 
     Short pieces (:func:`wave_piece`) unless they would be more than :data:`LONG_FROM` and
-    long ones take at most half as many. A long piece keeps ``|s| l <=`` :data:`NU_LONG`
+    long ones take at most ``1 /`` :data:`LONG_GAIN` as many. A long piece keeps ``|s| l <=`` :data:`NU_LONG`
     and its first clamped-clamped ``omega**2 = (EI (beta_1 / l)**4 + kw) / m`` at least
     :data:`CLAMPED_MARGIN` times ``top2``: the zeros of its ``det U12`` (where its stiffness
     has poles) all lie on the imaginary axis there. On a foundation stiffer than the
@@ -157,7 +165,7 @@ def long_piece(segment, s: float, length: float, top2: float, nu_max: float = NU
     if length <= LONG_FROM * short:
         return short
     longest = min(length, _clamped_length(segment, top2), NU_LONG / s)
-    return longest if longest >= 2 * short else short
+    return longest if longest >= LONG_GAIN * short else short
 
 
 def piece_rule(radius: float, nu_max: float = NU_MAX, top2: float | None = None):
@@ -224,7 +232,7 @@ def layered_piece(own, bound, radius: float, top2: float, short: float) -> float
         return short
     s = wave_number_bound(bound, radius)
     longest = min(length, _clamped_length(own, top2), NU_LONG / s)
-    return longest if longest >= 2 * short else short
+    return longest if longest >= LONG_GAIN * short else short
 
 
 def _clamped_length(seg, top2: float) -> float:
