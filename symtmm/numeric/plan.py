@@ -67,8 +67,10 @@ NU_MAX = 3.0
 #: stiff foundation: ``kw L**4 / EI`` of ``1e9`` cut it into hundreds of pieces, and the
 #: proofs' dense determinant of hundreds of freedoms cost half a second a point). Not fewer:
 #: a plan with long pieces leaves the compiled kernels (:data:`LONG_GAIN`), and a beam in
-#: tension cut into 26 pieces solved three times slower in 10 condensed ones (8 asked).
-LONG_FROM = 32
+#: tension cut into 26 pieces solved three times slower in 10 condensed ones (8 asked);
+#: nor more: with 32 the campaign models of the stiff class solved up to 2.8 times slower
+#: (a Rayleigh beam on a foundation beside a short Euler–Bernoulli one: 2.1 s and 5.8 s).
+LONG_FROM = 16
 #: ... and where long pieces take at most ``1 / LONG_GAIN`` as many. A plan with long pieces
 #: leaves the compiled kernels (their series stop at a short piece's ``|x|``) for numpy, a
 #: few times slower a freedom: a campaign model whose soft beam's range reaches above its
