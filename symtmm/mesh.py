@@ -710,6 +710,13 @@ def _static_null_space(model: Model, mesh: Mesh | None = None, basis: bool = Tru
     return mesh, [list(basis.row(k)) for k in range(basis.rows)]
 
 
+def _whole(seg):
+    """A piece of beams joined by layers as one element: a condensed chain of them
+    (:class:`~symtmm.numeric.segments.Condensed`) as the joined piece of its length, whose
+    static null space and damping it has."""
+    return seg.inner.with_length(seg.l) if isinstance(seg, Condensed) else seg
+
+
 def _local_null_rows(mesh: Mesh) -> list:
     """``(places, rows)`` per element of ``mesh``: the conditions of its static null space
     on its local freedoms."""
@@ -717,7 +724,7 @@ def _local_null_rows(mesh: Mesh) -> list:
     out = []
     for (b_idx, seg, _, _), places in zip(mesh.segments, mesh.segment_places):
         if isinstance(b_idx, tuple):
-            out.append((places, _coupled_null_rows(model, b_idx, seg)))
+            out.append((places, _coupled_null_rows(model, b_idx, _whole(seg))))
         else:
             out.append((places, _segment_null_rows(model.beams[b_idx], seg.l)))
     for places, element in mesh.point_places:
@@ -818,7 +825,7 @@ def zero_order(model: Model) -> tuple:
     CZ = sp.zeros(r, r)
     dampers = [(places, element.stiffness(LAM).diff(LAM).subs(LAM, 0))
                for places, element in mesh.point_places]
-    dampers += [(places, _coupled_damping(seg)) for (b, seg, _, _), places
+    dampers += [(places, _coupled_damping(_whole(seg))) for (b, seg, _, _), places
                 in zip(mesh.segments, mesh.segment_places) if isinstance(b, tuple)]
     for places, C in dampers:
         if C.is_zero_matrix:

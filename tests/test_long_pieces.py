@@ -465,3 +465,21 @@ def test_delta_of_condensed_layered_pieces_is_det_r_of_the_transfer_walk():
     assert plan.kinds[0][0] == "condensed"
     _agrees_with_det_r(model, plan, [mpmath.mpc(-1, 0.5), mpmath.mpc(0, 1.3),
                                      mpmath.mpc(-0.01, 0.2)])
+
+
+@pytest.mark.parametrize("damped", [False, True])
+def test_free_beams_joined_by_a_stiff_layer_keep_their_rigid_modes(damped):
+    """The same pair free-free: the static null space of its condensed joined pieces (a
+    traceback before) holds the two rigid motions in phase, then the free-free modes in
+    phase, (beta_n / L)**2 with beta_1, beta_2 = 4.7300407448627, 7.8532046240958 (the roots
+    of cos b cosh b = 1). A dashpot between the beams, which moves in opposition only,
+    leaves them to the damped search as they are."""
+    dashpot = '[[spring]]\nbetween = ["a", "b"]\nx = 3.0\nk = 0\nc = 2.0\n'
+    text = JOINED_BY_A_STIFF_LAYER.format(dashpot=dashpot if damped else "")
+    model = loads(text.replace('"pinned"', '"free"'), source="layer.toml")
+    got = solve(model, count=4, digits=15)        # (the rigid motions count twice)
+    assert [e.multiplicity for e in got] == [2, 1, 1]
+    assert complex(got[0].lam) == 0
+    mpmath.mp.dps = 30
+    roots = [mpmath.findroot(lambda b: mpmath.cos(b) * mpmath.cosh(b) - 1, b0) for b0 in (4.73, 7.85)]
+    _on_the_axis(got[1:], [(b / 10) ** 2 for b in roots])
