@@ -120,8 +120,8 @@ c = 3.0
 
 def _winkler(EI, n):
     """omega_n of a pinned-pinned beam on a Winkler foundation (m = 1, L = 10, kw = 1e4)."""
-    mpmath.mp.dps = 40
-    return mpmath.sqrt(mpmath.mpf(EI) * (n * mpmath.pi / 10) ** 4 + 10000)
+    with mpmath.workdps(40):
+        return +mpmath.sqrt(mpmath.mpf(EI) * (n * mpmath.pi / 10) ** 4 + 10000)
 
 
 def _on_the_axis(got, references):
@@ -312,17 +312,17 @@ def _simply_supported(n, kGA=None):
     """omega_n of a pinned-pinned Rayleigh (kGA None) or Timoshenko beam on a Winkler
     foundation (EI = m = 1, rhoI = 1/100, L = 10, kw = 1e4): the mode ``sin(k x)``,
     ``k = n pi / L``; Timoshenko's the lower root of the 2x2 determinant in ``omega**2``."""
-    mpmath.mp.dps = 40
-    k = n * mpmath.pi / 10
-    EI, m, rhoI, kw = 1, 1, mpmath.mpf(1) / 100, 10000
-    if kGA is None:
-        return mpmath.sqrt((EI * k**4 + kw) / (m + rhoI * k**2))
-    kGA = mpmath.mpf(kGA)
-    # (kGA k**2 + kw - m w2)(EI k**2 + kGA - rhoI w2) - (kGA k)**2 = 0
-    a = m * rhoI
-    b = -(m * (EI * k**2 + kGA) + rhoI * (kGA * k**2 + kw))
-    c = (kGA * k**2 + kw) * (EI * k**2 + kGA) - (kGA * k) ** 2
-    return mpmath.sqrt((-b - mpmath.sqrt(b * b - 4 * a * c)) / (2 * a))
+    with mpmath.workdps(40):
+        k = n * mpmath.pi / 10
+        EI, m, rhoI, kw = 1, 1, mpmath.mpf(1) / 100, 10000
+        if kGA is None:
+            return +mpmath.sqrt((EI * k**4 + kw) / (m + rhoI * k**2))
+        kGA = mpmath.mpf(kGA)
+        # (kGA k**2 + kw - m w2)(EI k**2 + kGA - rhoI w2) - (kGA k)**2 = 0
+        a = m * rhoI
+        b = -(m * (EI * k**2 + kGA) + rhoI * (kGA * k**2 + kw))
+        c = (kGA * k**2 + kw) * (EI * k**2 + kGA) - (kGA * k) ** 2
+        return +mpmath.sqrt((-b - mpmath.sqrt(b * b - 4 * a * c)) / (2 * a))
 
 
 @pytest.mark.parametrize("theory, kGA, damped", [("rayleigh", None, True),
