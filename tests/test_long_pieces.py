@@ -18,11 +18,12 @@ import pytest
 
 from symtmm.elements import EulerBernoulliSegment
 from symtmm.modelfile import loads
+from symtmm.numeric import multiword
 from symtmm.numeric import plan as plan_module
 from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
 from symtmm.numeric.plan import NU_MAX, StiffnessPlan, plan_for
 from symtmm.numeric.segments import condensed_stiffness, eb_constants, segment_matrix
-from symtmm.numeric.stiffness import eb_closed_stiffness, factor, segment_stiffness
+from symtmm.numeric.stiffness import assemble, eb_closed_stiffness, factor, segment_stiffness
 from symtmm.numeric.transfer import TransferPlan
 from symtmm.numeric.transfer import delta as transfer_delta
 from symtmm.solve import solve
@@ -151,6 +152,42 @@ def test_long_pieces_cut_a_soft_beam_on_a_stiff_foundation(monkeypatch):
     assert not short.long and 2 * long.n <= short.n
     plain = loads(SOFT_ON_FOUNDATION.format(EI=1).replace("kw = 10000.0", ""), source="p.toml")
     assert not plan_for(plain.require_numeric(), 400.0, top=100.4).long
+
+
+@pytest.mark.skipif(not multiword.ENABLED, reason="the compiled kernel was not built")
+@pytest.mark.parametrize("damped", [False, True])
+def test_the_compiled_kernel_builds_long_plans_in_double_precision(damped, monkeypatch):
+    """A double batch of a plan with long pieces is built by the compiled kernel, the long
+    kinds' values given by numpy's closed forms: its band is numpy's, and its counts about
+    the closed-form frequencies (kw L**4 / EI = 1e9) are the modes below each point."""
+    text = SOFT_ON_FOUNDATION.format(EI="0.1")
+    model = loads(text if damped else text.replace("c = 3.0\n", "c = 0\n"),
+                  source="soft.toml").require_numeric()
+    plan = plan_for(model, 400.0, top=100.4)
+    assert plan.long
+    assert multiword._double_tables(plan)["given"] is not None
+    omega = np.array([float(_winkler("0.1", n)) * (1 + s * 1e-9)
+                      for n in (1, 2, 3, 8) for s in (-1, 1)] + [50.0, 100.3])
+    lam = (-0.5 + 1j) * omega if damped else 1j * omega
+    lam2 = lam * lam if damped else (lam * lam).real
+    dash = lam if damped else None
+    assert multiword.serves_double(plan, lam2, dash)
+    K, det12, ok = multiword.double_band(plan, lam2, dash)
+    K0, det0 = assemble(plan, DOUBLE, lam2, dash)
+    assert ok.all()
+    scale = np.abs(K0).max(axis=(1, 2))[:, None, None]
+    assert np.all(np.abs(K - K0) <= 1e-12 * scale)
+    assert np.all(np.abs(det12 - det0) <= 1e-12 * np.abs(det0))
+    logabs, _, counts, ok = multiword.double_summary(plan, lam2, dash)
+    assert ok.all()
+    if not damped:
+        # (the plan serves |Im lam| <= 100.4: beyond, its pieces' clamped modes)
+        below = [sum(1 for n in range(1, 40) if _winkler("0.1", n) < w) for w in omega]
+        assert counts.tolist() == below and below[-1] > 10
+    monkeypatch.setattr(multiword, "ENABLED", False)
+    numpy_fa = factor(plan, DOUBLE, lam2, dash)
+    assert counts.tolist() == numpy_fa.counts().tolist()
+    assert np.allclose(logabs, numpy_fa.log_delta()[0], rtol=1e-12)
 
 
 def _agrees_with_det_r(model, plan, points, bits: int = 1500, digits: int = 45):

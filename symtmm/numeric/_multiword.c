@@ -77,6 +77,11 @@ static inline double down(double v) { return v * DEFLATE - TINY; }
  * or (c, det P / c); the point fails where the block's inertia is not decided. */
 #define PAIR_BITS 8
 
+/* The family of a kind whose values come from the caller (assemble's and summary's
+ * `given`): a long Euler-Bernoulli piece, whose closed forms numpy evaluates, in a batch
+ * of plain doubles. Families 0 (Euler-Bernoulli) and 1 (a general beam) are built here. */
+#define FAMILY_GIVEN 2
+
 #define CAT_(a, b) a##_##b
 #define CAT(a, b) CAT_(a, b)
 
@@ -178,14 +183,16 @@ static inline Py_ssize_t ball_words(int N)
 }
 
 /* Whether the series and scatter tables of assemble() and summary() fit their lengths
- * and one another, for balls of `item` bytes: S kinds (families 0 or 1), the series of
+ * and one another, for balls of `item` bytes: S kinds (families 0 or 1, or FAMILY_GIVEN
+ * for plain doubles: *G of them, their values in gb, (B, *G, 17) balls), the series of
  * K and TK terms, T scatter terms in layers (starts) into a band of nk entries per point,
  * their sources inside V (16 S + 3). */
 static int tables_fit(Py_ssize_t item, const Py_buffer *kb, const Py_buffer *fb,
                       const Py_buffer *cb, const Py_buffer *tb, Py_ssize_t K,
                       const Py_buffer *tcb, const Py_buffer *ttb, Py_ssize_t TK,
                       const Py_buffer *tgb, const Py_buffer *srcb, const Py_buffer *bcb,
-                      const Py_buffer *stb, Py_ssize_t nk)
+                      const Py_buffer *stb, Py_ssize_t nk, Py_ssize_t B,
+                      const Py_buffer *gb, Py_ssize_t *G)
 {
     const Py_ssize_t S = fb->len / 8, T = tgb->len / 8, Q = stb->len / 8 - 1;
     const Py_ssize_t nv = 16 * S + 3;
@@ -193,8 +200,14 @@ static int tables_fit(Py_ssize_t item, const Py_buffer *kb, const Py_buffer *fb,
                && tb->len == 4 * (K + 1) * 8 && tcb->len == (2 * TK + 2) * item
                && ttb->len == 16 && srcb->len == tgb->len && bcb->len == T * item && Q >= 0;
     const long long *tg = tgb->buf, *src = srcb->buf, *st = stb->buf, *fam = fb->buf;
-    for (Py_ssize_t i = 0; good && i < S; i++)
-        good = fam[i] == 0 || fam[i] == 1;
+    Py_ssize_t given = 0;
+    for (Py_ssize_t i = 0; good && i < S; i++) {
+        good = fam[i] == 0 || fam[i] == 1 || (fam[i] == FAMILY_GIVEN && item <= 16);
+        given += fam[i] == FAMILY_GIVEN;
+    }
+    /* the given kinds' values: (B, G, 17) balls, plain doubles only */
+    good = good && gb->len == B * given * 17 * item;
+    *G = given;
     for (Py_ssize_t i = 0; good && i < T; i++)
         good = src[i] >= 0 && src[i] < nv && tg[i] >= 0 && tg[i] < nk;
     for (Py_ssize_t q = 0; good && q <= Q; q++)
@@ -203,7 +216,7 @@ static int tables_fit(Py_ssize_t item, const Py_buffer *kb, const Py_buffer *fb,
 }
 
 /* assemble(N, lam2, lam, kinds, families, coef, tails, K, tcoef, ttails, TK, targets,
- *          source, bcoef, starts, band, det12, V, ok)
+ *          source, bcoef, starts, given, band, det12, V, ok)
  *   balls of code N (ball_words(N) 64-bit words each): lam2 (B,); lam (B,), or empty
  *   where there are no dashpots (its column then 0); kinds (S, 8): per
  *   kind (EI, l, A, F, 0...) where families[s] = 0 (Euler-Bernoulli), (EI, a, b, cN, rhoI,
@@ -211,20 +224,23 @@ static int tables_fit(Py_ssize_t item, const Py_buffer *kb, const Py_buffer *fb,
  *   (4, K + 1) doubles, upper bounds of 1/(4k + j)!; tcoef (2 TK + 2,) the balls of 1/k!,
  *   ttails (2,) doubles, 2 TK / (2 TK)! and 2 TK / (2 TK + 1)! rounded up; targets,
  *   source (T,) int64 and bcoef (T,): the plan's scatter, layer q being terms
- *   starts[q] .. starts[q + 1] - 1 (each target at most once in a layer); band (B, nk)
+ *   starts[q] .. starts[q + 1] - 1 (each target at most once in a layer); given
+ *   (B, G, 17): per point the 16 entries and det U12 of each kind of family
+ *   FAMILY_GIVEN, in the kinds' order (empty where there is none); band (B, nk)
  *   written; det12 (B, S) written; V (16 S + 3) workspace; ok (B,) uint8 written: 0
  *   where a value is not finite (the point is left to Arb).
  * The sources index V = [D of every kind (16 each), 1, lam, lam2]: the
  * columns of symtmm.numeric.stiffness.assemble. */
 static PyObject *assemble(PyObject *self, PyObject *args)
 {
-    Py_buffer lb, lmb, kb, fb, cb, tb, tcb, ttb, tgb, srcb, bcb, stb, bandb, detb, vb, okb;
-    Py_ssize_t K, TK;
+    Py_buffer lb, lmb, kb, fb, cb, tb, tcb, ttb, tgb, srcb, bcb, stb, gb, bandb, detb, vb,
+              okb;
+    Py_ssize_t K, TK, G = 0;
     int N;
     (void)self;
-    if (!PyArg_ParseTuple(args, "iy*y*y*y*y*y*ny*y*ny*y*y*y*w*w*w*w*", &N, &lb, &lmb, &kb, &fb,
-                          &cb, &tb, &K, &tcb, &ttb, &TK, &tgb, &srcb, &bcb, &stb, &bandb,
-                          &detb, &vb, &okb))
+    if (!PyArg_ParseTuple(args, "iy*y*y*y*y*y*ny*y*ny*y*y*y*y*w*w*w*w*", &N, &lb, &lmb, &kb,
+                          &fb, &cb, &tb, &K, &tcb, &ttb, &TK, &tgb, &srcb, &bcb, &stb, &gb,
+                          &bandb, &detb, &vb, &okb))
         return NULL;
     int good = valid_words(N);
     const Py_ssize_t item = 8 * ball_words(N);
@@ -233,24 +249,24 @@ static PyObject *assemble(PyObject *self, PyObject *args)
     good = good && detb.len == B * S * item && vb.len == (16 * S + 3) * item && okb.len == B
            && (B == 0 || bandb.len == B * nk * item) && (lmb.len == 0 || lmb.len == lb.len)
            && tables_fit(item, &kb, &fb, &cb, &tb, K, &tcb, &ttb, TK, &tgb, &srcb, &bcb,
-                         &stb, nk);
+                         &stb, nk, B, &gb, &G);
     const long long *tg = tgb.buf, *src = srcb.buf, *st = stb.buf, *fam = fb.buf;
     if (good) {
         Py_BEGIN_ALLOW_THREADS
         BY_WORDS(N, assemble_points, lb.buf, lmb.len ? lmb.buf : NULL, kb.buf, fam, S,
                  cb.buf, tb.buf, K, tcb.buf,
                  ttb.buf, TK, tg, src, bcb.buf, st, Q, bandb.buf, nk, detb.buf, vb.buf,
-                 okb.buf, B)
+                 okb.buf, B, gb.buf, G)
         Py_END_ALLOW_THREADS
     }
     return RELEASED(good ? CALL_DONE : CALL_MISFIT, "multi-word tables and buffers do not fit",
-                    &lb, &lmb, &kb, &fb, &cb, &tb, &tcb, &ttb, &tgb, &srcb, &bcb, &stb, &bandb,
-                    &detb, &vb, &okb);
+                    &lb, &lmb, &kb, &fb, &cb, &tb, &tcb, &ttb, &tgb, &srcb, &bcb, &stb, &gb,
+                    &bandb, &detb, &vb, &okb);
 }
 
 /* summary(N, lam2, lam, kinds, families, coef, tails, K, tcoef, ttails, TK, targets,
- *         source, bcoef, starts, n, w, mult, trust, growth, log_constant, logabs, phase,
- *         count, ok)
+ *         source, bcoef, starts, given, n, w, mult, trust, growth, log_constant, logabs,
+ *         phase, count, ok)
  *   N 1 (doubles) or 101 (complex doubles): per point the band of K(lam), as assemble()
  *   builds it (the same tables; n freedoms, w the band's width), factorised and read as
  *   _band.c's eliminate() and summary() do it, one point at a time: its band stays in
@@ -260,14 +276,15 @@ static PyObject *assemble(PyObject *self, PyObject *args)
  *   not finite or beyond the series' reach (the caller takes those points in numpy). */
 static PyObject *fused_summary(PyObject *self, PyObject *args)
 {
-    Py_buffer lb, lmb, kb, fb, cb, tb, tcb, ttb, tgb, srcb, bcb, stb, mb, lab, phb, cnb, okb;
-    Py_ssize_t K, TK, n, w;
+    Py_buffer lb, lmb, kb, fb, cb, tb, tcb, ttb, tgb, srcb, bcb, stb, gb, mb, lab, phb, cnb,
+              okb;
+    Py_ssize_t K, TK, n, w, G = 0;
     double trust, growth, log_constant;
     int N;
     (void)self;
-    if (!PyArg_ParseTuple(args, "iy*y*y*y*y*y*ny*y*ny*y*y*y*nny*dddw*w*w*w*", &N, &lb, &lmb,
+    if (!PyArg_ParseTuple(args, "iy*y*y*y*y*y*ny*y*ny*y*y*y*y*nny*dddw*w*w*w*", &N, &lb, &lmb,
                           &kb, &fb, &cb, &tb, &K, &tcb, &ttb, &TK, &tgb, &srcb, &bcb, &stb,
-                          &n, &w, &mb, &trust, &growth, &log_constant, &lab, &phb, &cnb,
+                          &gb, &n, &w, &mb, &trust, &growth, &log_constant, &lab, &phb, &cnb,
                           &okb))
         return NULL;
     const int is_complex = N == 101;
@@ -279,7 +296,7 @@ static PyObject *fused_summary(PyObject *self, PyObject *args)
            && phb.len == B * 8 && cnb.len == B * 8 && okb.len == B
            && (lmb.len == 0 || lmb.len == lb.len) && lb.len % item == 0
            && tables_fit(item, &kb, &fb, &cb, &tb, K, &tcb, &ttb, TK, &tgb, &srcb, &bcb,
-                         &stb, nk);
+                         &stb, nk, B, &gb, &G);
     const long long *tg = tgb.buf, *src = srcb.buf, *st = stb.buf, *fam = fb.buf;
     /* one point's band as built, padded for the elimination, det U12, V, the scales */
     double *work = good ? PyMem_Malloc(sizeof(double) * (c * (nk + (n + w) * w + S + nv) + n))
@@ -293,14 +310,15 @@ static PyObject *fused_summary(PyObject *self, PyObject *args)
         for (Py_ssize_t p = 0; p < B; p++) {
             const uint64_t *lam2 = (const uint64_t *)lb.buf + c * p;
             const uint64_t *lam = lmb.len ? (const uint64_t *)lmb.buf + c * p : NULL;
+            const uint64_t *given = (const uint64_t *)gb.buf + c * 17 * G * p;
             if (is_complex)
                 assemble_points_c1(lam2, lam, kb.buf, fam, S, cb.buf, tb.buf, K, tcb.buf,
                                    ttb.buf, TK, tg, src, bcb.buf, st, Q, (uint64_t *)band,
-                                   nk, (uint64_t *)det, (uint64_t *)V, ok + p, 1);
+                                   nk, (uint64_t *)det, (uint64_t *)V, ok + p, 1, given, G);
             else
                 assemble_points_1(lam2, lam, kb.buf, fam, S, cb.buf, tb.buf, K, tcb.buf,
                                   ttb.buf, TK, tg, src, bcb.buf, st, Q, (uint64_t *)band, nk,
-                                  (uint64_t *)det, (uint64_t *)V, ok + p, 1);
+                                  (uint64_t *)det, (uint64_t *)V, ok + p, 1, given, G);
             if (!ok[p])
                 continue;
             memcpy(fact, band, sizeof(double) * c * nk);
@@ -318,7 +336,7 @@ static PyObject *fused_summary(PyObject *self, PyObject *args)
     PyMem_Free(work);            /* (NULL where it was not allocated) */
     return RELEASED(!good ? CALL_MISFIT : work ? CALL_DONE : CALL_NO_MEMORY,
                     "summary: tables and buffers do not fit", &lb, &lmb, &kb, &fb, &cb, &tb,
-                    &tcb, &ttb, &tgb, &srcb, &bcb, &stb, &mb, &lab, &phb, &cnb, &okb);
+                    &tcb, &ttb, &tgb, &srcb, &bcb, &stb, &gb, &mb, &lab, &phb, &cnb, &okb);
 }
 
 /* eliminate(N, band, B, rows, w, n, ok): LDL^T without pivoting in place on (B, rows, w)
@@ -431,11 +449,11 @@ static PyObject *kry(PyObject *self, PyObject *args)
 static PyMethodDef methods[] = {
     {"assemble", assemble, METH_VARARGS,
      "assemble(N, lam2, lam, kinds, families, coef, tails, K, tcoef, ttails, TK, targets, "
-     "source, bcoef, starts, band, det12, V, ok): the band of K(lam) in balls of code N."},
+     "source, bcoef, starts, given, band, det12, V, ok): the band of K(lam) in balls of code N."},
     {"eliminate", eliminate, METH_VARARGS,
      "eliminate(N, band, B, rows, w, n, ok): LDL^T without pivoting of ball bands, in place."},
     {"summary", fused_summary, METH_VARARGS,
-     "summary(N, lam2, lam, ..., n, w, mult, trust, growth, log_constant, logabs, phase, "
+     "summary(N, lam2, lam, ..., given, n, w, mult, trust, growth, log_constant, logabs, phase, "
      "count, ok): log|Delta|, arg Delta and the count of double batches, a point at a time."},
     {"eliminate_twisted", eliminate_twisted, METH_VARARGS,
      "eliminate_twisted(N, band, B, rows, w, n, splits, ok): LDL^T from both ends of ball "

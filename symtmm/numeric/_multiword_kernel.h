@@ -283,19 +283,33 @@ static void F(assemble_points)(const uint64_t *lam2s, const uint64_t *lams,
                                const long long *tg, const long long *src, const uint64_t *bc,
                                const long long *st, Py_ssize_t Q, uint64_t *bands,
                                Py_ssize_t nk, uint64_t *dets, uint64_t *V, unsigned char *ok,
-                               Py_ssize_t B)
+                               Py_ssize_t B, const uint64_t *given, Py_ssize_t G)
 {
     const BALL one = F(exact)(1.0), zero = F(exact)(0.0);
     for (Py_ssize_t p = 0; p < B; p++) {
         const BALL lam2 = F(load)(lam2s + W_ * p);
         uint64_t *band = bands + W_ * p * nk, *det = dets + W_ * p * S;
         int fine = 1;
-        for (Py_ssize_t s = 0; fine && s < S; s++)
+        Py_ssize_t g = 0;
+        for (Py_ssize_t s = 0; fine && s < S; s++) {
+            if (families[s] == FAMILY_GIVEN) {
+                /* a kind whose values the caller computed (a long piece's closed forms):
+                 * its 16 entries and det U12, the point's g-th of G */
+                const uint64_t *from = given + W_ * 17 * (G * p + g++);
+                for (int i = 0; fine && i < 17; i++) {
+                    const BALL v = F(load)(from + W_ * i);
+                    fine = F(finite)(&v);
+                }
+                memcpy(V + 16 * W_ * s, from, sizeof(uint64_t) * 16 * W_);
+                memcpy(det + W_ * s, from + 16 * W_, sizeof(uint64_t) * W_);
+                continue;
+            }
             fine = families[s] == 0
                 ? F(eb_kind)(&lam2, kinds + 8 * W_ * s, coef, tails, K, V + 16 * W_ * s,
                              det + W_ * s)
                 : F(theory_kind)(&lam2, kinds + 8 * W_ * s, tcoef, ttails, TK,
                                  V + 16 * W_ * s, det + W_ * s);
+        }
         ok[p] = (unsigned char)fine;
         if (!fine)
             continue;

@@ -14,7 +14,9 @@ excludes zero has its pivots, signs and ``Delta`` proved as in Arb. Where the po
 the dashpots are complex (damped models), a complex ball is a pair of real ones, a
 rectangle as Arb's ``acb``, each operation composed of the real balls' enclosures.
 The same kernel over plain doubles (one word, no radius: not an enclosure) builds the
-double-precision batches' band (:func:`double_band`), real or complex.
+double-precision batches' band (:func:`double_band`), real or complex; there the values of
+long Euler–Bernoulli pieces (:func:`~symtmm.numeric.plan.long_piece`), beyond its series'
+reach, are given to it from numpy's closed forms (:func:`_given`).
 
 The other points are factorised in Arb at the precision asked, as before: where a pivot
 ball holds zero (the radii grow along the band, by up to ``2**40`` on example 1 and more
@@ -85,6 +87,10 @@ _MASK = (1 << 64) - 1
 #: (``eb_stiffness``) and general beams (axial force, rotary inertia, shear:
 #: ``theory_matrices`` and the stiffness of one beam).
 _FAMILIES = {"eb": 0, "theory": 1}
+#: The code of a kind whose values the caller passes in (``given``): an Euler–Bernoulli
+#: kind of a long plan that may be long at its range (|x| beyond a short piece's), by
+#: numpy's closed forms in a double batch (:func:`_given`).
+_GIVEN = 2
 
 
 def serves(plan, ar, lam2, lam) -> bool:
@@ -108,7 +114,7 @@ def serves_double(plan, lam2, lam) -> bool:
     return (ENABLED and plan.n > 0 and (lam is not None or not plan.damped)
             and np.asarray(lam2).dtype in (np.float64, np.complex128)
             and (lam is None or np.asarray(lam).dtype in (np.float64, np.complex128))
-            and _beams_only(plan))
+            and _beams_only(plan, long=True))
 
 
 def double_summary(plan, lam2, lam=None):
@@ -133,7 +139,7 @@ def double_summary(plan, lam2, lam=None):
     inputs = _double_inputs(plan, lam2, lam)
     if inputs is None:
         return None
-    code, tabs, lam2, lam = inputs
+    code, tabs, lam2, lam, given = inputs
     B, n, w = lam2.shape[0], plan.n, plan.width
     logabs, phase = np.empty(B), np.empty(B)
     counts, ok = np.empty(B, dtype=np.int64), np.zeros(B, dtype=np.uint8)
@@ -154,7 +160,7 @@ def double_summary(plan, lam2, lam=None):
             # (each part writes its own range of the outputs)
             lo, hi = start + lo, start + hi
             _multiword.summary(code, lam2[lo:hi], lam[lo:hi] if len(lam) else lam,
-                               *_series_tables(tabs), n, w, mult, DOUBLE.TRUST,
+                               *_series_tables(tabs), given[lo:hi], n, w, mult, DOUBLE.TRUST,
                                DOUBLE.growth_limit, float(plan.log_constant), logabs[lo:hi],
                                phase[lo:hi], counts[lo:hi], ok[lo:hi])
         run_ranges(run, stop - start, _batch_seconds(plan, stop - start, 1, W))
@@ -180,14 +186,17 @@ def _batch_seconds(plan, B: int, N: int, W: int) -> float:
 
 
 def _double_inputs(plan, lam2, lam):
-    """``(code, tables, lam2, lam)`` of a double batch for the compiled kernel: complex
-    where ``lam2`` or ``lam`` is (``lam`` empty bytes without dashpots); None where the
-    plan's numbers do not fit doubles."""
+    """``(code, tables, lam2, lam, given)`` of a double batch for the compiled kernel:
+    complex where ``lam2`` or ``lam`` is (``lam`` empty bytes without dashpots), and the
+    values of the kinds it is given (:func:`_given`); None where the plan's numbers do not
+    fit doubles."""
     tabs = _double_tables(plan)
     if tabs is None:
         return None
     complex_ = np.iscomplexobj(lam2) or (lam is not None and np.iscomplexobj(lam))
     dtype, code = (np.complex128, COMPLEX + 1) if complex_ else (np.float64, 1)
+    # (from the points as they come: a real lam2 takes the foundation's real forms)
+    given = np.ascontiguousarray(_given(tabs, lam2), dtype=dtype)
     if complex_:
         # (once per plan: a damped search's batches are mostly complex)
         cache = plan.__dict__["_multiword_tables"]
@@ -195,7 +204,27 @@ def _double_inputs(plan, lam2, lam):
             cache[("complex", 1)] = _complex_tables(tabs, 1)
         tabs = cache[("complex", 1)]
     return (code, tabs, np.ascontiguousarray(lam2, dtype=dtype),
-            b"" if lam is None else np.ascontiguousarray(lam, dtype=dtype))
+            b"" if lam is None else np.ascontiguousarray(lam, dtype=dtype), given)
+
+
+def _given(tabs: dict, lam2) -> np.ndarray:
+    """``(B, G, 17)``: per point the 16 entries and ``det U12`` of each kind the compiled
+    kernel is given (:data:`_GIVEN`), by numpy's closed forms beyond a short piece's
+    ``|x|`` and its series within, as :func:`~symtmm.numeric.stiffness.assemble` takes
+    them: the same numbers, vectorised over the batch."""
+    from .arith import DOUBLE
+    from .stiffness import LONG_X, eb_closed_stiffness
+    lam2 = np.asarray(lam2)
+    consts = tabs["given"]
+    G = 0 if consts is None else consts["EI"].size
+    out = np.empty((lam2.shape[0], G, 17), dtype=lam2.dtype)
+    if G:
+        # (a value beyond the doubles fails its point, which numpy then takes whole)
+        with np.errstate(all="ignore"):
+            D, det = eb_closed_stiffness(DOUBLE, consts, lam2, threshold=LONG_X)
+        out[:, :, :16] = D.reshape(lam2.shape[0], G, 16)
+        out[:, :, 16] = det
+    return out
 
 
 def _series_tables(tabs: dict) -> tuple:
@@ -206,11 +235,12 @@ def _series_tables(tabs: dict) -> tuple:
             tabs["bcoef"], tabs["starts"])
 
 
-def _beams_only(plan) -> bool:
+def _beams_only(plan, long: bool = False) -> bool:
     """Every segment kind of the plan one the compiled kernel holds (:data:`_FAMILIES`), and
     no long piece (its series stop at ``|x|`` of a short one: :func:`~symtmm.numeric.plan.
-    long_piece`)."""
-    return not plan.long and all(family in _FAMILIES for family, _ in plan.kinds)
+    long_piece`) unless ``long`` (double batches: their values are given,
+    :func:`_given`)."""
+    return (long or not plan.long) and all(family in _FAMILIES for family, _ in plan.kinds)
 
 
 #: The code of complex balls of ``N`` words in the compiled kernel (a real ball of ``N``
@@ -251,13 +281,13 @@ def double_band(plan, lam2, lam=None):
     inputs = _double_inputs(plan, lam2, lam)
     if inputs is None:
         return None
-    code, tabs, lam2, lam = inputs
+    code, tabs, lam2, lam, given = inputs
     B, n, w, dtype = lam2.shape[0], plan.n, plan.width, lam2.dtype
     S = tabs["families"].shape[0]
     band = np.empty((B, n * w), dtype=dtype)
     det12 = np.empty((B, S), dtype=dtype)
     ok = np.zeros(B, dtype=np.uint8)
-    _multiword.assemble(code, lam2, lam, *_series_tables(tabs), band, det12,
+    _multiword.assemble(code, lam2, lam, *_series_tables(tabs), given, band, det12,
                         np.empty(16 * S + 3, dtype=dtype), ok)
     return band.reshape(B, n, w), det12, ok.astype(bool)
 
@@ -565,17 +595,25 @@ def _double_tables(plan) -> dict | None:
     tables (the numbers numpy's band uses; no SymPy on the way); None where one is not
     finite."""
     from .arith import DOUBLE
+    from .stiffness import LONG_X
     cache = plan.__dict__.setdefault("_multiword_tables", {})
     if 1 in cache:
         return cache[1]
     t = plan.tables(DOUBLE)
-    kinds, families = [np.zeros((0, 8))], []
+    kinds, families, given = [np.zeros((0, 8))], [], []
     for family, consts in t["kinds"]:           # (grouped by family, in the plan's order)
         cols = [np.asarray(consts[c], dtype=float) for c in _COLUMNS[family]]
         block = np.zeros((cols[0].size, 8))
         block[:, :len(cols)] = np.stack(cols, axis=1)
         kinds.append(block)
-        families += [_FAMILIES[family]] * cols[0].size
+        codes = np.full(cols[0].size, _FAMILIES[family])
+        if family == "eb" and plan.long:
+            # a kind whose |x| may pass a short piece's over the plan's range takes
+            # numpy's closed forms there (the compiled series stop at a short one's)
+            long = plan.radius * np.abs(consts["A"]) + np.abs(consts["F"]) >= LONG_X
+            codes[long] = _GIVEN
+            given.append({c: np.asarray(consts[c])[long] for c in _COLUMNS[family]})
+        families += codes.tolist()
     kinds = np.concatenate(kinds)
     bcoef = np.concatenate([np.zeros(0)] + [np.asarray(c, dtype=float) for _, _, c in t["layers"]])
     if not (np.isfinite(kinds).all() and np.isfinite(bcoef).all()):
@@ -588,7 +626,9 @@ def _double_tables(plan) -> dict | None:
         "kinds": kinds, "families": np.array(families, dtype=np.int64), "coef": coef,
         "tails": tails, "TK": TK, "tcoef": tcoef, "ttails": ttails,
         "targets": scatter["targets"], "source": scatter["source"], "bcoef": bcoef,
-        "starts": scatter["starts"]}
+        "starts": scatter["starts"],
+        "given": {c: np.concatenate([g[c] for g in given]) for c in _COLUMNS["eb"]}
+        if given else None}
     return out
 
 
@@ -780,7 +820,7 @@ def _decided(plan, ar: Ball, lam2, reverse: bool, N: int, lam=None, complex_: bo
         det12 = np.empty((hi - lo, S, W), dtype=np.uint64)
         ok = np.zeros(hi - lo, dtype=np.uint8)
         _multiword.assemble(code, points[lo:hi], lams[lo:hi] if len(lams) else lams,
-                            *_series_tables(tabs), band, det12,
+                            *_series_tables(tabs), b"", band, det12,
                             np.empty((16 * S + 3, W), dtype=np.uint64), ok)
         band = band.reshape(hi - lo, n, w, W)
         built = ok.copy()

@@ -66,18 +66,20 @@ NU_MAX = 3.0
 #: (:func:`long_piece`): a beam whose waves are far shorter than it is (a soft beam on a
 #: stiff foundation: ``kw L**4 / EI`` of ``1e9`` cut it into hundreds of pieces, and the
 #: proofs' dense determinant of hundreds of freedoms cost half a second a point). Not fewer:
-#: a plan with long pieces leaves the compiled kernels (:data:`LONG_GAIN`), and a beam in
+#: a plan with condensed pieces leaves the compiled kernels for numpy, and a beam in
 #: tension cut into 26 pieces solved three times slower in 10 condensed ones (8 asked);
 #: nor more: with 32 the campaign models of the stiff class solved up to 2.8 times slower
 #: (a Rayleigh beam on a foundation beside a short Euler–Bernoulli one: 2.1 s and 5.8 s).
 LONG_FROM = 16
 #: ... and where long pieces take at most ``1 / LONG_GAIN`` as many. A plan with long pieces
-#: leaves the compiled kernels (their series stop at a short piece's ``|x|``) for numpy, a
-#: few times slower a freedom: a campaign model whose soft beam's range reaches above its
-#: cut-off, 745 freedoms against 1725, went from 31 s to past 60 s. A gain of 3 keeps that
-#: plan short, but takes the long pieces from two other campaign models (2.7 and 3.5 s
-#: again past 60 s), and mixed plans sent the first one's damped search astray (an
-#: eigenvalue of its crowded cluster refined to Re lam = +1e-6, refused as not passive).
+#: leaves the compiled ball kernel (its series stop at a short piece's ``|x|``) for Arb; its
+#: double batches stay compiled, the long kinds' values given by numpy
+#: (:func:`symtmm.numeric.multiword.double_band`; before, the whole batch went to numpy, a
+#: few times slower a freedom, and a campaign model cut into 745 freedoms against 1725
+#: went from 31 s to past 60 s). A gain of 3 took the long pieces from two other campaign
+#: models (2.7 and 3.5 s again past 60 s), and mixed plans sent the first one's damped
+#: search astray (an eigenvalue of its crowded cluster refined to Re lam = +1e-6, refused
+#: as not passive).
 LONG_GAIN = 2.0
 #: Largest ``|s| l`` of a long piece over the plan's range: its stiffness comes from the
 #: closed forms in ``nu = s l`` (:func:`symtmm.numeric.stiffness.eb_closed_stiffness`),

@@ -58,7 +58,7 @@ except ImportError:  # pragma: no cover - tested by switching it off
 #: ``|x|`` beyond which a long piece's stiffness takes the closed forms: ``NU_MAX**4``, the
 #: largest a short piece reaches (:mod:`symtmm.numeric.plan`), where the ``c_j`` keep their
 #: digits.
-_LONG_X = 3.0 ** 4
+LONG_X = 3.0 ** 4
 
 #: Whether double-precision bands are eliminated by the C loop (where it was built);
 #: tests switch it off to run the numpy loop, which gives the same factors.
@@ -296,7 +296,7 @@ def stiffness_values(ar: Arithmetic, kinds, lam2, lam=None, long: bool = False):
             if getattr(ar, "closed_stiffness", False):
                 D, det = eb_closed_stiffness(ar, consts, lam2)
             elif long:
-                D, det = eb_closed_stiffness(ar, consts, lam2, threshold=_LONG_X)
+                D, det = eb_closed_stiffness(ar, consts, lam2, threshold=LONG_X)
             else:
                 D, det = eb_stiffness(ar, consts, lam2)
         elif family == "condensed":
