@@ -26,6 +26,7 @@ from symtmm.numeric.segments import condensed_stiffness, eb_constants, segment_m
 from symtmm.numeric.stiffness import assemble, eb_closed_stiffness, factor, segment_stiffness
 from symtmm.numeric.transfer import TransferPlan
 from symtmm.numeric.transfer import delta as transfer_delta
+from symtmm.results import decimal_string
 from symtmm.solve import solve
 
 # (EI, m, l, kw) and lam**2 of pieces far longer than NU_MAX: on a foundation below its
@@ -288,6 +289,53 @@ def test_a_campaign_model_of_crowded_modes_at_a_cut_off():
         got = solve(damped, count=2, digits=15)
     ref = solve(undamped, count=2, digits=15)
     assert [(str(e), e.multiplicity) for e in got] == [(str(e), e.multiplicity) for e in ref]
+
+
+# a campaign's model (seed 25056, its unjoined beams left out): a soft long beam on a
+# foundation (b0, kw / m = 315) joined by a spring with a dashpot to a heavy beam whose
+# modes lie just below b0's cut-off: b0's pieces, their clamped modes held above the range
+# by the foundation alone, were cut 15 times shorter than their growth asks, and the
+# proofs' dense determinants of them ran past the 60 s budget
+CAMPAIGN_25056 = """
+[[beam]]
+name = "b0"
+EI = 0.0092
+m = 2.26
+L = 72.9
+left = "sliding"
+right = "sliding"
+kw = 711.0
+
+[[beam]]
+name = "b3"
+EI = 24400.0
+m = 859.0
+L = 5.79
+left = "pinned"
+right = "free"
+kw = 209000.0
+
+[[spring]]
+between = ["b3", "b0"]
+x = 5.79
+k = 121000000.0
+c = 0.266
+"""
+
+
+@pytest.mark.slow
+def test_a_campaign_model_of_modes_just_below_a_cut_off():
+    """Reference: the model without its dashpot, on the frequency axis (the dashpot's
+    damping ratios are about 1e-18: the frequencies agree far beyond 15 digits)."""
+    damped = loads(CAMPAIGN_25056, source="m25056.toml")
+    undamped = loads(CAMPAIGN_25056.replace("c = 0.266\n", ""), source="m25056.toml")
+    got = solve(damped, count=3, digits=15)
+    ref = solve(undamped, count=3, digits=15)
+    assert [e.multiplicity for e in got] == [e.multiplicity for e in ref] == [1, 1, 1]
+    for e, r in zip(got, ref):
+        lam = complex(e.lam)
+        assert -1e-12 * abs(lam) < lam.real <= 0
+        assert decimal_string(e.lam.imag, 15) == decimal_string(r.omega, 15)
 
 
 # -- long pieces of the other theories: chains of short ones, condensed -------------------------
