@@ -410,6 +410,71 @@ def _simply_supported(n, kGA=None):
         return +mpmath.sqrt((-b - mpmath.sqrt(b * b - 4 * a * c)) / (2 * a))
 
 
+# beams of other theories on foundations: Rayleigh, Timoshenko, in tension and compression
+SPECTRUM_BOTTOMS = [dict(EI=1.0, m=1.0, kw=1e4, rhoI=0.01),
+                    dict(EI=1.0, m=1.0, kw=1e4, rhoI=0.01, kGA=500.0),
+                    dict(EI=0.1, m=2.0, kw=500.0, rhoI=0.003, kGA=2.0, N=3.0),
+                    dict(EI=1.0, m=1.0, kw=1e3, rhoI=0.02, N=-5.0)]
+
+
+def _dispersion_bottom(EI, m, kw, rhoI, kGA=None, N=0.0):
+    """``(omega**2, k)`` at the bottom of the infinite beam's spectrum: the least eigenvalue
+    of the waves ``exp(i k x)``' symbol (``M**-1/2 A(k) M**-1/2``, numpy's ``eigvalsh``)
+    over a fine grid of ``k``, refined about the grid's least by scipy."""
+    from scipy.optimize import minimize_scalar
+
+    def least(k):
+        if kGA is None:
+            return (EI * k**4 + N * k**2 + kw) / (m + rhoI * k**2)
+        A = np.array([[(kGA + N) * k**2 + kw, -1j * kGA * k], [1j * kGA * k, kGA + EI * k**2]])
+        s = np.diag([m ** -0.5, rhoI ** -0.5])
+        return np.linalg.eigvalsh(s @ A @ s)[0]
+
+    grid = np.concatenate([[0.0], np.geomspace(1e-3, 1e4, 20001)])
+    values = np.array([least(k) for k in grid])
+    i = int(np.argmin(values))
+    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+    best = minimize_scalar(least, bounds=(lo, hi), method="bounded",
+                           options={"xatol": 1e-12 * max(hi, 1e-9)})
+    return (best.fun, best.x) if best.fun < values[i] else (values[i], grid[i])
+
+
+@pytest.mark.parametrize("beam", SPECTRUM_BOTTOMS)
+def test_the_length_free_bound_is_the_bottom_of_the_infinite_beams_spectrum(beam):
+    """The bound of a piece of any length (the symbol positive definite below it) against
+    the least frequency of the infinite beam's waves, minimised over their wave number."""
+    from symtmm.elements.theories import BeamSegment
+
+    bottom, _ = _dispersion_bottom(**beam)
+    bound = BeamSegment(beam["EI"], beam["m"], 1, kw=beam["kw"], N=beam.get("N", 0),
+                        rhoI=beam["rhoI"], kGA=beam.get("kGA")).length_free_bound
+    assert bottom * (1 - 1e-4) <= bound <= bottom * (1 + 1e-12)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("beam", SPECTRUM_BOTTOMS)
+def test_clamped_pieces_of_any_length_have_no_mode_below_the_length_free_bound(beam):
+    """A converged finite-element model (an independent code) of clamped-clamped pieces
+    half a wave to twenty waves (of the spectrum's bottom) long: the first mode never below
+    the bound, and the long pieces' within 2 % above it (the bound is the one their modes
+    crowd to)."""
+    from symtmm.elements.theories import BeamSegment
+    from symtmm.fe import fe_converged
+
+    _, k = _dispersion_bottom(**beam)
+    wave = 2 * np.pi / k if k > 0 else 10.0
+    bound = BeamSegment(beam["EI"], beam["m"], 1, kw=beam["kw"], N=beam.get("N", 0),
+                        rhoI=beam["rhoI"], kGA=beam.get("kGA")).length_free_bound
+    for waves in (0.5, 4, 20):
+        L = waves * wave
+        piece = dict(name="p", L=L, x0=0.0, left="clamped", right="clamped", **beam)
+        out = fe_converged([piece], [], max(6, int(6 * waves)), count=1)
+        omega2 = out["omega"][0] ** 2
+        assert omega2 * (1 + 4 * out["error"][0] / out["omega"][0]) >= bound
+        if waves == 20:
+            assert omega2 <= 1.02 * bound
+
+
 @pytest.mark.parametrize("theory, kGA, damped", [("rayleigh", None, True),
                                                  ("timoshenko", 500, False)])
 def test_a_beam_of_another_theory_on_a_stiff_foundation(theory, kGA, damped):
@@ -426,6 +491,35 @@ def test_a_beam_of_another_theory_on_a_stiff_foundation(theory, kGA, damped):
     # (a plan of each search: the damped one's rectangle reaches Re lam = -250)
     plan = plan_for(model.require_numeric(), 250.0 if damped else 100.0, top=100.0)
     assert any(family == "condensed" for family, _ in plan.kinds)
+
+
+@pytest.mark.skipif(not multiword.ENABLED, reason="the compiled kernel was not built")
+@pytest.mark.parametrize("theory, kGA", [("rayleigh", None), ("timoshenko", 500)])
+def test_the_compiled_kernel_builds_condensed_plans_in_double_precision(theory, kGA,
+                                                                       monkeypatch):
+    """A double batch of a plan with condensed pieces is built by the compiled kernel,
+    their values given by numpy: its band is numpy's, and its counts about the closed-form
+    frequencies are the modes below each point."""
+    text = SHEAR_ON_FOUNDATION.format(theory=theory, kGA="" if kGA is None else f"kGA = {kGA}",
+                                      dashpot="")
+    model = loads(text, source="beam.toml").require_numeric()
+    plan = plan_for(model, 100.0, top=100.0)
+    assert any(family == "condensed" for family, _ in plan.kinds)
+    modes = sorted(float(_simply_supported(n, kGA)) for n in range(1, 200))
+    omega = np.array([w * (1 + s * 1e-9) for w in modes[:3] for s in (-1, 1)] + [50.0, 99.0])
+    lam2 = -omega * omega
+    assert multiword.serves_double(plan, lam2, None)
+    K, det12, ok = multiword.double_band(plan, lam2)
+    K0, det0 = assemble(plan, DOUBLE, lam2)
+    assert ok.all()
+    scale = np.abs(K0).max(axis=(1, 2))[:, None, None]
+    assert np.all(np.abs(K - K0) <= 1e-12 * scale)
+    assert np.all(np.abs(det12 - det0) <= 1e-12 * np.abs(det0))
+    _, _, counts, ok = multiword.double_summary(plan, lam2)
+    below = [sum(1 for w in modes if w < x) for x in omega]
+    assert ok.all() and counts.tolist() == below and below[-1] > 3
+    monkeypatch.setattr(multiword, "ENABLED", False)
+    assert factor(plan, DOUBLE, lam2).counts().tolist() == below
 
 
 def test_delta_of_condensed_pieces_is_det_r_of_the_transfer_walk():

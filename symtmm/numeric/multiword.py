@@ -59,6 +59,7 @@ from ..deadline import check as check_time
 from ..expr import exact_float
 from .arith import Ball, exact_key
 from .parallel import run_ranges
+from .segments import kind_size
 
 try:        # the compiled balls (setup.py); without a compiler every ball runs in Arb
     from . import _band, _multiword
@@ -114,7 +115,7 @@ def serves_double(plan, lam2, lam) -> bool:
     return (ENABLED and plan.n > 0 and (lam is not None or not plan.damped)
             and np.asarray(lam2).dtype in (np.float64, np.complex128)
             and (lam is None or np.asarray(lam).dtype in (np.float64, np.complex128))
-            and _beams_only(plan, long=True))
+            and _beams_only(plan, given=True))
 
 
 def double_summary(plan, lam2, lam=None):
@@ -196,7 +197,7 @@ def _double_inputs(plan, lam2, lam):
     complex_ = np.iscomplexobj(lam2) or (lam is not None and np.iscomplexobj(lam))
     dtype, code = (np.complex128, COMPLEX + 1) if complex_ else (np.float64, 1)
     # (from the points as they come: a real lam2 takes the foundation's real forms)
-    given = np.ascontiguousarray(_given(tabs, lam2), dtype=dtype)
+    given = np.ascontiguousarray(_given(tabs, lam2, lam), dtype=dtype)
     if complex_:
         # (once per plan: a damped search's batches are mostly complex)
         cache = plan.__dict__["_multiword_tables"]
@@ -207,24 +208,31 @@ def _double_inputs(plan, lam2, lam):
             b"" if lam is None else np.ascontiguousarray(lam, dtype=dtype), given)
 
 
-def _given(tabs: dict, lam2) -> np.ndarray:
+def _given(tabs: dict, lam2, lam=None) -> np.ndarray:
     """``(B, G, 17)``: per point the 16 entries and ``det U12`` of each kind the compiled
-    kernel is given (:data:`_GIVEN`), by numpy's closed forms beyond a short piece's
-    ``|x|`` and its series within, as :func:`~symtmm.numeric.stiffness.assemble` takes
-    them: the same numbers, vectorised over the batch."""
+    kernel is given (:data:`_GIVEN`), in the kinds' order: long Euler–Bernoulli kinds by
+    numpy's closed forms beyond a short piece's ``|x|`` and its series within, the other
+    4-state kinds by :func:`~symtmm.numeric.stiffness.stiffness_values`, as
+    :func:`~symtmm.numeric.stiffness.assemble` takes them: the same numbers, vectorised
+    over the batch."""
     from .arith import DOUBLE
-    from .stiffness import LONG_X, eb_closed_stiffness
+    from .stiffness import LONG_X, eb_closed_stiffness, stiffness_values
     lam2 = np.asarray(lam2)
-    consts = tabs["given"]
-    G = 0 if consts is None else consts["EI"].size
-    out = np.empty((lam2.shape[0], G, 17), dtype=lam2.dtype)
-    if G:
-        # (a value beyond the doubles fails its point, which numpy then takes whole)
-        with np.errstate(all="ignore"):
-            D, det = eb_closed_stiffness(DOUBLE, consts, lam2, threshold=LONG_X)
-        out[:, :, :16] = D.reshape(lam2.shape[0], G, 16)
-        out[:, :, 16] = det
-    return out
+    B = lam2.shape[0]
+    parts = [np.empty((B, 0, 17), dtype=lam2.dtype)]
+    # (a value beyond the doubles fails its point, which numpy then takes whole)
+    with np.errstate(all="ignore"):
+        for what, table in tabs["given"]:
+            if what == "long":
+                D, det = eb_closed_stiffness(DOUBLE, table, lam2, threshold=LONG_X)
+            else:
+                D, det = stiffness_values(DOUBLE, [table], lam2, lam, long=True)
+            G = det.shape[1]
+            part = np.empty((B, G, 17), dtype=np.result_type(D, det))
+            part[:, :, :16] = D.reshape(B, G, 16)
+            part[:, :, 16] = det
+            parts.append(part)
+    return np.concatenate(parts, axis=1)
 
 
 def _series_tables(tabs: dict) -> tuple:
@@ -235,12 +243,15 @@ def _series_tables(tabs: dict) -> tuple:
             tabs["bcoef"], tabs["starts"])
 
 
-def _beams_only(plan, long: bool = False) -> bool:
+def _beams_only(plan, given: bool = False) -> bool:
     """Every segment kind of the plan one the compiled kernel holds (:data:`_FAMILIES`), and
     no long piece (its series stop at ``|x|`` of a short one: :func:`~symtmm.numeric.plan.
-    long_piece`) unless ``long`` (double batches: their values are given,
-    :func:`_given`)."""
-    return (long or not plan.long) and all(family in _FAMILIES for family, _ in plan.kinds)
+    long_piece`); with ``given`` (double batches), also long pieces, rods and condensed
+    chains of one beam: 4-state kinds whose values numpy gives it (:func:`_given`)."""
+    if given:
+        return all(family in _FAMILIES or kind_size((family, consts)) == 4
+                   for family, consts in plan.kinds)
+    return not plan.long and all(family in _FAMILIES for family, _ in plan.kinds)
 
 
 #: The code of complex balls of ``N`` words in the compiled kernel (a real ball of ``N``
@@ -601,7 +612,14 @@ def _double_tables(plan) -> dict | None:
         return cache[1]
     t = plan.tables(DOUBLE)
     kinds, families, given = [np.zeros((0, 8))], [], []
-    for family, consts in t["kinds"]:           # (grouped by family, in the plan's order)
+    for (family, consts), count in zip(t["kinds"], _group_sizes(plan)):
+        # (grouped by family, in the plan's order)
+        if family not in _FAMILIES:
+            # a rod's, or a condensed chain's: given whole (:func:`_given`)
+            kinds.append(np.zeros((count, 8)))
+            families += [_GIVEN] * count
+            given.append(("values", (family, consts)))
+            continue
         cols = [np.asarray(consts[c], dtype=float) for c in _COLUMNS[family]]
         block = np.zeros((cols[0].size, 8))
         block[:, :len(cols)] = np.stack(cols, axis=1)
@@ -612,7 +630,7 @@ def _double_tables(plan) -> dict | None:
             # numpy's closed forms there (the compiled series stop at a short one's)
             long = plan.radius * np.abs(consts["A"]) + np.abs(consts["F"]) >= LONG_X
             codes[long] = _GIVEN
-            given.append({c: np.asarray(consts[c])[long] for c in _COLUMNS[family]})
+            given.append(("long", {c: np.asarray(consts[c])[long] for c in _COLUMNS[family]}))
         families += codes.tolist()
     kinds = np.concatenate(kinds)
     bcoef = np.concatenate([np.zeros(0)] + [np.asarray(c, dtype=float) for _, _, c in t["layers"]])
@@ -626,10 +644,24 @@ def _double_tables(plan) -> dict | None:
         "kinds": kinds, "families": np.array(families, dtype=np.int64), "coef": coef,
         "tails": tails, "TK": TK, "tcoef": tcoef, "ttails": ttails,
         "targets": scatter["targets"], "source": scatter["source"], "bcoef": bcoef,
-        "starts": scatter["starts"],
-        "given": {c: np.concatenate([g[c] for g in given]) for c in _COLUMNS["eb"]}
-        if given else None}
+        "starts": scatter["starts"], "given": given}
     return out
+
+
+def _group_sizes(plan) -> list:
+    """The number of kinds in each group of the plan's tables
+    (:func:`~symtmm.numeric.segments.kind_tables`: a group per family, one per condensed
+    kind, one per coupled size)."""
+    sizes: list = []
+    last = None
+    for family, consts in plan.kinds:
+        key = (family, consts[0]) if family == "coupled" else \
+            (family, len(sizes)) if family == "condensed" else family
+        if key != last:
+            sizes.append(0)
+            last = key
+        sizes[-1] += 1
+    return sizes
 
 
 def _kind_values(plan) -> list:
