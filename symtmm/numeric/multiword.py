@@ -15,8 +15,9 @@ the dashpots are complex (damped models), a complex ball is a pair of real ones,
 rectangle as Arb's ``acb``, each operation composed of the real balls' enclosures.
 The same kernel over plain doubles (one word, no radius: not an enclosure) builds the
 double-precision batches' band (:func:`double_band`), real or complex; there the values of
-long Euler–Bernoulli pieces (:func:`~symtmm.numeric.plan.long_piece`), beyond its series'
-reach, are given to it from numpy's closed forms (:func:`_given`).
+the 4-state kinds it does not compute, long Euler–Bernoulli pieces beyond its series' reach
+(:func:`~symtmm.numeric.plan.long_piece`), condensed chains of one beam and rods, are given
+to it by numpy (:func:`_given`), and it scatters and eliminates them with the rest.
 
 The other points are factorised in Arb at the precision asked, as before: where a pivot
 ball holds zero (the radii grow along the band, by up to ``2**40`` on example 1 and more
@@ -88,9 +89,9 @@ _MASK = (1 << 64) - 1
 #: (``eb_stiffness``) and general beams (axial force, rotary inertia, shear:
 #: ``theory_matrices`` and the stiffness of one beam).
 _FAMILIES = {"eb": 0, "theory": 1}
-#: The code of a kind whose values the caller passes in (``given``): an Euler–Bernoulli
-#: kind of a long plan that may be long at its range (|x| beyond a short piece's), by
-#: numpy's closed forms in a double batch (:func:`_given`).
+#: The code of a kind whose values the caller passes in (``given``, double batches only,
+#: :func:`_given`): an Euler–Bernoulli kind of a long plan that may be long at its range
+#: (``|x|`` beyond a short piece's), a rod's, a condensed chain's of one beam.
 _GIVEN = 2
 
 
@@ -629,8 +630,10 @@ def _double_tables(plan) -> dict | None:
             # a kind whose |x| may pass a short piece's over the plan's range takes
             # numpy's closed forms there (the compiled series stop at a short one's)
             long = plan.radius * np.abs(consts["A"]) + np.abs(consts["F"]) >= LONG_X
-            codes[long] = _GIVEN
-            given.append(("long", {c: np.asarray(consts[c])[long] for c in _COLUMNS[family]}))
+            if long.any():
+                codes[long] = _GIVEN
+                given.append(("long", {c: np.asarray(consts[c])[long]
+                                       for c in _COLUMNS[family]}))
         families += codes.tolist()
     kinds = np.concatenate(kinds)
     bcoef = np.concatenate([np.zeros(0)] + [np.asarray(c, dtype=float) for _, _, c in t["layers"]])
