@@ -94,7 +94,7 @@ BETA_CLAMPED = 4.73
 #: soft beam on a foundation whose modes lie just below its cut-off ``sqrt(kw / m)`` (``kw /
 #: m`` 1.23 times ``top2``: the foundation alone keeps the pieces' clamped modes above the
 #: range) into a plan of 182 segments where their growth allows 17: a campaign model's
-#: damped search, whose proofs took dense determinants of them, 59 s against 13 s.
+#: damped search, whose proofs took dense determinants of them, 59 s against about 15 s.
 CLAMPED_MARGIN = 1.1
 
 
