@@ -613,10 +613,11 @@ def _double_tables(plan) -> dict | None:
         return cache[1]
     t = plan.tables(DOUBLE)
     kinds, families, given = [np.zeros((0, 8))], [], []
-    for (family, consts), count in zip(t["kinds"], _group_sizes(plan)):
-        # (grouped by family, in the plan's order)
+    for family, consts in t["kinds"]:           # (grouped by family, in the plan's order)
         if family not in _FAMILIES:
-            # a rod's, or a condensed chain's: given whole (:func:`_given`)
+            # a condensed chain's (a table of its own), or the rods' (a table for all of
+            # them): given whole (:func:`_given`)
+            count = 1 if family == "condensed" else len(consts["l"])
             kinds.append(np.zeros((count, 8)))
             families += [_GIVEN] * count
             given.append(("values", (family, consts)))
@@ -649,22 +650,6 @@ def _double_tables(plan) -> dict | None:
         "targets": scatter["targets"], "source": scatter["source"], "bcoef": bcoef,
         "starts": scatter["starts"], "given": given}
     return out
-
-
-def _group_sizes(plan) -> list:
-    """The number of kinds in each group of the plan's tables
-    (:func:`~symtmm.numeric.segments.kind_tables`: a group per family, one per condensed
-    kind, one per coupled size)."""
-    sizes: list = []
-    last = None
-    for family, consts in plan.kinds:
-        key = (family, consts[0]) if family == "coupled" else \
-            (family, len(sizes)) if family == "condensed" else family
-        if key != last:
-            sizes.append(0)
-            last = key
-        sizes[-1] += 1
-    return sizes
 
 
 def _kind_values(plan) -> list:

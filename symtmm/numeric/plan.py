@@ -172,7 +172,14 @@ def long_piece(segment, s: float, length: float, top2: float, nu_max: float = NU
     >>> math.ceil(1 / wave_piece(s, 1.0)), long_piece(seg, s, 1.0, top2=1.0)
     (34, 1.0)
     """
-    short = wave_piece(s, length, nu_max)
+    return _long_or_short(segment, s, length, top2, wave_piece(s, length, nu_max))
+
+
+def _long_or_short(segment, s: float, length: float, top2: float, short: float) -> float:
+    """The long piece of an Euler–Bernoulli stretch ``length`` long of ``segment``'s
+    constants, its largest wave number ``s``, where the short rule's ``short`` would cut it
+    into more than :data:`LONG_FROM` and the long piece is at least :data:`LONG_GAIN` times
+    longer; else ``short`` (:func:`long_piece`, :func:`layered_piece`)."""
     if length <= LONG_FROM * short:
         return short
     longest = min(length, _clamped_length(segment, top2), NU_LONG / s)
@@ -238,12 +245,9 @@ def layered_piece(own, bound, radius: float, top2: float, short: float) -> float
     >= 0`` to the energy, so the joined piece's first clamped-clamped ``omega**2`` is at
     least the least of its beams' own, ``(EI (beta_1 / l)**4 + kw) / m`` (each beam asked
     here for its own)."""
-    length = float(own.l)
-    if length <= LONG_FROM * short or not isinstance(own, EulerBernoulliSegment):
+    if not isinstance(own, EulerBernoulliSegment):
         return short
-    s = wave_number_bound(bound, radius)
-    longest = min(length, _clamped_length(own, top2), NU_LONG / s)
-    return longest if longest >= LONG_GAIN * short else short
+    return _long_or_short(own, wave_number_bound(bound, radius), float(own.l), top2, short)
 
 
 def _clamped_length(seg, top2: float) -> float:
@@ -388,8 +392,10 @@ class StiffnessPlan:
         Whether some piece is long: an Euler–Bernoulli one (:func:`long_piece`), whose
         stiffness then comes from the closed forms wherever its ``|x|`` exceeds
         ``NU_MAX**4``, or a condensed chain (:func:`condensed_piece`,
-        :func:`layered_piece`). The compiled kernels, whose series stop at a short piece's
-        ``|x|``, leave such a plan to numpy and Arb.
+        :func:`layered_piece`). The compiled ball kernel, whose series stop at a short
+        piece's ``|x|``, leaves such a plan to Arb; its double batches are built by the
+        compiled kernel, the long kinds' values given by numpy
+        (:func:`symtmm.numeric.multiword.double_band`).
 
     Examples
     --------
