@@ -139,6 +139,11 @@ def _imaginary(z) -> mpmath.mpc:
 #: A Rouche disk whose bound exceeds what the proof allows by more than this factor, times
 #: the radius still to grow, is given up with its box (:meth:`_Search._rouche_once`).
 _HOPELESS = 1e3
+#: ... and where the first box of a search's Rouche proofs misses by more than this factor at
+#: the first radius, the others are given up with it (:meth:`_Search._rouche_once`): the
+#: enclosures of the benchmarks' and examples' boxes exceed ``|Delta|`` by ``1e5 .. 1e8``,
+#: their ratios at the first radius are far below 1.
+_FAR_OUT = 1e40
 
 
 def _real(z) -> mpmath.mpc:
@@ -896,44 +901,77 @@ class _Search:
             for k in factors:
                 if not todo:
                     break
-                rho = {i: centres[i][1] * 10 ** k for i in todo}
-                boxes = [flint.acb(flint.arb(centres[i][0].real.mid(), rho[i]),
-                                   flint.arb(centres[i][0].imag.mid(), rho[i])) for i in todo]
-                # (the bits the narrowest box needs serve the wider ones too)
-                narrowest = min(float(rho[q] / abs(centres[q][0]).mid()) for q in todo)
+                tested = self._disks(todo[:1], k, centres, model, ar) \
+                    if k == factors[0] and len(todo) > 1 else []
+                if tested and tested[0][2] is not None and tested[0][2] > _FAR_OUT and \
+                        2 * model[todo[0]][0].abs_lower() > model[todo[0]][0].abs_upper():
+                    # the first box's enclosure exceeds what a disk of any radius could
+                    # use by far more than the disks' range: K is too ill-conditioned at
+                    # these points for the dense enclosure (its preconditioner, the
+                    # inverse of a nearly singular midpoint, loses the digits), which the
+                    # boxes of one search share (the slope known: more digits leave it so) (a campaign model with crowded modes of a
+                    # soft beam on a foundation: every box 1e83 beyond, 60 dense
+                    # determinants of 199 freedoms, 55 s, in vain)
+                    i, _, ratio = tested[0]
+                    margin[i], nearest[i] = ratio, k
+                    hopeless.update(todo)
+                    break
                 still = []
-                for i, bound in zip(todo, self.p.kernel.enclose(
-                        boxes, _box_arithmetic(ar, narrowest))):
-                    s, dist, reach = model[i]
-                    rr = centres[i][1]
-                    M = bound.abs_upper()
-                    lhs, rhs = 4 * M * reach * (rr + reach) / (rho[i] * rho[i]), \
-                        s.abs_lower() * dist
-                    if M.is_finite() and lhs < rhs:
+                done_first = {i for i, _, _ in tested}
+                for i, proved, ratio in tested + self._disks(
+                        [i for i in todo if i not in done_first], k, centres, model, ar):
+                    if proved:
                         out[i] = True
+                        continue
+                    s = model[i][0]
+                    if ratio is not None and (i not in margin or ratio < margin[i]):
+                        margin[i], nearest[i] = ratio, k
+                    # a larger disk lowers the ratio at best as its radius grows (M
+                    # grows at least like the slope times the radius), and more digits
+                    # leave it as it is once the slope is known: where no smaller disk
+                    # is left to try, a box out of reach of the largest is given up (an
+                    # ill-conditioned K, whose enclosures exceed |Delta| by 1e130: 90
+                    # dense determinants of 148 freedoms in vain)
+                    later = factors[factors.index(k) + 1:]
+                    if i in margin and not any(q < k for q in later) and \
+                            2 * s.abs_lower() > s.abs_upper() and \
+                            margin[i] > _HOPELESS * 10.0 ** (max(later, default=k) - k):
+                        hopeless.add(i)
                     else:
-                        if M.is_finite() and rhs > 0:
-                            ratio = float((lhs / rhs).mid())
-                            if i not in margin or ratio < margin[i]:
-                                margin[i], nearest[i] = ratio, k
-                        # a larger disk lowers the ratio at best as its radius grows (M
-                        # grows at least like the slope times the radius), and more digits
-                        # leave it as it is once the slope is known: where no smaller disk
-                        # is left to try, a box out of reach of the largest is given up (an
-                        # ill-conditioned K, whose enclosures exceed |Delta| by 1e130: 90
-                        # dense determinants of 148 freedoms in vain)
-                        later = factors[factors.index(k) + 1:]
-                        if i in margin and not any(q < k for q in later) and \
-                                2 * s.abs_lower() > s.abs_upper() and \
-                                margin[i] > _HOPELESS * 10.0 ** (max(later, default=k) - k):
-                            hopeless.add(i)
-                        else:
-                            still.append(i)
+                        still.append(i)
                 todo = still
             for i in model:
                 if nearest[i] is None and not out[i]:
                     nearest[i] = factors[0]
         return out, nearest, hopeless
+
+    def _disks(self, boxes, k, centres, model, ar) -> list:
+        """Rouche's test of the boxes ``boxes`` (indices) with disks of radius ``10**k r``:
+        per box ``(index, proved, ratio)``, ``ratio`` the test's left side over its right
+        (None where the enclosure is infinite or the slope not bounded from 0)."""
+        import flint
+
+        if not boxes:
+            return []
+        rho = {i: centres[i][1] * 10 ** k for i in boxes}
+        squares = [flint.acb(flint.arb(centres[i][0].real.mid(), rho[i]),
+                             flint.arb(centres[i][0].imag.mid(), rho[i])) for i in boxes]
+        # (the bits the narrowest box needs serve the wider ones too)
+        narrowest = min(float(rho[q] / abs(centres[q][0]).mid()) for q in boxes)
+        out = []
+        for i, bound in zip(boxes, self.p.kernel.enclose(
+                squares, _box_arithmetic(ar, narrowest))):
+            s, dist, reach = model[i]
+            rr = centres[i][1]
+            M = bound.abs_upper()
+            lhs, rhs = 4 * M * reach * (rr + reach) / (rho[i] * rho[i]), s.abs_lower() * dist
+            if M.is_finite() and lhs < rhs:
+                out.append((i, True, None))
+            elif M.is_finite() and rhs > 0:
+                out.append((i, False, float((lhs / rhs).mid())))
+            else:
+                out.append((i, False, None))
+        return out
 
     def _judge(self, s, zb, digits, conservative):
         """Accept ``zb`` (the refinement 15 digits higher) or say what the next round needs."""
