@@ -78,6 +78,68 @@ def test_rouche_encloses_each_square_once_where_the_first_radius_proves(monkeypa
     assert sum(enclosed) == 2           # (the first box alone, then the rest)
 
 
+# a campaign's model (two of its beams): a soft beam on a foundation in axial tension,
+# whose modes crowd 1e-6 and 6e-6 above its first, pinned near a stiff short beam whose
+# spring carries the model's only dashpot; the balls of its band lose 2**460 along it
+CROWDED_ON_FOUNDATION = """
+[[beam]]
+name = "b1"
+EI = 256000.0
+m = 0.00277
+L = 0.0553
+left = "pinned"
+right = "clamped"
+
+[[beam]]
+name = "b2"
+EI = 0.711
+m = 3.11
+L = 42.5
+left = "pinned"
+right = "sliding"
+kw = 3610.0
+N = 0.00194
+
+[[spring]]
+between = ["b1", "b2"]
+x = 0.01383
+k = 521000000.0
+c = 0.308
+
+[[spring]]
+between = ["b1", "b2"]
+x = 0.0
+k = 410.0
+"""
+
+
+def test_exact_points_whose_band_balls_run_out_of_bits_take_more_bits_not_dense(monkeypatch):
+    """Complex balls widen along a band geometrically (the wrapping of their products):
+    at 217 bits a soft beam on a foundation (199 freedoms) loses them all, and the Rouche
+    proofs' points (``retry=False``) went to Arb's dense determinant, a second each, no
+    narrower. They take the bits the radii need, within the band. The reference: the
+    transfer formulation at 300 digits (a second formulation)."""
+    from symtmm.compile import Evaluator
+    from symtmm.modelfile import loads
+    from symtmm.numeric.arith import Ball
+    from symtmm.numeric.evaluator import Evaluator as Kernel
+    from symtmm.numeric.stiffness import Factors
+    model = loads(CROWDED_ON_FOUNDATION).require_numeric()
+    kernel, transfer = Kernel(model, 140.0), Evaluator(model)
+    dense = []
+    monkeypatch.setattr(Factors, "pivoted_delta", lambda self, points: dense.append(points))
+    points = [mpmath.mpc(-1e-20, 34.0701), mpmath.mpc(0, 34.07)]
+    assert not any(v.abs_upper().is_finite() for v in
+                   kernel.factors(points, Ball(217), retry=False).delta())
+    values, trusted = kernel.delta(points, Ball(217), retry=False)
+    assert trusted.all() and not dense
+    for z, ball in zip(points, values):
+        exact = transfer.delta_mp(z, dps=300)
+        assert ball.contains(flint.acb(exact.real, exact.imag)) or \
+            abs(complex(ball.mid()) - complex(exact)) < 1e-40 * abs(exact)
+        assert ball.rad() < 1e-40 * abs(complex(ball.mid()))
+
+
 def test_a_band_ball_whose_last_pivot_holds_zero_still_holds_delta(monkeypatch):
     """Within 1e-55 of a root, at 200 bits, the band elimination cannot decide its last
     pivot (the one that carries the zero of Delta); its ball is finite and holds Delta,

@@ -444,6 +444,21 @@ class Evaluator:
         if ar.rigorous:
             trusted |= np.array([v.abs_upper().is_finite() for v in values], dtype=bool)
         bad = np.nonzero(~trusted)[0]
+        if bad.size and ar.rigorous and not retry and \
+                all(float(lam[i].rad()) == 0 if hasattr(lam[i], "rad") else True for i in bad):
+            # exact points whose balls ran out of bits along the band (the wrapping of
+            # complex balls widens the radii geometrically: 2**460 over 199 freedoms of a
+            # soft beam on a foundation) take the bits the radii need (:meth:`_ball`) before
+            # the dense determinant: O(n b**2) each, where Arb's dense one cost a second a
+            # point and its balls came out no narrower (a campaign model's Rouche points,
+            # 160 s of its 206)
+            again = self.factors([lam[i] for i in bad], ar)
+            redone = again.delta()
+            values = values.copy()
+            for i, v, ok in zip(bad, redone, again.trusted):
+                if ok or v.abs_upper().is_finite():
+                    values[i], trusted[i] = v, True
+            bad = np.nonzero(~trusted)[0]
         if bad.size:
             values = values.copy()
             for i, v in zip(bad, fa.pivoted_delta(bad)):
