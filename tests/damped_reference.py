@@ -244,3 +244,38 @@ def pp_roots_from_modes(modes, supports, steps=16, dps=40):
                 z = mpmath.findroot(f, (z, z + mpmath.mpc(1e-6, 1e-6)))
             out.append(z)
     return out
+
+
+# a campaign's model (two of its beams): a soft beam on a foundation in axial tension,
+# whose modes crowd 1e-6 and 6e-6 above its first, pinned near a stiff short beam whose
+# spring carries the model's only dashpot; the balls of its band lose 2**460 along it
+CROWDED_ON_FOUNDATION = """
+[[beam]]
+name = "b1"
+EI = 256000.0
+m = 0.00277
+L = 0.0553
+left = "pinned"
+right = "clamped"
+
+[[beam]]
+name = "b2"
+EI = 0.711
+m = 3.11
+L = 42.5
+left = "pinned"
+right = "sliding"
+kw = 3610.0
+N = 0.00194
+
+[[spring]]
+between = ["b1", "b2"]
+x = 0.01383
+k = 521000000.0
+c = 0.308
+
+[[spring]]
+between = ["b1", "b2"]
+x = 0.0
+k = 410.0
+"""

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import mpmath
 import pytest
-from damped_reference import ex4_reference, pp_char
+from damped_reference import CROWDED_ON_FOUNDATION, ex4_reference, pp_char
 
 from symtmm.cli import main
 from symtmm.errors import ComputationError
@@ -76,41 +76,6 @@ def test_rouche_encloses_each_square_once_where_the_first_radius_proves(monkeypa
         items = [(root, mpmath.mpf(10) ** -20 * abs(root)) for root in roots]
     assert search._rouche(items, 60) == [True, True]
     assert sum(enclosed) == 2           # (the first box alone, then the rest)
-
-
-# a campaign's model (two of its beams): a soft beam on a foundation in axial tension,
-# whose modes crowd 1e-6 and 6e-6 above its first, pinned near a stiff short beam whose
-# spring carries the model's only dashpot; the balls of its band lose 2**460 along it
-CROWDED_ON_FOUNDATION = """
-[[beam]]
-name = "b1"
-EI = 256000.0
-m = 0.00277
-L = 0.0553
-left = "pinned"
-right = "clamped"
-
-[[beam]]
-name = "b2"
-EI = 0.711
-m = 3.11
-L = 42.5
-left = "pinned"
-right = "sliding"
-kw = 3610.0
-N = 0.00194
-
-[[spring]]
-between = ["b1", "b2"]
-x = 0.01383
-k = 521000000.0
-c = 0.308
-
-[[spring]]
-between = ["b1", "b2"]
-x = 0.0
-k = 410.0
-"""
 
 
 def test_exact_points_whose_band_balls_run_out_of_bits_take_more_bits_not_dense(monkeypatch):

@@ -34,7 +34,13 @@ import mpmath
 import numpy as np
 import pytest
 import scipy.linalg
-from damped_reference import beam_char, pp_char, pp_damped_roots, pp_roots_from_modes
+from damped_reference import (
+    CROWDED_ON_FOUNDATION,
+    beam_char,
+    pp_char,
+    pp_damped_roots,
+    pp_roots_from_modes,
+)
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -884,6 +890,32 @@ def test_a_count_in_a_dense_spectrum_proves_few_eigenvalues(tmp_path, monkeypatc
     # (the eigenvalues its Rouche proofs enclosed, each maybe more than once: the model's
     # long pieces make a box's enclosure cheap, and wider, so some boxes take a second disk)
     assert len({complex(b.mid()) for b in boxes}) <= 12
+
+
+def test_a_count_keeps_the_eigenvalues_counted_above_a_lowered_top(tmp_path, monkeypatch):
+    """A soft beam on a foundation whose modes crowd 1e-6 and 6e-6 above its first (a
+    campaign model's two beams): the count's region was lowered onto the first, its
+    rectangles, a little taller than the top they are counted for, held the three, and
+    the answer cut the two above that top (1 eigenvalue printed for ``--count 3``). Its
+    Rouche boxes miss by 1e200 (the dense enclosure's preconditioner inverts a nearly
+    singular ``K``): the first box's miss gives up the others, one enclosure where each
+    box took two. Reference: the same model without its dashpot, which moves the
+    frequencies by 1e-44 (the undamped search, on the frequency axis)."""
+    from symtmm.numeric import evaluator
+
+    enclosed = []
+    enclose = evaluator.Evaluator.enclose
+    monkeypatch.setattr(evaluator.Evaluator, "enclose",
+                        lambda self, lam, ar: enclosed.append(len(lam)) or enclose(self, lam, ar))
+    path = tmp_path / "crowded.toml"
+    path.write_text(CROWDED_ON_FOUNDATION)
+    damped = solve(load(path), count=3, digits=15)
+    path.write_text(CROWDED_ON_FOUNDATION.replace("c = 0.308\n", ""))
+    undamped = solve(load(path), count=3, digits=15)
+    assert [decimal_string(e.lam.imag, 15) for e in damped] == \
+        [decimal_string(e.lam.imag, 15) for e in undamped]
+    assert all(-1e-18 < float(e.lam.real) < 0 for e in damped)
+    assert sum(enclosed) <= 1
 
 
 # a campaign's model: a very stiff short beam (b1) on soft springs beside a long soft beam

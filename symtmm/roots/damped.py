@@ -1605,13 +1605,26 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         if e.lam.real > 0:
             raise ComputationError(f"eigenvalue {e} has a positive real part: the model is "
                                    "not passive?")
-    # keep the region asked for
     tol = 4e-16
-    eigen = [e for e in eigen if e.lam.real >= -S * (1 + tol) - tol
-             and e.lam.imag <= W * (1 + tol) + tol]
+    if count is None:
+        # keep the region asked for
+        eigen = [e for e in eigen if e.lam.real >= -S * (1 + tol) - tol
+                 and e.lam.imag <= W * (1 + tol) + tol]
+    else:
+        # the lowest of those in the region counted: its rectangles reach a little beyond
+        # the top (and the strip's left edge) that they were counted for, and the count
+        # that says it holds ``count`` is theirs (three modes of a soft beam on a
+        # foundation 1e-6 and 6e-6 above the first: the top lowered onto it, the two
+        # counted above it, and cut from the answer, which held 1 where 3 were asked)
+        left = min(r.x0 for r, _, _ in cells)
+        eigen = [e for e in eigen if e.lam.real >= left * (1 + tol) - tol]
+        S, W = -left, max(r.y1 for r, _, _ in cells)      # (the region the note names)
     eigen.sort(key=lambda e: (e.lam.imag, e.lam.real))
     if count is not None:
         eigen = first(eigen, count)
+        if sum(e.multiplicity for e in eigen) < count:
+            raise ComputationError(f"the region counted to hold {count} eigenvalue(s) gave "
+                                   f"{sum(e.multiplicity for e in eigen)}")
     notes.insert(0, f"search region: {-S:.6g} <= Re lam <= 0, 0 <= Im lam <= {W:.6g} "
                     f"({total} eigenvalue(s) with Im lam >= 0 counted in the enlarged region)")
     if count_note:
