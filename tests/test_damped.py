@@ -892,6 +892,70 @@ def test_a_count_in_a_dense_spectrum_proves_few_eigenvalues(tmp_path, monkeypatc
     assert len({complex(b.mid()) for b in boxes}) <= 12
 
 
+_STIFF_PIN = """
+[[beam]]
+name = "stiff"
+EI = 157000000.0
+m = 0.00915
+L = 0.0414
+x0 = 0.5
+left = "pinned"
+right = "free"
+
+[[beam]]
+name = "b"
+EI = 1
+m = 1
+L = 1
+left = "pinned"
+right = "pinned"
+
+[[spring]]
+between = ["stiff", "b"]
+x = 0.5
+k = 100
+c = 0.5
+"""
+
+
+def test_points_no_pivoting_can_trust_go_to_the_balls_without_it(monkeypatch):
+    """A stiff short beam free to turn about its pin (from a campaign model): its static
+    stiffness cancels to a pivot 1e-15 of the others at every point, which no double
+    factorisation trusts, with pivoting or without. Once a plan's pivoted factorisations
+    have trusted none of their first points, its untrusted points go to the balls without
+    them, with the same digits. References: the spring and dashpot sit on the stiff beam's
+    pin, so the model is the pinned-pinned beam on a grounded spring and dashpot at
+    mid-span (its Green's-function characteristic equation; its second mode, 4 pi**2,
+    does not move them) beside the stiff beam's turning about its pin (lam = 0)."""
+    from symtmm.numeric import evaluator
+
+    rescued = []
+    pivoted = evaluator._pivoted_log_delta
+
+    def counted(fa, points=None):
+        out = pivoted(fa, points)
+        rescued.append(len(out[2]))
+        return out
+    monkeypatch.setattr(evaluator, "_pivoted_log_delta", counted)
+    model = loads(_STIFF_PIN)
+    spectrum = solve(model, count=3, digits=15)
+    with_record = sum(rescued)
+    monkeypatch.setattr(evaluator, "RESCUE_TRIAL", 10**9)
+    rescued.clear()
+    again = solve(loads(_STIFF_PIN), count=3, digits=15)
+    assert with_record < sum(rescued) / 2
+    with mpmath.workdps(40):
+        root = mpmath.findroot(lambda z: pp_char(z, 1, 1, 1, [(mpmath.mpf("0.5"), 100,
+                                                               mpmath.mpf("0.5"))]),
+                               mpmath.mpc(-0.47, 17.06))
+        refs = [mpmath.mpc(0), root, mpmath.mpc(0, 4 * mpmath.pi ** 2)]
+    for spec in (spectrum, again):
+        assert [e.multiplicity for e in spec] == [1, 1, 1]
+        for e, ref in zip(spec, refs):
+            for part, want in ((e.lam.real, ref.real), (e.lam.imag, ref.imag)):
+                assert decimal_string(part, 15) == decimal_string(want, 15)
+
+
 def test_a_count_keeps_the_eigenvalues_counted_above_a_lowered_top(tmp_path, monkeypatch):
     """A soft beam on a foundation whose modes crowd 1e-6 and 6e-6 above its first (a
     campaign model's two beams): the count's region was lowered onto the first, its
