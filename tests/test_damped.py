@@ -892,6 +892,75 @@ def test_a_count_in_a_dense_spectrum_proves_few_eigenvalues(tmp_path, monkeypatc
     assert len({complex(b.mid()) for b in boxes}) <= 12
 
 
+# a campaign's model: a short stiff beam, a heavy soft one on a foundation and a light one
+# free to slide, held by a spring and a dashpot: a real eigenvalue near -k / c
+_SLIDING_ON_A_DASHPOT = """
+[[beam]]
+name = "b0"
+EI = 69200000.0
+m = 0.0209
+L = 0.0661
+left = "sliding"
+right = "clamped"
+
+[[beam]]
+name = "b1"
+EI = 0.00771
+m = 1620.0
+L = 93.2
+left = "clamped"
+right = "free"
+theory = "rayleigh"
+rhoI = 65.7
+kw = 40.1
+
+[[beam]]
+name = "b2"
+EI = 0.0808
+m = 0.031
+L = 17.8
+left = "free"
+right = "sliding"
+
+[[spring]]
+between = ["b2", "b1"]
+x = 17.8
+k = 0.789
+c = 10.9
+
+[[spring]]
+between = ["b1", "b0"]
+x = 0.0
+k = 0.00899
+kind = "rotational"
+
+[[spring]]
+between = ["b0", "b1"]
+x = 0.0661
+k = 11700000.0
+c = 1.94
+"""
+
+
+def test_a_real_eigenvalue_reaches_30_digits_when_its_secant_steps_crawl():
+    """The pairs proving a real zero were placed 1e-33 apart about each secant estimate,
+    which here closed in on the zero by 1/60 a round from one side: no pair straddled it
+    within the rounds, at any precision ("cannot reach 30 digits"). The next pair is as
+    wide as twice the last step. Reference: the transfer formulation (a second one) at
+    200 digits (its walk along the soft beam on a foundation loses about 50) changes
+    sign between the printed value's neighbours in its 30th digit."""
+    model = loads(_SLIDING_ON_A_DASHPOT)
+    spectrum = solve(model, count=3, digits=30)
+    real = [e for e in spectrum if e.lam.imag == 0 and e.lam.real != 0]
+    assert len(real) == 1
+    ev = Evaluator(model.require_numeric())
+    with mpmath.workdps(200):
+        x = mpmath.mpf(decimal_string(real[0].lam.real, 30))
+        ulp = abs(x) * mpmath.mpf(10) ** -29
+        ends = [mpmath.re(ev.delta_mp(mpmath.mpc(x + d, 0), dps=200)) for d in (-ulp, ulp)]
+    assert ends[0] * ends[1] < 0
+
+
 _STIFF_PIN = """
 [[beam]]
 name = "stiff"

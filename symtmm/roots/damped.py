@@ -1185,7 +1185,14 @@ class _Search:
                         if crawl:
                             widths[i].clear()
                     else:
-                        h[i] = min(h[i], target)
+                        # the next pair as wide as twice this step: the secant's next error
+                        # lies within it unless it converges slower than by halves, so the
+                        # pair straddles the zero and proves it. (At the digits asked: a
+                        # real zero whose secant steps shrank by 1/60 a round, 1e-33 pairs
+                        # on one side of it, never straddling within the rounds, at 55 to
+                        # 621 digits, until the digits ran out)
+                        h[i] = min(h[i], max(target, 2 * abs(step - c[i]) /
+                                             max(abs(step), ctx.mpf(1e-300))))
                     c[i] = step
             if any(d is None for d in done):
                 digits += max(20, digits // 2)
