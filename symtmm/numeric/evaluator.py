@@ -71,6 +71,14 @@ def _pivoted_log_delta(fa, points=None) -> tuple:
     return logabs, phase, good
 
 
+def _pointlike(z, ar) -> bool:
+    """Whether ``z`` is a point (an mpmath number, or a ball no wider than the rounding of
+    ``ar``'s precision), not a box of the complex plane, whose radius no bits narrow."""
+    if not hasattr(z, "rad"):
+        return True
+    return float(z.rad()) <= abs(complex(z.mid())) * 2.0 ** (8 - ar.prec)
+
+
 #: Points a plan's pivoted factorisations in double precision are tried at before their
 #: record decides whether they go on (:func:`_rescue_pays`) ...
 RESCUE_TRIAL = 64
@@ -471,8 +479,7 @@ class Evaluator:
         if ar.rigorous:
             trusted |= np.array([v.abs_upper().is_finite() for v in values], dtype=bool)
         bad = np.nonzero(~trusted)[0]
-        if bad.size and ar.rigorous and not retry and \
-                all(float(lam[i].rad()) == 0 if hasattr(lam[i], "rad") else True for i in bad):
+        if bad.size and ar.rigorous and not retry and all(_pointlike(lam[i], ar) for i in bad):
             # exact points whose balls ran out of bits along the band (the wrapping of
             # complex balls widens the radii geometrically: 2**460 over 199 freedoms of a
             # soft beam on a foundation) take the bits the radii need (:meth:`_ball`) before

@@ -906,12 +906,13 @@ class _Search:
                 if tested and tested[0][2] is not None and tested[0][2] > _FAR_OUT and \
                         2 * model[todo[0]][0].abs_lower() > model[todo[0]][0].abs_upper():
                     # the first box's enclosure exceeds what a disk of any radius could
-                    # use by far more than the disks' range: K is too ill-conditioned at
-                    # these points for the dense enclosure (its preconditioner, the
-                    # inverse of a nearly singular midpoint, loses the digits), which the
-                    # boxes of one search share (the slope known: more digits leave it so) (a campaign model with crowded modes of a
-                    # soft beam on a foundation: every box 1e83 beyond, 60 dense
-                    # determinants of 199 freedoms, 55 s, in vain)
+                    # use by far more than the disks' range, its slope known (more digits
+                    # leave the ratio as it is): K is too ill-conditioned at these points
+                    # for the dense enclosure (its preconditioner, the inverse of a nearly
+                    # singular midpoint, loses the digits), which the boxes of one search
+                    # share (a campaign model with crowded modes of a soft beam on a
+                    # foundation: every box 1e83 beyond, 60 dense determinants of 199
+                    # freedoms, 55 s, in vain)
                     i, _, ratio = tested[0]
                     margin[i], nearest[i] = ratio, k
                     hopeless.update(todo)
