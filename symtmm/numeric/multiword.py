@@ -211,23 +211,20 @@ def _double_inputs(plan, lam2, lam):
 
 def _given(tabs: dict, lam2, lam=None) -> np.ndarray:
     """``(B, G, 17)``: per point the 16 entries and ``det U12`` of each kind the compiled
-    kernel is given (:data:`_GIVEN`), in the kinds' order: long Euler–Bernoulli kinds by
-    numpy's closed forms beyond a short piece's ``|x|`` and its series within, the other
-    4-state kinds by :func:`~symtmm.numeric.stiffness.stiffness_values`, as
-    :func:`~symtmm.numeric.stiffness.assemble` takes them: the same numbers, vectorised
-    over the batch."""
+    kernel is given (:data:`_GIVEN`), in the kinds' order, by
+    :func:`~symtmm.numeric.stiffness.stiffness_values` as
+    :func:`~symtmm.numeric.stiffness.assemble` takes them (long Euler–Bernoulli kinds by
+    the closed forms beyond a short piece's ``|x|`` and the series within): the same
+    numbers, vectorised over the batch."""
     from .arith import DOUBLE
-    from .stiffness import LONG_X, eb_closed_stiffness, stiffness_values
+    from .stiffness import stiffness_values
     lam2 = np.asarray(lam2)
     B = lam2.shape[0]
     parts = [np.empty((B, 0, 17), dtype=lam2.dtype)]
     # (a value beyond the doubles fails its point, which numpy then takes whole)
     with np.errstate(all="ignore"):
-        for what, table in tabs["given"]:
-            if what == "long":
-                D, det = eb_closed_stiffness(DOUBLE, table, lam2, threshold=LONG_X)
-            else:
-                D, det = stiffness_values(DOUBLE, [table], lam2, lam, long=True)
+        for table in tabs["given"]:
+            D, det = stiffness_values(DOUBLE, [table], lam2, lam, long=True)
             G = det.shape[1]
             part = np.empty((B, G, 17), dtype=np.result_type(D, det))
             part[:, :, :16] = D.reshape(B, G, 16)
@@ -620,7 +617,7 @@ def _double_tables(plan) -> dict | None:
             count = 1 if family == "condensed" else len(consts["l"])
             kinds.append(np.zeros((count, 8)))
             families += [_GIVEN] * count
-            given.append(("values", (family, consts)))
+            given.append((family, consts))
             continue
         cols = [np.asarray(consts[c], dtype=float) for c in _COLUMNS[family]]
         block = np.zeros((cols[0].size, 8))
@@ -633,8 +630,8 @@ def _double_tables(plan) -> dict | None:
             long = plan.radius * np.abs(consts["A"]) + np.abs(consts["F"]) >= LONG_X
             if long.any():
                 codes[long] = _GIVEN
-                given.append(("long", {c: np.asarray(consts[c])[long]
-                                       for c in _COLUMNS[family]}))
+                given.append(("eb", {c: np.asarray(consts[c])[long]
+                                     for c in _COLUMNS[family]}))
         families += codes.tolist()
     kinds = np.concatenate(kinds)
     bcoef = np.concatenate([np.zeros(0)] + [np.asarray(c, dtype=float) for _, _, c in t["layers"]])
