@@ -1033,8 +1033,10 @@ def test_a_count_keeps_the_eigenvalues_counted_above_a_lowered_top(tmp_path, mon
     Rouche boxes miss by 1e200 (the dense enclosure's preconditioner inverts a nearly
     singular ``K``): the first box's miss gives up the others, one enclosure where each
     box took two. Reference: the same model without its dashpot, which moves the
-    frequencies by under 1e-28 (the two agree to 29 digits; the undamped search, on the
-    frequency axis)."""
+    frequencies by under 1e-28 (the two agree to 29 digits): the undamped search, on the
+    frequency axis, and the transfer formulation's Delta of it (a second formulation, at
+    220 digits: its walk along the soft beam loses about 160), which changes sign across
+    each printed frequency."""
     from symtmm.numeric import evaluator
 
     enclosed = []
@@ -1050,6 +1052,12 @@ def test_a_count_keeps_the_eigenvalues_counted_above_a_lowered_top(tmp_path, mon
         [decimal_string(e.lam.imag, 15) for e in undamped]
     assert all(-1e-18 < float(e.lam.real) < 0 for e in damped)
     assert sum(enclosed) <= 1
+    transfer = Evaluator(load(path).require_numeric())
+    with mpmath.workdps(220):
+        for e in damped:
+            w = mpmath.mpf(decimal_string(e.lam.imag, 15))
+            ends = [transfer.delta_omega_mp(w * (1 + d), dps=220) for d in (-1e-14, 1e-14)]
+            assert ends[0] * ends[1] < 0
 
 
 # a campaign's model: a very stiff short beam (b1) on soft springs beside a long soft beam
