@@ -395,6 +395,50 @@ def test_long_free_beam_in_tension_beside_another_beam():
     assert np.allclose(got, expected, rtol=1e-8, atol=1e-12)
 
 
+# -- rotary inertia on a foundation: the dispersion's minimum -------------------------------
+# A campaign's beam (rhoI / m the square of 11 m, kw 1.7e5): ``omega**2 = (EI q**2 + kw) / (m
+# + rhoI q)`` falls from kw / m to a minimum near q = sqrt(kw / EI), 232 half-waves along it.
+HEAVY = dict(EI=3, m="99/20", L="473/10", theory="rayleigh", rhoI=617, kw=170000)
+
+
+def test_rayleigh_beam_whose_lowest_modes_lie_at_many_half_waves():
+    """The search counts near the dispersion's minimum, 100 times below the first mode's
+    frequency: the lowest three at 20 digits against the closed form, under a 20 s budget
+    (the first count was taken at the first mode, 148.9 rad/s, where a Weyl estimate that
+    took the larger of two travelling wave numbers for the count put the range: 34,472
+    pieces, past the 60 s budget)."""
+    beam = Beam("b", left="pinned", right="pinned", **HEAVY)
+    spectrum = solve(Model((beam,)), count=3, digits=20, max_seconds=20)
+    with mpmath.workdps(DPS):
+        ref = _pinned_pinned(HEAVY["EI"], HEAVY["m"], HEAVY["L"], rhoI=HEAVY["rhoI"],
+                             kw=HEAVY["kw"], n_max=400)[:3]
+        _assert_spectrum(spectrum, ref, 20)
+    assert float(ref[0]) < 1.53 and float(ref[0]) < _pinned_pinned(
+        HEAVY["EI"], HEAVY["m"], HEAVY["L"], rhoI=HEAVY["rhoI"], kw=HEAVY["kw"], n_max=1)[0] / 90
+
+
+@pytest.mark.parametrize("fields, omegas, n_max", [
+    (HEAVY, [1.0, 1.5215, 1.53, 2.0, 10.0, 200.0], 45000),     # a minimum, then one wave
+    (dict(EI=1, m=1, L=10, theory="timoshenko", rhoI="1/50", kGA=30, kw=0),
+     [3.0, 38.0, 39.0, 60.0, 200.0], 300),                      # the second spectrum at 38.7
+    (dict(EI=1, m=1, L=10, N=-2, kw=5), [1.0, 3.0, 30.0], 300),  # compression on a foundation
+])
+def test_weyl_estimate_counts_pinned_modes(fields, omegas, n_max):
+    """``counting_wave_number * L / pi`` counts the pinned-pinned modes below ``omega`` to
+    within one per dispersion branch (the closed form's count)."""
+    beam = Beam("b", left="pinned", right="pinned", **fields)
+    seg = beam.segment(beam.L)
+    with mpmath.workdps(20):
+        ref = _pinned_pinned(fields["EI"], fields["m"], fields["L"], fields.get("N", 0),
+                             fields.get("rhoI", 0), fields.get("kGA"), fields.get("kw", 0),
+                             n_max=n_max)
+    assert ref[-1] > max(omegas)                 # (every mode below the largest omega)
+    for omega in omegas:
+        weyl = seg.counting_wave_number(omega) * float(beam.L) / math.pi
+        exact = sum(1 for w in ref if w < omega)
+        assert abs(weyl - exact) <= 2, (omega, weyl, exact)
+
+
 # -- damped models ----------------------------------------------------------------------------
 TIMO = dict(theory="timoshenko", rhoI="1/50", kGA=30)
 

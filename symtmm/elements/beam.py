@@ -126,15 +126,16 @@ class EulerBernoulliSegment(FieldElement):
         EI, m, _, kw = (consts if consts is not None else self.constants())[:4]
         return np.abs((m * np.asarray(lam2, dtype=complex) + kw) / EI) ** 0.25
 
-    def propagating_wave_number(self, omega: float, consts=None) -> float:
-        """The wave number of the waves that travel at ``omega``: ``((m omega**2 - kw) /
-        EI)**(1/4)``, 0 below the foundation's cut-off (every wave evanescent there).
+    def counting_wave_number(self, omega: float, consts=None) -> float:
+        """``pi`` times the modes per unit length below ``omega`` (Weyl): the wave number
+        ``((m omega**2 - kw) / EI)**(1/4)`` of the waves that travel at ``omega``, 0 below
+        the foundation's cut-off (every wave evanescent there).
 
         Examples
         --------
-        >>> EulerBernoulliSegment(1, 1, 1).propagating_wave_number(9.0)
+        >>> EulerBernoulliSegment(1, 1, 1).counting_wave_number(9.0)
         3.0
-        >>> EulerBernoulliSegment(1, 1, 1, kw=100).propagating_wave_number(9.0)
+        >>> EulerBernoulliSegment(1, 1, 1, kw=100).counting_wave_number(9.0)
         0.0
         """
         EI, m, _, kw = (consts if consts is not None else self.constants())[:4]

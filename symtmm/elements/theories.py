@@ -224,29 +224,52 @@ class BeamSegment(FieldElement):
         d = mu * (a * a - b * c) / EI
         return (abs(t) / 2 + (abs(t) ** 2 / 4 + abs(d)) ** 0.5) ** 0.5
 
-    def propagating_wave_number(self, omega: float, consts=None) -> float:
-        """The wave number of the waves that travel at ``omega`` (floats): ``sqrt(-r)`` for
-        the negative eigenvalue ``r`` of ``G`` (``r**2 - t r + d = 0``), 0 if none.
+    def counting_wave_number(self, omega: float, consts=None) -> float:
+        """``pi`` times the modes per unit length below ``omega`` (Weyl; floats).
 
-        The modes of a beam come about one per ``pi`` of this times its length (Weyl), where
+        The wave numbers ``s`` of the waves that travel at ``omega`` are ``sqrt(q)``
+        for the positive roots ``q = -r`` of ``r**2 - t r + d = 0``; ``n0`` branches of the
+        dispersion lie below ``omega`` at ``s = 0`` (``omega**2`` above ``kw / m``, and
+        above ``kGA / rhoI``: the second spectrum), and one leaves at each root. So
+        the wave numbers of the modes below ``omega`` measure ``n0 s2 + (s1 - s2)``
+        (``s1 >= s2`` the roots, ``s2 = 0`` where only one is positive): ``s1`` for a
+        beam whose dispersion rises from ``kw / m``, ``s1 + s2`` above a Timoshenko
+        beam's second spectrum, ``s1 - s2`` where rotary inertia on a foundation bends
+        the dispersion down to a minimum (its lowest modes crowd there, hundreds of
+        half-waves along the beam) and 0 below that minimum (``r`` complex). The modes of
+        a beam come about one per ``pi`` of this times its length, where
         :meth:`wave_number` bounds the largest, evanescent one: under a tension ``N`` the
         two differ (a taut string's ``omega sqrt(m / N)`` against ``sqrt(N / EI)``).
 
         Examples
         --------
         >>> seg = BeamSegment(1, 1, 1, N=0)                  # Euler-Bernoulli: beta
-        >>> round(seg.propagating_wave_number(9.0), 12)
+        >>> round(seg.counting_wave_number(9.0), 12)
         3.0
         >>> taut = BeamSegment("1/10000", 1, 1, N=100)       # nearly a string: omega / 10
-        >>> round(taut.propagating_wave_number(50.0), 3)
+        >>> round(taut.counting_wave_number(50.0), 3)
         5.0
+        >>> heavy = BeamSegment(1, 1, 1, kw=10**4, rhoI=100)  # minimum near omega = 1.41
+        >>> heavy.counting_wave_number(1.0), round(heavy.counting_wave_number(1.5), 3)
+        (0.0, 5.002)
         """
         EI, m, _, kw, N, rhoI, kGA = consts if consts is not None else self.constants()
-        a, b, c, mu = _coefficients(-float(omega) ** 2, m, kw, N, rhoI, kGA, np)
+        w2 = float(omega) ** 2
+        a, b, c, mu = _coefficients(-w2, m, kw, N, rhoI, kGA, np)
         t = c / EI - b * mu
         d = mu * (a * a - b * c) / EI
-        low = (t - math.sqrt(max(t * t - 4 * d, 0.0))) / 2
-        return math.sqrt(-low) if low < 0 else 0.0
+        disc = t * t - 4 * d
+        if disc < 0:
+            return 0.0                                  # no wave travels
+        # the roots q = -r of q**2 + t q + d = 0, q1 >= q2, each without cancellation
+        far = -(t + math.copysign(math.sqrt(disc), t)) / 2
+        near = d / far if far != 0 else 0.0
+        q1, q2 = max(far, near), min(far, near)
+        if q1 <= 0:
+            return 0.0
+        s1, s2 = math.sqrt(q1), math.sqrt(max(q2, 0.0))
+        n0 = (kw < m * w2) + (not math.isinf(kGA) and 0 < rhoI and kGA < rhoI * w2)
+        return n0 * s2 + (s1 - s2)
 
     def clamped_frequency_bound(self, length: float) -> float:
         """A lower bound on ``omega**2`` of the clamped-clamped modes of a piece ``length`` long.
