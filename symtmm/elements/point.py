@@ -22,6 +22,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .base import LAM, PointElement
+from .spring import SpringBetween, SpringToGround
 
 __all__ = ["LumpedMass", "RotationalCoupling", "RotationalGroundSpring"]
 
@@ -58,7 +59,7 @@ class LumpedMass(PointElement):
         return sp.diag(self.M * lam**2, self.J * lam**2)
 
 
-class RotationalCoupling(PointElement):
+class RotationalCoupling(SpringBetween):
     """Rotational spring/dashpot between level ``a`` and level ``b``.
 
     Carries the moment ``(k + c lam)(Theta_b - Theta_a)`` on ``a`` and its
@@ -70,24 +71,10 @@ class RotationalCoupling(PointElement):
     Matrix([[0, 5, 1, 0, 0, -5, 0, 0]])
     """
 
-    levels = 2
     dofs = ((0, "Theta"), (1, "Theta"))
 
-    def __init__(self, a: str, b: str, k, c=0):
-        self.beams = (a, b)
-        self.k = sp.sympify(k)
-        self.c = sp.sympify(c)
 
-    @property
-    def parameters(self) -> dict:
-        return {"k": self.k, "c": self.c}
-
-    def stiffness(self, lam=LAM) -> sp.Matrix:
-        kc = self.k + self.c * lam
-        return sp.Matrix([[kc, -kc], [-kc, kc]])
-
-
-class RotationalGroundSpring(PointElement):
+class RotationalGroundSpring(SpringToGround):
     """Rotational spring/dashpot from level ``a`` to the ground: ``M+ = M- + (k + c lam) Theta``.
 
     Examples
@@ -96,17 +83,4 @@ class RotationalGroundSpring(PointElement):
     3
     """
 
-    levels = 1
     dofs = ((0, "Theta"),)
-
-    def __init__(self, a: str, k, c=0):
-        self.beams = (a,)
-        self.k = sp.sympify(k)
-        self.c = sp.sympify(c)
-
-    @property
-    def parameters(self) -> dict:
-        return {"k": self.k, "c": self.c}
-
-    def stiffness(self, lam=LAM) -> sp.Matrix:
-        return sp.Matrix([[self.k + self.c * lam]])

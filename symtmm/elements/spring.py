@@ -9,21 +9,12 @@ from .base import LAM, PointElement
 __all__ = ["Coupling", "GroundSpring"]
 
 
-class Coupling(PointElement):
-    """Spring/dashpot between level ``a`` and level ``b``.
-
-    Carries ``F = (k + c lam)(Y_b - Y_a)`` on ``a`` and ``-F`` on ``b``.
-
-    Examples
-    --------
-    >>> Coupling("a", "b", k=2, c=1).stiffness(sp.Symbol("lam"))
-    Matrix([
-    [ lam + 2, -lam - 2],
-    [-lam - 2,  lam + 2]])
-    """
+class SpringBetween(PointElement):
+    """A spring ``k`` and a dashpot ``c`` in parallel between one freedom (``dofs``, set by
+    a subclass) of level ``a`` and the same freedom of level ``b``: ``S = (k + c lam)
+    [[1, -1], [-1, 1]]``."""
 
     levels = 2
-    dofs = ((0, "Y"), (1, "Y"))
 
     def __init__(self, a: str, b: str, k, c=0):
         self.beams = (a, b)
@@ -39,17 +30,11 @@ class Coupling(PointElement):
         return sp.Matrix([[kc, -kc], [-kc, kc]])
 
 
-class GroundSpring(PointElement):
-    """Spring/dashpot from level ``a`` to the ground: ``Q+ = Q- - (k + c lam) Y``.
-
-    Examples
-    --------
-    >>> GroundSpring("a", k=3).transfer_matrix()[3, 0]
-    -3
-    """
+class SpringToGround(PointElement):
+    """A spring ``k`` and a dashpot ``c`` in parallel from one freedom (``dofs``, set by a
+    subclass) of level ``a`` to the ground: ``S = [[k + c lam]]``."""
 
     levels = 1
-    dofs = ((0, "Y"),)
 
     def __init__(self, a: str, k, c=0):
         self.beams = (a,)
@@ -62,3 +47,31 @@ class GroundSpring(PointElement):
 
     def stiffness(self, lam=LAM) -> sp.Matrix:
         return sp.Matrix([[self.k + self.c * lam]])
+
+
+class Coupling(SpringBetween):
+    """Spring/dashpot between level ``a`` and level ``b``.
+
+    Carries ``F = (k + c lam)(Y_b - Y_a)`` on ``a`` and ``-F`` on ``b``.
+
+    Examples
+    --------
+    >>> Coupling("a", "b", k=2, c=1).stiffness(sp.Symbol("lam"))
+    Matrix([
+    [ lam + 2, -lam - 2],
+    [-lam - 2,  lam + 2]])
+    """
+
+    dofs = ((0, "Y"), (1, "Y"))
+
+
+class GroundSpring(SpringToGround):
+    """Spring/dashpot from level ``a`` to the ground: ``Q+ = Q- - (k + c lam) Y``.
+
+    Examples
+    --------
+    >>> GroundSpring("a", k=3).transfer_matrix()[3, 0]
+    -3
+    """
+
+    dofs = ((0, "Y"),)
