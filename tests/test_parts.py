@@ -4,14 +4,18 @@ are solved apart on the frequency axis (:mod:`symtmm.roots.apart`)."""
 from __future__ import annotations
 
 import json
+from fractions import Fraction
 
 import mpmath
+import pytest
 from cli_contract import assert_contract, run_cli
+from damped_reference import pp_damped_roots
 
 from symtmm.model import Attachment, Beam, Layer, Model, RigidBody, Spring
 from symtmm.modelfile import loads
 from symtmm.modes import mode_shapes
 from symtmm.parts import beam_groups, parts
+from symtmm.roots import apart
 from symtmm.solve import solve
 
 
@@ -166,3 +170,62 @@ def test_modes_of_an_undamped_part_stay_on_the_imaginary_axis():
     lam = modes[1].eigenvalue.lam
     with mpmath.workdps(30):
         assert lam.real == 0 and abs(lam.imag - mpmath.pi ** 2) < 1e-13
+
+
+#: A pinned-pinned beam with a spring and dashpot at 0.3 of its span (every low mode damped)
+#: beside a free-free beam (two rigid-body modes, then (4.730 / L)**2 ...).
+DASHPOT_BESIDE_A_FREE_BEAM = """
+[[beam]]
+name = "a"
+EI = 1
+m = 1
+L = 1
+left = "pinned"
+right = "pinned"
+
+[[beam]]
+name = "b"
+EI = 1
+m = 1
+L = 1
+left = "free"
+right = "free"
+
+[[spring]]
+between = ["a", "ground"]
+x = 0.3
+k = 20
+c = 4
+"""
+
+
+@pytest.mark.parametrize("count, damped_from", [(3, 1), (5, 2)])
+def test_each_part_is_solved_for_the_places_it_takes(monkeypatch, count, damped_from):
+    """The lowest ``count`` of both parts, each part solved for no more than it may give
+    (rather than ``count`` each: a damped part whose next eigenvalues crowd, 58 s where
+    two were asked and one taken, now 4 s). Reference: the damped beam's roots by its
+    Green's function (tests/damped_reference.py), the free beam's closed form
+    ``cos x cosh x = 1`` and its two rigid-body modes."""
+    asked = []
+    real_solve = apart.solve_damped
+
+    def recording(model, count=None, **kw):
+        asked.append(count)
+        return real_solve(model, count=count, **kw)
+
+    monkeypatch.setattr(apart, "solve_damped", recording)
+    spectrum = solve(loads(DASHPOT_BESIDE_A_FREE_BEAM), count=count, digits=15)
+    damped = pp_damped_roots(1, 1, 1, [(Fraction(3, 10), 20, 4)], 100)
+    with mpmath.workdps(30):
+        free = [mpmath.findroot(lambda x: mpmath.cos(x) * mpmath.cosh(x) - 1, x0) ** 2
+                for x0 in (4.73, 7.85)]
+    expected = sorted([(0, 0), (0, 0)] + [(float(z.imag), float(z.real)) for z in damped[:3]]
+                      + [(float(w), 0.0) for w in free])[:count]
+    got = [(float(e.lam.imag), float(e.lam.real)) for e in spectrum
+           for _ in range(e.multiplicity)]
+    assert len(got) == count
+    for (gi, gr), (ei, er) in zip(got, expected):
+        assert abs(gi - ei) <= 1e-12 * max(ei, 1) and abs(gr - er) <= 1e-12 * max(abs(ei), 1)
+    # the damped part gives the lowest damped_from; solved for at most one more
+    assert sum(1 for _, r in got if r != 0) == damped_from
+    assert max(asked) <= damped_from + 1 < count

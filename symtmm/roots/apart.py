@@ -74,19 +74,68 @@ def _names(model: Model) -> str:
     return ", ".join(b.name for b in model.beams)
 
 
+def _key(e: Eigenvalue):
+    return (e.lam.imag, e.lam.real)
+
+
+def _lowest(solvers, count: int):
+    """``(counts, spectra, evaluations spent on spectra left behind)``: each part solved
+    (``solvers[p](c)``) for as many eigenvalues as the ``count`` lowest of the model take
+    from it.
+
+    A part solved for all ``count`` may search far for eigenvalues the other part's
+    already outrank: a heavy Rayleigh beam on a foundation, damped, whose second
+    eigenvalue is the lowest of hundreds crowding near its dispersion's minimum, where
+    the undamped part's rigid-body mode came before its first (a campaign model: 24
+    eigenvalues counted, then isolated and proved, past the 60 s budget, for two asked).
+    So each part is first solved for one; a part whose last eigenvalue lies below the
+    ``count``-th of both together is solved again for the places left to it (``count``
+    less the other part's eigenvalues up to its last), until none does or it has been
+    solved for ``count``. A part's next eigenvalue lies above its last (``first`` keeps a
+    multiple one whole), so those it was not solved for lie above the ``count``-th.
+    """
+    counts = [1] * len(solvers)
+    spectra = [solve(1) for solve in solvers]
+    spent = 0
+    while True:
+        kept = first(sorted((e for s in spectra for e in s), key=_key), count)
+        cut = _key(kept[-1]) if sum(e.multiplicity for e in kept) >= count else None
+        grown = False
+        for p, s in enumerate(spectra):
+            if counts[p] >= count or (cut is not None and s and _key(s[-1]) >= cut):
+                continue
+            last = _key(s[-1]) if s else None
+            below = sum(e.multiplicity for q, o in enumerate(spectra) if q != p for e in o
+                        if last is not None and _key(e) <= last)
+            counts[p] = min(count, max(counts[p] + 1, count - below))
+            spent += s.evaluations
+            spectra[p] = solvers[p](counts[p])
+            grown = True
+        if not grown:
+            return counts, spectra, spent
+
+
 def solve_apart(model: Model, damped: Model, undamped: Model, count, omega_max, sigma_max,
                 digits: int, prove_count: bool = False) -> Spectrum:
     """The eigenvalues of ``model`` from those of its ``damped`` and ``undamped`` parts
     (:func:`split`), as :func:`symtmm.roots.damped.solve_damped` gives them."""
     start = time.perf_counter()
+    asked = [count, count]                 # (the counts each part is solved for)
 
     def both(d):
-        return (solve_damped(damped, count=count, omega_max=omega_max, sigma_max=sigma_max,
-                             digits=d, prove_count=prove_count),
-                solve_undamped(undamped, count=count, omega_max=omega_max, digits=d))
+        return (solve_damped(damped, count=asked[0], omega_max=omega_max,
+                             sigma_max=sigma_max, digits=d, prove_count=prove_count),
+                solve_undamped(undamped, count=asked[1], omega_max=omega_max, digits=d))
 
-    ds, us = both(digits)
-    evaluations = ds.evaluations + us.evaluations
+    spent = 0
+    if count is None:
+        ds, us = both(digits)
+    else:
+        asked, (ds, us), spent = _lowest(
+            (lambda c: solve_damped(damped, count=c, sigma_max=sigma_max, digits=digits,
+                                    prove_count=prove_count),
+             lambda c: solve_undamped(undamped, count=c, digits=digits)), count)
+    evaluations = spent + ds.evaluations + us.evaluations
     alike = _pairs_alike(ds, us, digits)
     if any(ds[i].lam != 0 for i, _ in alike):
         # (told apart as the searches tell the eigenvalues of one part apart: each
