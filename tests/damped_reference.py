@@ -29,9 +29,10 @@ def pp_green(beta, a, b, L):
     return (t1 + t2) / (2 * beta**3)
 
 
-def pp_char(lam, EI, m, L, supports):
-    """``det(I + diag(k_i + c_i lam) G / EI)`` for grounded supports ``(x, k, c)``."""
-    beta = mpmath.root(-m * lam**2 / EI, 4)
+def pp_char(lam, EI, m, L, supports, kw=0):
+    """``det(I + diag(k_i + c_i lam) G / EI)`` for grounded supports ``(x, k, c)`` (a
+    foundation ``kw``: ``beta**4 = -(m lam**2 + kw) / EI``)."""
+    beta = mpmath.root(-(m * lam**2 + kw) / EI, 4)
     n = len(supports)
     A = mpmath.matrix(n, n)
     for i, (xi, ki, ci) in enumerate(supports):
@@ -40,9 +41,10 @@ def pp_char(lam, EI, m, L, supports):
     return mpmath.det(A)
 
 
-def _pp_axis_function(EI, m, L, supports):
-    """The undamped characteristic function on lam = i omega in floats, without poles."""
-    EI, m, L = float(EI), float(m), float(L)
+def _pp_axis_function(EI, m, L, supports, kw=0):
+    """The undamped characteristic function on lam = i omega in floats, without poles
+    (above a foundation's cut-off ``sqrt(kw / m)``)."""
+    EI, m, L, kw = float(EI), float(m), float(L), float(kw)
     sup = [(float(x), float(k)) for x, k, _ in supports]
 
     def green(beta, a, b):
@@ -52,7 +54,7 @@ def _pp_axis_function(EI, m, L, supports):
         return t1, t2
 
     def f(w):
-        beta = math.sqrt(w) * (m / EI) ** 0.25
+        beta = ((m * w * w - kw) / EI) ** 0.25
         s = math.sin(beta * L)
         A = np.empty((len(sup), len(sup)))
         for i, (xi, ki) in enumerate(sup):
@@ -72,15 +74,17 @@ def _mp(value):
     return mpmath.mpf(value)
 
 
-def pp_damped_roots(EI, m, L, supports, omega_scan, steps=8, dps=30):
-    """Roots (Im >= 0) of a pinned-pinned beam with grounded spring/dashpots ``(x, k, c)``.
+def pp_damped_roots(EI, m, L, supports, omega_scan, steps=8, dps=30, kw=0, points=3000):
+    """Roots (Im >= 0) of a pinned-pinned beam with grounded spring/dashpots ``(x, k, c)``
+    (on a foundation ``kw``: its modes above the cut-off ``sqrt(kw / m)``).
 
     The undamped roots below ``omega_scan`` are bracketed by sign changes on the
-    frequency axis (a grid finer than their spacing), then followed with
+    frequency axis (a grid of ``points``, finer than their spacing), then followed with
     mpmath.findroot while the dashpots grow from 0 to their values.
     """
-    f = _pp_axis_function(EI, m, L, [(float(x), float(k), 0) for x, k, _ in supports])
-    grid = np.linspace(1e-3, omega_scan, 3000)
+    f = _pp_axis_function(EI, m, L, [(float(x), float(k), 0) for x, k, _ in supports], kw)
+    low = math.sqrt(float(kw) / float(m)) * (1 + 1e-12) if kw else 1e-3
+    grid = np.linspace(low, omega_scan, points)
     values = [f(w) for w in grid]
     starts = [0.5 * (a + b) for a, b, fa, fb in zip(grid, grid[1:], values, values[1:])
               if fa * fb < 0]
@@ -90,12 +94,12 @@ def pp_damped_roots(EI, m, L, supports, omega_scan, steps=8, dps=30):
         supports = [(_mp(x), _mp(k), _mp(c)) for x, k, c in supports]
         for w0 in starts:
             z = mpmath.mpc(0, w0)
-            n = round(float(mpmath.sqrt(w0 / mpmath.sqrt(EI / m)) * L / mpmath.pi))
+            n = round(((float(m) * w0 * w0 - float(kw)) / float(EI)) ** 0.25 * float(L) / math.pi)
             if n and all(abs(mpmath.sin(n * mpmath.pi * x / L)) < 1e-12 for x, _, _ in supports):
                 continue    # a pinned-pinned mode with a node at every support (G has a pole)
             for s in range(steps + 1):
                 sup = [(x, k, c * mpmath.mpf(s) / steps) for x, k, c in supports]
-                z = mpmath.findroot(lambda q, sup=sup: pp_char(q, EI, m, L, sup),
+                z = mpmath.findroot(lambda q, sup=sup: pp_char(q, EI, m, L, sup, _mp(kw)),
                                     (z, z + mpmath.mpc(1e-3, 1e-3)))
             roots.append(z)
     return roots

@@ -1329,3 +1329,30 @@ def test_a_real_bracket_whose_ends_differ_by_a_thousand_e_folds_is_shrunk_in_dou
     fake._at = lambda u, ctx=None: _Search._at(fake, u, ctx)
     _Search.refine_real(fake, [Rectangle(-78.96, -1.0957, -1.0, 1.0)])
     assert abs(got[0][0] - r) < 1e-10
+
+
+def test_a_count_starts_its_region_between_the_undamped_modes(monkeypatch):
+    """A lightly damped pinned-pinned beam on a foundation, its modes crowding above the
+    cut-off ``sqrt(kw / m) = 100``: the top of the count's region is taken midway
+    between the third and fourth undamped modes, and one region search serves (doubling
+    from the lowest pinned mode went to 200, 12 eigenvalues, and four searches lowered
+    it again). Reference: the Green's function of the beam on its foundation
+    (tests/damped_reference.py), followed from the undamped roots as the dashpot grows."""
+    from symtmm.roots import damped
+    searched = []
+    real = damped._search_region
+
+    def recording(model, W, *args):
+        searched.append(W)
+        return real(model, W, *args)
+
+    monkeypatch.setattr(damped, "_search_region", recording)
+    beam = Beam("b", 1, 1, 3, left="pinned", right="pinned", kw=10**4)
+    model = Model((beam,), (Spring("b", "ground", "7/10", 20, c=1),))
+    spectrum = solve_damped(model, count=3, digits=12)
+    refs = sorted(pp_damped_roots(1, 1, 3, [(Fraction(7, 10), 20, 1)], 125, kw=10**4,
+                                  points=20000, steps=64, dps=30), key=lambda z: z.imag)[:3]
+    assert len(spectrum) == 3
+    for e, ref in zip(spectrum, refs):
+        assert abs(e.lam - ref) <= 1e-11 * abs(ref), (e.lam, ref)
+    assert len(searched) == 1 and 100.42 < searched[0] < 101.52      # between modes 3 and 4
