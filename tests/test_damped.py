@@ -631,6 +631,69 @@ def test_quarters_count_every_zero_of_the_rectangle_once(rect):
 
 
 
+@pytest.mark.parametrize("turns", [2, 4, 20, 40])
+def test_a_side_beside_a_row_of_zeros_is_not_taken_in_whole_turns(turns):
+    """``sin(pi (z - s/2 - 0.1 i) / s)``: a row of zeros ``s`` apart at ``Im z = 0.1``,
+    inside the unit square. Along its bottom and top sides ``arg f`` turns at an even
+    rate, ``pi / s``; with a first grid of the whole side (a spacing that misses the
+    crowd), ``s`` is chosen so that a side turns by ``turns`` whole turns and a little:
+    the principal value of the step passes, and so did both its halves for every even
+    ``turns`` (4 to 80 zeros counted 0). The vertical sides, along which ``log|f|``
+    changes as fast, measure the rate at the corners (Cauchy-Riemann), and the end
+    steps are held to it. Reference: the zeros, placed."""
+    from symtmm.roots.contour import ArgumentPrinciple
+    s = math.pi / (2 * math.pi * turns + 0.1)
+
+    def f(z):
+        v = np.log(np.sin(np.pi * (np.asarray(z, dtype=complex) - s / 2 - 0.1j) / s))
+        return v.real, v.imag, np.ones(np.shape(z), dtype=bool)
+    placed = sum(1 for j in range(1000) if s / 2 + j * s < 1)
+    ap = ArgumentPrinciple(f, spacing=lambda z: 1.0)
+    assert ap.count(Rectangle(0.0, 1.0, 0.0, 1.0)) == placed == 2 * turns
+
+
+#: A Rayleigh beam whose rotary inertia on its foundation bends the dispersion down to a
+#: minimum near omega = 1.5215: hundreds of modes crowd above it, the lowest 1e-5 apart,
+#: a dashpot damps them lightly.
+HEAVY_RAYLEIGH_DASHPOT = """
+[[beam]]
+name = "b1"
+EI = 3.0
+m = 4.95
+L = 47.3
+left = "pinned"
+right = "pinned"
+theory = "rayleigh"
+rhoI = 617.0
+kw = 170000.0
+
+[[spring]]
+between = ["b1", "ground"]
+x = 11.0
+k = 10.0
+c = 0.5
+"""
+
+
+@pytest.mark.slow
+def test_lightly_damped_modes_at_a_dispersion_minimum():
+    """A side 1.4e-3 below the crowd turned arg Delta by 12 radians over one step of the
+    first grid, which passed with its halves: two rectangles counted a zero each that
+    held none, and the search stopped ("cannot split the search rectangle"); the end
+    steps of a side are now held to the rate the side across measures. Reference: each
+    eigenvalue lies within 1e-9 of a frequency of the beam without its dashpot, found
+    on the frequency axis by another method (Wittrick-Williams counts, proved in balls),
+    as many as the damped region counted."""
+    model = loads(HEAVY_RAYLEIGH_DASHPOT)
+    damped = solve(model, count=3, digits=12)
+    undamped = solve(loads(HEAVY_RAYLEIGH_DASHPOT.replace("c = 0.5", "c = 0")), count=3,
+                     digits=15)
+    assert len(damped) == 3
+    for d, u in zip(damped, undamped):
+        assert -1e-7 < float(d.lam.real) < 0
+        assert abs(float(d.lam.imag) - float(u.lam.imag)) < 1e-9
+
+
 #: Four beams, one of them holding a damped sprung mass; the others alone, so that their
 #: modes are eigenvalues on the imaginary axis, three of them within 0.22 rad/s of 11.6
 #: (a fuzzed model). The contour sampling took a step of 0.094 beside steps of 0.023
@@ -1356,3 +1419,4 @@ def test_a_count_starts_its_region_between_the_undamped_modes(monkeypatch):
     for e, ref in zip(spectrum, refs):
         assert abs(e.lam - ref) <= 1e-11 * abs(ref), (e.lam, ref)
     assert len(searched) == 1 and 100.42 < searched[0] < 101.52      # between modes 3 and 4
+
