@@ -21,9 +21,55 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .model import Model
+import sympy as sp
+
+from .model import GROUND, Model, Spring
 
 __all__ = ["parts", "beam_groups"]
+
+#: The end conditions that hold the freedom a spring of each kind acts on at zero.
+_HOLDING = {"translational": ("pinned", "clamped"), "rotational": ("clamped", "sliding")}
+
+
+def _held(beam, x, kind: str) -> bool:
+    """``beam``'s end at ``x`` holds the freedom a spring of ``kind`` acts on (exactly)."""
+    if beam.is_rod:
+        return False
+    for end, condition in ((beam.x0, beam.left), (beam.x0 + beam.L, beam.right)):
+        if condition in _HOLDING[kind] and sp.sympify(x - end).is_zero is True:
+            return True
+    return False
+
+
+def acting(model: Model, spring: Spring):
+    """``spring`` as it acts: itself, or a spring to the ground on one of its beams where
+    the other holds the freedom it acts on at its point (a pinned end under a spring to
+    another beam: that beam's displacement there is zero, and the spring grounds the
+    other), or None where both do.
+
+    A spring at a held point joins nothing: a stiff short beam pinned where a spring
+    met a soft beam's end, free to turn about its pin, was one part with the soft beams
+    and its mechanism, which the dynamic stiffness cancels to a pivot ``1e-15`` of its
+    others, kept every double-precision point of the damped search from being trusted.
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam
+    >>> pin = Beam("p", 1, 1, 1, left="pinned", right="free")
+    >>> soft = Beam("s", 1, 1, 2, left="free", right="free")
+    >>> acting(Model((pin, soft), (Spring("p", "s", 0, 5, c=1),)), Spring("p", "s", 0, 5, c=1))
+    Spring(a='s', b='ground', x=0, k=5, c=1, kind='translational')
+    """
+    if spring.b == GROUND:
+        return spring
+    beams = {b.name: b for b in model.beams}
+    held_a = _held(beams[spring.a], spring.x, spring.kind)
+    held_b = _held(beams[spring.b], spring.x, spring.kind)
+    if held_a and held_b:
+        return None
+    if held_a or held_b:
+        return replace(spring, a=spring.a if held_b else spring.b, b=GROUND)
+    return spring
 
 
 def beam_groups(model: Model) -> list:
@@ -44,7 +90,9 @@ def beam_groups(model: Model) -> list:
             parent[root(other)] = root(group[0])
 
     for s in model.springs:
-        join([s.a, s.b])            # (the ground is no beam: join() leaves it out)
+        s = acting(model, s)
+        if s is not None:
+            join([s.a, s.b])        # (the ground is no beam: join() leaves it out)
     for la in model.layers:
         join([la.a, la.b])
     held = {}
@@ -81,7 +129,8 @@ def part(model: Model, names) -> Model:
     return replace(
         model,
         beams=tuple(b for b in model.beams if b.name in names),
-        springs=tuple(s for s in model.springs if s.a in names or s.b in names),
+        springs=tuple(s for s in (acting(model, s) for s in model.springs)
+                      if s is not None and (s.a in names or s.b in names)),
         masses=tuple(m for m in model.masses if m.beam in names),
         layers=tuple(la for la in model.layers if la.a in names),
         bodies=bodies,

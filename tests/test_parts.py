@@ -229,3 +229,53 @@ def test_each_part_is_solved_for_the_places_it_takes(monkeypatch, count, damped_
     # the damped part gives the lowest damped_from; solved for at most one more
     assert sum(1 for _, r in got if r != 0) == damped_from
     assert max(asked) <= damped_from + 1 < count
+
+
+#: A pinned-free beam ``p`` whose pinned end (x = 0) meets a spring and dashpot from a
+#: pinned-pinned beam ``q`` (from -0.3 to 0.7): ``p`` cannot move there, so the spring
+#: grounds ``q`` and joins nothing.
+SPRING_AT_A_PIN = """
+[[beam]]
+name = "p"
+EI = 1
+m = 1
+L = 1
+left = "pinned"
+right = "free"
+
+[[beam]]
+name = "q"
+EI = 1
+m = 1
+L = 1
+x0 = -0.3
+left = "pinned"
+right = "pinned"
+
+[[spring]]
+between = ["p", "q"]
+x = 0
+k = 20
+c = 4
+"""
+
+
+def test_a_spring_at_a_held_point_grounds_the_other_beam():
+    """``p`` is a part of its own (undamped: its rigid rotation about the pin and the
+    pinned-free modes, ``tan x = tanh x``), ``q`` one with a grounded spring and dashpot
+    at 0.3 of its span (its Green's function, tests/damped_reference.py)."""
+    model = loads(SPRING_AT_A_PIN)
+    assert beam_groups(model) == [["p"], ["q"]]
+    spectrum = solve(model, count=5, digits=15)
+    with mpmath.workdps(30):
+        free = [mpmath.findroot(lambda x: mpmath.tan(x) - mpmath.tanh(x), x0) ** 2
+                for x0 in (3.93, 7.07)]
+    damped = pp_damped_roots(1, 1, 1, [(Fraction(3, 10), 20, 4)], 60)
+    expected = sorted([(0.0, 0.0)] + [(float(w), 0.0) for w in free]
+                      + [(float(z.imag), float(z.real)) for z in damped])[:5]
+    got = [(float(e.lam.imag), float(e.lam.real)) for e in spectrum
+           for _ in range(e.multiplicity)]
+    assert len(got) == 5
+    for (gi, gr), (ei, er) in zip(got, expected):
+        assert abs(gi - ei) <= 1e-12 * max(ei, 1) and abs(gr - er) <= 1e-12 * max(ei, 1)
+    assert any("solved apart" in n for n in spectrum.notes)
