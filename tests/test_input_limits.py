@@ -961,7 +961,7 @@ kw = 607.0
 
 [[spring]]
 between = ["soft", "other"]
-x = 0.0
+x = 1.0
 k = 6430.0
 
 [[spring]]
@@ -976,10 +976,11 @@ c = 7750.0
 @pytest.mark.parametrize("command", ["solve", "modes"])
 def test_a_spent_budget_names_the_beam_that_made_the_search_costly(tmp_path, command):
     """A Timoshenko beam on a foundation far stiffer than its EI / L**4 (kw L**4 / EI =
-    4e12, a campaign's damped model): its waves are a few thousandths of it long, the
-    plan cuts it into thousands of pieces, and a search outruns its budget. The one line
-    says so, and which beam (such models had said only "the search takes longer than
-    60 s")."""
+    4e12, a campaign's damped model, its spring moved off the other beam's clamped end,
+    where it would ground the soft beam alone): its waves are a few thousandths of it
+    long, the plan cuts it into thousands of pieces, and a search outruns its budget. The
+    one line says so, and which beam (such models had said only "the search takes longer
+    than 60 s")."""
     run = run_file(tmp_path, STIFF_FOUNDATION, command, "--count", "3", "--max-seconds",
                    "0.5", limit=60)
     line = one_line(run)
