@@ -1398,8 +1398,9 @@ def test_a_real_bracket_whose_ends_differ_by_a_thousand_e_folds_is_shrunk_in_dou
 
 def test_a_count_starts_its_region_between_the_undamped_modes(monkeypatch):
     """A lightly damped pinned-pinned beam on a foundation, its modes crowding above the
-    cut-off ``sqrt(kw / m) = 100``: the top of the count's region is taken midway
-    between the third and fourth undamped modes, and one region search serves (doubling
+    cut-off ``sqrt(kw / m) = 100``: the top of the count's region is taken in a gap of
+    the undamped modes above the third (the first 2 % wide: between the fourth and the
+    fifth), and one region search serves (doubling
     from the lowest pinned mode went to 200, 12 eigenvalues, and four searches lowered
     it again). Reference: the Green's function of the beam on its foundation
     (tests/damped_reference.py), followed from the undamped roots as the dashpot grows."""
@@ -1420,5 +1421,29 @@ def test_a_count_starts_its_region_between_the_undamped_modes(monkeypatch):
     assert len(spectrum) == 3
     for e, ref in zip(spectrum, refs):
         assert abs(e.lam - ref) <= 1e-11 * abs(ref), (e.lam, ref)
-    assert len(searched) == 1 and 100.42 < searched[0] < 101.52      # between modes 3 and 4
+    assert len(searched) == 1 and 101.53 < searched[0] < 103.69      # between modes 4 and 5
 
+
+
+def test_a_real_zero_beside_a_rigid_turning_counts_in_the_first_region(monkeypatch):
+    """A pinned-free beam with a pure dashpot (the issue's model): its two lowest
+    eigenvalues, the turning about the pin and the real one the dashpot makes, lie in the
+    strip about the real axis of the first region. That region's count had halved the
+    strip's two zeros to one (the zero at 0 among them) and doubled the region. Reference:
+    the values published with the issue (an independent state-space FE and an exact
+    determinant): 0 and -2.19141315549854."""
+    from symtmm.roots import damped
+    searched = []
+    real = damped._search_region
+
+    def recording(model, W, *args):
+        searched.append(W)
+        return real(model, W, *args)
+
+    monkeypatch.setattr(damped, "_search_region", recording)
+    beam = Beam("b", 1, 1, 1, left="pinned", right="free")
+    spectrum = solve_damped(Model((beam,), (Spring("b", "ground", "3/5", 0, c=2),)),
+                            count=2, digits=15)
+    lams = sorted((complex(e.lam) for e in spectrum), key=lambda z: z.real)
+    assert len(searched) == 1 and len(lams) == 2
+    assert abs(lams[0] - (-2.19141315549854)) < 1e-13 and lams[1] == 0

@@ -25,7 +25,7 @@ from ..parts import beam_groups, part
 from ..results import Eigenvalue, Spectrum, first, prints_alike
 from .bracket import SEPARATION_DIGITS
 from .damped import solve_damped
-from .undamped import omega_scale, solve_undamped
+from .undamped import omega_scale, solve_undamped, undamped_levels
 
 __all__ = ["split", "solve_apart"]
 
@@ -78,24 +78,23 @@ def _key(e: Eigenvalue):
     return (e.lam.imag, e.lam.real)
 
 
-def _lowest(solvers, count: int):
+def _lowest(solvers, count: int, counts: list, spectra: list):
     """``(counts, spectra, evaluations spent on spectra left behind)``: each part solved
     (``solvers[p](c)``) for as many eigenvalues as the ``count`` lowest of the model take
-    from it.
+    from it, from ``spectra`` solved for ``counts``.
 
     A part solved for all ``count`` may search far for eigenvalues the other part's
     already outrank: a heavy Rayleigh beam on a foundation, damped, whose second
     eigenvalue is the lowest of hundreds crowding near its dispersion's minimum, where
     the undamped part's rigid-body mode came before its first (a campaign model: 24
     eigenvalues counted, then isolated and proved, past the 60 s budget, for two asked).
-    So each part is first solved for one; a part whose last eigenvalue lies below the
-    ``count``-th of both together is solved again for the places left to it (``count``
-    less the other part's eigenvalues up to its last), until none does or it has been
-    solved for ``count``. A part's next eigenvalue lies above its last (``first`` keeps a
-    multiple one whole), so those it was not solved for lie above the ``count``-th.
+    A part whose last eigenvalue lies below the ``count``-th of both together is solved
+    again for the places left to it (``count`` less the other part's eigenvalues up to
+    its last), until none does or it has been solved for ``count``. A part's next
+    eigenvalue lies above its last (``first`` keeps a multiple one whole; the damped part
+    gives every eigenvalue its region held, which is all of them up to its top), so those
+    it was not solved for lie above the ``count``-th.
     """
-    counts = [1] * len(solvers)
-    spectra = [solve(1) for solve in solvers]
     spent = 0
     while True:
         kept = first(sorted((e for s in spectra for e in s), key=_key), count)
@@ -115,6 +114,19 @@ def _lowest(solvers, count: int):
             return counts, spectra, spent
 
 
+def _damped_share(damped: Model, undamped_spectrum, count: int) -> tuple:
+    """``(places, evaluations)``: how many of the ``count`` lowest eigenvalues the damped
+    part is first solved for, by its frequencies without dashpots (lightly damped
+    eigenvalues lie near them) among the undamped part's; at least 1."""
+    levels, spent = undamped_levels(damped, count)
+    if levels is None:
+        return count, spent
+    merged = sorted([(w, 0) for w in levels]
+                    + [(float(e.lam.imag), 1) for e in undamped_spectrum
+                       for _ in range(e.multiplicity)])[:count]
+    return max(1, sum(1 for _, part in merged if part == 0)), spent
+
+
 def solve_apart(model: Model, damped: Model, undamped: Model, count, omega_max, sigma_max,
                 digits: int, prove_count: bool = False) -> Spectrum:
     """The eigenvalues of ``model`` from those of its ``damped`` and ``undamped`` parts
@@ -131,10 +143,20 @@ def solve_apart(model: Model, damped: Model, undamped: Model, count, omega_max, 
     if count is None:
         ds, us = both(digits)
     else:
-        asked, (ds, us), spent = _lowest(
-            (lambda c: solve_damped(damped, count=c, sigma_max=sigma_max, digits=digits,
-                                    prove_count=prove_count),
-             lambda c: solve_undamped(undamped, count=c, digits=digits)), count)
+        # the undamped part for the whole count (its counts are exact and cheap), the
+        # damped part first for the places its frequencies without dashpots take
+        def solve_d(c):
+            return solve_damped(damped, count=c, sigma_max=sigma_max, digits=digits,
+                                prove_count=prove_count, beyond_count=True)
+
+        def solve_u(c):
+            return solve_undamped(undamped, count=c, digits=digits)
+
+        us = solve_u(count)
+        share, spent = _damped_share(damped, us, count)
+        asked, (ds, us), more = _lowest((solve_d, solve_u), count, [share, count],
+                                        [solve_d(share), us])
+        spent += more
     evaluations = spent + ds.evaluations + us.evaluations
     alike = _pairs_alike(ds, us, digits)
     if any(ds[i].lam != 0 for i, _ in alike):

@@ -1393,10 +1393,18 @@ def _region(omega_max: float, sigma_max: float, lam_ref: float, attempt: int):
 
 def _found(cells, order: int, rigid: int) -> int:
     """The eigenvalues with ``Im lam >= 0`` that counted ``cells`` hold at least: the
-    symmetric strip counts conjugate pairs twice (at least half are above); the zero at
-    ``lam = 0`` counts once per rigid-body mode."""
-    found = sum(n if not r.symmetric else (n + 1) // 2 for r, n, _ in cells)
-    return found - (order - rigid)
+    symmetric strip counts conjugate pairs twice (at least half of its other zeros are
+    above); the zero at ``lam = 0`` (order ``order``) counts once per rigid-body mode.
+    (Halving the strip's count with the zero at 0 in it had counted a real zero beside
+    a rigid turning of order 2 as nothing: the region doubled into a crowd, 4 s.)"""
+    found = rigid
+    for r, n, _ in cells:
+        if r.symmetric:
+            others = n - (order if r.contains(0j) else 0)
+            found += (others + 1) // 2
+        else:
+            found += n
+    return found
 
 
 def _box_arithmetic(ar: Ball, width: float) -> Ball:
@@ -1529,7 +1537,7 @@ def _search_region(model, omega_max, sigma_max, digits, certified):
 
 def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_max=None,
                  digits: int = 15, certified: bool | None = None,
-                 prove_count: bool = False) -> Spectrum:
+                 prove_count: bool = False, *, beyond_count: bool = False) -> Spectrum:
     """Eigenvalues ``lam = -sigma + i omega`` (``omega >= 0``) of a damped model.
 
     Parameters
@@ -1558,6 +1566,9 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         (:mod:`symtmm.roots.winding`; python-flint). Seconds to tens of seconds; a note
         says whether it closed. Without it the count is the argument principle in
         double precision (every eigenvalue found is still proved, one by one).
+    beyond_count : bool
+        With ``count``: every eigenvalue of the region counted (all of them proved, the
+        first ``count`` among them), not only the first ``count``.
 
     Returns
     -------
@@ -1587,10 +1598,12 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         search, cells, spent = _search_region(model, W, S, digits, certified)
         evaluations += spent
     else:
-        # the top from the undamped modes (midway to the next), else the lowest pinned one
-        W, spent = gap_above(model, count)
+        # the top in a gap between the undamped modes, else the lowest pinned one; a
+        # region short of the count goes to the next gap, then doubles
+        tops, spent = gap_above(model, count)
         evaluations += spent
-        W, below = W or _first_guess(model), 0.0
+        tops = tops or [_first_guess(model)]
+        W, below = tops.pop(0), 0.0
         while True:
             S = default_sigma_max(W) if sigma_max is None else float(sigma_max)
             search, cells, spent = _search_region(model, W, S, digits, certified)
@@ -1599,7 +1612,7 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
             if found >= count:
                 break
             evaluations += search.p.evaluations
-            below, W = W, 2.0 * W
+            below, W = W, tops.pop(0) if tops else 2.0 * W
             if W > 1e12:
                 raise ComputationError(f"fewer than {count} eigenvalues below |lam| = 1e12")
         W, search, cells, spent = _lowered(model, count, below, W, S, search, cells,
@@ -1657,7 +1670,8 @@ def solve_damped(model: Model, count: int | None = None, omega_max=None, sigma_m
         S, W = -left, max(r.y1 for r, _, _ in cells)      # (the region the note names)
     eigen.sort(key=lambda e: (e.lam.imag, e.lam.real))
     if count is not None:
-        eigen = first(eigen, count)
+        if not beyond_count:
+            eigen = first(eigen, count)
         if sum(e.multiplicity for e in eigen) < count:
             raise ComputationError(f"the region counted to hold {count} eigenvalue(s) gave "
                                    f"{sum(e.multiplicity for e in eigen)}")

@@ -1159,29 +1159,31 @@ def estimates(model: Model, omega_max: float, rigid: int | None = None) -> tuple
     return sorted(out), search.evaluations
 
 
-def gap_above(model: Model, count: int) -> tuple:
-    """``(omega, evaluations)``: a frequency midway between the ``count``-th and the next
-    natural frequency of ``model`` without its dashpots (counted with their rigid-body
-    modes, in double precision, not proved), or None where the search cannot say.
+#: The natural frequencies beyond a count's that a damped count's top may be placed among
+#: (no more than a region's count keeps before it lowers its top: 2 for small counts).
+_GAP_LOOK = 2
+#: A gap between natural frequencies this wide (relative to the upper) takes a top at once.
+_WIDE_GAP = 0.02
 
-    Where a damped search of the complex plane starts the top of its region for a
-    count: lightly damped eigenvalues lie near the undamped ones, and a top in the gap
-    is neither short nor far beyond (doubling from the lowest pinned mode overshot a
-    crowd of nearly undamped modes into 294 where 4 were asked, and eight region
-    searches lowered it again: 14 of a campaign model's 30 s).
+
+def undamped_levels(model: Model, count: int) -> tuple:
+    """``(frequencies, evaluations)``: the first ``count + 2`` natural frequencies (at least)
+    of ``model`` without its dashpots, its rigid-body modes as zeros, ascending, in double
+    precision and not proved (a cluster double precision does not split gives its midpoint
+    once per root in it); None where the search cannot say.
 
     Examples
     --------
     >>> from symtmm.model import Beam, Model, Spring
-    >>> b = Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned")
-    >>> w, _ = gap_above(Model((b,), (Spring("b", "ground", x="1/4", k=0, c="1/2"),)), 2)
-    >>> round(w / math.pi**2, 6)                        # between 4 pi**2 and 9 pi**2
-    6.5
+    >>> b = Beam("b", EI=1, m=1, L=1, left="pinned", right="free")
+    >>> w, _ = undamped_levels(Model((b,), (Spring("b", "ground", x="1/2", k=0, c=1),)), 1)
+    >>> w[0], round(w[1], 6)                         # the turning about the pin, 3.9266**2
+    (0.0, 15.418206)
     """
     from ..deadline import check
     search = _Search(model, 15, _first_guess(model))
     try:
-        top, c_top = search.top_for(count + 1)
+        top, c_top = search.top_for(count + _GAP_LOOK)
         search.rigid = _rigid_modes(model, search.counter, top)
         brackets = search.isolate(top, c_top)
         simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
@@ -1192,10 +1194,56 @@ def gap_above(model: Model, count: int) -> tuple:
     except ComputationError:
         check()                 # (a spent time budget ends the search, as elsewhere)
         return None, search.evaluations
-    values.sort()
-    if len(values) <= count or not values[count] > values[count - 1]:
-        return None, search.evaluations
-    return 0.5 * (values[count - 1] + values[count]), search.evaluations
+    return sorted(values), search.evaluations
+
+
+def gap_above(model: Model, count: int, levels=None) -> tuple:
+    """``(tops, evaluations)``: frequencies in gaps between the natural frequencies of
+    ``model`` without its dashpots (:func:`undamped_levels`, or ``levels`` given), where a
+    damped count's region may end: midway across the first gap at or above the
+    ``count``-th at least 2 % of its upper frequency wide, else the widest of the next two
+    where it is over 4 times the ``count``-th's; where that gap is narrow, the last wide
+    gap below it first. Empty where the frequencies cannot say.
+
+    Where a damped search of the complex plane starts the top of its region for a
+    count: lightly damped eigenvalues lie near the undamped ones, and a top in a gap
+    is neither short nor far beyond (doubling from the lowest pinned mode overshot a
+    crowd of nearly undamped modes into 294 where 4 were asked, and eight region
+    searches lowered it again: 14 of a campaign model's 30 s). A wide gap, not the next
+    midpoint: a heavy Rayleigh beam's modes lie 1e-6 apart, and a top among them puts
+    the region's side beside them (5 s of isolation and proofs); the gap below first,
+    since a heavy dashpot adds real eigenvalues that no undamped frequency foretells (a
+    campaign model's count was met there).
+
+    Examples
+    --------
+    >>> from symtmm.model import Beam, Model, Spring
+    >>> b = Beam("b", EI=1, m=1, L=1, left="pinned", right="pinned")
+    >>> w, _ = gap_above(Model((b,), (Spring("b", "ground", x="1/4", k=0, c="1/2"),)), 2)
+    >>> [round(x / math.pi**2, 6) for x in w]           # between 4 pi**2 and 9 pi**2
+    [6.5]
+    """
+    values, spent = levels if levels is not None else undamped_levels(model, count)
+    if values is None or len(values) <= count:
+        return [], spent
+
+    def gap(j):
+        return (values[j + 1] - values[j]) / values[j + 1] if values[j + 1] > 0 else 0.0
+
+    ahead = [(gap(j), j) for j in range(count - 1, min(len(values) - 1, count - 1 + _GAP_LOOK))]
+    wide = [g for g in ahead if g[0] >= _WIDE_GAP]
+    # (among narrow gaps one more eigenvalue in the region pays only for a far wider gap:
+    # a crowd 1e-6 apart took 9 s with its fourth, 6 s without)
+    width, j = wide[0] if wide else max(ahead) if max(ahead)[0] > 4 * ahead[0][0] \
+        else ahead[0]
+    if not width > 0:
+        return [], spent
+    tops = [0.5 * (values[j] + values[j + 1])]
+    if j == count - 1 and width < _WIDE_GAP or j > count - 1:
+        below = [i for i in range(count - 2, -1, -1) if gap(i) >= _WIDE_GAP]
+        if below:
+            tops.insert(0, 0.5 * (values[below[0]] + values[below[0] + 1]))
+    return tops, spent
 
 
 def _isolated_and_proved(search: _Search, top, c_top: int, wanted, cuts, next_stage) -> list:
