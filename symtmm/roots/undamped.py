@@ -1147,16 +1147,24 @@ def estimates(model: Model, omega_max: float, rigid: int | None = None) -> tuple
         search.rigid = rigid if rigid is not None else \
             _rigid_modes(model, search.counter, omega_max)
         top, c_top = search.count_off(float(omega_max), 2.0 * float(omega_max))
-        brackets = search.isolate(top, c_top)
-        simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
-        out = [w for w in search.refine_double(simple) if 0 < w <= omega_max]
-        for a, ca, b, cb in brackets:
-            if cb - ca > 1:
-                out += [0.5 * (a + b)] * (cb - ca)
+        out = [w for w in _double_levels(search, top, c_top) if 0 < w <= omega_max]
     except ComputationError:
         check()                 # (a spent time budget ends the search, as elsewhere)
         return None, search.evaluations
     return sorted(out), search.evaluations
+
+
+def _double_levels(search: _Search, top, c_top: int) -> list:
+    """The frequencies in ``(0, top]`` (``J(top) = c_top``) in double precision, not
+    proved: isolated and refined; a cluster double precision does not split, its midpoint
+    once per root in it."""
+    brackets = search.isolate(top, c_top)
+    simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
+    out = list(search.refine_double(simple))
+    for a, ca, b, cb in brackets:
+        if cb - ca > 1:
+            out += [0.5 * (a + b)] * (cb - ca)
+    return out
 
 
 #: The natural frequencies beyond a count's that a damped count's top may be placed among
@@ -1185,12 +1193,7 @@ def undamped_levels(model: Model, count: int) -> tuple:
     try:
         top, c_top = search.top_for(count + _GAP_LOOK)
         search.rigid = _rigid_modes(model, search.counter, top)
-        brackets = search.isolate(top, c_top)
-        simple = [(a, ca, b) for a, ca, b, cb in brackets if cb - ca == 1]
-        values = [0.0] * search.rigid + list(search.refine_double(simple))
-        for a, ca, b, cb in brackets:
-            if cb - ca > 1:
-                values += [0.5 * (a + b)] * (cb - ca)
+        values = [0.0] * search.rigid + _double_levels(search, top, c_top)
     except ComputationError:
         check()                 # (a spent time budget ends the search, as elsewhere)
         return None, search.evaluations
