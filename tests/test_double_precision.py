@@ -46,3 +46,23 @@ def test_log_delta_does_not_overflow():
     with mpmath.workdps(30):
         ref = mpmath.log(abs(mpmath.sin(Om) * mpmath.sinh(Om) / Om**2))
     assert logabs[0] == pytest.approx(float(ref), rel=1e-12)
+
+
+def test_a_bracket_whose_values_fall_by_e_folds_gives_a_point_near_its_root():
+    """``(x - r) exp(-15000 (x - 0.09))`` on ``[0.08, 0.1]``: ``|f|`` falls by 300 e-folds
+    across the bracket, so a point by its small end lies below every point near the root
+    ``r = 0.0845`` (a model part's second frequency came out as the first probe's point,
+    0.0999, and its damped search lost its estimate). The refinement gives the point of
+    least ``|f|`` within its last bracket. Reference: ``r``, placed."""
+    from symtmm.roots.bracket import shrink
+    r = 0.0845
+
+    def f(x):
+        return (x - r) * np.exp(-15000.0 * (x - 0.09))
+
+    def probe(c, idx):
+        v = f(c)
+        return v, np.where(np.sign(v) == np.sign(f(b[idx])), 1, -1)
+    a, b = np.array([0.08]), np.array([0.1])
+    got = shrink(a, b, f(a), f(b), probe, 1e-11, settle=True)
+    assert abs(got[0] - r) < 1e-12
