@@ -202,10 +202,10 @@ c = 4
 @pytest.mark.parametrize("count, damped_from", [(3, 1), (5, 2)])
 def test_each_part_is_solved_for_the_places_it_takes(monkeypatch, count, damped_from):
     """The lowest ``count`` of both parts, each part solved for no more than it may give
-    (rather than ``count`` each: a damped part whose next eigenvalues crowd, 58 s where
-    two were asked and one taken, now 4 s). Reference: the damped beam's roots by its
-    Green's function (tests/damped_reference.py), the free beam's closed form
-    ``cos x cosh x = 1`` and its two rigid-body modes."""
+    (rather than ``count`` each: a damped part whose next eigenvalues crowd took 58 s
+    where two were asked and one taken from it, now a second). Reference: the damped
+    beam's roots by its Green's function (tests/damped_reference.py), the free beam's
+    closed form ``cos x cosh x = 1`` and its two rigid-body modes."""
     asked = []
     real_solve = apart.solve_damped
 
