@@ -654,7 +654,7 @@ def test_a_side_beside_a_row_of_zeros_is_not_taken_in_whole_turns(turns):
 
 #: A Rayleigh beam whose rotary inertia on its foundation bends the dispersion down to a
 #: minimum near omega = 1.5215: hundreds of modes crowd above it, the lowest 1e-5 apart,
-#: a dashpot damps them lightly.
+#: a pure dashpot damps them lightly.
 HEAVY_RAYLEIGH_DASHPOT = """
 [[beam]]
 name = "b1"
@@ -670,7 +670,7 @@ kw = 170000.0
 [[spring]]
 between = ["b1", "ground"]
 x = 11.0
-k = 10.0
+k = 0
 c = 0.5
 """
 
@@ -681,17 +681,19 @@ def test_lightly_damped_modes_at_a_dispersion_minimum():
     first grid, which passed with its halves: two rectangles counted a zero each that
     held none, and the search stopped ("cannot split the search rectangle"); the end
     steps of a side are now held to the rate the side across measures. Reference: each
-    eigenvalue lies within 1e-9 of a frequency of the beam without its dashpot, found
-    on the frequency axis by another method (Wittrick-Williams counts, proved in balls),
-    as many as the damped region counted."""
+    eigenvalue lies within 1e-9 of a frequency of the beam without its dashpot, a plain
+    pinned-pinned Rayleigh beam on its foundation: ``omega**2 = (EI q**2 + kw) / (m +
+    rhoI q)``, ``q = (n pi / L)**2``, the least three over ``n`` (the closed form)."""
     model = loads(HEAVY_RAYLEIGH_DASHPOT)
     damped = solve(model, count=3, digits=12)
-    undamped = solve(loads(HEAVY_RAYLEIGH_DASHPOT.replace("c = 0.5", "c = 0")), count=3,
-                     digits=15)
+    with mpmath.workdps(30):
+        EI, m, L, rhoI, kw = 3, mpmath.mpf("4.95"), mpmath.mpf("47.3"), 617, 170000
+        undamped = sorted(mpmath.sqrt((EI * q * q + kw) / (m + rhoI * q))
+                          for q in ((n * mpmath.pi / L) ** 2 for n in range(1, 600)))[:3]
     assert len(damped) == 3
     for d, u in zip(damped, undamped):
         assert -1e-7 < float(d.lam.real) < 0
-        assert abs(float(d.lam.imag) - float(u.lam.imag)) < 1e-9
+        assert abs(float(d.lam.imag) - float(u)) < 1e-9
 
 
 #: Four beams, one of them holding a damped sprung mass; the others alone, so that their
@@ -1396,7 +1398,22 @@ def test_a_real_bracket_whose_ends_differ_by_a_thousand_e_folds_is_shrunk_in_dou
     assert abs(got[0][0] - r) < 1e-10
 
 
-def test_a_count_starts_its_region_between_the_undamped_modes(monkeypatch):
+@pytest.fixture
+def searched(monkeypatch):
+    """The tops of the damped count's region searches, as they are made."""
+    from symtmm.roots import damped
+    tops = []
+    real = damped._search_region
+
+    def recording(model, W, *args):
+        tops.append(W)
+        return real(model, W, *args)
+
+    monkeypatch.setattr(damped, "_search_region", recording)
+    return tops
+
+
+def test_a_count_starts_its_region_between_the_undamped_modes(searched):
     """A lightly damped pinned-pinned beam on a foundation, its modes crowding above the
     cut-off ``sqrt(kw / m) = 100``: the top of the count's region is taken in a gap of
     the undamped modes above the third (the first 2 % wide: between the fourth and the
@@ -1404,15 +1421,6 @@ def test_a_count_starts_its_region_between_the_undamped_modes(monkeypatch):
     from the lowest pinned mode went to 200, 12 eigenvalues, and four searches lowered
     it again). Reference: the Green's function of the beam on its foundation
     (tests/damped_reference.py), followed from the undamped roots as the dashpot grows."""
-    from symtmm.roots import damped
-    searched = []
-    real = damped._search_region
-
-    def recording(model, W, *args):
-        searched.append(W)
-        return real(model, W, *args)
-
-    monkeypatch.setattr(damped, "_search_region", recording)
     beam = Beam("b", 1, 1, 3, left="pinned", right="pinned", kw=10**4)
     model = Model((beam,), (Spring("b", "ground", "7/10", 20, c=1),))
     spectrum = solve_damped(model, count=3, digits=12)
@@ -1424,23 +1432,13 @@ def test_a_count_starts_its_region_between_the_undamped_modes(monkeypatch):
     assert len(searched) == 1 and 101.53 < searched[0] < 103.69      # between modes 4 and 5
 
 
-
-def test_a_real_zero_beside_a_rigid_turning_counts_in_the_first_region(monkeypatch):
+def test_a_real_zero_beside_a_rigid_turning_counts_in_the_first_region(searched):
     """A pinned-free beam with a pure dashpot (the issue's model): its two lowest
     eigenvalues, the turning about the pin and the real one the dashpot makes, lie in the
     strip about the real axis of the first region. That region's count had halved the
     strip's two zeros to one (the zero at 0 among them) and doubled the region. Reference:
     the values published with the issue (an independent state-space FE and an exact
     determinant): 0 and -2.19141315549854."""
-    from symtmm.roots import damped
-    searched = []
-    real = damped._search_region
-
-    def recording(model, W, *args):
-        searched.append(W)
-        return real(model, W, *args)
-
-    monkeypatch.setattr(damped, "_search_region", recording)
     beam = Beam("b", 1, 1, 1, left="pinned", right="free")
     spectrum = solve_damped(Model((beam,), (Spring("b", "ground", "3/5", 0, c=2),)),
                             count=2, digits=15)

@@ -132,26 +132,21 @@ def solve_apart(model: Model, damped: Model, undamped: Model, count, omega_max, 
     """The eigenvalues of ``model`` from those of its ``damped`` and ``undamped`` parts
     (:func:`split`), as :func:`symtmm.roots.damped.solve_damped` gives them."""
     start = time.perf_counter()
-    asked = [count, count]                 # (the counts each part is solved for)
 
-    def both(d):
-        return (solve_damped(damped, count=asked[0], omega_max=omega_max,
-                             sigma_max=sigma_max, digits=d, prove_count=prove_count),
-                solve_undamped(undamped, count=asked[1], omega_max=omega_max, digits=d))
+    def solve_d(c, d=digits):
+        # (under a count every eigenvalue its region held: _lowest takes what it needs)
+        return solve_damped(damped, count=c, omega_max=omega_max, sigma_max=sigma_max,
+                            digits=d, prove_count=prove_count, beyond_count=c is not None)
 
-    spent = 0
+    def solve_u(c, d=digits):
+        return solve_undamped(undamped, count=c, omega_max=omega_max, digits=d)
+
+    spent, asked = 0, [count, count]       # (the counts each part is solved for)
     if count is None:
-        ds, us = both(digits)
+        ds, us = solve_d(None), solve_u(None)
     else:
         # the undamped part for the whole count (its counts are exact and cheap), the
         # damped part first for the places its frequencies without dashpots take
-        def solve_d(c):
-            return solve_damped(damped, count=c, sigma_max=sigma_max, digits=digits,
-                                prove_count=prove_count, beyond_count=True)
-
-        def solve_u(c):
-            return solve_undamped(undamped, count=c, digits=digits)
-
         us = solve_u(count)
         share, spent = _damped_share(damped, us, count)
         asked, (ds, us), more = _lowest((solve_d, solve_u), count, [share, count],
@@ -163,7 +158,7 @@ def solve_apart(model: Model, damped: Model, undamped: Model, count, omega_max, 
         # (told apart as the searches tell the eigenvalues of one part apart: each
         # eigenvalue's nearest at that many digits)
         finer = digits + 2 + SEPARATION_DIGITS
-        dx, ux = both(finer)
+        dx, ux = solve_d(asked[0], finer), solve_u(asked[1], finer)
         evaluations += dx.evaluations + ux.evaluations
         alike = [(i, j) for i, j in alike if ds[i].lam == 0 or _alike(
             _nearest(dx, ds[i]), _nearest(ux, us[j]), finer)]

@@ -99,9 +99,9 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
     Returns
     -------
     list
-        Per bracket, the point of smallest ``|f|`` met inside it (an end may sit on a
-        neighbouring root, so the ends are not candidates), and inside its last bracket
-        (else that bracket's midpoint).
+        Per bracket, the point of smallest ``|f|`` met inside its last bracket (else that
+        bracket's midpoint; its first ends may sit on neighbouring roots and are no
+        candidates).
 
     Examples
     --------
@@ -126,8 +126,6 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
     slow = [False] * R
     last = [0] * R                          # the side each bracket's last point fell on
     crawl = [0] * R                         # its last steps that moved an end by the guard
-    best = [0.5 * (p + q) for p, q in zip(a, b)]
-    best_f = [math.inf] * R
     met: list = [[] for _ in range(R)]     # (x, |f|) of the points met, per bracket
     tops = list(range(1, SPREAD + 1))
     for _ in range(steps):
@@ -206,8 +204,6 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
             for m in members:
                 f_m = fxl[m]
                 met[j].append((xs[m], abs(f_m)))
-                if not abs(f_m) >= best_f[j]:          # (also f = 0: at the root)
-                    best[j], best_f[j] = xs[m], abs(f_m)
                 if sidel[m] == 0 or not math.isfinite(f_m) or f_m == 0:
                     # (f = 0: the point is the root as far as f can tell; bisecting toward
                     # it from the other end would cost a step per bit)
@@ -250,12 +246,15 @@ def shrink(a, b, fa, fb, probe, width: float, steps: int = 100, settle: bool = F
             slow[j] = (b[j] - a[j]) > 0.5 * previous[j]
             previous[j], earlier[j] = earlier[j], width_before
             active[j] = (b[j] - a[j]) > width * max(abs(a[j]), abs(b[j]))
-    # The least |f| met outside the final bracket is no estimate: where |f| falls by
-    # hundreds of e-folds across a bracket, a point by its small end is below every
-    # point near the root (a part's second frequency, 0.0845, refined to 0.08449 in
-    # [0.08, 0.1], came out as 0.0999, its first probe's point): the least |f| within it.
+    # The least |f| met within the last bracket, not anywhere: where |f| falls by hundreds
+    # of e-folds across a bracket, a point by its small end is below every point near
+    # the root (a part's second frequency, 0.0845, refined to 0.08449 in [0.08, 0.1],
+    # came out as 0.0999, its first probe's point).
+    out = []
     for j in range(R):
-        if not a[j] <= best[j] <= b[j]:
-            inside = [(fx_, x) for x, fx_ in met[j] if a[j] <= x <= b[j]]
-            best[j] = min(inside)[1] if inside else 0.5 * (a[j] + b[j])
-    return best
+        pick, least = 0.5 * (a[j] + b[j]), math.inf
+        for x, size in met[j]:
+            if a[j] <= x <= b[j] and not size >= least:     # (also f = 0: at the root)
+                pick, least = x, size
+        out.append(pick)
+    return out

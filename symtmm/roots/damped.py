@@ -575,7 +575,7 @@ class _Search:
         # (a start whose steps had not settled when they ran out is dropped before its
         # refinement in the proof arithmetic: an estimate 8 % off, its secant steps stopped
         # at no zero, cost 2.4 s there before the rectangle went to the isolation anyway)
-        ends, settled = self._double_secant(inside, 1e-7, 12, settled=True)
+        ends, settled = self._double_secant(inside, 1e-7, 12)
         near = [z for z, ok in zip(map(complex, ends), settled) if ok and rect.contains(z)]
         start = []
         for z in near:
@@ -599,12 +599,11 @@ class _Search:
         return distinct if len(distinct) == n else None
 
     # -- refinement: complex zeros, all at once -----------------------------------------------
-    def _double_secant(self, starts, stop: float = _DOUBLE_STEP, steps: int = 40,
-                       settled: bool = False):
+    def _double_secant(self, starts, stop: float = _DOUBLE_STEP, steps: int = 40):
         """Secant steps on the double-precision ``Delta`` from ``starts``, all at once.
 
-        Returns the estimates (complex); with ``settled``, also whether each one's steps
-        ended before they ran out. A root stops when its step is below ``stop``
+        Returns the estimates (complex) and whether each one's steps ended before they
+        ran out. A root stops when its step is below ``stop``
         relative, or its point is too close for double precision; all after ``steps``.
         Double precision alone: a point it does not trust (the pivoted determinant's
         condition number there was 1e13 to 1e17 on the damped models of the benchmarks:
@@ -614,7 +613,7 @@ class _Search:
         """
         z0 = np.array([complex(s) for s in starts])
         if z0.size == 0:
-            return ([], []) if settled else []
+            return [], []
         h = 1e-7 * np.maximum(np.abs(z0), self.p.lam_ref)
         z1 = z0 + h * (1 + 1j)
         la, ph, ok = self.p.kernel.log_delta(np.concatenate([z0, z1]))
@@ -647,9 +646,7 @@ class _Search:
                 if not ok2[j] or not np.isfinite(f2[j]) or \
                         step[j] <= stop * abs(z2[j]):
                     active[i] = False
-        if settled:
-            return best.tolist(), (~(active | failed)).tolist()
-        return best.tolist()
+        return best.tolist(), (~(active | failed)).tolist()
 
     def _digits_for(self, z: complex, small=None) -> int:
         extra = 0
@@ -728,8 +725,8 @@ class _Search:
             estimates = [_global(self._at(c if c is not None and r.contains(c) else r.center,
                                           ctx)) for r, c in items]
         else:
-            estimates = self._double_secant([self._at(c if c is not None and r.contains(c)
-                                                      else r.center) for r, c in items])
+            estimates, _ = self._double_secant([self._at(c if c is not None and r.contains(c)
+                                                         else r.center) for r, c in items])
         state = []
         for (rect, _), z in zip(items, estimates):
             zf = complex(z)

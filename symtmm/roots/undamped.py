@@ -1200,9 +1200,9 @@ def undamped_levels(model: Model, count: int) -> tuple:
     return sorted(values), search.evaluations
 
 
-def gap_above(model: Model, count: int, levels=None) -> tuple:
+def gap_above(model: Model, count: int) -> tuple:
     """``(tops, evaluations)``: frequencies in gaps between the natural frequencies of
-    ``model`` without its dashpots (:func:`undamped_levels`, or ``levels`` given), where a
+    ``model`` without its dashpots (:func:`undamped_levels`), where a
     damped count's region may end: midway across the first gap at or above the
     ``count``-th at least 2 % of its upper frequency wide, else the widest of the next two
     where it is over 4 times the ``count``-th's; where that gap is narrow, the last wide
@@ -1226,7 +1226,7 @@ def gap_above(model: Model, count: int, levels=None) -> tuple:
     >>> [round(x / math.pi**2, 6) for x in w]           # between 4 pi**2 and 9 pi**2
     [6.5]
     """
-    values, spent = levels if levels is not None else undamped_levels(model, count)
+    values, spent = undamped_levels(model, count)
     if values is None or len(values) <= count:
         return [], spent
 
