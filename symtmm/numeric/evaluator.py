@@ -305,23 +305,30 @@ class Evaluator:
                 mid, rad = complex(z), 0.0
             size, top = max(size, abs(mid) + rad), max(top, abs(mid.imag) + rad)
         plan = self.plan(size, len(points), ar, top=top)
+
+        def build(work, chosen):
+            values = work.array([work.number(z) for z in chosen])
+            return work.square(values), values
+        self.evaluations += len(points)
+        return self._in_parts(plan, ar, points, build, retry)
+
+    def _in_parts(self, plan, ar, points, build, retry: bool = True) -> Factors:
+        """:meth:`_factor` at ``points`` (exact numbers; ``build(work, chosen) -> (lam2,
+        lam)`` in ``work`` at those ``chosen``), a large batch in parts on the batch's plan
+        and the budget checked before each: a part cannot be interrupted, and Arb's band of
+        every point is built at once (a contour's untrusted points on a plan of thousands
+        of freedoms: 3.9 GB, and 11 s past a 60 s budget; a proof's hundred points on a
+        shear-soft beam of 47,000 freedoms: past 24 GB)."""
         step = max(1, BALL_ENTRIES // max(1, plan.n * plan.width))
-        # a large batch in parts on the batch's plan, the budget checked before each: a
-        # part cannot be interrupted, and where the compiled balls decline a plan, Arb's
-        # band of every point is built at once (a contour's untrusted points on a plan of
-        # thousands of freedoms: 3.9 GB, and 11 s past a 60 s budget)
-        parts = [points[i:i + step] for i in range(0, len(points), step)]
         out = []
-        for part in parts:
+        for start in range(0, len(points), step):
+            part = points[start:start + step]
             if out:
                 check_time()
-            self.evaluations += len(part)
 
-            def build(work, idx, part=part):
-                chosen = part if idx is None else [part[i] for i in idx]
-                values = work.array([work.number(z) for z in chosen])
-                return work.square(values), values
-            out.append(self._factor(plan, ar, build, retry))
+            def sub(work, idx, part=part):
+                return build(work, part if idx is None else [part[i] for i in idx])
+            out.append(self._factor(plan, ar, sub, retry))
         return out[0] if len(out) == 1 else Factors.joined(out)
 
     def _factor(self, plan, ar, build, retry: bool = True) -> Factors:
@@ -340,9 +347,13 @@ class Evaluator:
         Without pivoting, ball elimination widens the radii along the band (each update
         adds the radii of the row it subtracts): measured at ``prec`` bits as the largest
         relative radius of the pivots, that growth is roughly independent of the
-        precision, so one retry with ``log2(growth)`` more bits decides every pivot not
-        genuinely close to zero. Only the undecided points are redone; when most points
-        needed it, the extra bits are kept for the plan's later calls.
+        precision, so a retry with ``log2(growth)`` more bits decides most pivots not
+        genuinely close to zero; the rest are redone with at least half as many extra bits
+        again, until decided or at 64 times the bits (at high modes one measure can fall
+        short, and some points need far more: a cantilever's 17th of 60 modes at 144 bits,
+        3 of its 200 past 16 times the bits). Only the undecided points are
+        redone; when most points needed it, the extra bits are kept for the plan's later
+        calls.
 
         The first batch of a plan starts with a quarter of a bit per freedom more than
         ``ar`` asks: at 15 digits (144 bits) a 50-level chain (450 freedoms) needed about
@@ -351,7 +362,8 @@ class Evaluator:
         levels, which needed none, cost them little (a ball operation costs about the
         same from 144 to 300 bits).
         """
-        extra = self._extra_bits.get(id(plan), plan.n // 4)
+        # (at most twice the bits to start with: 47,000 freedoms would ask for 11,750)
+        extra = self._extra_bits.get(id(plan), min(plan.n // 4, ar.prec))
         work = Ball(ar.prec + extra) if extra else ar
         with work:
             lam2, lam = build(work, None)
@@ -367,9 +379,9 @@ class Evaluator:
                 lam2, lam = build(work, bad)
             self.evaluations += bad.size
             fa = fa.replaced(bad, factor(plan, work, lam2, lam, reverse=True))
-        for _ in range(2):
+        while True:
             bad = np.nonzero(~fa.trusted)[0]
-            if bad.size == 0 or extra >= 16 * ar.prec:
+            if bad.size == 0 or extra >= 64 * ar.prec:
                 return fa
             check_time()
             growth = 0.0
@@ -381,7 +393,10 @@ class Evaluator:
             # the bits the radii ate, measured; when they ran out entirely (an infinite
             # pivot ball) at least twice the precision
             needed = math.log2(growth) + work.prec + 8 if growth > 0 else 0
-            extra = max(extra + 32, int(needed)) if growth > 0 else max(2 * extra, ar.prec)
+            # (and at least half as many again: a measure short of what the radii need
+            # takes the next one from there, 64 times the bits within about ten rounds)
+            extra = max(extra + 32, extra * 3 // 2, int(needed)) if growth > 0 else \
+                max(2 * extra, ar.prec)
             if 2 * bad.size > len(fa.trusted):
                 self._extra_bits[id(plan)] = extra
             work = Ball(ar.prec + extra)

@@ -109,14 +109,13 @@ class Counter(Evaluator):
         points = [exact_mpf(v) for v in omegas]
         self.evaluations += len(points)
 
-        def build(work, idx):
-            chosen = points if idx is None else [points[i] for i in idx]
+        def build(work, chosen):
             if not positive:
                 return work.negated_squares(chosen), self._lam(len(chosen), work)
             return work.square(work.array([work.number(v) for v in chosen])), \
                 self._lam(len(chosen), work)
-        return self._factor(self.plan(max((float(v) for v in points), default=0.0),
-                                      len(points), ar), ar, build)
+        return self._in_parts(self.plan(max((float(v) for v in points), default=0.0),
+                                        len(points), ar), ar, points, build)
 
     def matrix(self, omega: float) -> np.ndarray:
         """The dense ``K(omega)`` in double precision (scaled by powers of two: its inertia,

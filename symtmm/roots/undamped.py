@@ -574,27 +574,14 @@ class _Search:
         """``(Delta(i w) in ctx, J(w), proved, radii)`` at mpmath points (:meth:`_values`;
         ``ar``: balls of fewer bits than the proofs', :meth:`_estimating`).
 
-        A point whose ball count stays undecided (at high modes the ball elimination widens
-        its radii along the chain while the factorisation itself is sound) is counted again
-        in balls of 2, 4, 8 and 16 times the bits, until decided; one still undecided is
-        counted in mpmath at two precisions, and if both agree that count is used, not
-        proved (``proved`` False there).
+        A point whose ball count stays undecided (at high modes the ball elimination can
+        widen its radii beyond any precision while the factorisation itself is sound) is
+        counted again in mpmath at two precisions, and if both agree that count is used,
+        not proved (``proved`` False there).
         """
         out, counts, radii = self._values(points, ctx, ar)
         proved = np.full(len(points), self.hp.rigorous)
         bad = [j for j, c in enumerate(counts) if c < 0]
-        for scale in (2, 4, 8, 16) if bad and self.hp.rigorous else ():
-            # balls of more bits first: the radii the elimination grows along a long chain
-            # are relative to the precision, and more words decide what the first did not
-            # (a cantilever's 200 modes at 144 bits: 3 counts undecided at twice the
-            # bits, the last at 16 times)
-            more = self._values([points[j] for j in bad], ctx, Ball(scale * self.hp.prec))
-            for j, v, c, r in zip(bad, *more):
-                if c >= 0:
-                    out[j], counts[j], radii[j] = v, c, r
-            bad = [j for j in bad if counts[j] < 0]
-            if not bad:
-                break
         if bad and self.hp.rigorous:
             ar = MP(self.hp.prec)
             first, c1 = self.counter.delta([points[j] for j in bad], ar)
