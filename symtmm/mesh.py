@@ -23,6 +23,7 @@ from sympy.polys.domains import QQ
 from sympy.polys.polyerrors import CoercionFailed
 
 from .assembly import point_elements
+from .deadline import check as check_time
 from .elements import Coupling, EulerBernoulliSegment, GroundSpring
 from .elements.base import stiffness_coefficients
 from .elements.layer import joined, member
@@ -406,6 +407,8 @@ class Mesh:
                     continue                # the group's first beam makes the coupled piece
                 seg = seg_length = None
                 for p in range(first[k], first[k + 1]):
+                    if p % 1024 == 0:
+                        check_time()    # (tens of thousands of pieces take seconds)
                     xa_node, xb_node = points[p], points[p + 1]
                     length = xb_node - xa_node
                     # (a stretch's pieces are alike: one segment serves them all)

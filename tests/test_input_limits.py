@@ -557,16 +557,63 @@ kw = "kw"
 """
 
 
-@pytest.mark.parametrize("command", [("solve", "--count", "3"), ("modes", "--count", "1"),
-                                     ("sweep", "--param", "kw", "--from", "1e-7", "--to",
-                                      "2e-7", "--steps", "2", "--count", "2", "--jobs", "1")])
-def test_a_search_that_explodes_stops_at_its_time_budget(tmp_path, command):
-    run = run_file(tmp_path, LONG_BEAM_ON_A_FOUNDATION, *command, "--max-seconds", "2",
-                   limit=60)
+#: A Timoshenko beam whose shear stiffness is far softer than its bending one (kGA L**2 / EI
+#: = 8e-4) on a stiff foundation, beside an ordinary beam: its evanescent shear wave cuts it
+#: into 23,544 pieces (47,127 freedoms) from about its 70th mode. Asked for 100 modes, the
+#: proofs' ball batch of them all grew past 24 GB and ran minutes past a 60 s budget; the
+#: plan's building took 9 s between two checks of the budget.
+SHEAR_SOFT_ON_A_FOUNDATION = """
+[[beam]]
+name = "a"
+theory = "timoshenko"
+EI = 3.1
+m = 0.7
+rhoI = 0.02
+kGA = 4.7e-4
+L = 2.3
+kw = 7.7e5
+left = "pinned"
+right = "free"
+
+[[beam]]
+name = "b"
+EI = 1
+m = 1
+L = 1.5
+left = "clamped"
+right = "free"
+
+[[spring]]
+between = ["a", "b"]
+x = 0.7
+k = 30
+"""
+
+
+@pytest.mark.parametrize("text, command", [
+    (LONG_BEAM_ON_A_FOUNDATION, ("solve", "--count", "3")),
+    (LONG_BEAM_ON_A_FOUNDATION, ("modes", "--count", "1")),
+    (LONG_BEAM_ON_A_FOUNDATION, ("sweep", "--param", "kw", "--from", "1e-7", "--to", "2e-7",
+                                 "--steps", "2", "--count", "2", "--jobs", "1")),
+    (SHEAR_SOFT_ON_A_FOUNDATION, ("solve", "--count", "100"))],
+    ids=["long-solve", "long-modes", "long-sweep", "shear-soft-solve"])
+def test_a_search_that_explodes_stops_at_its_time_budget(tmp_path, text, command):
+    run = run_file(tmp_path, text, *command, "--max-seconds", "2", limit=60)
     assert_contract(run, 60)
     assert run.code == 1 and "--max-seconds" in run.stderr
-    # (a single evaluation is not interrupted: one of this model's takes a few seconds)
+    # (a single evaluation is not interrupted: one of these models' takes a few seconds)
     assert run.seconds < 20
+
+
+def test_building_a_plan_of_tens_of_thousands_of_pieces_keeps_to_the_budget():
+    """The mesh and the plan of the shear-soft beam (47,127 freedoms) take seconds: the
+    budget is checked along them, not only before the first evaluation."""
+    from symtmm.deadline import time_budget
+    from symtmm.errors import OverBudget
+    from symtmm.numeric.plan import StiffnessPlan
+    model = loads(SHEAR_SOFT_ON_A_FOUNDATION).require_numeric()
+    with time_budget(0.0), pytest.raises(OverBudget):
+        StiffnessPlan(model, 1040.0 ** 2)
 
 
 def test_time_budgets_nest_and_the_inner_one_cannot_extend_the_outer():

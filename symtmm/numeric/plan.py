@@ -40,6 +40,7 @@ from collections import OrderedDict, deque
 import numpy as np
 import sympy as sp
 
+from ..deadline import check as check_time
 from ..elements import EulerBernoulliSegment
 from ..elements.base import stiffness_coefficients
 from ..elements.layer import CoupledSegment
@@ -488,7 +489,12 @@ class StiffnessPlan:
                                 yield i, j, r * w + c - r, \
                                     ai if aj is ONE else aj if ai is ONE else ai * aj
 
-        for k, i, places in zip(member_kind, member_index, mesh.segment_places):
+        for count, (k, i, places) in enumerate(zip(member_kind, member_index,
+                                                   mesh.segment_places)):
+            if count % 1024 == 0:
+                # (a plan of tens of thousands of pieces takes seconds: a search's budget
+                # is checked along it)
+                check_time()
             base, size = offsets[i], kind_size(k)
             for i_, j_, target, both in entries(places):
                 triples.append((target, ("D", base + size * i_ + j_), 1 if both is ONE else both))

@@ -777,6 +777,8 @@ def envelope_maps(plan, reverse: bool = False) -> list:
         first[r + j] = min(first[r + j], r)
     out = []
     for k in range(n):
+        if k % _CHECK_EVERY == 0:
+            check_time()        # (tens of thousands of freedoms: seconds)
         J = np.array([j for j in range(1, w) if k + j < n and first[k + j] <= k], dtype=int)
         pairs = [(a, b) for a in range(J.size) for b in range(a, J.size)]
         out.append((J, np.array([J[a] for a, _ in pairs], dtype=int),
