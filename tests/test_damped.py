@@ -265,6 +265,29 @@ def test_light_damping_is_solved_from_the_undamped_eigenvalues(monkeypatch):
         assert e.proof == DAMPED_PROOFS["rouche"]
 
 
+@pytest.mark.skipif(not ball_available(), reason="Rouche's proofs need python-flint")
+@pytest.mark.parametrize("share", [0.0, None], ids=["cut-at-once", "default-share"])
+def test_rouche_proofs_cut_short_leave_their_boxes_to_two_precisions(monkeypatch, share):
+    """Rouche's proofs take a share of the search's time (a crowd of nearly undamped modes
+    made them 71 of a search's 77 s, past its budget); cut short, the boxes they leave are
+    backed by two precisions, every digit still right. The reference: the Green's-function
+    roots of the pinned-pinned beam with its dashpots."""
+    from symtmm.roots import damped
+    if share is not None:
+        monkeypatch.setattr(damped, "_PROOF_SHARE", share)
+        monkeypatch.setattr(damped, "_PROOF_FLOOR", share)
+    model = Model((Beam("a", EI=1, m=1, L=1, left="pinned", right="pinned"),),
+                  tuple(Spring("a", "ground", x=str(x), k=k, c=str(c)) for x, k, c in LIGHT))
+    spec = solve_damped(model, omega_max=200, digits=15)
+    refs = sorted(pp_damped_roots(1, 1, 1, LIGHT, 200, dps=40), key=lambda z: z.imag)
+    assert len(spec) == len(refs) == 4
+    for e, ref in zip(spec, refs):
+        assert_digits_correct(e.to_dict()["real"], ref.real, 15)
+        assert_digits_correct(e.to_dict()["imag"], ref.imag, 15)
+    expected = DAMPED_PROOFS["agree"] if share == 0.0 else DAMPED_PROOFS["rouche"]
+    assert [e.proof for e in spec] == [expected] * 4
+
+
 def test_estimates_that_do_not_give_every_zero_leave_the_rectangle_to_the_isolation():
     """Two estimates of one zero, or fewer estimates than zeros: None, nothing is taken
     on trust (the caller isolates); good estimates: the zeros themselves."""
