@@ -162,6 +162,34 @@ def test_mode_shapes_of_a_pinned_pair():
         assert np.allclose(sign * yb, ratio * a * np.sin(math.pi * x), atol=1e-12)
 
 
+def test_mode_shapes_of_a_soft_beam_held_between_two_stiff_layers():
+    """A soft heavy beam between two stiff layers: along it the coupled member's waves
+    grow by ``exp(600)`` where the beam's own say ``exp(3)``, and the shapes' walk, at the
+    digits of the latter, refined noise ("not told apart from a neighbouring eigenvalue's",
+    after a minute). Pinned beams: every mode is ``sin(n pi x / L)`` on each beam, its
+    amplitudes the eigenvector of the 3x3 problem of its ``n``."""
+    EI, m, k, L = (1.36e6, 0.45, 1000), (0.71, 430, 1.4), (1e6, 6e6), 10
+    model = Model(tuple(Beam(n, EI[i], m[i], L, **PP) for i, n in enumerate("abc")),
+                  layers=(Layer("a", "b", k=k[0]), Layer("b", "c", k=k[1])))
+    modes = mode_shapes(model, count=2, points=5)
+    laplacian = np.array([[k[0], -k[0], 0], [-k[0], k[0] + k[1], -k[1]], [0, -k[1], k[1]]])
+    Ms = np.diag(1 / np.sqrt(m))
+    family = []                     # (omega, n, amplitudes mass-normalised) per mode
+    for n in (1, 2, 3):
+        b4 = (n * math.pi / L) ** 4
+        w2, vectors = np.linalg.eigh(Ms @ (np.diag(np.array(EI) * b4) + laplacian) @ Ms)
+        # (sum of m a**2 L / 2 over the beams is 1)
+        family += [(math.sqrt(w), n, Ms @ v * math.sqrt(2 / L)) for w, v in zip(w2, vectors.T)]
+    family.sort(key=lambda t: t[0])
+    for mode, (omega, n, amplitudes) in zip(modes, family):
+        assert math.isclose(float(mode.eigenvalue.lam.imag), omega, rel_tol=1e-12)
+        x = np.asarray(mode.beams["a"].x, dtype=float)
+        got = np.array([np.asarray(mode.beams[b].Y, dtype=float) for b in "abc"])
+        expected = np.outer(amplitudes, np.sin(n * math.pi * x / L))
+        sign = np.sign(got[1, 1]) * np.sign(expected[1, 1])
+        assert np.allclose(sign * got, expected, atol=1e-9 * np.abs(expected).max())
+
+
 LAYERED = """
 [[beam]]
 name = "a"

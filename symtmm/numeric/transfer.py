@@ -44,6 +44,7 @@ True
 from __future__ import annotations
 
 import bisect
+import itertools
 import math
 from fractions import Fraction
 
@@ -420,9 +421,36 @@ def digits_lost(plan: TransferPlan, lam) -> float:
 
 def growth_by_beam(plan: TransferPlan, lam) -> list:
     """``|beta| L`` of each level of ``plan`` (each beam) at ``lam``, in their order: the
-    natural logarithm of its matrices' growth (:func:`digits_lost`)."""
-    lam2 = complex(lam) ** 2
-    return [float(np.max(seg.wave_number(lam2))) * L for seg, _, L in plan.levels]
+    natural logarithm of its matrices' growth (:func:`digits_lost`).
+
+    Over a layer the beam's waves are the coupled member's, bounded by those of the beam
+    on the foundation ``kw + 2 |k + c lam|`` of the layers it touches (as the meshes bound
+    them: :meth:`symtmm.mesh.Stretches._longest`): a soft beam held between two stiff
+    layers grows by ``exp(627)`` along its length where its own waves say ``exp(3)``, and
+    a mode shape walked at the digits of the latter refined noise."""
+    lam = complex(lam)
+    lam2 = lam * lam
+    model = plan.model
+    out = []
+    for beam, (seg, _, L) in zip(model.beams, plan.levels):
+        own = float(np.max(seg.wave_number(lam2)))
+        layers = [(float(la.x0), float(la.x1), abs(float(la.k) + float(la.c) * lam))
+                  for la in model.layers if beam.name in (la.a, la.b)]
+        if not layers:
+            out.append(own * L)
+            continue
+        a, b = float(beam.x0), float(beam.x0) + L
+        ends = sorted({a, b} | {min(max(x, a), b) for x0, x1, _ in layers for x in (x0, x1)})
+        EI, m, kw = float(beam.EI), float(beam.m), float(beam.kw)
+        total = 0.0
+        for xa, xb in itertools.pairwise(ends):
+            middle = (xa + xb) / 2
+            held = sum(2 * k for x0, x1, k in layers if x0 <= middle <= x1)
+            s = own if not held else \
+                max(own, ((m * abs(lam2) + abs(kw) + held) / EI) ** 0.25)
+            total += s * (xb - xa)
+        out.append(total)
+    return out
 
 
 # -- states at sample points -----------------------------------------------------------------
