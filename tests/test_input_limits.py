@@ -909,7 +909,9 @@ def test_derive_counts_a_long_determinant_without_listing_its_terms(tmp_path):
     run, seconds = _derive_as_a_program(tmp_path, _FOUR_BEAMS_WITH_A_LONG_DETERMINANT, 5)
     assert run.returncode == 1 and len(run.stderr.splitlines()) == 1
     assert "takes longer than 5 s (--max-seconds)" in run.stderr
-    assert seconds < 10
+    # (a program's start and the budget's 5 s: about 6 s alone, 10.06 s once beside two
+    # other busy processes on two cores; the listing took 16.8)
+    assert seconds < 14
 
 
 def test_factoring_fits_its_size_and_the_time_left():
