@@ -775,7 +775,10 @@ def test_derive_refuses_a_factorisation_too_large_to_interrupt(tmp_path):
     run = run_file(tmp_path, _BEAMS_WITH_A_LARGE_DETERMINANT, "derive", "--max-seconds", "5",
                    limit=60)
     assert_contract(run, 60)
-    assert run.code == 1 and "can be factored" in one_line(run)
+    # (on a busy machine the budget may end the derivation before the factorisation is
+    # reached: that line too, as early)
+    line = one_line(run)
+    assert run.code == 1 and ("can be factored" in line or "longer than 5 s" in line)
     assert run.seconds < 15
 
 
