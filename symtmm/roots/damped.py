@@ -152,7 +152,7 @@ _FAR_OUT = 1e40
 #: a crowd of nearly undamped modes makes ``K`` ill-conditioned, their enclosures miss by
 #: a little and every radius is tried: a campaign model of a soft, heavy Timoshenko beam
 #: took 71 of its 77 s proving 29 of 93 eigenvalues by Rouche, past the default budget
-#: (now 11 s, 7 proved); another's 132 eigenvalues 38 of 61 s at twice the search's time.
+#: (now 7 s, 7 proved); another's 132 eigenvalues 38 of 61 s at twice the search's time.
 _PROOF_SHARE = 1.0
 _PROOF_FLOOR = 2.0
 #: Boxes whose Rouche disks are enclosed in one batch.
