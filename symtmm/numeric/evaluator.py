@@ -360,9 +360,9 @@ class Evaluator:
         300 bits, and half of its first batch and most of its second were redone; the
         113 bits it now starts with decide them, and the 25 to 45 of chains of 10 and 20
         levels, which needed none, cost them little (a ball operation costs about the
-        same from 144 to 300 bits).
+        same from 144 to 300 bits). At most ``ar``'s own bits more: 47,127 freedoms would
+        have asked for 11,750.
         """
-        # (at most twice the bits to start with: 47,000 freedoms would ask for 11,750)
         extra = self._extra_bits.get(id(plan), min(plan.n // 4, ar.prec))
         work = Ball(ar.prec + extra) if extra else ar
         with work:

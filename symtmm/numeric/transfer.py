@@ -53,11 +53,13 @@ import sympy as sp
 
 from ..assembly import Interval, Layout, state_rows
 from ..deadline import check as check_time
+from ..elements import EulerBernoulliSegment
 from ..elements.base import LAM
 from ..errors import ComputationError
 from ..limits import MAX_PIECES
 from .arith import DOUBLE, Arithmetic, Ball, Batch, ball_available, ball_midpoints, memo
 from .linalg import det
+from .plan import wave_number_bound
 from .segments import cut_tables, family_matrices, kind_order, kind_size, kind_tables
 from .segments import kind as segment_kind
 
@@ -441,13 +443,12 @@ def growth_by_beam(plan: TransferPlan, lam) -> list:
             continue
         a, b = float(beam.x0), float(beam.x0) + L
         ends = sorted({a, b} | {min(max(x, a), b) for x0, x1, _ in layers for x in (x0, x1)})
-        EI, m, kw = float(beam.EI), float(beam.m), float(beam.kw)
         total = 0.0
         for xa, xb in itertools.pairwise(ends):
             middle = (xa + xb) / 2
             held = sum(2 * k for x0, x1, k in layers if x0 <= middle <= x1)
-            s = own if not held else \
-                max(own, ((m * abs(lam2) + abs(kw) + held) / EI) ** 0.25)
+            s = own if not held else max(own, wave_number_bound(
+                EulerBernoulliSegment(beam.EI, beam.m, xb - xa, beam.kw + held), abs(lam2)))
             total += s * (xb - xa)
         out.append(total)
     return out
