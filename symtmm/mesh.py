@@ -819,14 +819,17 @@ def zero_order(model: Model) -> tuple:
     >>> zero_order(Model((pf,), (Spring("b", "ground", "3/5", 0, 2),)))   # a pure dashpot
     (1, 1)
     """
-    from .elements.base import LAM
+    from .elements.base import stiffness_coefficients
 
     mesh, basis = _static_null_space(model)
     r = len(basis)
     if r == 0:
         return 0, 0
     CZ = sp.zeros(r, r)
-    dampers = [(places, element.stiffness(LAM).diff(LAM).subs(LAM, 0))
+    # (C: each point element's coefficients of lam**1, kept by its class and parameters;
+    # differentiating its S(lam) in SymPy cost a damped example a tenth of its solve)
+    dampers = [(places, sp.Matrix([[p[1] if len(p) > 1 else 0 for p in row]
+                                   for row in stiffness_coefficients(element)]))
                for places, element in mesh.point_places]
     dampers += [(places, _coupled_damping(_whole(seg))) for (b, seg, _, _), places
                 in zip(mesh.segments, mesh.segment_places) if isinstance(b, tuple)]
