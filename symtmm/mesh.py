@@ -31,7 +31,13 @@ from .errors import ComputationError, ModelError
 from .expr import exact_float
 from .limits import MAX_PIECES
 from .model import FREEDOM_INDEX, GROUND, Model
-from .numeric.plan import layered_piece, long_piece, wave_number_bound, wave_piece
+from .numeric.plan import (
+    clamped_long_piece,
+    layered_piece,
+    long_piece,
+    wave_number_bound,
+    wave_piece,
+)
 from .numeric.segments import Condensed
 
 __all__ = ["Mesh", "Stretches", "BC_FREEDOMS_FIXED", "static_nullity", "zero_order"]
@@ -147,6 +153,9 @@ class Stretches:
                 # the plans' rule on an Euler-Bernoulli beam, whose largest wave number is
                 # the beam's: a segment per stretch cost most of a chain's cut (the beam's
                 # whole segment tells a long piece its constants)
+                if piece.key[3]:
+                    # (a plan whose counts add J0: past the clamped-clamped frequencies)
+                    return clamped_long_piece(self._whole[i], s, size, piece.key[1])
                 return long_piece(self._whole[i], s, size, piece.key[2], piece.key[1])
             return piece(beam, beam.segment(xb - xa))
         # |X| of the coupled piece is at most that of a beam on the foundation

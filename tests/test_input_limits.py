@@ -591,12 +591,10 @@ k = 30
 
 
 @pytest.mark.parametrize("text, command", [
-    (LONG_BEAM_ON_A_FOUNDATION, ("solve", "--count", "3")),
-    (LONG_BEAM_ON_A_FOUNDATION, ("modes", "--count", "1")),
-    (LONG_BEAM_ON_A_FOUNDATION, ("sweep", "--param", "kw", "--from", "1e-7", "--to", "2e-7",
-                                 "--steps", "2", "--count", "2", "--jobs", "1")),
+    # (LONG_BEAM_ON_A_FOUNDATION's solve, modes and sweep are no longer among them: its
+    # counts take a few long pieces past their clamped frequencies, tests/test_clamped.py)
     (SHEAR_SOFT_ON_A_FOUNDATION, ("solve", "--count", "100"))],
-    ids=["long-solve", "long-modes", "long-sweep", "shear-soft-solve"])
+    ids=["shear-soft-solve"])
 def test_a_search_that_explodes_stops_at_its_time_budget(tmp_path, text, command):
     run = run_file(tmp_path, text, *command, "--max-seconds", "2", limit=60)
     assert_contract(run, 60)

@@ -219,7 +219,15 @@ class Evaluator:
     ----------
     evaluations : int
         Points evaluated (one per point of every batch, in every arithmetic).
+    clamped : bool
+        Its plans' long pieces may pass their clamped-clamped frequencies, the counts
+        adding them (:class:`~symtmm.numeric.plan.StiffnessPlan`): only for points on the
+        frequency axis (:class:`symtmm.roots.count.Counter` of an undamped model).
     """
+
+    #: (False: the damped searches evaluate off the axis, where those pieces' poles of ``K``
+    #: would cost the enclosures their widths)
+    clamped = False
 
     def __init__(self, model, size: float):
         self.model = model.require_numeric()
@@ -243,14 +251,14 @@ class Evaluator:
         what hundreds of double evaluations do, its extra pieces far less.
         """
         design = design_range(size)
-        if top is None or top >= design:
-            key = (design, design)
+        if (top is None or top >= design) and not self.clamped:
+            key = (design, design, False)
         else:
             # (the shared lookup hashes the whole model: once per range and top here)
-            asked = (design, design_range(top))
+            asked = (design, None if top is None or top >= design else design_range(top))
             key = self._keys.get(asked)
             if key is None:
-                key = self._keys[asked] = plan_key(self.model, size, top)
+                key = self._keys[asked] = plan_key(self.model, size, top, self.clamped)
         plan = self._plans.get(key)
         if plan is None:
             small = SMALL_BATCH if ar is DOUBLE else SMALL_PROOF_BATCH
@@ -260,9 +268,9 @@ class Evaluator:
                 plan = self._borrowed.get(key)
                 if plan is None:
                     plan = self._borrowed[key] = plan_for(self.model, size, slack=math.inf,
-                                                          top=key[1])
+                                                          top=key[1], clamped=key[2])
                 return plan
-            plan = self._plans[key] = plan_for(self.model, size, top=key[1])
+            plan = self._plans[key] = plan_for(self.model, size, top=key[1], clamped=key[2])
         return plan
 
     def _built(self) -> list:

@@ -96,6 +96,7 @@ BETA_CLAMPED = 4.73
 #: m`` 1.23 times ``top2``: the foundation alone keeps the pieces' clamped modes above the
 #: range) into a plan of 182 segments where their growth allows 17: a campaign model's
 #: damped search, whose proofs took dense determinants of them, 59 s against about 15 s.
+#: (Not in a plan for counts on the frequency axis, ``clamped``: :func:`clamped_long_piece`.)
 CLAMPED_MARGIN = 1.1
 
 
@@ -187,12 +188,15 @@ def _long_or_short(segment, s: float, length: float, top2: float, short: float) 
     return longest if longest >= LONG_GAIN * short else short
 
 
-def piece_rule(radius: float, nu_max: float = NU_MAX, top2: float | None = None):
+def piece_rule(radius: float, nu_max: float = NU_MAX, top2: float | None = None,
+               clamped: bool = False):
     """``piece(beam, segment)``: :func:`piece_length` for ``|lam|**2 <= radius``, as
     :class:`~symtmm.mesh.Mesh` takes it (its ``radius`` bounds a layer's ``k + c lam``; its
     ``key`` names the rule for :meth:`~symtmm.mesh.Stretches.subdivide`'s memory). Plain
     Euler–Bernoulli stretches take :func:`long_piece` for ``|Im lam|**2 <= top2`` (by
-    default ``radius``)."""
+    default ``radius``); with ``clamped``, long pieces past their clamped-clamped
+    frequencies (:func:`clamped_long_piece`: for counts on the frequency axis that add
+    ``J0``, :func:`clamped_counts`)."""
     top2 = float(radius) if top2 is None else min(float(top2), float(radius))
 
     def piece(beam, seg):
@@ -216,9 +220,30 @@ def piece_rule(radius: float, nu_max: float = NU_MAX, top2: float | None = None)
         ratio = float(seg.l) / short
         return 0 if ratio <= 1 + 1e-9 else math.ceil(math.log2(ratio) - 1e-9)
 
-    piece.radius, piece.key = float(radius), (float(radius), float(nu_max), top2)
+    piece.radius = float(radius)
+    piece.key = (float(radius), float(nu_max), top2, bool(clamped))
     piece.doublings = doublings
     return piece
+
+
+def clamped_long_piece(segment, s: float, length: float, nu_max: float = NU_MAX) -> float:
+    """:func:`long_piece` without the clamped-clamped bound: a long Euler–Bernoulli piece
+    bounded by its growth alone (``|s| l <=`` :data:`NU_LONG`), for a plan whose counts add
+    its pieces' clamped-clamped eigenvalues below each frequency (``J0``,
+    :func:`clamped_counts`): at the ``n``-th mode of a beam short pieces number about
+    ``n``, these about ``n pi / NU_LONG``.
+
+    Examples
+    --------
+    A cantilever's range at its 200th mode, ``beta L`` about ``200 pi``: 210 short pieces,
+    6 such ones (each past about 38 of its clamped-clamped frequencies).
+
+    >>> seg = EulerBernoulliSegment(1, 1, 1)
+    >>> s = wave_number_bound(seg, (200 * math.pi) ** 4)
+    >>> math.ceil(1 / wave_piece(s, 1.0)), math.ceil(1 / clamped_long_piece(seg, s, 1.0))
+    (210, 6)
+    """
+    return _long_or_short(segment, s, length, 0.0, wave_piece(s, length, nu_max))
 
 
 def _layered_short(seg, radius: float, nu_max: float) -> float:
@@ -371,6 +396,13 @@ class StiffnessPlan:
     top2 : float, optional
         Largest ``|Im lam|**2`` at which the plan is evaluated (by default ``radius``):
         the long pieces' clamped-clamped eigenvalues lie above it (:func:`long_piece`).
+    clamped : bool
+        Long Euler–Bernoulli pieces past their clamped-clamped eigenvalues, bounded by
+        their growth alone (:func:`clamped_long_piece`): a plan for counts on the frequency
+        axis only, which add those eigenvalues below each frequency (``J0``,
+        :func:`symtmm.numeric.clamped.clamped_counts`, by :func:`~symtmm.numeric.
+        stiffness.factor` and :func:`~symtmm.numeric.stiffness.summary`). ``K`` has poles
+        there; ``Delta`` does not.
 
     Attributes
     ----------
@@ -409,13 +441,15 @@ class StiffnessPlan:
     """
 
     def __init__(self, model, radius: float, nu_max: float = NU_MAX, stretches=None,
-                 top2: float | None = None):
+                 top2: float | None = None, clamped: bool = False):
         from ..mesh import Mesh
         self.model = model
         self.radius = float(radius)
         self.top2 = self.radius if top2 is None else min(float(top2), self.radius)
+        self.clamped = bool(clamped)
         self.damped = model.damped
-        mesh = self.mesh = Mesh(model, piece_rule(self.radius, nu_max, self.top2), stretches)
+        mesh = self.mesh = Mesh(model, piece_rule(self.radius, nu_max, self.top2, clamped),
+                                stretches)
         n = self.n = mesh.size
         self.long = self._long(nu_max)
         self.valid_radius = self._valid_radius(nu_max)
@@ -752,11 +786,13 @@ def _long_possible(model, design: float) -> bool:
     return known
 
 
-def plan_key(model, size: float, top: float | None = None) -> tuple:
-    """``(design, top design)``: the ranges a plan for ``|lam| <= size`` at points with
-    ``|Im lam| <= top`` (by default ``size``) is cut for, :func:`design_range` of each; the
-    top is the design's own where no stretch takes long pieces (:func:`long_piece`), so
-    that searches off the imaginary axis share the plans of the others.
+def plan_key(model, size: float, top: float | None = None, clamped: bool = False) -> tuple:
+    """``(design, top design, clamped)``: the ranges a plan for ``|lam| <= size`` at points
+    with ``|Im lam| <= top`` (by default ``size``) is cut for, :func:`design_range` of each,
+    and whether its long pieces pass their clamped-clamped frequencies (asked by counts on
+    the frequency axis, :class:`StiffnessPlan`); the top is the design's own, and a plan
+    not ``clamped``, where no stretch takes long pieces (:func:`long_piece`), so that
+    searches off the imaginary axis and counts share the plans of the others.
 
     Examples
     --------
@@ -764,18 +800,23 @@ def plan_key(model, size: float, top: float | None = None) -> tuple:
     >>> soft = Model((Beam("b", "1/100", 1, 10, left="pinned", right="pinned", kw=10**4),))
     >>> plain = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),))
     >>> plan_key(soft, 500.0, 90.0), plan_key(plain, 500.0, 90.0)
-    ((512.0, 90.50966799187809), (512.0, 512.0))
+    ((512.0, 90.50966799187809, False), (512.0, 512.0, False))
+    >>> plan_key(soft, 500.0, clamped=True), plan_key(plain, 500.0, clamped=True)
+    ((512.0, 512.0, True), (512.0, 512.0, False))
     """
     design = design_range(size)
+    if clamped and _long_possible(model, design):
+        return design, design, True
     if top is None or top >= design:
-        return design, design
+        return design, design, False
     tdesign = design_range(top)
     if tdesign >= design or not _long_possible(model, design):
-        return design, design
-    return design, tdesign
+        return design, design, False
+    return design, tdesign, False
 
 
-def plan_for(model, size: float, slack: float = 4.0, top: float | None = None) -> StiffnessPlan:
+def plan_for(model, size: float, slack: float = 4.0, top: float | None = None,
+             clamped: bool = False) -> StiffnessPlan:
     """A plan of ``model`` (numeric) valid for ``|lam| <= size``, shared between searches.
 
     Plans are cut for the ranges ``2**(k/4)`` (at most 19 % above ``size``: pieces at
@@ -787,7 +828,9 @@ def plan_for(model, size: float, slack: float = 4.0, top: float | None = None) -
     ``range**(-1/2)``), since building a plan costs tens of evaluations. The plans of
     the last :data:`PLAN_MODELS` models are kept. ``top``: the largest ``|Im lam|`` it is
     evaluated at, where that shortens long pieces' cut (:func:`plan_key`); a plan serves
-    only points below its own.
+    only points below its own. ``clamped``: for counts on the frequency axis, whose long
+    pieces may pass their clamped-clamped frequencies (:class:`StiffnessPlan`); any plan
+    serves those, a ``clamped`` one nothing else.
 
     Examples
     --------
@@ -796,7 +839,7 @@ def plan_for(model, size: float, slack: float = 4.0, top: float | None = None) -
     >>> plan_for(m, 100.0) is plan_for(m, 90.0), plan_for(m, 100.0) is plan_for(m, 1e4)
     (True, False)
     """
-    design, tdesign = key = plan_key(model, size, top)
+    design, tdesign, clamped = key = plan_key(model, size, top, clamped)
     with _PLANS_LOCK:
         plans = _PLANS.pop(model, None) or {}
         _PLANS[model] = plans
@@ -808,20 +851,21 @@ def plan_for(model, size: float, slack: float = 4.0, top: float | None = None) -
             # plan cut for it (a larger plan serves under the slack rule below)
             serving = [p for p in plans.values()
                        if p.radius <= design * design <= p.valid_radius
-                       and p.top2 >= tdesign * tdesign]
+                       and p.top2 >= tdesign * tdesign and (clamped or not p.clamped)]
             if serving:
                 return min(serving, key=lambda p: p.n)
-            larger = [k for k in plans if design < k[0] <= slack * design and k[1] >= tdesign]
+            larger = [k for k in plans if design < k[0] <= slack * design and k[1] >= tdesign
+                      and (clamped or not k[2])]
             if larger:
                 return plans[min(larger)]
     if plan is None:
         # (built outside the lock: another thread may build the same one meanwhile)
         from ..mesh import Stretches
         stretches = Stretches(model)
-        generous = generous_range(stretches, design)
-        key = (generous, generous if tdesign == design else tdesign)
+        generous = generous_range(stretches, design, clamped)
+        key = (generous, generous if tdesign == design else tdesign, clamped)
         plan = StiffnessPlan(model, generous * generous, stretches=stretches,
-                             top2=key[1] * key[1])
+                             top2=key[1] * key[1], clamped=clamped)
         with _PLANS_LOCK:
             plan = _PLANS.setdefault(model, {}).setdefault(key, plan)
     return plan
@@ -902,7 +946,7 @@ def crowding(model) -> str | None:
 GENEROUS_PIECES = 0.05
 
 
-def generous_range(stretches, design: float) -> float:
+def generous_range(stretches, design: float, clamped: bool = False) -> float:
     """The range a plan for ``design`` is cut for: the largest of ``design`` times ``2``
     or ``sqrt(2)`` whose pieces are at most :data:`GENEROUS_PIECES` more, else ``design``.
 
@@ -912,7 +956,8 @@ def generous_range(stretches, design: float) -> float:
     1 to 5 % more pieces (the 20- and 50-level chains of the benchmarks built two plans a
     solve). A beam cut by its range alone gains pieces like the range's square root, and
     keeps the range asked. The pieces are counted exactly (:meth:`~symtmm.mesh.Stretches.
-    subdivide`), not estimated.
+    subdivide`), not estimated; ``clamped``: by the rule of a plan for counts
+    (:func:`clamped_long_piece`).
 
     Examples
     --------
@@ -927,7 +972,7 @@ def generous_range(stretches, design: float) -> float:
     """
     def pieces(size):
         return sum(max(1, math.ceil(r - 1e-9))
-                   for r in stretches.subdivide(piece_rule(size * size))[2])
+                   for r in stretches.subdivide(piece_rule(size * size, clamped=clamped))[2])
     try:
         # (a float estimate first, per stretch; then the two candidates exactly, each
         # remembered for the plan's own mesh)

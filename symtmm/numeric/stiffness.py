@@ -30,13 +30,15 @@ What the factorisation gives (:class:`Factors`):
 * the **count** of negative pivots, which by Sylvester's law of inertia is the
   number of negative eigenvalues of ``K(omega)``: with no piece reaching a
   clamped-clamped eigenvalue (``J0 = 0``), the Wittrick–Williams count of the
-  model's natural frequencies below ``omega``;
+  model's natural frequencies below ``omega``; on a plan for counts whose long
+  pieces pass theirs, plus ``J0`` (:mod:`symtmm.numeric.clamped`);
 * ``Delta(lam) = det K * prod det U12 * P`` (equal to ``det R`` of the transfer
   formulation): a product of pivots, in logarithms for doubles.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from dataclasses import dataclass
@@ -393,6 +395,10 @@ class Factors:
         the factorisation at its full precision (:mod:`symtmm.numeric.multiword`); None
         entries where it did not. A point with a product has its count and ``Delta``
         and no more: its rows of ``pivots`` and ``det12`` are None.
+    clamped : numpy.ndarray or None
+        ``(B,)`` where the plan is ``clamped``: per point ``J0``, the clamped-clamped
+        eigenvalues of its pieces below the frequency (``-1`` undecided), which
+        :meth:`counts` adds (:func:`symtmm.numeric.clamped.clamped_counts`).
     """
 
     plan: object
@@ -403,6 +409,7 @@ class Factors:
     det12: np.ndarray
     K: np.ndarray | None = None
     products: np.ndarray | None = None
+    clamped: np.ndarray | None = None
 
     @property
     def trusted(self) -> np.ndarray:
@@ -410,9 +417,12 @@ class Factors:
         return np.all(self.decided, axis=1)
 
     def counts(self) -> np.ndarray:
-        """Per point the number of negative eigenvalues of ``K``, ``-1`` where undecided."""
+        """Per point the number of negative eigenvalues of ``K`` (and ``J0`` where the plan
+        is ``clamped``): the eigenvalues below the point, ``-1`` where undecided."""
         negative = np.sum(self.signs < 0, axis=1)
-        return np.where(self.trusted, negative, -1)
+        if self.clamped is None:
+            return np.where(self.trusted, negative, -1)
+        return np.where(self.trusted & (self.clamped >= 0), negative + self.clamped, -1)
 
     def log_delta(self):
         """``(log|Delta|, arg Delta)`` per point as floats (``arg`` in ``(-pi, pi]``)."""
@@ -445,9 +455,14 @@ class Factors:
                         else np.full(self.pivots.shape[0], None, dtype=object))
             products[points] = (other.products if other.products is not None
                                 else np.full(np.size(points), None, dtype=object))
+        clamped = None
+        if self.clamped is not None or other.clamped is not None:
+            clamped = merge(_zero_counts(self.clamped, self.pivots.shape[0]),
+                            _zero_counts(other.clamped, np.size(points)))
         return Factors(self.plan, other.ar, merge(self.pivots, other.pivots),
                        merge(self.signs, other.signs), merge(self.decided, other.decided),
-                       merge(self.det12, other.det12), merge(self.K, other.K), products)
+                       merge(self.det12, other.det12), merge(self.K, other.K), products,
+                       clamped)
 
     @staticmethod
     def joined(parts) -> Factors:
@@ -471,8 +486,12 @@ class Factors:
             products = np.concatenate([p.products if p.products is not None
                                        else np.full(p.pivots.shape[0], None, dtype=object)
                                        for p in parts])
+        clamped = None
+        if any(p.clamped is not None for p in parts):
+            clamped = np.concatenate([_zero_counts(p.clamped, p.pivots.shape[0])
+                                      for p in parts])
         return Factors(first.plan, first.ar, cat("pivots"), cat("signs"), cat("decided"),
-                       cat("det12"), BandRows(rows), products)
+                       cat("det12"), BandRows(rows), products, clamped)
 
     def _constant(self):
         return plan_constant(self.plan, self.ar)
@@ -566,6 +585,11 @@ class Factors:
                       self.decided[points], self.det12[points], None,
                       None if self.products is None else self.products[points])
         return list(sub.delta())
+
+
+def _zero_counts(clamped, B: int) -> np.ndarray:
+    """``clamped`` of :class:`Factors`, zeros for None (a plan whose pieces have none)."""
+    return np.zeros(B, dtype=np.int64) if clamped is None else clamped
 
 
 def _times(a: tuple, b: tuple) -> tuple:
@@ -675,8 +699,21 @@ def factor(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Facto
     In double precision a batch is factorised in parts of at most :data:`BAND_ENTRIES`,
     the band of a plan of beams (dashpots too) built by the compiled kernel over plain
     doubles; in balls, such a plan is first factorised in compiled multi-word balls, real
-    or complex (both :mod:`symtmm.numeric.multiword`).
+    or complex (both :mod:`symtmm.numeric.multiword`). On a ``clamped`` plan (real
+    ``lam2``: points on the frequency axis) also ``J0`` per point, which the counts add
+    (:attr:`Factors.clamped`).
     """
+    fa = _factored(plan, ar, lam2, lam, reverse)
+    if plan.clamped and fa.clamped is None:
+        from .clamped import clamped_counts
+        j0 = clamped_counts(plan, ar, lam2)
+        if j0 is not None:
+            fa = dataclasses.replace(fa, clamped=j0)
+    return fa
+
+
+def _factored(plan, ar: Arithmetic, lam2, lam=None, reverse: bool = False) -> Factors:
+    """:func:`factor` but for ``J0``."""
     if ar is DOUBLE:
         step = max(1, BAND_ENTRIES // max(1, plan.n * plan.width))
         lam2 = np.asarray(lam2)
@@ -883,6 +920,11 @@ def summary(plan, lam2, lam=None):
         if rest is None:
             return None
         logabs[bad], phase[bad], counts[bad] = rest
+    if plan.clamped:
+        from .clamped import clamped_counts
+        j0 = clamped_counts(plan, DOUBLE, lam2)
+        if j0 is not None:
+            counts = np.where((counts >= 0) & (j0 >= 0), counts + j0, -1)
     return logabs, phase, counts
 
 

@@ -85,6 +85,10 @@ class Counter(Evaluator):
         # the stiffness (lam) set to 0, as the model without them would have it (a model of
         # its own built its own plans: a third of a damped search's estimates)
         self._still = model.damped
+        # an undamped model's counts add the pieces' clamped-clamped eigenvalues below each
+        # frequency (J0): its long pieces pass them, a beam's n-th mode in about n pi /
+        # NU_LONG pieces where short ones take n (a cantilever's 300 modes: 314 pieces)
+        self.clamped = not model.damped
 
     def _lam(self, count: int, ar: Arithmetic = DOUBLE):
         """The dashpots' ``lam`` at ``count`` points: zeros for a damped model, else None."""

@@ -1,0 +1,123 @@
+"""``J0``: the clamped-clamped eigenvalues of a plan's pieces below a frequency.
+
+Wittrick and Williams count the natural frequencies below ``omega`` as ``J(omega) =
+J0(omega) + s{K(omega)}``: the negative eigenvalues of the dynamic stiffness ``K``, plus
+the eigenvalues of every piece with both its ends held, which ``K`` does not see (their
+modes leave the nodes still). The stiffness plans keep ``J0 = 0`` by cutting every piece
+short of its first clamped-clamped frequency (:mod:`symtmm.numeric.plan`), which at a
+beam's ``n``-th mode takes about ``n`` pieces. A plan for counts only
+(:class:`~symtmm.numeric.plan.StiffnessPlan`'s ``clamped``) lets its long
+Euler–Bernoulli pieces pass those frequencies, and its counts add them here.
+
+For a uniform Euler–Bernoulli piece clamped at both ends (Williams and Wittrick, 1970),
+with ``nu**4 = (m omega**2 - kw) l**4 / EI``, ``i`` the integer part of ``nu / pi`` and
+``s`` the sign of ``1 - cosh nu cos nu``::
+
+    J0 = i - (1 - (-1)**i s) / 2          (0 where nu**4 <= 0)
+
+``J0`` is continuous where ``nu / pi`` passes an integer (``|1 - cosh nu cos nu|`` is near
+``cosh nu`` there), so only the sign must be decided: it changes at the clamped-clamped
+frequencies, where ``K`` has a pole and its inertia jumps by as much the other way.
+Each arithmetic decides it as it decides a pivot (:meth:`~symtmm.numeric.arith.
+Arithmetic.decide`): doubles and mpmath against the rounding of ``cosh nu cos nu``,
+balls where the ball of ``1 - cosh nu cos nu`` keeps away from zero.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..expr import exact_float
+from .arith import Arithmetic
+from .segments import eb_constants
+
+__all__ = ["clamped_counts", "clamped_kinds", "BELOW_FIRST"]
+
+#: ``nu**4`` below which a piece has no clamped-clamped eigenvalue: ``4.7``\ ``**4``, below
+#: the first root ``4.7300407...`` of ``1 - cosh nu cos nu``.
+BELOW_FIRST = 4.7 ** 4
+
+
+def clamped_kinds(plan) -> list:
+    """``(kind index, multiplicity)`` of the Euler–Bernoulli kinds of ``plan`` that may pass
+    a clamped-clamped frequency in its range (``m radius - kw`` times ``l**4 / EI`` at
+    least :data:`BELOW_FIRST`); empty for a plan that is not ``clamped``, whose pieces all
+    stay below theirs. Kept on the plan."""
+    cached = plan.__dict__.get("_clamped_kinds")
+    if cached is None:
+        cached = []
+        if plan.clamped:
+            for j, (family, consts) in enumerate(plan.kinds):
+                if family != "eb":
+                    continue
+                EI, m, l, kw = (exact_float(c) for c in consts)
+                if (m * plan.radius - kw) * l ** 4 / EI >= BELOW_FIRST * (1 - 1e-9):
+                    cached.append((j, int(plan.multiplicity[j])))
+        plan.__dict__["_clamped_kinds"] = cached
+    return cached
+
+
+def clamped_counts(plan, ar: Arithmetic, lam2) -> np.ndarray | None:
+    """``J0`` per point of real ``lam2 = -omega**2`` ``(B,)`` in ``ar``: the sum over the
+    pieces of ``plan`` of their clamped-clamped eigenvalues below ``omega``, ``-1`` where
+    ``ar`` does not decide it; None where no piece can have one in the plan's range.
+
+    Examples
+    --------
+    A plan for counts of a pinned-pinned beam at its 40th mode: long pieces, each past
+    several of its clamped-clamped frequencies; the counts with them are the closed form's
+    ``n`` below ``(n pi)**2``.
+
+    >>> from symtmm.model import Beam, Model
+    >>> from symtmm.numeric.arith import DOUBLE
+    >>> from symtmm.numeric.plan import StiffnessPlan
+    >>> from symtmm.numeric.stiffness import factor
+    >>> pp = Model((Beam("b", 1, 1, 1, left="pinned", right="pinned"),))
+    >>> plan = StiffnessPlan(pp, (41 * math.pi) ** 4, clamped=True)
+    >>> plan.n, int(plan.multiplicity.sum())      # two pieces, 64.4 pi each
+    (4, 2)
+    >>> w = np.array([(n + 0.3) * math.pi for n in (10, 25, 39)]) ** 2
+    >>> clamped_counts(plan, DOUBLE, -w * w).tolist(), factor(plan, DOUBLE, -w * w).counts().tolist()
+    ([8, 24, 38], [10, 25, 39])
+    """
+    kinds = clamped_kinds(plan)
+    if not kinds:
+        return None
+    lam2 = np.asarray(lam2)
+    B = lam2.shape[0]
+    out = np.zeros(B, dtype=np.int64)
+    undecided = np.zeros(B, dtype=bool)
+    with ar:
+        consts = eb_constants(ar, [plan.kinds[j][1] for j, _ in kinds])
+        for k, (_, mult) in enumerate(kinds):
+            A, F = consts["A"][k], consts["F"][k]
+            x = -(A * lam2 + F)                      # nu**4 per point
+            rough = _floats(x)
+            at = np.nonzero(rough >= BELOW_FIRST)[0]
+            if at.size == 0:
+                continue
+            # (x > 0 there: its real root, real cosines; mpmath's root4 is complex)
+            nu = ar.sqrt(ar.sqrt(np.asarray(x)[at]))
+            cos, _ = ar.cos_sin(nu)
+            cosh, _ = ar.cosh_sinh(nu)
+            phi = 1 - cosh * cos
+            nus = _floats(nu)
+            # (the rounding of cosh nu cos nu, and of nu's cosine: nu times the ulp)
+            scale = np.asarray(ar.upper(cosh), dtype=float) * (1 + nus) \
+                if ar.needs_scale else np.ones(at.size)
+            sign, decided = ar.decide(phi, scale, 1)
+            i = np.floor(nus / math.pi).astype(np.int64)
+            j0 = i - (1 - np.where(i % 2 == 0, 1, -1) * sign.astype(np.int64)) // 2
+            out[at] += mult * j0
+            undecided[at] |= ~decided
+    return np.where(undecided, -1, out)
+
+
+def _floats(values) -> np.ndarray:
+    """Real numbers of any arithmetic as floats (a ball's midpoint), flat."""
+    values = np.asarray(values).reshape(-1)
+    if values.dtype != object:
+        return values.real.astype(float)
+    return np.array([float(v.mid() if hasattr(v, "mid") else v) for v in values])

@@ -1,0 +1,180 @@
+"""Counts whose long pieces pass their clamped-clamped frequencies, adding ``J0``.
+
+References: the closed forms of a clamped-clamped beam (``cos b cosh b = 1``) and of a
+cantilever (``1 + cos b cosh b = 0``), roots found in mpmath from ``(n + 1/2) pi``; and,
+on random models, the counts of the plans of short pieces (``J0 = 0``), a second
+formulation of the same count.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+import mpmath
+import numpy as np
+import pytest
+
+from symtmm.model import Beam, Model, Spring
+from symtmm.numeric.arith import DOUBLE, MP, Ball, ball_available
+from symtmm.numeric.clamped import clamped_counts
+from symtmm.numeric.plan import StiffnessPlan, clear_plans
+from symtmm.numeric.stiffness import factor, summary
+from symtmm.results import decimal_string
+from symtmm.roots.count import Counter
+from symtmm.roots.undamped import PROOFS, solve_undamped
+
+CLAMPED = Model((Beam("b", 1, 1, 1, left="clamped", right="clamped"),))
+CANTILEVER = Model((Beam("b", 1, 1, 1, left="clamped", right="free"),))
+
+
+def _roots(f, count: int, first: int, dps: int = 40) -> list:
+    """``b`` of the first ``count`` roots of ``f``, each found from ``(n + 1/2) pi``, ``n``
+    from ``first``: the clamped-clamped roots (``first`` 1) and the cantilever's (0) lie
+    within about ``exp(-n pi)`` of there."""
+    with mpmath.workdps(dps):
+        return [mpmath.findroot(f, (n + mpmath.mpf(1) / 2) * mpmath.pi)
+                for n in range(first, first + count)]
+
+
+CLAMPED_B = _roots(lambda b: mpmath.cos(b) - 1 / mpmath.cosh(b), 80, 1)
+
+
+def _arithmetics():
+    return [DOUBLE, MP(200)] + ([Ball(200)] if ball_available() else [])
+
+
+@pytest.mark.parametrize("ar", _arithmetics(), ids=lambda ar: ar.name)
+def test_counts_of_a_clamped_beam_in_long_pieces_are_its_closed_forms(ar):
+    """A clamped-clamped beam cut into a few long pieces at its 75th mode: ``J0`` of the
+    pieces plus the negative eigenvalues of ``K`` count the beam's own roots below each
+    frequency, in every arithmetic; ``J0`` alone is the pieces' roots below it."""
+    plan = StiffnessPlan(CLAMPED, float(CLAMPED_B[75]) ** 4, clamped=True)
+    pieces = int(plan.multiplicity.sum())
+    assert plan.clamped and 1 < pieces <= 6 and plan.n == 2 * (pieces - 1)
+    rng = random.Random(3)
+    betas = sorted(rng.uniform(0.5, float(CLAMPED_B[74])) for _ in range(40))
+    betas += [float(b) + d for b in CLAMPED_B[:74:7] for d in (-1e-6, 1e-6)]
+    # (the pieces' own roots: nu = beta / pieces; first those of the clamped beam below)
+    expected = [sum(float(r) < b for r in CLAMPED_B) for b in betas]
+    expected_j0 = [pieces * sum(float(r) < b / pieces for r in CLAMPED_B) for b in betas]
+    with ar:
+        lam2 = ar.array([-ar.number(mpmath.mpf(b) ** 4) for b in betas]) \
+            if ar is not DOUBLE else -np.array(betas) ** 4
+    assert clamped_counts(plan, ar, lam2).tolist() == expected_j0
+    counts = factor(plan, ar, lam2).counts()
+    if ar is DOUBLE:
+        # (a pivot within 1e-6 of the beam's root may be too small to trust in doubles:
+        # -1, and the searches count there in their proof arithmetic)
+        assert (counts >= 0).sum() >= len(betas) - 8
+        assert summary(plan, lam2)[2].tolist() == counts.tolist()
+        counts, expected = counts[counts >= 0], np.array(expected)[counts >= 0]
+    assert counts.tolist() == list(expected)
+
+
+def test_a_frequency_on_a_pieces_clamped_root_is_undecided_in_doubles():
+    """Within rounding of a piece's clamped-clamped root the sign of ``1 - cosh nu cos nu``
+    is not decided in doubles (``-1``: the searches move off or take more digits), and it
+    is in balls of enough bits, on either side."""
+    plan = StiffnessPlan(CLAMPED, float(CLAMPED_B[75]) ** 4, clamped=True)
+    pieces = int(plan.multiplicity.sum())
+    nu = CLAMPED_B[9]                               # (the pieces' 10th root)
+    assert clamped_counts(plan, DOUBLE, -np.array([float(nu * pieces) ** 4])).tolist() == [-1]
+    if not ball_available():
+        return
+    ar = Ball(300)
+    with ar, mpmath.workdps(60):
+        for shift, below in ((mpmath.mpf("-1e-30"), 9), (mpmath.mpf("1e-30"), 10)):
+            beta = (nu + shift) * pieces
+            lam2 = ar.array([-ar.number(beta ** 4)])
+            assert clamped_counts(plan, ar, lam2).tolist() == [pieces * below]
+
+
+def _random_model(rng: random.Random) -> Model:
+    ends = ["clamped", "pinned", "free", "sliding"]
+    beams = tuple(Beam(f"b{i}", rng.choice([1, 2, "1/3", 10]), rng.choice([1, 3, "1/2"]),
+                       rng.choice([1, 2, "3/2"]), left=rng.choice(ends),
+                       right=rng.choice(ends), kw=rng.choice([0, 0, 50]))
+                  for i in range(rng.randint(1, 3)))
+    springs = []
+    for _ in range(rng.randint(1, 3)):
+        a = rng.randrange(len(beams))
+        other = rng.choice([b.name for b in beams if b.name != beams[a].name] + ["ground"])
+        L = min([float(beams[a].L)] + [float(b.L) for b in beams if b.name == other])
+        springs.append(Spring(beams[a].name, other, x=f"{rng.randint(1, 9)}/10 * {L}",
+                              k=rng.choice([5, 100, 2000])))
+    return Model(beams, tuple(springs))
+
+
+@pytest.mark.parametrize("seed", [0, 2, 5, 6, 9, 11])
+def test_counts_past_the_clamped_frequencies_are_those_of_short_pieces(seed):
+    """On random models of beams, foundations and springs, up to about the 40th mode of
+    each beam: the counts of the plans whose long pieces pass their clamped-clamped
+    frequencies (adding ``J0``) equal those of the plans of short pieces (``J0 = 0``) at
+    every frequency both decide. (Seeds whose beams have stretches long enough for long
+    pieces; with springs every few tenths of a beam, the plans are the same.)"""
+    rng = random.Random(seed)
+    model = _random_model(rng)
+    top = min(float((40 * math.pi) ** 2 * (b.EI / b.m) ** 0.5 / b.L ** 2) for b in model.beams)
+    omegas = np.sort(np.array([rng.uniform(0.01, 1.0) * top for _ in range(300)]))
+    clear_plans()
+    long = Counter(model, top)
+    short = Counter(model, top)
+    short.clamped = False
+    got, want = long.counts(omegas), short.counts(omegas)
+    assert long.plan(top).clamped and long.plan(top).n < short.plan(top).n
+    both = (got >= 0) & (want >= 0)
+    assert both.sum() >= 290
+    assert got[both].tolist() == want[both].tolist()
+
+
+def test_a_cantilevers_three_hundred_modes_in_few_pieces():
+    """Every digit of a cantilever's first 300 frequencies against ``1 + cos b cosh b =
+    0``, each proved by ball counts, on plans of long pieces (short ones took 314 pieces
+    at the 300th mode, and the 300 modes 15 s)."""
+    clear_plans()
+    spec = solve_undamped(CANTILEVER, count=300, digits=15)
+    from symtmm.numeric import plan as plans
+    largest = max(p.n for p in plans._PLANS[CANTILEVER].values())
+    assert largest <= 24
+    if ball_available():
+        assert [e.proof for e in spec] == [PROOFS["ball"]] * 300
+    roots = _roots(lambda b: mpmath.cos(b) + 1 / mpmath.cosh(b), 300, 0)
+    with mpmath.workdps(40):
+        expected = [decimal_string(b ** 2, 15) for b in roots]
+    assert [e.to_dict()["imag"] for e in spec] == expected
+
+
+def test_thirty_digits_of_a_clamped_beams_high_modes():
+    """Modes 1 to 100 of a clamped-clamped beam to 30 digits against ``cos b cosh b = 1``."""
+    spec = solve_undamped(CLAMPED, count=100, digits=30)
+    roots = _roots(lambda b: mpmath.cos(b) - 1 / mpmath.cosh(b), 100, 1, dps=60)
+    with mpmath.workdps(60):
+        expected = [decimal_string(b ** 2, 30) for b in roots]
+    assert [e.to_dict()["imag"] for e in spec] == expected
+
+
+def test_a_long_beam_on_a_soft_foundation_solves(tmp_path):
+    """A beam 24,520 long of EI 2.8e-8 on a foundation (a fuzzed model whose solve ran past
+    any budget in thousands of short pieces): its first three frequencies, 3e-17 apart,
+    against the closed form ``omega**2 = (EI b**4 + kw) / m``, ``tan bL + tanh bL = 0``
+    (clamped-sliding), each proved by ball counts."""
+    import json
+
+    from test_input_limits import LONG_BEAM_ON_A_FOUNDATION, run_file
+
+    run = run_file(tmp_path, LONG_BEAM_ON_A_FOUNDATION, "solve", "--count", "3", "--json",
+                   limit=60)
+    assert run.code == 0, run.stderr
+    got = json.loads(run.stdout)["eigenvalues"]
+    EI, m, L, kw = (mpmath.mpf(v) for v in ("2.783e-08", "42.13", "24520.0", "9.911e-08"))
+    with mpmath.workdps(40):
+        expected = []
+        for n in range(1, 4):
+            bL = mpmath.findroot(lambda x: mpmath.tan(x) + mpmath.tanh(x),
+                                 (n - mpmath.mpf(1) / 4) * mpmath.pi)
+            expected.append(decimal_string(mpmath.sqrt((EI * (bL / L) ** 4 + kw) / m), 15))
+    assert [e["imag"] for e in got] == expected
+    if ball_available():
+        assert {e["proof"] for e in got} == {PROOFS["ball"]}
+
