@@ -41,7 +41,7 @@ from .localise import localising_rotation, pivoted_basis
 from .modeset import BeamShape, ModeSet, ModeShape
 from .nodal import nodal_displacements
 from .normalise import Energy, Inertia, complex_scaler, mass_orthonormaliser
-from .separate import null_space_apart
+from .separate import foundation_digits, null_space_apart
 
 __all__ = ["ShapePlan", "displacements", "evaluate_mode", "mode_shapes", "shapes_at",
            "working_digits"]
@@ -116,6 +116,23 @@ def working_digits(plan, lam, digits: int) -> int:
     return work
 
 
+#: Digits a foundation may take from the wave numbers (:func:`~symtmm.modes.separate.
+#: foundation_digits`) before a sample's last short step leaves double precision.
+SAMPLE_DIGITS_LOST = 2.0
+
+
+def sample_arithmetic(model, lam):
+    """The arithmetic of the last short step to a sample (:func:`~symtmm.numeric.transfer.
+    sample`'s ``inner``): double precision, or mpmath with the digits a foundation takes
+    from the wave numbers where ``m lam**2 + kw`` cancels (the step's ``x = -(m lam**2 +
+    kw) h**4 / EI`` from a double ``lam``: a beam with ``kw / (EI b**4)`` of 8e15 had its
+    samples 4e-6 off)."""
+    lost = foundation_digits(model, lam)
+    if lost <= SAMPLE_DIGITS_LOST:
+        return DOUBLE
+    return MP.from_digits(20 + math.ceil(lost))
+
+
 def _value_text(lam) -> str:
     """``lam`` in a line: ``omega = ...`` on the frequency axis, else ``lam = ...``."""
     z = complex(lam)
@@ -177,9 +194,10 @@ def shapes_at(model: Model, eigenvalue: Eigenvalue, points: int = 101, digits: i
     wlam, wlam2 = transfer.point(walk, value, real)
     start = transfer.convert(ar, walk, E0)
     energy = Energy(shape_plan.inertia, walk, wlam2, digits + 3) if real else None
-    _, states = transfer.sample(tp, walk, grid, wlam, wlam2, start=start[None], inner=DOUBLE,
+    inner = sample_arithmetic(model, value)
+    _, states = transfer.sample(tp, walk, grid, wlam, wlam2, start=start[None], inner=inner,
                                 observe=energy)
-    states = states[0]                          # (samples, 4, mult), double
+    states = transfer.convert(inner, DOUBLE, states[0])     # (samples, 4, mult), double
 
     gram = parts = None
     if real:
@@ -363,8 +381,9 @@ def evaluate_mode(model: Model, mode: ModeShape, beam: str, x, side: str = "+") 
     ar = MP.from_digits(mode.dps)
     lam, lam2 = transfer.point(ar, mode.lam, real)
     start = ar.array([ar.number(v) for v in mode.left_state], (1, tp.size, 1))
-    _, states = transfer.sample(tp, ar, where, lam, lam2, start=start, inner=DOUBLE)
-    out = states[0, :, :, 0].T
+    inner = sample_arithmetic(model, mode.lam)
+    _, states = transfer.sample(tp, ar, where, lam, lam2, start=start, inner=inner)
+    out = transfer.convert(inner, DOUBLE, states[0, :, :, 0].T)
     return out.real if real else out
 
 
