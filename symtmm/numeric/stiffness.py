@@ -218,7 +218,11 @@ def eb_closed_stiffness(ar: Arithmetic, consts: dict, lam2, threshold: float = 1
     x = -(lam2[:, None] * A + F)
     big = ar.upper(x.reshape(-1)).reshape(x.shape) >= threshold
     if not big.all():
-        D, det = eb_stiffness(ar, consts, lam2)
+        # (the series at every point, the closed forms then written over the big ones: past
+        # a long piece's clamped frequencies the series' c2**2 - c1 c3 is rounding, 0 at
+        # times, and its quotients would warn of what is thrown away)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            D, det = eb_stiffness(ar, consts, lam2)
         if not big.any():
             return D, det
         D, det = D.copy(), det.copy()
