@@ -180,6 +180,12 @@ def _targets(r) -> list:
                  "`modes` / the FE's eigenvectors, "
                  + (f"failed: {sh['error']}" if "error" in sh else
                     ", ".join(f"{k} {_g(v)}" for k, v in sh["ratios"].items())) + "."), ""]
+    if "high_modes" in r:
+        hm = r["high_modes"]
+        out += [("Reported beside them (section 9): a cantilever's first 100 and 300 "
+                 "frequencies, symtmm / FE: "
+                 + (f"failed: {hm['error']}" if "error" in hm else
+                    ", ".join(f"{k} {_g(v)}" for k, v in hm["ratios"].items())) + "."), ""]
     return out
 
 
@@ -676,6 +682,32 @@ def _shapes(sh) -> list:
     return out + [""]
 
 
+def _high_modes(hm) -> list:
+    out = ["## 9. High modes (reported beside the targets)", "",
+           ("A cantilever's (EI = m = L = 1) first 100 and 300 frequencies "
+            "(benchmarks/high_modes.py): symtmm's `solve(model, count=N, "
+            f"digits={hm['digits']})` from a new model object, against the sparse FE model "
+            "of section 1 (cubic Hermite elements, shift-invert `eigsh` with k = N) on the "
+            f"coarsest uniform mesh within {hm['tolerance']:g} on all N frequencies, or, "
+            "where the FE error stops falling above it, the mesh of its smallest error "
+            "(marked (!): this favours the FE). Reference: the closed form 1 + cos b cosh b "
+            f"= 0, omega = b**2, in mpmath. Each the best of {hm['repeat']} runs, in turns."),
+           ""]
+    out += _table(["model", "symtmm s", "evaluations", "symtmm error", "proofs",
+                   "FE elements", "FE dofs", "FE error", "FE s", "symtmm / FE"],
+                  [[c["name"], _g(c["symtmm"]["seconds"]), c["symtmm"]["evaluations"],
+                    _g(c["symtmm"]["max_rel_error"], 2),
+                    "; ".join(f"{p} {k}" for p, k in c["symtmm"]["proofs"].items()),
+                    c["fe"]["elements_per_beam"], c["fe"]["dofs"],
+                    _g(c["fe"]["max_rel_error"], 2) + ("" if c["fe"]["within"] else " (!)"),
+                    _g(c["fe"]["seconds"]), _g(c["ratio"])]
+                   for c in hm["cases"]])
+    out += ["", "Meshes tried (elements: FE error): " + "; ".join(
+        f"{c['count']} modes: " + ", ".join(f"{k}: {_g(e, 2)}" for k, e in c["fe"]["tried"].items())
+        for c in hm["cases"]), ""]
+    return out
+
+
 def render(r: dict) -> str:
     out = ["# Benchmarks", "",
            "The targets of issue 11 (\"Fast and certified by default\"), measured side by side "
@@ -694,6 +726,7 @@ def render(r: dict) -> str:
            "python benchmarks/run.py --sections fe sweep              # some sections",
            "python benchmarks/run.py --sections ordinary              # the ordinary models",
            "python benchmarks/run.py --sections shapes                # mode shapes",
+           "python benchmarks/run.py --sections high_modes            # 100 and 300 modes",
            "```", "",
            ("cxroots is optional (`pip install cxroots`, or the `bench` extra); without it its "
             "row reads \"not installed\". The generated C needs gcc. References are computed "
@@ -704,7 +737,7 @@ def render(r: dict) -> str:
     out += _findings(r)
     sections = {"fe": _fe, "scaling": _scaling, "precision": _precision,
                 "root_search": _root_search, "sweep": _sweep, "evaluator": _evaluator,
-                "ordinary": _ordinary, "shapes": _shapes}
+                "ordinary": _ordinary, "shapes": _shapes, "high_modes": _high_modes}
     for name, fn in sections.items():
         if name in r and "error" not in r[name]:
             out += fn(r[name])

@@ -26,9 +26,9 @@ if str(ROOT) not in sys.path:
 
 #: In the order of the targets of issue 11, then the sections reported beside them.
 SECTIONS = ("fe", "scaling", "precision", "root_search", "sweep", "evaluator", "ordinary",
-            "shapes")
+            "shapes", "high_modes")
 #: Sections that carry no target of their own (reported beside the targets).
-REPORTED = ("ordinary", "shapes")
+REPORTED = ("ordinary", "shapes", "high_modes")
 
 
 def _load() -> list:
@@ -105,6 +105,7 @@ def run(quick: bool, sections, progress) -> dict:
     from benchmarks import (
         evaluator,
         fe_compare,
+        high_modes,
         ordinary,
         precision,
         root_search,
@@ -115,7 +116,7 @@ def run(quick: bool, sections, progress) -> dict:
 
     modules = {"fe": fe_compare, "scaling": scaling, "precision": precision,
                "root_search": root_search, "sweep": sweep_compare, "evaluator": evaluator,
-               "ordinary": ordinary, "shapes": shapes_compare}
+               "ordinary": ordinary, "shapes": shapes_compare, "high_modes": high_modes}
     result = dict(quick=quick, machine=machine(), load_before=_load(),
                   command="python benchmarks/run.py" + (" --quick" if quick else "")
                   + ("" if tuple(sections) == SECTIONS else " --sections " + " ".join(sections)))
