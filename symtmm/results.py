@@ -587,13 +587,6 @@ class Spectrum(Tabular):
         lines += list(self.notes)
         return "\n".join(lines)
 
-    def __str__(self) -> str:
-        return self.table()
-
-    def __repr__(self) -> str:
-        # the table, not the fields: what a user at a prompt wants to see
-        return self.table()
-
     # -- Jupyter --------------------------------------------------------------------
     def _display_rows(self):
         """Header and rows shared by the HTML and LaTeX forms."""

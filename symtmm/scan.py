@@ -131,13 +131,6 @@ class Scan(Tabular):
         lines += list(self.notes)
         return "\n".join(lines)
 
-    def __str__(self) -> str:
-        return self.table()
-
-    def __repr__(self) -> str:
-        # the table, not the fields: what a user at a prompt wants to see
-        return self.table()
-
     def _repr_html_(self) -> str:
         from html import escape
         return "<pre>" + escape(self.table()) + "</pre>"

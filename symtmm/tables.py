@@ -83,10 +83,21 @@ def to_frame(columns, rows):
 
 
 class Tabular:
-    """``to_csv`` and ``to_frame`` for a result that has ``records()``."""
+    """``to_csv`` and ``to_frame`` for a result that has ``records()``; its ``str`` and
+    ``repr`` its text ``table()``."""
 
     def records(self):  # pragma: no cover - every result defines it
         raise NotImplementedError
+
+    def table(self) -> str:  # pragma: no cover - every result defines it
+        raise NotImplementedError
+
+    def __str__(self) -> str:
+        return self.table()
+
+    def __repr__(self) -> str:
+        # the table, not the fields: what a user at a prompt wants to see
+        return self.table()
 
     def to_csv(self, path) -> None:
         """Write :meth:`records` to ``path`` as CSV (``--csv FILE``)."""

@@ -241,13 +241,6 @@ class ModeSet(Tabular):
         lines += list(self.notes)
         return "\n".join(lines)
 
-    def __str__(self) -> str:
-        return self.table()
-
-    def __repr__(self) -> str:
-        # the table, not the fields: what a user at a prompt wants to see
-        return self.table()
-
     def _repr_html_(self) -> str:
         return html_table(self._head(), self._rows())
 
