@@ -116,4 +116,4 @@ def run(quick: bool = False, progress=print) -> dict:
     cases = [measure(c, progress, repeat=1 if quick else REPEAT)
              for c in (QUICK if quick else COUNTS)]
     return dict(digits=DIGITS, tolerance=TOLERANCE, repeat=REPEAT, cases=cases,
-                ratios={c["name"]: c["ratio"] for c in cases})
+                ratios={f"{c['count']} modes": c["ratio"] for c in cases})

@@ -174,18 +174,14 @@ def _targets(r) -> list:
                     "symtmm / FE: " + ", ".join(f"{k} {_g(v) if v is not None else 'failed'}"
                                                 for k, v in o["ratios"].items())
                     + f" ({'all within' if o['within'] else 'not all within'} 1)") + "."), ""]
-    if "shapes" in r:
-        sh = r["shapes"]
-        out += [("Reported beside them (section 8): the first 10 mode shapes, symtmm's "
-                 "`modes` / the FE's eigenvectors, "
-                 + (f"failed: {sh['error']}" if "error" in sh else
-                    ", ".join(f"{k} {_g(v)}" for k, v in sh["ratios"].items())) + "."), ""]
-    if "high_modes" in r:
-        hm = r["high_modes"]
-        out += [("Reported beside them (section 9): a cantilever's first 100 and 300 "
-                 "frequencies, symtmm / FE: "
-                 + (f"failed: {hm['error']}" if "error" in hm else
-                    ", ".join(f"{k} {_g(v)}" for k, v in hm["ratios"].items())) + "."), ""]
+    for name, number, what in (
+            ("shapes", 8, "the first 10 mode shapes, symtmm's `modes` / the FE's eigenvectors"),
+            ("high_modes", 9, "a cantilever's first 100 and 300 frequencies, symtmm / FE")):
+        if name in r:
+            sec = r[name]
+            out += [(f"Reported beside them (section {number}): {what}, "
+                     + (f"failed: {sec['error']}" if "error" in sec else
+                        ", ".join(f"{k} {_g(v)}" for k, v in sec["ratios"].items())) + "."), ""]
     return out
 
 
