@@ -220,3 +220,73 @@ def test_a_counters_counts_of_a_clamped_beam_up_to_its_twentieth_mode():
     decided = got >= 0
     assert decided.sum() >= 195
     assert got[decided].tolist() == np.array(expected)[decided].tolist()
+
+
+def _theory(rng: random.Random, EI: float, L: float) -> dict:
+    kind = rng.choice(["rayleigh", "timoshenko", "tension", "compression"])
+    if kind == "rayleigh":
+        return dict(theory="rayleigh", rhoI=rng.choice(["1/1000", "1/100"]))
+    if kind == "timoshenko":
+        return dict(theory="timoshenko", rhoI=rng.choice(["1/1000", "1/100"]),
+                    kGA=str(EI / L ** 2 * rng.choice([10, 100, 1000])))
+    if kind == "tension":
+        return dict(N=str(EI / L ** 2 * rng.choice([1, 10, 50])))
+    return dict(N=str(-EI / L ** 2 * rng.choice([0.1, 0.5])))
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_counts_of_condensed_chains_past_their_clamped_frequencies(seed):
+    """Beams of the other theories (rotary inertia, shear, axial force), whose long pieces
+    are chains of short ones condensed by doubling: with ``J0`` of each doubling's middle
+    node, the counts of the plans for counts equal those of the short pieces at every
+    frequency both decide, up to about the 40th mode."""
+    rng = random.Random(100 + seed)
+    ends = ["clamped", "pinned", "free", "sliding"]
+    beams = []
+    for i in range(rng.randint(1, 2)):
+        EI, L = rng.choice([1, 3, 20]), rng.choice([1, 2])
+        beams.append(Beam(f"b{i}", EI, rng.choice([1, 2]), L, left=rng.choice(ends[:2]),
+                          right=rng.choice(ends), **_theory(rng, EI, L)))
+    springs = (Spring("b0", beams[-1].name if len(beams) > 1 else "ground", "1/3", 50),)
+    model = Model(tuple(beams), springs)
+    top = min(float((40 * math.pi) ** 2 * (b.EI / b.m) ** 0.5 / b.L ** 2) for b in beams)
+    omegas = np.sort(np.array([rng.uniform(0.01, 1.0) * top for _ in range(300)]))
+    clear_plans()
+    long = Counter(model, top)
+    short = Counter(model, top)
+    short.clamped = False
+    got, want = long.counts(omegas), short.counts(omegas)
+    plan = long.plan(top)
+    assert plan.clamped and any(family == "condensed" for family, _ in plan.kinds)
+    assert plan.n < short.plan(top).n
+    # (the many short pieces leave some counts undecided in doubles, the chains fewer)
+    assert (got >= 0).sum() >= (want >= 0).sum() >= 270
+    both = (got >= 0) & (want >= 0)
+    assert got[both].tolist() == want[both].tolist()
+
+
+@pytest.mark.parametrize("theory", [dict(theory="timoshenko", rhoI="1/1000", kGA=1000),
+                                    dict(theory="rayleigh", rhoI="1/1000"), dict(N=30)],
+                         ids=["timoshenko", "rayleigh", "tension"])
+def test_thirty_modes_of_cantilevers_of_the_other_theories_against_the_fe_model(theory):
+    """A cantilever's first 30 frequencies with shear, rotary inertia or tension, counted
+    on a few condensed chains past their clamped frequencies (``J0`` of the doublings),
+    against the converged FE model of :mod:`symtmm.fe` (no code shared with the solver):
+    within its error estimate."""
+    from symtmm.fe import fe_converged
+    from symtmm.numeric.clamped import clamped_counts
+    from symtmm.solve import solve
+
+    model = Model((Beam("b", 1, 1, 1, left="clamped", right="free", **theory),))
+    clear_plans()
+    spec = solve(model, count=30, digits=15)
+    got = np.array([float(e.lam.imag) for e in spec for _ in range(e.multiplicity)])[:30]
+    fe = fe_converged([dict(name="b", EI=1.0, m=1.0, L=1.0, x0=0.0, left="clamped",
+                            right="free", kw=0.0, N=float(theory.get("N", 0)),
+                            rhoI=float(mpmath.mpf(theory.get("rhoI", 0))),
+                            kGA=theory.get("kGA"))], [], 48, 30)
+    assert np.all(np.abs(got - fe["omega"]) <= 2 * fe["error"] + 1e-12 * fe["omega"])
+    plan = Counter(model, got[-1]).plan(got[-1])
+    assert plan.clamped and plan.n <= 8
+    assert clamped_counts(plan, DOUBLE, -np.array([got[-1] * 0.999]) ** 2)[0] > 20
+

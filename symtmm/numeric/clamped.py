@@ -41,15 +41,18 @@ BELOW_FIRST = 4.7 ** 4
 
 
 def clamped_kinds(plan) -> list:
-    """``(kind index, multiplicity)`` of the Euler–Bernoulli kinds of ``plan`` that may pass
-    a clamped-clamped frequency in its range (``m radius - kw`` times ``l**4 / EI`` at
-    least :data:`BELOW_FIRST`); empty for a plan that is not ``clamped``, whose pieces all
-    stay below theirs. Kept on the plan."""
+    """``(kind index, multiplicity)`` of the kinds of ``plan`` that may pass a
+    clamped-clamped frequency in its range: Euler–Bernoulli ones whose ``m radius - kw``
+    times ``l**4 / EI`` is at least :data:`BELOW_FIRST`, and condensed chains; empty for a
+    plan that is not ``clamped``, whose pieces all stay below theirs. Kept on the plan."""
     cached = plan.__dict__.get("_clamped_kinds")
     if cached is None:
         cached = []
         if plan.clamped:
             for j, (family, consts) in enumerate(plan.kinds):
+                if family == "condensed":
+                    cached.append((j, int(plan.multiplicity[j])))
+                    continue
                 if family != "eb":
                     continue
                 EI, m, l, kw = (exact_float(c) for c in consts)
@@ -89,6 +92,12 @@ def clamped_counts(plan, ar: Arithmetic, lam2) -> np.ndarray | None:
     B = lam2.shape[0]
     out = np.zeros(B, dtype=np.int64)
     undecided = np.zeros(B, dtype=bool)
+    chains = [(j, mult) for j, mult in kinds if plan.kinds[j][0] == "condensed"]
+    kinds = [(j, mult) for j, mult in kinds if plan.kinds[j][0] == "eb"]
+    for j, mult in chains:
+        j0, sure = _chain_counts(plan, ar, j, lam2)
+        out += mult * j0
+        undecided |= ~sure
     with ar:
         consts = eb_constants(ar, [plan.kinds[j][1] for j, _ in kinds])
         for k, (_, mult) in enumerate(kinds):
@@ -113,6 +122,62 @@ def clamped_counts(plan, ar: Arithmetic, lam2) -> np.ndarray | None:
             out[at] += mult * j0
             undecided[at] |= ~decided
     return np.where(undecided, -1, out)
+
+
+def _chain_counts(plan, ar: Arithmetic, j: int, lam2) -> tuple:
+    """``(J0, decided)`` per point of the condensed chain of kind ``j`` of ``plan``: its
+    ``2**d`` short pieces (each below its clamped-clamped frequencies) joined by doubling,
+    each doubling's middle node ``S`` adding its negative eigenvalues once per pair of that
+    level (``J0 = sum_j 2**(d-1-j) s{S_j}``, Wittrick–Williams on the pair clamped at both
+    ends), decided as pivots are (:meth:`~symtmm.numeric.arith.Arithmetic.decide`)."""
+    from .arith import memo
+    from .segments import condensed_stiffness, kind_tables
+    from .stiffness import stiffness_values
+    [(_, table)] = memo(plan, ar, f"chain {j}", lambda: kind_tables(ar, [plan.kinds[j]]))
+    B = lam2.shape[0]
+    with ar:
+        D, det = stiffness_values(ar, [table["inner"]], lam2, None, plan.long)
+        size = math.isqrt(D.shape[1])
+        middles: list = []
+        condensed_stiffness(ar, D.reshape(B, size, size), det[:, 0], table["doublings"],
+                            middles)
+        d = len(middles)
+        j0 = np.zeros(B, dtype=np.int64)
+        sure = np.ones(B, dtype=bool)
+        for level, S in enumerate(middles):
+            negative, decided = _negative_eigenvalues(ar, S)
+            j0 += 2 ** (d - 1 - level) * negative
+            sure &= decided
+    return j0, sure
+
+
+def _negative_eigenvalues(ar: Arithmetic, S) -> tuple:
+    """``(count, decided)`` per point of the negative eigenvalues of the real symmetric
+    ``S`` (nested lists of arrays), by the signs of its leading minors (Sylvester): the
+    pivots of its ``LDL^T``, each decided against the entries it was formed from."""
+    n = len(S)
+    A = [[np.asarray(v) for v in row] for row in S]
+    scale = [_floats_abs(ar, A[i][i]) for i in range(n)]
+    count = np.zeros(np.shape(A[0][0])[0], dtype=np.int64)
+    decided = np.ones_like(count, dtype=bool)
+    for k in range(n):
+        pivot = A[k][k]
+        sign, ok = ar.decide(pivot, np.maximum(scale[k], 1e-300), n)
+        count += (np.asarray(sign) < 0)
+        decided &= np.asarray(ok, dtype=bool)
+        for i in range(k + 1, n):
+            with np.errstate(divide="ignore", invalid="ignore"):    # (undecided: marked)
+                f = A[i][k] / pivot
+            for c in range(k + 1, n):
+                A[i][c] = A[i][c] - f * A[k][c]
+            # (the rounding of the update: as large as the terms it subtracted)
+            scale[i] = np.maximum(scale[i], _floats_abs(ar, f * A[k][i]))
+    return count, decided
+
+
+def _floats_abs(ar: Arithmetic, values) -> np.ndarray:
+    """Upper bounds of ``|values|`` as floats."""
+    return np.asarray(ar.upper(np.asarray(values)), dtype=float).reshape(-1)
 
 
 def _floats(values) -> np.ndarray:

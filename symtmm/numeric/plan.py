@@ -204,7 +204,7 @@ def piece_rule(radius: float, nu_max: float = NU_MAX, top2: float | None = None,
         if isinstance(seg, EulerBernoulliSegment) or not _condensable(seg) or \
                 float(seg.l) <= LONG_FROM * short:
             return short
-        return max(short, condensed_piece(seg, radius, top2))
+        return max(short, condensed_piece(seg, radius, top2, clamped))
 
     def doublings(seg) -> int:
         """The doublings a piece ``seg`` of a stretch cut by this rule is condensed from:
@@ -291,11 +291,13 @@ def _condensable(seg) -> bool:
     return isinstance(seg, BeamSegment) and not (seg.kGA is not None and seg.kGA == 0)
 
 
-def condensed_piece(seg, radius: float, top2: float) -> float:
+def condensed_piece(seg, radius: float, top2: float, clamped: bool = False) -> float:
     """The longest long piece of ``seg`` (a beam of another theory): at most ``seg``'s length
     and :data:`NU_LONG` over its largest wave number, its clamped-clamped frequencies above
     ``CLAMPED_MARGIN`` times ``top2`` (the theory's own rigorous bound,
-    :meth:`~symtmm.elements.theories.BeamSegment.safe_length`, with its ``1.1`` more).
+    :meth:`~symtmm.elements.theories.BeamSegment.safe_length`, with its ``1.1`` more);
+    with ``clamped`` (a plan for counts that add ``J0``, the doublings' own:
+    :func:`symtmm.numeric.clamped.clamped_counts`), by its growth alone.
 
     Examples
     --------
@@ -309,11 +311,14 @@ def condensed_piece(seg, radius: float, top2: float) -> float:
     (1.0, 1.0, 6)
     """
     from ..errors import ComputationError
+    growth = NU_LONG / wave_number_bound(seg, radius)
+    if clamped:
+        return min(float(seg.l), growth)
     try:
-        clamped = seg.safe_length(CLAMPED_MARGIN * top2)
+        below = seg.safe_length(CLAMPED_MARGIN * top2)
     except ComputationError:
         return 0.0
-    return min(float(seg.l), clamped, NU_LONG / wave_number_bound(seg, radius))
+    return min(float(seg.l), below, growth)
 
 
 def rcm_order(size: int, cliques) -> list:

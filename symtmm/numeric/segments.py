@@ -560,7 +560,7 @@ class Condensed:
         self.l = inner.l * 2 ** self.doublings
 
 
-def condensed_stiffness(ar: Arithmetic, D, det, doublings: int):
+def condensed_stiffness(ar: Arithmetic, D, det, doublings: int, middles: list | None = None):
     """``(D, det U12)`` of ``2**doublings`` equal pieces in a row, their inner nodes condensed
     out, from one piece's ``D`` ``(B, 2h, 2h)`` (``h`` freedoms an end: 2, or ``2 N`` for
     ``N`` beams joined by a layer) and ``det U12`` ``(B,)``.
@@ -574,7 +574,9 @@ def condensed_stiffness(ar: Arithmetic, D, det, doublings: int):
     definite on the frequency axis, so the count is the whole chain's) below the pair's
     first clamped-clamped frequency, which the long piece's rule keeps above the range.
     Only products of the pieces' blocks, each to rounding of its row: an evanescent
-    piece's far-end coupling ``exp(-|s| l)`` keeps its digits.
+    piece's far-end coupling ``exp(-|s| l)`` keeps its digits. ``middles``: a list that
+    receives each doubling's ``S`` (nested lists of arrays), whose inertia a count past the
+    chain's clamped frequencies adds (:func:`symtmm.numeric.clamped.clamped_counts`).
     """
     from .stiffness import _inverse
     h = D.shape[1] // 2
@@ -587,7 +589,10 @@ def condensed_stiffness(ar: Arithmetic, D, det, doublings: int):
 
     for _ in range(doublings):
         P, Q, Qt, R = block(D, 0, 0), block(D, 0, h), block(D, h, 0), block(D, h, h)
-        inv, dS = _inverse([[p + r for p, r in zip(rp, rr)] for rp, rr in zip(P, R)])
+        S = [[p + r for p, r in zip(rp, rr)] for rp, rr in zip(P, R)]
+        if middles is not None:
+            middles.append(S)
+        inv, dS = _inverse(S)
         SQt, SQ = _matmul(inv, Qt), _matmul(inv, Q)
         zero = [[0 * v for v in row] for row in P]
         top = minus(P, _matmul(Q, SQt)), minus(zero, _matmul(Q, SQ))
