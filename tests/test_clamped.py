@@ -290,3 +290,22 @@ def test_thirty_modes_of_cantilevers_of_the_other_theories_against_the_fe_model(
     assert plan.clamped and plan.n <= 8
     assert clamped_counts(plan, DOUBLE, -np.array([got[-1] * 0.999]) ** 2)[0] > 20
 
+
+def test_a_free_beams_translation_on_its_foundation_has_its_shape(tmp_path):
+    """A free-free Rayleigh beam on a foundation translates rigidly at ``omega**2 = kw / m``
+    exactly, where ``m lam**2 + kw`` is 0: its shape is the constant ``1 / sqrt(m L)``
+    (mass-normalised), its frequency the closed form. (The shapes' count of digits lost to
+    that cancellation divided by the 0: a traceback.)"""
+    import json
+
+    from test_input_limits import run_file
+
+    text = ('[[beam]]\nname = "b"\ntheory = "rayleigh"\nEI = 30970000\nm = 21.75\nL = 12.3\n'
+            'left = "free"\nright = "free"\nrhoI = 1.408\nkw = 5502\n')
+    run = run_file(tmp_path, text, "modes", "--count", "2", "--points", "5", "--json")
+    assert run.code == 0, run.stderr
+    modes = json.loads(run.stdout)["modes"]
+    omega = math.sqrt(5502 / 21.75)
+    [translation] = [m for m in modes if abs(float(m["eigenvalue"]["imag"]) / omega - 1) < 1e-14]
+    Y = np.array(translation["beams"]["b"]["Y"])
+    assert np.allclose(np.abs(Y), 1 / math.sqrt(21.75 * 12.3), rtol=1e-12, atol=0)

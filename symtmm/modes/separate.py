@@ -112,8 +112,9 @@ def null_space_apart(tp, eigenvalue, digits: int, real: bool, working_digits) ->
 
 def foundation_digits(model, lam) -> float:
     """Digits of ``lam`` lost to the beams' wave numbers where a foundation nearly balances
-    the inertia: ``m lam**2 + kw`` of each beam, whose relative error is ``2 |m lam**2| /
-    |m lam**2 + kw|`` times ``lam``'s; 0 where no beam cancels so.
+    the inertia: ``m lam**2 + kw`` of each beam, whose error is ``2 |m lam**2|`` times
+    ``lam``'s relative one, against ``|m lam**2 + kw|`` or ``EI / L**4``, the larger; 0
+    where no beam cancels so.
 
     The null space's separation (:func:`~symtmm.numeric.linalg.separation_ratio`) does not
     see it: a beam 24,520 long of ``EI`` 2.8e-8 on a foundation (``kw / (EI b**4)`` of
@@ -137,9 +138,11 @@ def foundation_digits(model, lam) -> float:
         if kw == 0:
             continue
         inertia = float(beam.m) * lam2
-        total = abs(inertia + kw)
-        amplified = 2 * abs(inertia) / total if total > 0 else math.inf
-        worst = max(worst, amplified)
+        # (against EI / L**4 at least: a shape along the beam feels x = (m lam**2 + kw) L**4
+        # / EI to within its error however small |x|, and a free beam's rigid modes on a
+        # foundation sit at x = 0 exactly)
+        total = max(abs(inertia + kw), float(beam.EI) / float(beam.L) ** 4)
+        worst = max(worst, 2 * abs(inertia) / total)
     return math.log10(worst) if worst > 1 else 0.0
 
 
