@@ -41,7 +41,7 @@ from .localise import localising_rotation, pivoted_basis
 from .modeset import BeamShape, ModeSet, ModeShape
 from .nodal import nodal_displacements
 from .normalise import Energy, Inertia, complex_scaler, mass_orthonormaliser
-from .separate import foundation_digits, null_space_apart
+from .separate import FOUNDATION_DIGITS, foundation_digits, null_space_apart
 
 __all__ = ["ShapePlan", "displacements", "evaluate_mode", "mode_shapes", "shapes_at",
            "working_digits"]
@@ -118,7 +118,7 @@ def working_digits(plan, lam, digits: int) -> int:
 
 #: Digits a foundation may take from the wave numbers (:func:`~symtmm.modes.separate.
 #: foundation_digits`) before a sample's last short step leaves double precision.
-SAMPLE_DIGITS_LOST = 2.0
+SAMPLE_DIGITS_LOST = FOUNDATION_DIGITS
 
 
 def sample_arithmetic(model, lam):
