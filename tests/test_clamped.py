@@ -326,3 +326,19 @@ def test_shapes_of_a_model_without_foundation_keep_their_eigenvalues():
     model = Model(beams, bodies=joints)
     modes = mode_shapes(model, count=6, points=5, digits=15)
     assert [m.eigenvalue.lam for m in modes] == [e.lam for e in solve(model, count=6)]
+
+
+@pytest.mark.parametrize("ar", _arithmetics(), ids=lambda ar: ar.name)
+def test_a_doublings_middle_node_with_a_zero_pivot_is_undecided_not_an_error(ar):
+    """The inertia of a chain's middle node by its leading minors: ``[[2, 1], [1, -3]]``
+    has one negative eigenvalue, ``[[-1, 0], [0, -2]]`` two, and ``[[0, 1], [1, 0]]``'s
+    zero pivot leaves that point undecided (mpmath divided by it: ZeroDivisionError)."""
+    from symtmm.numeric.clamped import _negative_eigenvalues
+    with ar:
+        def entries(*values):
+            return ar.array([ar.number(mpmath.mpf(v)) for v in values]) \
+                if ar is not DOUBLE else np.array(values, dtype=float)
+        S = [[entries(2, -1, 0), entries(1, 0, 1)], [entries(1, 0, 1), entries(-3, -2, 0)]]
+        count, decided = _negative_eigenvalues(ar, S)
+    assert decided.tolist() == [True, True, False]
+    assert count[:2].tolist() == [1, 2]

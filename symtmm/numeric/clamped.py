@@ -7,7 +7,8 @@ modes leave the nodes still). The stiffness plans keep ``J0 = 0`` by cutting eve
 short of its first clamped-clamped frequency (:mod:`symtmm.numeric.plan`), which at a
 beam's ``n``-th mode takes about ``n`` pieces. A plan for counts only
 (:class:`~symtmm.numeric.plan.StiffnessPlan`'s ``clamped``) lets its long
-Euler–Bernoulli pieces pass those frequencies, and its counts add them here.
+Euler–Bernoulli pieces, and its chains of short pieces of the other theories condensed
+by doubling, pass those frequencies, and its counts add them here.
 
 For a uniform Euler–Bernoulli piece clamped at both ends (Williams and Wittrick, 1970),
 with ``nu**4 = (m omega**2 - kw) l**4 / EI``, ``i`` the integer part of ``nu / pi`` and
@@ -20,7 +21,8 @@ with ``nu**4 = (m omega**2 - kw) l**4 / EI``, ``i`` the integer part of ``nu / p
 frequencies, where ``K`` has a pole and its inertia jumps by as much the other way.
 Each arithmetic decides it as it decides a pivot (:meth:`~symtmm.numeric.arith.
 Arithmetic.decide`): doubles and mpmath against the rounding of ``cosh nu cos nu``,
-balls where the ball of ``1 - cosh nu cos nu`` keeps away from zero.
+balls where the ball of ``1 - cosh nu cos nu`` keeps away from zero. A condensed
+chain's ``J0`` is its doublings' own (:func:`_chain_counts`).
 """
 
 from __future__ import annotations
@@ -163,11 +165,14 @@ def _negative_eigenvalues(ar: Arithmetic, S) -> tuple:
     for k in range(n):
         pivot = A[k][k]
         sign, ok = ar.decide(pivot, np.maximum(scale[k], 1e-300), n)
+        ok = np.asarray(ok, dtype=bool)
         count += (np.asarray(sign) < 0)
-        decided &= np.asarray(ok, dtype=bool)
+        decided &= ok
+        # (an undecided pivot replaced by 1 to carry on with the other points, as the
+        # factorisation does: that point is marked, and a zero divides nothing)
+        pivot = np.where(ok, pivot, 1 + 0 * pivot)
         for i in range(k + 1, n):
-            with np.errstate(divide="ignore", invalid="ignore"):    # (undecided: marked)
-                f = A[i][k] / pivot
+            f = A[i][k] / pivot
             for c in range(k + 1, n):
                 A[i][c] = A[i][c] - f * A[k][c]
             # (the rounding of the update: as large as the terms it subtracted)
