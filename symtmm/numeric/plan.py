@@ -194,9 +194,12 @@ def piece_rule(radius: float, nu_max: float = NU_MAX, top2: float | None = None,
     :class:`~symtmm.mesh.Mesh` takes it (its ``radius`` bounds a layer's ``k + c lam``; its
     ``key`` names the rule for :meth:`~symtmm.mesh.Stretches.subdivide`'s memory). Plain
     Euler–Bernoulli stretches take :func:`long_piece` for ``|Im lam|**2 <= top2`` (by
-    default ``radius``); with ``clamped``, long pieces past their clamped-clamped
-    frequencies (:func:`clamped_long_piece`: for counts on the frequency axis that add
-    ``J0``, :func:`clamped_counts`)."""
+    default ``radius``); with ``clamped``, long pieces and condensed chains past their
+    clamped-clamped frequencies (:func:`clamped_long_piece`, :func:`condensed_piece`: for
+    counts on the frequency axis that add ``J0``, :mod:`symtmm.numeric.clamped`). Beams
+    joined by layers keep their bound (:func:`layered_piece`): passing it, measured, cost
+    two identical beams under a layer 0.42 -> 1.55 s at 60 modes (their condensed chains
+    in numpy where the compiled kernel takes the short pieces) for 2.6 -> 1.6 s at 150."""
     top2 = float(radius) if top2 is None else min(float(top2), float(radius))
 
     def piece(beam, seg):
@@ -402,9 +405,10 @@ class StiffnessPlan:
         Largest ``|Im lam|**2`` at which the plan is evaluated (by default ``radius``):
         the long pieces' clamped-clamped eigenvalues lie above it (:func:`long_piece`).
     clamped : bool
-        Long Euler–Bernoulli pieces past their clamped-clamped eigenvalues, bounded by
-        their growth alone (:func:`clamped_long_piece`): a plan for counts on the frequency
-        axis only, which add those eigenvalues below each frequency (``J0``,
+        Long Euler–Bernoulli pieces, and condensed chains of the other theories, past
+        their clamped-clamped eigenvalues, bounded by their growth alone
+        (:func:`clamped_long_piece`, :func:`condensed_piece`): a plan for counts on the
+        frequency axis only, which add those eigenvalues below each frequency (``J0``,
         :func:`symtmm.numeric.clamped.clamped_counts`, by :func:`~symtmm.numeric.
         stiffness.factor` and :func:`~symtmm.numeric.stiffness.summary`). ``K`` has poles
         there; ``Delta`` does not.
