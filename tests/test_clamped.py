@@ -106,6 +106,20 @@ def _random_model(rng: random.Random) -> Model:
     return Model(beams, tuple(springs))
 
 
+def _both_counts(model: Model, rng: random.Random) -> tuple:
+    """``(plan, short plan, counts, short counts)`` at 300 random frequencies up to about
+    the 40th mode of each beam: by the counter's plans for counts (``J0`` added) and by
+    plans of short pieces (``J0 = 0``)."""
+    top = min(float((40 * math.pi) ** 2 * (b.EI / b.m) ** 0.5 / b.L ** 2) for b in model.beams)
+    omegas = np.sort(np.array([rng.uniform(0.01, 1.0) * top for _ in range(300)]))
+    clear_plans()
+    long = Counter(model, top)
+    short = Counter(model, top)
+    short.clamped = False
+    got, want = long.counts(omegas), short.counts(omegas)
+    return long.plan(top), short.plan(top), got, want
+
+
 @pytest.mark.parametrize("seed", [0, 2, 5, 6, 9, 11])
 def test_counts_past_the_clamped_frequencies_are_those_of_short_pieces(seed):
     """On random models of beams, foundations and springs, up to about the 40th mode of
@@ -114,15 +128,8 @@ def test_counts_past_the_clamped_frequencies_are_those_of_short_pieces(seed):
     every frequency both decide. (Seeds whose beams have stretches long enough for long
     pieces; with springs every few tenths of a beam, the plans are the same.)"""
     rng = random.Random(seed)
-    model = _random_model(rng)
-    top = min(float((40 * math.pi) ** 2 * (b.EI / b.m) ** 0.5 / b.L ** 2) for b in model.beams)
-    omegas = np.sort(np.array([rng.uniform(0.01, 1.0) * top for _ in range(300)]))
-    clear_plans()
-    long = Counter(model, top)
-    short = Counter(model, top)
-    short.clamped = False
-    got, want = long.counts(omegas), short.counts(omegas)
-    assert long.plan(top).clamped and long.plan(top).n < short.plan(top).n
+    plan, short, got, want = _both_counts(_random_model(rng), rng)
+    assert plan.clamped and plan.n < short.n
     both = (got >= 0) & (want >= 0)
     assert both.sum() >= 290
     assert got[both].tolist() == want[both].tolist()
@@ -248,17 +255,9 @@ def test_counts_of_condensed_chains_past_their_clamped_frequencies(seed):
         beams.append(Beam(f"b{i}", EI, rng.choice([1, 2]), L, left=rng.choice(ends[:2]),
                           right=rng.choice(ends), **_theory(rng, EI, L)))
     springs = (Spring("b0", beams[-1].name if len(beams) > 1 else "ground", "1/3", 50),)
-    model = Model(tuple(beams), springs)
-    top = min(float((40 * math.pi) ** 2 * (b.EI / b.m) ** 0.5 / b.L ** 2) for b in beams)
-    omegas = np.sort(np.array([rng.uniform(0.01, 1.0) * top for _ in range(300)]))
-    clear_plans()
-    long = Counter(model, top)
-    short = Counter(model, top)
-    short.clamped = False
-    got, want = long.counts(omegas), short.counts(omegas)
-    plan = long.plan(top)
+    plan, short, got, want = _both_counts(Model(tuple(beams), springs), rng)
     assert plan.clamped and any(family == "condensed" for family, _ in plan.kinds)
-    assert plan.n < short.plan(top).n
+    assert plan.n < short.n
     # (the many short pieces leave some counts undecided in doubles, the chains fewer)
     assert (got >= 0).sum() >= (want >= 0).sum() >= 270
     both = (got >= 0) & (want >= 0)
