@@ -105,7 +105,7 @@ def clamped_counts(plan, ar: Arithmetic, lam2) -> np.ndarray | None:
         for k, (_, mult) in enumerate(kinds):
             A, F = consts["A"][k], consts["F"][k]
             x = -(A * lam2 + F)                      # nu**4 per point
-            rough = _floats(x)
+            rough = ar.to_complex(np.asarray(x)).real.reshape(-1)
             at = np.nonzero(rough >= BELOW_FIRST)[0]
             if at.size == 0:
                 continue
@@ -114,7 +114,7 @@ def clamped_counts(plan, ar: Arithmetic, lam2) -> np.ndarray | None:
             cos, _ = ar.cos_sin(nu)
             cosh, _ = ar.cosh_sinh(nu)
             phi = 1 - cosh * cos
-            nus = _floats(nu)
+            nus = ar.to_complex(nu).real.reshape(-1)
             # (the rounding of cosh nu cos nu, and of nu's cosine: nu times the ulp)
             scale = np.asarray(ar.upper(cosh), dtype=float) * (1 + nus) \
                 if ar.needs_scale else np.ones(at.size)
@@ -183,11 +183,3 @@ def _negative_eigenvalues(ar: Arithmetic, S) -> tuple:
 def _floats_abs(ar: Arithmetic, values) -> np.ndarray:
     """Upper bounds of ``|values|`` as floats."""
     return np.asarray(ar.upper(np.asarray(values)), dtype=float).reshape(-1)
-
-
-def _floats(values) -> np.ndarray:
-    """Real numbers of any arithmetic as floats (a ball's midpoint), flat."""
-    values = np.asarray(values).reshape(-1)
-    if values.dtype != object:
-        return values.real.astype(float)
-    return np.array([float(v.mid() if hasattr(v, "mid") else v) for v in values])

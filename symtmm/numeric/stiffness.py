@@ -217,17 +217,15 @@ def eb_closed_stiffness(ar: Arithmetic, consts: dict, lam2, threshold: float = 1
     EI, l, A, F = consts["EI"], consts["l"], consts["A"], consts["F"]
     x = -(lam2[:, None] * A + F)
     big = ar.upper(x.reshape(-1)).reshape(x.shape) >= threshold
+    if not big.any():
+        return eb_stiffness(ar, consts, lam2)
+    D, det = ar.zeros(x.shape + (4, 4), like=x), ar.zeros(x.shape, like=x)
     if not big.all():
-        # (the series at every point, the closed forms then written over the big ones: past
-        # a long piece's clamped frequencies the series' c2**2 - c1 c3 is rounding, 0 at
-        # times, and its quotients would warn of what is thrown away)
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            D, det = eb_stiffness(ar, consts, lam2)
-        if not big.any():
-            return D, det
-        D, det = D.copy(), det.copy()
-    else:
-        D, det = ar.zeros(x.shape + (4, 4), like=x), ar.zeros(x.shape, like=x)
+        # the series where it serves, and only there: at a long piece's points its c_j
+        # grow like exp(|x|**(1/4)), and past the clamped frequencies its c2**2 - c1 c3 is
+        # rounding (0 at times: quotients that warned, of numbers thrown away)
+        small = np.nonzero(~big)
+        D[small], det[small] = _series_entries(ar, x[small], EI[small[1]], l[small[1]])
     idx = np.nonzero(big)
     xb, EIb, lb = x[idx], EI[idx[1]], l[idx[1]]
     if ar.is_complex(xb):
@@ -271,10 +269,15 @@ def eb_stiffness(ar: Arithmetic, consts: dict, lam2):
     >>> bool(np.allclose(D[:, 0], D0, rtol=1e-13)), bool(np.allclose(det[:, 0], det0))
     (True, True)
     """
-    from .segments import c_functions
     lam2 = np.asarray(lam2)[:, None]
     EI, l = consts["EI"], consts["l"]
-    x = -(lam2 * consts["A"] + consts["F"])
+    return _series_entries(ar, -(lam2 * consts["A"] + consts["F"]), EI, l)
+
+
+def _series_entries(ar: Arithmetic, x, EI, l):
+    """:func:`eb_stiffness` at given ``x`` (any shape; ``EI`` and ``l`` broadcast to it):
+    ``(D (..., 4, 4), det U12)``."""
+    from .segments import c_functions
     c0, c1, c2, c3 = c_functions(ar, x)
     dc = c2 * c2 - c1 * c3
     s = EI / (l * l * l * dc)
