@@ -116,19 +116,16 @@ def working_digits(plan, lam, digits: int) -> int:
     return work
 
 
-#: Digits a foundation may take from the wave numbers (:func:`~symtmm.modes.separate.
-#: foundation_digits`) before a sample's last short step leaves double precision.
-SAMPLE_DIGITS_LOST = FOUNDATION_DIGITS
-
-
 def sample_arithmetic(model, lam):
     """The arithmetic of the last short step to a sample (:func:`~symtmm.numeric.transfer.
     sample`'s ``inner``): double precision, or mpmath with the digits a foundation takes
-    from the wave numbers where ``m lam**2 + kw`` cancels (the step's ``x = -(m lam**2 +
+    from the wave numbers where ``m lam**2 + kw`` cancels by more than
+    :data:`~symtmm.modes.separate.FOUNDATION_DIGITS` (the eigenvalue's refinement's own
+    threshold) (the step's ``x = -(m lam**2 +
     kw) h**4 / EI`` from a double ``lam``: a beam with ``kw / (EI b**4)`` of 8e15 had its
     samples 4e-6 off)."""
     lost = foundation_digits(model, lam)
-    if lost <= SAMPLE_DIGITS_LOST:
+    if lost <= FOUNDATION_DIGITS:
         return DOUBLE
     return MP.from_digits(20 + math.ceil(lost))
 
